@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Sets up a Debian 12 machine for quad and runs one of its two jobs:
+#   tools/setup.sh demo   install, configure, build (release) and fly the demo mission
+#   tools/setup.sh test   install, configure, build (ci preset, -Werror) and run every test
+# As root, missing Debian packages are installed with apt-get; otherwise the exact
+# apt-get line is printed and the script stops.
+set -euo pipefail
+
+job=${1:-}
+case "$job" in
+  demo | test) ;;
+  *)
+    echo "usage: tools/setup.sh demo|test" >&2
+    exit 2
+    ;;
+esac
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+cd "$root"
+
+# Everything quad needs from Debian 12, toolchain included (a fresh system has no compiler).
+packages=(
+  build-essential cmake ninja-build ccache pkg-config git iproute2 procps
+  libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
+  libeigen3-dev liboctomap-dev libmrpt-poses-dev libmrpt-math-dev
+  libspdlog-dev libfmt-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
+  libgtest-dev libgmock-dev libbenchmark-dev liblz4-dev libzstd-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+  [[ "$status" == "install ok installed" ]] || missing+=("$p")
+done
+if ((${#missing[@]} > 0)); then
+  if [[ $(id -u) -eq 0 ]]; then
+    echo "setup: installing ${missing[*]}"
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq
+    apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  else
+    echo "setup: missing Debian packages. Run as root, or install them with:" >&2
+    echo "  sudo apt-get install -y ${missing[*]}" >&2
+    exit 1
+  fi
+fi
+
+# ccache keeps rebuilds of a fresh clone cheap.
+export CCACHE_DIR=${CCACHE_DIR:-$HOME/.cache/ccache}
+
+if [[ $job == test ]]; then
+  cmake --preset ci
+  cmake --build --preset ci
+  ctest --preset ci
+else
+  cmake --preset release
+  cmake --build --preset release
+  exec "$root/bringup/demo.sh" "$root/build/release"
+fi

@@ -1,0 +1,87 @@
+#pragma once
+/// @file
+/// The untyped halves of Publisher<T> and Subscriber<T>: entity ownership and status listeners.
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <optional>
+
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+
+#include "quad/dds/participant.hpp"
+#include "quad/dds/topic.hpp"
+#include "quad/dds/waker.hpp"
+
+namespace quad::dds {
+
+/// Owns one DataWriter; reports matches, offered deadlines, liveliness and incompatible QoS
+/// to the participant's event queue.
+class WriterEndpoint {
+public:
+  /// `qos` replaces the contract's QoS profile (for tools and tests); normally left out.
+  WriterEndpoint(Participant& participant, const TopicInfo& info,
+                 const eprosima::fastdds::dds::TypeSupport& type,
+                 std::optional<eprosima::fastdds::dds::DataWriterQos> qos);
+  ~WriterEndpoint();
+  WriterEndpoint(const WriterEndpoint&) = delete;
+  WriterEndpoint& operator=(const WriterEndpoint&) = delete;
+
+  /// Number of readers matched now.
+  int matchedReaders() const { return matched_.load(); }
+  std::uint64_t written() const { return written_.load(); }
+  std::uint64_t failed() const { return failed_.load(); }
+  const TopicInfo& info() const { return info_; }
+
+  /// Waits until every matched reliable reader acknowledged what was written; false on timeout.
+  bool waitForAcknowledgments(std::chrono::milliseconds timeout);
+
+protected:
+  /// Writes an already filled sample; a failure is counted and reported, never thrown.
+  bool writeSample(void* sample);
+
+private:
+  class Listener;
+  Participant& participant_;
+  TopicInfo info_;
+  std::unique_ptr<Listener> listener_;
+  eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
+  std::atomic<int> matched_{0};
+  std::atomic<std::uint64_t> written_{0};
+  std::atomic<std::uint64_t> failed_{0};
+};
+
+/// Owns one DataReader; wakes the node on data and reports statuses as events.
+class ReaderEndpoint {
+public:
+  ReaderEndpoint(Participant& participant, const TopicInfo& info,
+                 const eprosima::fastdds::dds::TypeSupport& type, Waker* waker,
+                 std::optional<eprosima::fastdds::dds::DataReaderQos> qos);
+  ~ReaderEndpoint();
+  ReaderEndpoint(const ReaderEndpoint&) = delete;
+  ReaderEndpoint& operator=(const ReaderEndpoint&) = delete;
+
+  int matchedWriters() const { return matched_.load(); }
+  std::uint64_t deadlinesMissed() const { return deadlines_missed_.load(); }
+  const TopicInfo& info() const { return info_; }
+
+protected:
+  /// Takes the next sample with valid data into `sample`; false when none is left.
+  bool takeSample(void* sample);
+
+private:
+  class Listener;
+  Participant& participant_;
+  TopicInfo info_;
+  std::unique_ptr<Listener> listener_;
+  eprosima::fastdds::dds::DataReader* reader_ = nullptr;
+  std::atomic<int> matched_{0};
+  std::atomic<std::uint64_t> deadlines_missed_{0};
+};
+
+}  // namespace quad::dds

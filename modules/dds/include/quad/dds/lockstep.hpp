@@ -1,0 +1,64 @@
+#pragma once
+/// @file
+/// Lockstep over DDS (DESIGN.md §5). A lockstep participant reports "done up to sim time t"
+/// with a LockstepReporter; the clock owner waits with a LockstepBarrier before advancing.
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <quad/msg/LockstepReport.h>
+
+#include "quad/common/lockstep.hpp"
+#include "quad/dds/publisher.hpp"
+#include "quad/dds/subscriber.hpp"
+
+namespace quad::dds {
+
+/// Publishes this participant's progress on quad/sim/lockstep.
+class LockstepReporter {
+public:
+  /// `name` must be one the clock owner's barrier expects.
+  LockstepReporter(Participant& participant, std::string name);
+
+  /// Reports that the work due up to `done_ns` of sim time is finished.
+  bool reportDone(std::int64_t done_ns);
+
+  int matchedBarriers() const { return publisher_.matchedReaders(); }
+
+private:
+  std::string name_;
+  Publisher<msg::LockstepReport> publisher_;
+};
+
+/// The clock owner's side: collects reports and waits until everyone caught up.
+class LockstepBarrier {
+public:
+  LockstepBarrier(Participant& participant, std::vector<std::string> participants);
+
+  struct Result {
+    bool caught_up = false;
+    /// Empty when caught up; else "lockstep: at sim time 1.204 s, still waiting after
+    /// 2000 ms for: mapping (done up to 1.200 s), control (no report yet)".
+    std::string message;
+    std::vector<std::string> late;
+  };
+
+  /// Blocks until every participant reported done up to `sim_ns`, or `timeout` passes.
+  Result waitUntilDone(std::int64_t sim_ns, std::chrono::milliseconds timeout);
+
+  /// Reports ignored so far (unknown participant or time going backwards).
+  std::uint64_t ignoredReports() const { return ignored_; }
+  const common::LockstepLedger& ledger() const { return ledger_; }
+
+private:
+  void collect();
+
+  common::LockstepLedger ledger_;
+  Waker waker_;
+  Subscriber<msg::LockstepReport> subscriber_;
+  std::uint64_t ignored_ = 0;
+};
+
+}  // namespace quad::dds

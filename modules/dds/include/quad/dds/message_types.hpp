@@ -1,0 +1,78 @@
+#pragma once
+/// @file
+/// Compile-time facts about each generated message type: its TopicDataType and IDL file.
+///
+/// fastddsgen 2.3 serialises a nested `@key Header header` member whole as the key, so every
+/// sample (new stamp, new seq) would become a new DDS instance. VehicleKeyedType computes the
+/// key hash as the IDL says it should be: from header.vehicle_id alone (the big-endian CDR of
+/// the key members, zero-padded to 16 bytes, per DDS-XTypes 7.6.8).
+
+#include <cstdint>
+#include <string_view>
+
+#include <fastdds/dds/topic/TopicDataType.hpp>
+
+#include <quad/msg/ActuatorCommandPubSubTypes.h>
+#include <quad/msg/ControlStatusPubSubTypes.h>
+#include <quad/msg/FaultCommandPubSubTypes.h>
+#include <quad/msg/GoalPubSubTypes.h>
+#include <quad/msg/HeartbeatPubSubTypes.h>
+#include <quad/msg/ImuPubSubTypes.h>
+#include <quad/msg/LockstepReportPubSubTypes.h>
+#include <quad/msg/MapSnapshotPubSubTypes.h>
+#include <quad/msg/MapUpdatePubSubTypes.h>
+#include <quad/msg/PathPubSubTypes.h>
+#include <quad/msg/PointCloudPubSubTypes.h>
+#include <quad/msg/SimClockPubSubTypes.h>
+#include <quad/msg/SimEventPubSubTypes.h>
+#include <quad/msg/VehicleCommandPubSubTypes.h>
+#include <quad/msg/VehicleStatePubSubTypes.h>
+
+namespace quad::dds {
+
+/// Writes the key hash of a vehicle id into a DDS instance handle.
+void vehicleKeyHash(std::uint32_t vehicle_id, eprosima::fastrtps::rtps::InstanceHandle_t& handle);
+
+/// The generated TopicDataType with the key computed from header.vehicle_id.
+template <class Generated, class Message>
+class VehicleKeyedType : public Generated {
+public:
+  bool getKey(void* data, eprosima::fastrtps::rtps::InstanceHandle_t* handle,
+              bool /*force_md5*/) override
+  {
+    vehicleKeyHash(static_cast<const Message*>(data)->header().vehicle_id(), *handle);
+    return true;
+  }
+};
+
+/// Specialised once per topic type by QUAD_DDS_MESSAGE below.
+template <class Message>
+struct MessageTraits;
+
+#define QUAD_DDS_MESSAGE(Name)                                                            \
+  template <>                                                                             \
+  struct MessageTraits<quad::msg::Name> {                                                 \
+    using PubSubType = VehicleKeyedType<quad::msg::Name##PubSubType, quad::msg::Name>;    \
+    static constexpr std::string_view kTypeName = "quad::msg::" #Name;                   \
+    static constexpr std::string_view kIdlFile = "quad/msg/" #Name ".idl";               \
+  }
+
+QUAD_DDS_MESSAGE(ActuatorCommand);
+QUAD_DDS_MESSAGE(ControlStatus);
+QUAD_DDS_MESSAGE(FaultCommand);
+QUAD_DDS_MESSAGE(Goal);
+QUAD_DDS_MESSAGE(Heartbeat);
+QUAD_DDS_MESSAGE(Imu);
+QUAD_DDS_MESSAGE(LockstepReport);
+QUAD_DDS_MESSAGE(MapSnapshot);
+QUAD_DDS_MESSAGE(MapUpdate);
+QUAD_DDS_MESSAGE(Path);
+QUAD_DDS_MESSAGE(PointCloud);
+QUAD_DDS_MESSAGE(SimClock);
+QUAD_DDS_MESSAGE(SimEvent);
+QUAD_DDS_MESSAGE(VehicleCommand);
+QUAD_DDS_MESSAGE(VehicleState);
+
+#undef QUAD_DDS_MESSAGE
+
+}  // namespace quad::dds

@@ -1,0 +1,103 @@
+#pragma once
+/// @file
+/// The skeleton every quad node shares (as Fast DDS's example applications share theirs):
+/// the constructor creates every entity and fails loudly, the destructor releases them,
+/// run() loops on a Waker with a tick period until stop() — from a signal or another thread.
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <string_view>
+#include <thread>
+
+#include <quad/msg/Heartbeat.h>
+
+#include "quad/dds/participant.hpp"
+#include "quad/dds/publisher.hpp"
+#include "quad/dds/waker.hpp"
+
+namespace quad::dds {
+
+/// Turns SIGINT and SIGTERM into a callback on an ordinary thread. Construct it first in
+/// main(), before any other thread exists, so that every thread inherits the blocked mask.
+class SignalWatcher {
+public:
+  SignalWatcher();
+  ~SignalWatcher();
+  SignalWatcher(const SignalWatcher&) = delete;
+  SignalWatcher& operator=(const SignalWatcher&) = delete;
+
+  /// Called once per signal received; replaces any earlier callback.
+  void onSignal(std::function<void(int)> callback);
+  /// The last signal received, 0 if none.
+  int received() const { return received_.load(); }
+
+private:
+  void watch();
+  std::atomic<bool> quit_{false};
+  std::atomic<int> received_{0};
+  std::mutex mutex_;
+  std::function<void(int)> callback_;
+  std::thread thread_;
+};
+
+/// Counters a node reports in its heartbeat.
+struct NodeCounters {
+  std::atomic<std::uint64_t> samples_in{0};
+  std::atomic<std::uint64_t> samples_out{0};
+  std::atomic<std::uint64_t> errors{0};
+};
+
+class Node {
+public:
+  /// `module_name` names the node in heartbeats and logs ("plant", "control").
+  Node(std::string module_name, ParticipantOptions options);
+  virtual ~Node();
+  Node(const Node&) = delete;
+  Node& operator=(const Node&) = delete;
+
+  /// Runs until stop(). Drains endpoint events, calls onWake() when data may have arrived and
+  /// onTick() at the tick period, and publishes a heartbeat at 2 Hz.
+  void run();
+  /// Thread-safe; run() returns soon after.
+  void stop();
+  bool stopping() const { return stop_.load(); }
+
+  Participant& participant() { return participant_; }
+  const std::string& moduleName() const { return module_name_; }
+
+protected:
+  /// The Waker to give every Subscriber of this node.
+  Waker* waker() { return &waker_; }
+  NodeCounters& counters() { return counters_; }
+  /// 0 (the default) for no ticks.
+  void setTickPeriod(std::int64_t period_ns) { tick_period_ns_ = period_ns; }
+
+  virtual void onStart() {}
+  virtual void onWake() {}
+  virtual void onTick(std::int64_t /*steady_ns*/) {}
+  /// Default: logs the event (deadline misses at most once a second per topic).
+  virtual void onEvent(const EndpointEvent& event);
+  virtual void onStop() {}
+
+private:
+  void publishHeartbeat(msg::ModuleState state);
+
+  std::string module_name_;
+  Participant participant_;
+  Waker waker_;
+  NodeCounters counters_;
+  Publisher<msg::Heartbeat> heartbeat_;
+  std::atomic<bool> stop_{false};
+  std::int64_t tick_period_ns_ = 0;
+  std::int64_t last_deadline_log_ns_ = 0;
+};
+
+/// The body of every node's main(): installs signal handling, builds the node with `make`,
+/// runs it, and turns an exception into one logged line and exit status 1.
+int runNode(std::string_view module_name, const std::function<std::unique_ptr<Node>()>& make);
+
+}  // namespace quad::dds

@@ -1,0 +1,122 @@
+#pragma once
+/// @file
+/// One DDS participant per process, with quad's QoS profiles, transports and discovery.
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+
+#include "quad/dds/events.hpp"
+#include "quad/dds/topic.hpp"
+
+namespace quad::dds {
+
+enum class Transport {
+  kDefault,       ///< Fast DDS's builtin transports: UDPv4, plus shared memory between local peers
+  kUdp,           ///< UDPv4 only, data-sharing off: every sample crosses the network stack
+  kSharedMemory,  ///< shared memory only: local processes only
+};
+
+struct ParticipantOptions {
+  std::string name;       ///< participant name, shown by `quad topic list`
+  int domain_id = 0;      ///< 0..232
+  Transport transport = Transport::kDefault;
+  std::vector<std::string> initial_peers;  ///< "IP" or "IP:PORT" unicast discovery peers
+  std::string discovery_server;            ///< "IP:PORT" of a Fast DDS discovery server (id 0)
+  std::filesystem::path qos_file;          ///< QoS profiles XML; empty: the installed default
+  std::uint32_t vehicle_id = 0;            ///< written into Header.vehicle_id of every sample
+};
+
+/// The options a quad process takes from its environment, so that every module and tool of a
+/// run share one domain and discovery setup:
+/// QUAD_DOMAIN_ID, QUAD_TRANSPORT (default|udp|shm), QUAD_INITIAL_PEERS (comma separated),
+/// QUAD_DISCOVERY_SERVER, QUAD_QOS_FILE, QUAD_VEHICLE_ID. A bad value throws
+/// std::invalid_argument naming the variable and the value.
+ParticipantOptions optionsFromEnvironment(std::string name);
+
+/// Parses a transport name: "default", "udp" or "shm".
+Transport parseTransport(std::string_view text);
+
+/// The QoS profiles file used when none is given: $QUAD_QOS_FILE, else configs/dds/quad_qos.xml.
+std::filesystem::path defaultQosFile();
+
+/// A remote reader or writer seen through discovery.
+struct RemoteEndpoint {
+  std::string guid;
+  std::string topic;
+  std::string type_name;
+  bool keyed = false;
+  bool writer = false;
+  bool reliable = false;
+  bool transient_local = false;
+};
+
+/// Owns the DomainParticipant, its Publisher and Subscriber, registered types and topics.
+/// Creates everything in the constructor and throws std::runtime_error naming what failed;
+/// the destructor deletes every entity it created.
+class Participant {
+public:
+  explicit Participant(ParticipantOptions options);
+  ~Participant();
+  Participant(const Participant&) = delete;
+  Participant& operator=(const Participant&) = delete;
+
+  const ParticipantOptions& options() const { return options_; }
+  EventQueue& events() { return events_; }
+
+  /// Registers the type (once) and returns the topic (created once per name).
+  eprosima::fastdds::dds::Topic* topic(const TopicInfo& info,
+                                       const eprosima::fastdds::dds::TypeSupport& type);
+
+  eprosima::fastdds::dds::Publisher* publisher() { return publisher_; }
+  eprosima::fastdds::dds::Subscriber* subscriber() { return subscriber_; }
+  eprosima::fastdds::dds::DomainParticipant* raw() { return participant_; }
+
+  /// QoS of the named profile in the QoS file; throws naming the profile if it is missing.
+  eprosima::fastdds::dds::DataWriterQos writerQos(std::string_view qos_class) const;
+  eprosima::fastdds::dds::DataReaderQos readerQos(std::string_view qos_class) const;
+
+  /// Records a local endpoint so discovery can check remote ones against it.
+  void addLocalEndpoint(const std::string& topic, const std::string& type_name, bool keyed,
+                        bool writer);
+  void removeLocalEndpoint(const std::string& topic, bool writer);
+
+  /// Remote endpoints discovered so far (alive ones only).
+  std::vector<RemoteEndpoint> remoteEndpoints() const;
+
+private:
+  class Listener;
+  void onRemoteEndpoint(RemoteEndpoint endpoint, bool alive);
+  void checkTypes(const RemoteEndpoint& remote);
+
+  struct LocalEndpoint {
+    std::string type_name;
+    bool keyed;
+    int writers = 0;
+    int readers = 0;
+  };
+
+  ParticipantOptions options_;
+  EventQueue events_;
+  std::unique_ptr<Listener> listener_;
+  eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
+  eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
+  eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+  std::map<std::string, eprosima::fastdds::dds::Topic*, std::less<>> topics_;
+
+  mutable std::mutex endpoints_mutex_;
+  std::map<std::string, LocalEndpoint, std::less<>> local_;
+  std::map<std::string, RemoteEndpoint> remote_;  // by GUID
+};
+
+}  // namespace quad::dds

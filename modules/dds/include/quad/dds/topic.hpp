@@ -1,0 +1,45 @@
+#pragma once
+/// @file
+/// The shape of a topic contract: what every topic declares once.
+
+#include <string_view>
+
+#include "quad/dds/message_types.hpp"
+
+namespace quad::dds {
+
+/// The module that owns (writes) a topic.
+enum class Owner { kPlant, kMapping, kPlanning, kControl, kOperator, kFaultTool, kEveryModule };
+
+std::string_view toString(Owner owner);
+
+/// A topic contract without its C++ type: what tools (topic list, the recorder) iterate over.
+struct TopicInfo {
+  std::string_view name;         ///< quad/<function>/<name>
+  std::string_view type_name;    ///< registered DDS type name, e.g. quad::msg::VehicleState
+  std::string_view idl_file;     ///< IDL file of the type, relative to idl/
+  std::string_view qos_profile;  ///< QoS class in configs/dds/quad_qos.xml (<class>.writer/.reader)
+  double rate_hz;                ///< expected rate; 0 for event-driven topics
+  Owner owner;
+  std::string_view description;
+};
+
+/// A typed topic contract. Publisher<T> and Subscriber<T> accept only a Topic<T>, so a topic
+/// with the wrong message type, or a misspelt topic, fails to compile.
+template <class Message>
+struct Topic {
+  using MessageType = Message;
+  TopicInfo info;
+};
+
+/// Builds a contract whose type name and IDL file come from the message type itself.
+template <class Message>
+constexpr Topic<Message> makeTopic(std::string_view name, std::string_view qos_profile,
+                                   double rate_hz, Owner owner, std::string_view description)
+{
+  return Topic<Message>{TopicInfo{name, MessageTraits<Message>::kTypeName,
+                                  MessageTraits<Message>::kIdlFile, qos_profile, rate_hz, owner,
+                                  description}};
+}
+
+}  // namespace quad::dds

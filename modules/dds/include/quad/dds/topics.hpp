@@ -1,0 +1,76 @@
+#pragma once
+/// @file
+/// The topic contracts: every topic of quad, declared once. Nodes, tools, the recorder and
+/// the docs read them from here; nothing else spells a topic name.
+
+#include <array>
+#include <optional>
+#include <string_view>
+
+#include "quad/dds/topic.hpp"
+
+namespace quad::dds::topics {
+
+using msg::ActuatorCommand, msg::ControlStatus, msg::FaultCommand, msg::Goal, msg::Heartbeat,
+    msg::Imu, msg::LockstepReport, msg::MapSnapshot, msg::MapUpdate, msg::Path,
+    msg::PointCloud, msg::SimClock, msg::SimEvent, msg::VehicleCommand, msg::VehicleState;
+
+// clang-format off
+inline constexpr auto kSimClock = makeTopic<SimClock>(
+    "quad/sim/clock", "clock", 250.0, Owner::kPlant,
+    "Simulation time, once per plant step");
+inline constexpr auto kSimState = makeTopic<VehicleState>(
+    "quad/sim/state", "state", 250.0, Owner::kPlant,
+    "Ground-truth vehicle state");
+inline constexpr auto kSimImu = makeTopic<Imu>(
+    "quad/sim/imu", "sensor", 250.0, Owner::kPlant,
+    "Simulated IMU");
+inline constexpr auto kSimDepth = makeTopic<PointCloud>(
+    "quad/sim/depth", "scan", 10.0, Owner::kPlant,
+    "Depth sensor point cloud with the sensor pose");
+inline constexpr auto kSimEvents = makeTopic<SimEvent>(
+    "quad/sim/events", "events", 0.0, Owner::kPlant,
+    "Collisions, ground contact, faults applied");
+inline constexpr auto kLockstep = makeTopic<LockstepReport>(
+    "quad/sim/lockstep", "lockstep", 250.0, Owner::kEveryModule,
+    "Lockstep participants' 'done up to sim time t' reports");
+inline constexpr auto kMapUpdate = makeTopic<MapUpdate>(
+    "quad/mapping/update", "changes", 10.0, Owner::kMapping,
+    "Voxels whose classification changed, per scan");
+inline constexpr auto kMapSnapshot = makeTopic<MapSnapshot>(
+    "quad/mapping/octomap", "latched", 1.0, Owner::kMapping,
+    "The whole map as OctoMap binary bytes, for late joiners");
+inline constexpr auto kGoal = makeTopic<Goal>(
+    "quad/planning/goal", "latched", 0.0, Owner::kOperator,
+    "Where the vehicle should go");
+inline constexpr auto kPath = makeTopic<Path>(
+    "quad/planning/path", "latched", 0.0, Owner::kPlanning,
+    "Planned path, per replan");
+inline constexpr auto kActuators = makeTopic<ActuatorCommand>(
+    "quad/control/actuators", "actuators", 250.0, Owner::kControl,
+    "Rotor speed commands");
+inline constexpr auto kControlStatus = makeTopic<ControlStatus>(
+    "quad/control/status", "latched", 20.0, Owner::kControl,
+    "Controller mode, failsafe reason, tracking errors");
+inline constexpr auto kHeartbeat = makeTopic<Heartbeat>(
+    "quad/system/heartbeat", "heartbeat", 2.0, Owner::kEveryModule,
+    "Every module's sign of life");
+inline constexpr auto kVehicleCommand = makeTopic<VehicleCommand>(
+    "quad/system/command", "command", 0.0, Owner::kOperator,
+    "Arm, takeoff, mission, hold, land");
+inline constexpr auto kFault = makeTopic<FaultCommand>(
+    "quad/system/fault", "command", 0.0, Owner::kFaultTool,
+    "Faults for modules to apply");
+// clang-format on
+
+/// Every contract, for tools that iterate over topics.
+inline constexpr std::array kAll{
+    kSimClock.info, kSimState.info,  kSimImu.info,        kSimDepth.info,
+    kSimEvents.info, kLockstep.info, kMapUpdate.info,     kMapSnapshot.info,
+    kGoal.info,      kPath.info,     kActuators.info,     kControlStatus.info,
+    kHeartbeat.info, kVehicleCommand.info, kFault.info};
+
+/// The contract of a topic name, if quad declares one.
+std::optional<TopicInfo> find(std::string_view name);
+
+}  // namespace quad::dds::topics

@@ -1,0 +1,194 @@
+#include "quad/dds/endpoint.hpp"
+
+#include <stdexcept>
+#include <string>
+
+#include <fastdds/dds/publisher/DataWriterListener.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+
+namespace quad::dds {
+
+namespace fdds = eprosima::fastdds::dds;
+
+namespace {
+std::string incompatibleText(const char* side, fdds::QosPolicyId_t policy, std::uint32_t total)
+{
+  return std::string(side) + " QoS policy " + qosPolicyName(static_cast<std::uint32_t>(policy)) +
+         " is incompatible with a remote endpoint (" + std::to_string(total) + " so far)";
+}
+}  // namespace
+
+// Listener callbacks run on Fast DDS threads: they count, push an event and return.
+class WriterEndpoint::Listener : public fdds::DataWriterListener {
+public:
+  explicit Listener(WriterEndpoint& owner) : owner_(owner) {}
+
+  void on_publication_matched(fdds::DataWriter*, const fdds::PublicationMatchedStatus& s) override
+  {
+    owner_.matched_ = s.current_count;
+    push(s.current_count_change > 0 ? EventKind::kMatched : EventKind::kUnmatched,
+         "writer now matches " + std::to_string(s.current_count) + " reader(s)");
+  }
+  void on_offered_deadline_missed(fdds::DataWriter*, const fdds::OfferedDeadlineMissedStatus& s) override
+  {
+    push(EventKind::kDeadlineMissed,
+         "writer missed its offered deadline (" + std::to_string(s.total_count) + " so far)");
+  }
+  void on_offered_incompatible_qos(fdds::DataWriter*, const fdds::OfferedIncompatibleQosStatus& s) override
+  {
+    push(EventKind::kIncompatibleQos, incompatibleText("offered", s.last_policy_id, s.total_count));
+  }
+  void on_liveliness_lost(fdds::DataWriter*, const fdds::LivelinessLostStatus& s) override
+  {
+    push(EventKind::kLivelinessLost,
+         "writer failed to assert liveliness (" + std::to_string(s.total_count) + " so far)");
+  }
+
+private:
+  void push(EventKind kind, std::string detail)
+  {
+    owner_.participant_.events().push({kind, std::string(owner_.info_.name), std::move(detail)});
+  }
+  WriterEndpoint& owner_;
+};
+
+WriterEndpoint::WriterEndpoint(Participant& participant, const TopicInfo& info,
+                               const fdds::TypeSupport& type, std::optional<fdds::DataWriterQos> qos)
+    : participant_(participant), info_(info), listener_(std::make_unique<Listener>(*this))
+{
+  auto* topic = participant_.topic(info_, type);
+  const fdds::DataWriterQos writer_qos = qos ? *qos : participant_.writerQos(info_.qos_profile);
+  participant_.addLocalEndpoint(std::string(info_.name), type.get_type_name(),
+                                type->m_isGetKeyDefined, true);
+  writer_ = participant_.publisher()->create_datawriter(topic, writer_qos, listener_.get(),
+                                                        fdds::StatusMask::all());
+  if (writer_ == nullptr) {
+    participant_.removeLocalEndpoint(std::string(info_.name), true);
+    throw std::runtime_error("cannot create writer on " + std::string(info_.name) +
+                             " (QoS profile " + std::string(info_.qos_profile) + ".writer)");
+  }
+}
+
+WriterEndpoint::~WriterEndpoint()
+{
+  writer_->set_listener(nullptr);
+  participant_.publisher()->delete_datawriter(writer_);
+  participant_.removeLocalEndpoint(std::string(info_.name), true);
+}
+
+bool WriterEndpoint::writeSample(void* sample)
+{
+  if (writer_->write(sample)) {
+    ++written_;
+    return true;
+  }
+  const auto failures = ++failed_;
+  participant_.events().push({EventKind::kWriteFailed, std::string(info_.name),
+                              "write refused (" + std::to_string(failures) + " so far)"});
+  return false;
+}
+
+bool WriterEndpoint::waitForAcknowledgments(std::chrono::milliseconds timeout)
+{
+  const auto ms = timeout.count();
+  const eprosima::fastrtps::Duration_t max_wait(static_cast<std::int32_t>(ms / 1000),
+                                                static_cast<std::uint32_t>((ms % 1000) * 1'000'000));
+  return writer_->wait_for_acknowledgments(max_wait) == ReturnCode_t::RETCODE_OK;
+}
+
+class ReaderEndpoint::Listener : public fdds::DataReaderListener {
+public:
+  Listener(ReaderEndpoint& owner, Waker* waker) : owner_(owner), waker_(waker) {}
+
+  void on_data_available(fdds::DataReader*) override
+  {
+    if (waker_ != nullptr) {
+      waker_->notify();
+    }
+  }
+  void on_subscription_matched(fdds::DataReader*, const fdds::SubscriptionMatchedStatus& s) override
+  {
+    owner_.matched_ = s.current_count;
+    push(s.current_count_change > 0 ? EventKind::kMatched : EventKind::kUnmatched,
+         "reader now matches " + std::to_string(s.current_count) + " writer(s)");
+  }
+  void on_requested_deadline_missed(fdds::DataReader*,
+                                    const fdds::RequestedDeadlineMissedStatus& s) override
+  {
+    owner_.deadlines_missed_ = static_cast<std::uint64_t>(s.total_count);
+    push(EventKind::kDeadlineMissed,
+         "no sample within the deadline (" + std::to_string(s.total_count) + " so far)");
+  }
+  void on_liveliness_changed(fdds::DataReader*, const fdds::LivelinessChangedStatus& s) override
+  {
+    if (s.not_alive_count_change > 0) {
+      push(EventKind::kLivelinessLost,
+           "a writer lost liveliness; " + std::to_string(s.alive_count) + " alive");
+    } else if (s.alive_count_change > 0 && s.not_alive_count_change < 0) {
+      push(EventKind::kLivelinessRegained,
+           "a writer is alive again; " + std::to_string(s.alive_count) + " alive");
+    }
+  }
+  void on_sample_rejected(fdds::DataReader*, const fdds::SampleRejectedStatus& s) override
+  {
+    push(EventKind::kSampleRejected,
+         "sample rejected by resource limits (" + std::to_string(s.total_count) + " so far)");
+  }
+  void on_requested_incompatible_qos(fdds::DataReader*,
+                                     const fdds::RequestedIncompatibleQosStatus& s) override
+  {
+    push(EventKind::kIncompatibleQos,
+         incompatibleText("requested", s.last_policy_id, s.total_count));
+  }
+  void on_sample_lost(fdds::DataReader*, const fdds::SampleLostStatus& s) override
+  {
+    push(EventKind::kSampleLost, std::to_string(s.total_count) + " sample(s) lost so far");
+  }
+
+private:
+  void push(EventKind kind, std::string detail)
+  {
+    owner_.participant_.events().push({kind, std::string(owner_.info_.name), std::move(detail)});
+  }
+  ReaderEndpoint& owner_;
+  Waker* waker_;
+};
+
+ReaderEndpoint::ReaderEndpoint(Participant& participant, const TopicInfo& info,
+                               const fdds::TypeSupport& type, Waker* waker,
+                               std::optional<fdds::DataReaderQos> qos)
+    : participant_(participant), info_(info), listener_(std::make_unique<Listener>(*this, waker))
+{
+  auto* topic = participant_.topic(info_, type);
+  const fdds::DataReaderQos reader_qos = qos ? *qos : participant_.readerQos(info_.qos_profile);
+  participant_.addLocalEndpoint(std::string(info_.name), type.get_type_name(),
+                                type->m_isGetKeyDefined, false);
+  reader_ = participant_.subscriber()->create_datareader(topic, reader_qos, listener_.get(),
+                                                         fdds::StatusMask::all());
+  if (reader_ == nullptr) {
+    participant_.removeLocalEndpoint(std::string(info_.name), false);
+    throw std::runtime_error("cannot create reader on " + std::string(info_.name) +
+                             " (QoS profile " + std::string(info_.qos_profile) + ".reader)");
+  }
+}
+
+ReaderEndpoint::~ReaderEndpoint()
+{
+  reader_->set_listener(nullptr);
+  participant_.subscriber()->delete_datareader(reader_);
+  participant_.removeLocalEndpoint(std::string(info_.name), false);
+}
+
+bool ReaderEndpoint::takeSample(void* sample)
+{
+  fdds::SampleInfo info;
+  while (reader_->take_next_sample(sample, &info) == ReturnCode_t::RETCODE_OK) {
+    if (info.valid_data) {
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace quad::dds

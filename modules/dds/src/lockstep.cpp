@@ -1,0 +1,71 @@
+#include "quad/dds/lockstep.hpp"
+
+#include <cstdio>
+
+#include <spdlog/spdlog.h>
+
+#include "quad/common/time.hpp"
+#include "quad/dds/topics.hpp"
+
+namespace quad::dds {
+
+LockstepReporter::LockstepReporter(Participant& participant, std::string name)
+    : name_(std::move(name)), publisher_(participant, topics::kLockstep)
+{
+}
+
+bool LockstepReporter::reportDone(std::int64_t done_ns)
+{
+  msg::LockstepReport report;
+  report.header().stamp_ns(done_ns);
+  report.participant(name_);
+  report.done_ns(done_ns);
+  return publisher_.write(report);
+}
+
+LockstepBarrier::LockstepBarrier(Participant& participant, std::vector<std::string> participants)
+    : ledger_(std::move(participants)), subscriber_(participant, topics::kLockstep, &waker_)
+{
+}
+
+void LockstepBarrier::collect()
+{
+  for (const auto& report : subscriber_.takeAll()) {
+    const auto outcome = ledger_.report(report.participant().to_string(), report.done_ns());
+    if (outcome != common::LockstepLedger::Report::kAccepted) {
+      ++ignored_;
+      spdlog::warn("lockstep: ignored report from '{}' at {} ns: {}", report.participant().to_string(),
+                   report.done_ns(),
+                   outcome == common::LockstepLedger::Report::kUnknownParticipant
+                       ? "not an expected participant"
+                       : "earlier than its previous report");
+    }
+  }
+}
+
+LockstepBarrier::Result LockstepBarrier::waitUntilDone(std::int64_t sim_ns,
+                                                       std::chrono::milliseconds timeout)
+{
+  const std::int64_t deadline =
+      common::steadyTimeNs() + std::chrono::nanoseconds(timeout).count();
+  collect();
+  while (!ledger_.caughtUp(sim_ns)) {
+    if (common::steadyTimeNs() >= deadline) {
+      Result result;
+      result.late = ledger_.late(sim_ns);
+      char head[128];
+      std::snprintf(head, sizeof(head), "lockstep: at sim time %.3f s, still waiting after %lld ms for: ",
+                    common::toSeconds(sim_ns), static_cast<long long>(timeout.count()));
+      result.message = head;
+      for (std::size_t i = 0; i < result.late.size(); ++i) {
+        result.message += (i == 0 ? "" : ", ") + result.late[i];
+      }
+      return result;
+    }
+    waker_.waitUntil(deadline);
+    collect();
+  }
+  return Result{.caught_up = true};
+}
+
+}  // namespace quad::dds

@@ -1,0 +1,187 @@
+#include "quad/dds/node.hpp"
+
+#include <csignal>
+#include <ctime>
+#include <unistd.h>
+
+#include <spdlog/spdlog.h>
+
+#include "quad/common/time.hpp"
+#include "quad/dds/topics.hpp"
+
+namespace quad::dds {
+
+namespace {
+constexpr std::int64_t kHeartbeatPeriodNs = 500'000'000;  // 2 Hz, the contract's rate
+constexpr std::int64_t kIdleWakeNs = 100'000'000;         // re-check stop at least this often
+
+sigset_t stopSignals()
+{
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGTERM);
+  return set;
+}
+
+std::string hostName()
+{
+  char name[256] = {};
+  gethostname(name, sizeof(name) - 1);
+  return name;
+}
+}  // namespace
+
+SignalWatcher::SignalWatcher()
+{
+  const sigset_t set = stopSignals();
+  pthread_sigmask(SIG_BLOCK, &set, nullptr);
+  thread_ = std::thread([this] { watch(); });
+}
+
+SignalWatcher::~SignalWatcher()
+{
+  quit_ = true;
+  thread_.join();
+}
+
+void SignalWatcher::onSignal(std::function<void(int)> callback)
+{
+  std::lock_guard lock(mutex_);
+  callback_ = std::move(callback);
+}
+
+void SignalWatcher::watch()
+{
+  const sigset_t set = stopSignals();
+  const timespec poll{0, 100'000'000};
+  while (!quit_) {
+    const int signal = sigtimedwait(&set, nullptr, &poll);
+    if (signal > 0) {
+      received_ = signal;
+      std::lock_guard lock(mutex_);
+      if (callback_) {
+        callback_(signal);
+      }
+    }
+  }
+}
+
+Node::Node(std::string module_name, ParticipantOptions options)
+    : module_name_(std::move(module_name)),
+      participant_(std::move(options)),
+      heartbeat_(participant_, topics::kHeartbeat)
+{
+  participant_.events().setNotifier([this] { waker_.notify(); });
+}
+
+Node::~Node() { participant_.events().setNotifier({}); }
+
+void Node::stop()
+{
+  stop_ = true;
+  waker_.notify();
+}
+
+void Node::publishHeartbeat(msg::ModuleState state)
+{
+  msg::Heartbeat hb;
+  hb.header().stamp_ns(common::wallTimeNs());
+  hb.module_name(module_name_);
+  hb.host(hostName());
+  hb.pid(static_cast<std::int32_t>(getpid()));
+  hb.state(state);
+  hb.samples_in(counters_.samples_in.load());
+  hb.samples_out(counters_.samples_out.load());
+  hb.errors(counters_.errors.load());
+  heartbeat_.write(hb);
+}
+
+void Node::onEvent(const EndpointEvent& event)
+{
+  if (event.kind == EventKind::kDeadlineMissed) {
+    const std::int64_t now = common::steadyTimeNs();
+    if (now - last_deadline_log_ns_ < common::kNanosecondsPerSecond) {
+      return;
+    }
+    last_deadline_log_ns_ = now;
+  }
+  const bool problem = event.kind == EventKind::kIncompatibleQos ||
+                       event.kind == EventKind::kTypeMismatch ||
+                       event.kind == EventKind::kWriteFailed ||
+                       event.kind == EventKind::kLivelinessLost ||
+                       event.kind == EventKind::kDeadlineMissed;
+  if (problem) {
+    spdlog::warn("{}: {}: {}", event.topic, toString(event.kind), event.detail);
+  } else {
+    spdlog::debug("{}: {}: {}", event.topic, toString(event.kind), event.detail);
+  }
+}
+
+void Node::run()
+{
+  onStart();
+  publishHeartbeat(msg::MODULE_RUNNING);
+  std::int64_t next_heartbeat = common::steadyTimeNs() + kHeartbeatPeriodNs;
+  std::int64_t next_tick = common::steadyTimeNs() + tick_period_ns_;
+  while (!stop_) {
+    std::int64_t deadline = std::min(next_heartbeat, common::steadyTimeNs() + kIdleWakeNs);
+    if (tick_period_ns_ > 0) {
+      deadline = std::min(deadline, next_tick);
+    }
+    const bool woken = waker_.waitUntil(deadline);
+    if (stop_) {
+      break;
+    }
+    for (const auto& event : participant_.events().drain()) {
+      onEvent(event);
+    }
+    if (woken) {
+      onWake();
+    }
+    const std::int64_t now = common::steadyTimeNs();
+    if (tick_period_ns_ > 0 && now >= next_tick) {
+      onTick(now);
+      // Keep the phase; after an overrun, skip the missed ticks rather than bursting.
+      next_tick += tick_period_ns_;
+      if (next_tick <= now) {
+        next_tick = now + tick_period_ns_;
+      }
+    }
+    if (now >= next_heartbeat) {
+      publishHeartbeat(msg::MODULE_RUNNING);
+      next_heartbeat = now + kHeartbeatPeriodNs;
+    }
+  }
+  publishHeartbeat(msg::MODULE_STOPPING);
+  onStop();
+}
+
+int runNode(std::string_view module_name, const std::function<std::unique_ptr<Node>()>& make)
+{
+  SignalWatcher signals;
+  std::unique_ptr<Node> node;
+  int status = 0;
+  try {
+    node = make();
+    Node* running = node.get();
+    signals.onSignal([running](int signal) {
+      spdlog::info("signal {} received, stopping", signal);
+      running->stop();
+    });
+    if (signals.received() != 0) {
+      node->stop();  // a signal that came while the node was being built
+    }
+    spdlog::info("{} running on domain {}", module_name, node->participant().options().domain_id);
+    node->run();
+    spdlog::info("{} stopped", module_name);
+  } catch (const std::exception& e) {
+    spdlog::critical("{}: {}", module_name, e.what());
+    status = 1;
+  }
+  signals.onSignal({});  // before the node goes away
+  node.reset();
+  return status;
+}
+
+}  // namespace quad::dds

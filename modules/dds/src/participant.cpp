@@ -1,0 +1,392 @@
+#include "quad/dds/participant.hpp"
+
+#include <arpa/inet.h>
+
+#include <charconv>
+#include <cstdlib>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
+#include <fastdds/rtps/attributes/ServerAttributes.h>
+#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
+#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
+#include <fastrtps/utils/IPLocator.h>
+
+namespace quad::dds {
+
+namespace fdds = eprosima::fastdds::dds;
+namespace frtps = eprosima::fastrtps::rtps;
+
+namespace {
+
+constexpr int kMaxDomainId = 232;  // RTPS port mapping limit with the default port parameters
+
+const char* env(const char* name)
+{
+  const char* value = std::getenv(name);
+  return (value != nullptr && *value != '\0') ? value : nullptr;
+}
+
+template <class Int>
+Int parseInt(std::string_view text, std::string_view what, Int lo, Int hi)
+{
+  Int value{};
+  const auto* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (ec != std::errc{} || ptr != end || value < lo || value > hi) {
+    throw std::invalid_argument(std::string(what) + ": " + std::string(text) +
+                                ": expected an integer in [" + std::to_string(lo) + ", " +
+                                std::to_string(hi) + "]");
+  }
+  return value;
+}
+
+/// Splits "IP[:PORT]" and checks both parts; `what` names the source in errors.
+frtps::Locator_t parseLocator(const std::string& text, std::string_view what, bool port_required)
+{
+  const auto colon = text.rfind(':');
+  const std::string ip = text.substr(0, colon);
+  in_addr addr{};
+  if (inet_pton(AF_INET, ip.c_str(), &addr) != 1) {
+    throw std::invalid_argument(std::string(what) + ": " + text + ": not an IPv4 address");
+  }
+  frtps::Locator_t locator;
+  frtps::IPLocator::setIPv4(locator, ip);
+  if (colon != std::string::npos) {
+    locator.port = parseInt<std::uint32_t>(std::string_view(text).substr(colon + 1), what, 1, 65535);
+  } else if (port_required) {
+    throw std::invalid_argument(std::string(what) + ": " + text + ": expected IP:PORT");
+  }
+  return locator;
+}
+
+/// Loads each QoS file once per process (Fast DDS refuses duplicate profile names).
+void loadProfiles(const std::filesystem::path& file)
+{
+  static std::mutex mutex;
+  static std::set<std::filesystem::path> loaded;
+  std::lock_guard lock(mutex);
+  if (loaded.contains(file)) {
+    return;
+  }
+  if (!std::filesystem::exists(file)) {
+    throw std::runtime_error("QoS profiles file " + file.string() + " does not exist");
+  }
+  if (fdds::DomainParticipantFactory::get_instance()->load_XML_profiles_file(file.string()) !=
+      ReturnCode_t::RETCODE_OK) {
+    throw std::runtime_error("QoS profiles file " + file.string() + " could not be loaded");
+  }
+  loaded.insert(file);
+}
+
+std::string guidText(const frtps::GUID_t& guid)
+{
+  std::ostringstream os;
+  os << guid;
+  return os.str();
+}
+
+}  // namespace
+
+Transport parseTransport(std::string_view text)
+{
+  if (text == "default") {
+    return Transport::kDefault;
+  }
+  if (text == "udp") {
+    return Transport::kUdp;
+  }
+  if (text == "shm") {
+    return Transport::kSharedMemory;
+  }
+  throw std::invalid_argument("transport: " + std::string(text) + ": expected default, udp or shm");
+}
+
+std::filesystem::path defaultQosFile()
+{
+  if (const char* file = env("QUAD_QOS_FILE")) {
+    return file;
+  }
+  return std::filesystem::path(QUAD_CONFIG_DIR) / "dds" / "quad_qos.xml";
+}
+
+ParticipantOptions optionsFromEnvironment(std::string name)
+{
+  ParticipantOptions options;
+  options.name = std::move(name);
+  if (const char* v = env("QUAD_DOMAIN_ID")) {
+    options.domain_id = parseInt<int>(v, "QUAD_DOMAIN_ID", 0, kMaxDomainId);
+  }
+  if (const char* v = env("QUAD_TRANSPORT")) {
+    try {
+      options.transport = parseTransport(v);
+    } catch (const std::invalid_argument&) {
+      throw std::invalid_argument(std::string("QUAD_TRANSPORT: ") + v +
+                                  ": expected default, udp or shm");
+    }
+  }
+  if (const char* v = env("QUAD_INITIAL_PEERS")) {
+    std::stringstream list(v);
+    for (std::string peer; std::getline(list, peer, ',');) {
+      if (!peer.empty()) {
+        parseLocator(peer, "QUAD_INITIAL_PEERS", false);
+        options.initial_peers.push_back(peer);
+      }
+    }
+  }
+  if (const char* v = env("QUAD_DISCOVERY_SERVER")) {
+    parseLocator(v, "QUAD_DISCOVERY_SERVER", true);
+    options.discovery_server = v;
+  }
+  if (const char* v = env("QUAD_VEHICLE_ID")) {
+    options.vehicle_id = parseInt<std::uint32_t>(v, "QUAD_VEHICLE_ID", 0, 1'000'000);
+  }
+  options.qos_file = defaultQosFile();
+  return options;
+}
+
+/// Discovery callbacks: copy what was seen and hand it to the participant.
+class Participant::Listener : public fdds::DomainParticipantListener {
+public:
+  explicit Listener(Participant& owner) : owner_(owner) {}
+
+  void on_publisher_discovery(fdds::DomainParticipant*, frtps::WriterDiscoveryInfo&& info) override
+  {
+    const auto& d = info.info;
+    RemoteEndpoint e{guidText(d.guid()), d.topicName().to_string(), d.typeName().to_string(),
+                     d.topicKind() == frtps::WITH_KEY, true,
+                     d.m_qos.m_reliability.kind == fdds::RELIABLE_RELIABILITY_QOS,
+                     d.m_qos.m_durability.kind != fdds::VOLATILE_DURABILITY_QOS};
+    owner_.onRemoteEndpoint(std::move(e),
+                            info.status != frtps::WriterDiscoveryInfo::REMOVED_WRITER);
+  }
+
+  void on_subscriber_discovery(fdds::DomainParticipant*, frtps::ReaderDiscoveryInfo&& info) override
+  {
+    const auto& d = info.info;
+    RemoteEndpoint e{guidText(d.guid()), d.topicName().to_string(), d.typeName().to_string(),
+                     d.topicKind() == frtps::WITH_KEY, false,
+                     d.m_qos.m_reliability.kind == fdds::RELIABLE_RELIABILITY_QOS,
+                     d.m_qos.m_durability.kind != fdds::VOLATILE_DURABILITY_QOS};
+    owner_.onRemoteEndpoint(std::move(e),
+                            info.status != frtps::ReaderDiscoveryInfo::REMOVED_READER);
+  }
+
+private:
+  Participant& owner_;
+};
+
+Participant::Participant(ParticipantOptions options)
+    : options_(std::move(options)), listener_(std::make_unique<Listener>(*this))
+{
+  if (options_.domain_id < 0 || options_.domain_id > kMaxDomainId) {
+    throw std::invalid_argument("domain id: " + std::to_string(options_.domain_id) +
+                                ": expected an integer in [0, " + std::to_string(kMaxDomainId) + "]");
+  }
+  if (options_.qos_file.empty()) {
+    options_.qos_file = defaultQosFile();
+  }
+  // A DEFAULT_FASTRTPS_PROFILES.xml in the working directory must not change quad's QoS.
+  setenv("SKIP_DEFAULT_XML_FILE", "1", 1);
+  loadProfiles(options_.qos_file);
+
+  auto* factory = fdds::DomainParticipantFactory::get_instance();
+  fdds::DomainParticipantQos qos;
+  if (factory->get_participant_qos_from_profile("quad.participant", qos) != ReturnCode_t::RETCODE_OK) {
+    throw std::runtime_error("QoS profiles file " + options_.qos_file.string() +
+                             " has no participant profile 'quad.participant'");
+  }
+  qos.name(options_.name);
+
+  switch (options_.transport) {
+    case Transport::kDefault:
+      break;
+    case Transport::kUdp:
+      qos.transport().use_builtin_transports = false;
+      qos.transport().user_transports.push_back(
+          std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>());
+      break;
+    case Transport::kSharedMemory:
+      qos.transport().use_builtin_transports = false;
+      qos.transport().user_transports.push_back(
+          std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
+      break;
+  }
+
+  auto& builtin = qos.wire_protocol().builtin;
+  for (const auto& peer : options_.initial_peers) {
+    builtin.initialPeersList.push_back(parseLocator(peer, "initial peer", false));
+  }
+  if (!options_.discovery_server.empty()) {
+    frtps::RemoteServerAttributes server;
+    frtps::get_server_client_default_guidPrefix(0, server.guidPrefix);
+    server.metatrafficUnicastLocatorList.push_back(
+        parseLocator(options_.discovery_server, "discovery server", true));
+    builtin.discovery_config.discoveryProtocol = frtps::DiscoveryProtocol_t::CLIENT;
+    builtin.discovery_config.m_DiscoveryServers.push_back(server);
+  }
+
+  participant_ = factory->create_participant(static_cast<fdds::DomainId_t>(options_.domain_id), qos, listener_.get(),
+                                             fdds::StatusMask::none());
+  if (participant_ == nullptr) {
+    throw std::runtime_error("cannot create DDS participant '" + options_.name + "' on domain " +
+                             std::to_string(options_.domain_id));
+  }
+  publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
+  subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
+  if (publisher_ == nullptr || subscriber_ == nullptr) {
+    participant_->delete_contained_entities();
+    factory->delete_participant(participant_);
+    throw std::runtime_error("cannot create publisher/subscriber of participant '" +
+                             options_.name + "'");
+  }
+}
+
+Participant::~Participant()
+{
+  // Readers and writers are deleted by their owners first; this removes the rest.
+  participant_->set_listener(nullptr);
+  participant_->delete_contained_entities();
+  fdds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
+}
+
+fdds::Topic* Participant::topic(const TopicInfo& info, const fdds::TypeSupport& type)
+{
+  std::lock_guard lock(endpoints_mutex_);
+  if (auto it = topics_.find(info.name); it != topics_.end()) {
+    if (it->second->get_type_name() != type.get_type_name()) {
+      throw std::logic_error("topic " + std::string(info.name) + " already created with type " +
+                             it->second->get_type_name() + ", not " + type.get_type_name());
+    }
+    return it->second;
+  }
+  if (participant_->find_type(type.get_type_name()).empty()) {
+    fdds::TypeSupport copy = type;
+    if (copy.register_type(participant_) != ReturnCode_t::RETCODE_OK) {
+      throw std::runtime_error("cannot register type " + type.get_type_name());
+    }
+  }
+  auto* topic = participant_->create_topic(std::string(info.name), type.get_type_name(),
+                                           fdds::TOPIC_QOS_DEFAULT);
+  if (topic == nullptr) {
+    throw std::runtime_error("cannot create topic " + std::string(info.name));
+  }
+  topics_.emplace(std::string(info.name), topic);
+  return topic;
+}
+
+fdds::DataWriterQos Participant::writerQos(std::string_view qos_class) const
+{
+  const std::string profile = std::string(qos_class) + ".writer";
+  fdds::DataWriterQos qos;
+  if (publisher_->get_datawriter_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
+    throw std::runtime_error("QoS profiles file " + options_.qos_file.string() +
+                             " has no data_writer profile '" + profile + "'");
+  }
+  if (options_.transport == Transport::kUdp) {
+    qos.data_sharing().off();  // else local peers bypass UDP through shared memory
+  }
+  return qos;
+}
+
+fdds::DataReaderQos Participant::readerQos(std::string_view qos_class) const
+{
+  const std::string profile = std::string(qos_class) + ".reader";
+  fdds::DataReaderQos qos;
+  if (subscriber_->get_datareader_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
+    throw std::runtime_error("QoS profiles file " + options_.qos_file.string() +
+                             " has no data_reader profile '" + profile + "'");
+  }
+  if (options_.transport == Transport::kUdp) {
+    qos.data_sharing().off();
+  }
+  return qos;
+}
+
+void Participant::addLocalEndpoint(const std::string& topic, const std::string& type_name,
+                                   bool keyed, bool writer)
+{
+  std::vector<RemoteEndpoint> remotes;
+  {
+    std::lock_guard lock(endpoints_mutex_);
+    auto& local = local_.try_emplace(topic, LocalEndpoint{type_name, keyed}).first->second;
+    (writer ? local.writers : local.readers) += 1;
+    for (const auto& [guid, remote] : remote_) {
+      if (remote.topic == topic) {
+        remotes.push_back(remote);
+      }
+    }
+  }
+  for (const auto& remote : remotes) {
+    checkTypes(remote);
+  }
+}
+
+void Participant::removeLocalEndpoint(const std::string& topic, bool writer)
+{
+  std::lock_guard lock(endpoints_mutex_);
+  auto it = local_.find(topic);
+  if (it == local_.end()) {
+    return;
+  }
+  (writer ? it->second.writers : it->second.readers) -= 1;
+  if (it->second.writers <= 0 && it->second.readers <= 0) {
+    local_.erase(it);
+  }
+}
+
+std::vector<RemoteEndpoint> Participant::remoteEndpoints() const
+{
+  std::lock_guard lock(endpoints_mutex_);
+  std::vector<RemoteEndpoint> out;
+  out.reserve(remote_.size());
+  for (const auto& [guid, endpoint] : remote_) {
+    out.push_back(endpoint);
+  }
+  return out;
+}
+
+void Participant::onRemoteEndpoint(RemoteEndpoint endpoint, bool alive)
+{
+  {
+    std::lock_guard lock(endpoints_mutex_);
+    if (!alive) {
+      remote_.erase(endpoint.guid);
+      return;
+    }
+    remote_[endpoint.guid] = endpoint;
+  }
+  checkTypes(endpoint);
+}
+
+void Participant::checkTypes(const RemoteEndpoint& remote)
+{
+  std::string problem;
+  {
+    std::lock_guard lock(endpoints_mutex_);
+    const auto it = local_.find(remote.topic);
+    if (it == local_.end()) {
+      return;
+    }
+    const LocalEndpoint& local = it->second;
+    // A remote writer concerns our readers, a remote reader our writers.
+    if ((remote.writer ? local.readers : local.writers) == 0) {
+      return;
+    }
+    const auto kind = [](bool keyed) { return keyed ? "keyed" : "unkeyed"; };
+    if (remote.type_name != local.type_name || remote.keyed != local.keyed) {
+      problem = std::string("remote ") + (remote.writer ? "writer" : "reader") + " " +
+                remote.guid + " has type '" + remote.type_name + "' (" + kind(remote.keyed) +
+                "), local " + (remote.writer ? "reader" : "writer") + " has '" + local.type_name +
+                "' (" + kind(local.keyed) + "): they will never match";
+    }
+  }
+  if (!problem.empty()) {
+    events_.push({EventKind::kTypeMismatch, remote.topic, problem});
+  }
+}
+
+}  // namespace quad::dds

@@ -2,8 +2,9 @@
 #
 # Runs fastddsgen on every file at build time into the build tree (never committed) and
 # compiles the result into one library. Consumers include <quad/msg/XPubSubTypes.h>.
-# Also writes <target>_sources.cpp, which embeds each IDL text so that tools can decode
-# samples and recordings can carry their schema without reading files at run time.
+# Also builds <target>_idl, a library without DDS that embeds each IDL text
+# (quad::msg::idlSources()), so that tools decode samples and recordings carry their schema
+# without reading files at run time.
 function(quad_add_idl_library target)
   cmake_parse_arguments(ARG "" "IDL_ROOT" "FILES" ${ARGN})
   set(gen_root ${CMAKE_CURRENT_BINARY_DIR}/generated)
@@ -55,7 +56,10 @@ const std::map<std::string, std::string_view>& idlSources()
 }  // namespace quad::msg
 ]] @ONLY)
 
-  add_library(${target} ${outputs} ${sources_cpp})
+  add_library(${target}_idl STATIC ${sources_cpp})
+  set_target_properties(${target}_idl PROPERTIES POSITION_INDEPENDENT_CODE ON)
+
+  add_library(${target} ${outputs})
   # SYSTEM: generated code is not held to quad's warning set.
   target_include_directories(${target} SYSTEM PUBLIC ${gen_root})
   target_link_libraries(${target} PUBLIC fastrtps fastcdr)

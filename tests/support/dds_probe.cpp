@@ -8,6 +8,9 @@
 //                                        says BEST_EFFORT) and print the incompatibility
 //   dds_probe send-heartbeat-as-state MS write Heartbeats on the quad/sim/state topic name
 //   dds_probe receive-state MS           read quad/sim/state; print type mismatches seen
+//   dds_probe lockstep-clock STEPS MS NAME...  step sim time 1 ms at a time, waiting up to MS
+//                                        at each step for every NAME to report done
+//   dds_probe lockstep-participant NAME  report done up to each sim clock tick received
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -15,6 +18,7 @@
 #include <thread>
 
 #include "quad/common/time.hpp"
+#include "quad/dds/lockstep.hpp"
 #include "quad/dds/participant.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
@@ -126,6 +130,49 @@ int expectEvent(Participant& p, EventKind kind, std::chrono::milliseconds timeou
   return found.empty() ? 1 : 0;
 }
 
+int lockstepClock(Participant& p, int steps, std::chrono::milliseconds timeout,
+                  std::vector<std::string> names)
+{
+  const auto expected = static_cast<int>(names.size());
+  quad::dds::LockstepBarrier barrier(p, std::move(names));
+  quad::dds::Publisher<quad::msg::SimClock> clock(p, topics::kSimClock);
+  // Participants that are up must be listening before time starts; a missing one is what
+  // the barrier's timeout reports.
+  waitUntil([&] { return clock.matchedReaders() >= expected; }, 5s);
+  for (int step = 1; step <= steps; ++step) {
+    quad::msg::SimClock tick;
+    const std::int64_t sim_ns = step * 1'000'000LL;
+    tick.header().stamp_ns(sim_ns);
+    tick.sim_ns(sim_ns);
+    tick.step_ns(1'000'000);
+    tick.lockstep(true);
+    clock.write(tick);
+    const auto result = barrier.waitUntilDone(sim_ns, timeout);
+    if (!result.caught_up) {
+      std::cout << result.message << std::endl;
+      return 1;
+    }
+  }
+  std::cout << "stepped " << steps << std::endl;
+  return 0;
+}
+
+int lockstepParticipant(Participant& p, const std::string& name)
+{
+  quad::dds::Waker waker;
+  quad::dds::Subscriber<quad::msg::SimClock> clock(p, topics::kSimClock, &waker);
+  quad::dds::LockstepReporter reporter(p, name);
+  std::cout << "ready" << std::endl;
+  // Runs until killed by the test.
+  while (true) {
+    waker.waitUntil(quad::common::steadyTimeNs() + 100'000'000);
+    for (const auto& tick : clock.takeAll()) {
+      waitUntil([&] { return reporter.matchedBarriers() > 0; }, 5s);
+      reporter.reportDone(tick.sim_ns());
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -135,7 +182,7 @@ int main(int argc, char** argv)
     return 2;
   }
   const std::string mode = argv[1];
-  const int arg = std::stoi(argv[2]);
+  const int arg = mode == "lockstep-participant" ? 0 : std::stoi(argv[2]);
   const auto ms = std::chrono::milliseconds(arg);
   try {
     Participant participant(quad::dds::optionsFromEnvironment("dds_probe_" + mode));
@@ -158,6 +205,13 @@ int main(int argc, char** argv)
     }
     if (mode == "send-heartbeat-as-state") {
       return sendHeartbeatAsState(participant, ms);
+    }
+    if (mode == "lockstep-clock" && argc > 4) {
+      return lockstepClock(participant, arg, std::chrono::milliseconds(std::stoi(argv[3])),
+                           std::vector<std::string>(argv + 4, argv + argc));
+    }
+    if (mode == "lockstep-participant") {
+      return lockstepParticipant(participant, argv[2]);
     }
     if (mode == "receive-state") {
       quad::dds::Subscriber<quad::msg::VehicleState> sub(participant, topics::kSimState);

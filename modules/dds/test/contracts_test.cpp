@@ -1,0 +1,126 @@
+// The topic contracts against the design's conventions, the IDL, and the QoS file.
+#include "quad/dds/topics.hpp"
+
+#include <gtest/gtest.h>
+
+#include <regex>
+#include <set>
+
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+
+#include "quad/dds/participant.hpp"
+#include "quad/introspection/idl.hpp"
+
+namespace quad::dds {
+namespace {
+
+namespace fdds = eprosima::fastdds::dds;
+
+/// Each test that creates a participant uses its own domain.
+Participant testParticipant(int domain)
+{
+  return Participant(ParticipantOptions{.name = "contracts_test", .domain_id = domain,
+                                        .transport = Transport::kUdp});
+}
+
+double seconds(const eprosima::fastrtps::Duration_t& d)
+{
+  return d.seconds + d.nanosec * 1e-9;
+}
+
+TEST(Contracts, NamesAreUniqueAndFollowTheConvention)
+{
+  const std::regex pattern("quad/(sim|mapping|planning|control|system)/[a-z_]+");
+  std::set<std::string_view> names;
+  for (const auto& t : topics::kAll) {
+    EXPECT_TRUE(std::regex_match(std::string(t.name), pattern)) << t.name;
+    EXPECT_TRUE(names.insert(t.name).second) << "declared twice: " << t.name;
+    EXPECT_GE(t.rate_hz, 0.0) << t.name;
+    EXPECT_FALSE(t.description.empty()) << t.name;
+  }
+}
+
+TEST(Contracts, EveryTypeIsAKeyedIdlStructWithItsFile)
+{
+  const auto& schema = introspection::quadSchema();
+  for (const auto& t : topics::kAll) {
+    const auto* def = schema.findStruct(t.type_name);
+    ASSERT_NE(def, nullptr) << t.name << ": " << t.type_name;
+    EXPECT_EQ(def->file, t.idl_file) << t.name;
+  }
+}
+
+TEST(Contracts, LookupFindsDeclaredTopicsOnly)
+{
+  ASSERT_TRUE(topics::find("quad/sim/state").has_value());
+  EXPECT_EQ(topics::find("quad/sim/state")->type_name, "quad::msg::VehicleState");
+  EXPECT_FALSE(topics::find("quad/sim/stat").has_value());
+}
+
+TEST(Contracts, GeneratedTypeNamesMatchTheContracts)
+{
+  EXPECT_EQ(MessageTraits<msg::VehicleState>::PubSubType().getName(),
+            topics::kSimState.info.type_name);
+  EXPECT_EQ(MessageTraits<msg::Heartbeat>::PubSubType().getName(),
+            topics::kHeartbeat.info.type_name);
+  EXPECT_EQ(MessageTraits<msg::MapSnapshot>::PubSubType().getName(),
+            topics::kMapSnapshot.info.type_name);
+}
+
+TEST(Contracts, EveryQosClassHasAWriterAndAReaderProfile)
+{
+  Participant p = testParticipant(150);
+  for (const auto& t : topics::kAll) {
+    EXPECT_NO_THROW(p.writerQos(t.qos_profile)) << t.name;
+    EXPECT_NO_THROW(p.readerQos(t.qos_profile)) << t.name;
+  }
+  EXPECT_THROW(p.writerQos("no_such_class"), std::runtime_error);
+}
+
+TEST(Contracts, ParticipantUsesTheBaselineLeaseNotTheTwentySecondDefault)
+{
+  Participant p = testParticipant(151);
+  fdds::DomainParticipantQos qos;
+  ASSERT_EQ(p.raw()->get_qos(qos), ReturnCode_t::RETCODE_OK);
+  const auto& discovery = qos.wire_protocol().builtin.discovery_config;
+  EXPECT_DOUBLE_EQ(seconds(discovery.leaseDuration), 2.0);
+  EXPECT_DOUBLE_EQ(seconds(discovery.leaseDuration_announcementperiod), 0.5);
+}
+
+TEST(Contracts, ReliableWritersHeartbeatEvery100msAndAssertLivelinessEvery500ms)
+{
+  Participant p = testParticipant(152);
+  for (const auto& t : topics::kAll) {
+    const auto w = p.writerQos(t.qos_profile);
+    EXPECT_DOUBLE_EQ(seconds(w.liveliness().lease_duration), 0.5) << t.name;
+    if (w.reliability().kind == fdds::RELIABLE_RELIABILITY_QOS) {
+      EXPECT_DOUBLE_EQ(seconds(w.reliable_writer_qos().times.heartbeatPeriod), 0.1) << t.name;
+    }
+  }
+}
+
+TEST(Contracts, ControlInputsHaveDeadlinesOfTwiceTheirPeriod)
+{
+  Participant p = testParticipant(153);
+  for (const auto* t : {&topics::kSimState.info, &topics::kActuators.info}) {
+    const double expected = 2.0 / t->rate_hz;
+    EXPECT_NEAR(seconds(p.readerQos(t->qos_profile).deadline().period), expected, 1e-9) << t->name;
+    EXPECT_NEAR(seconds(p.writerQos(t->qos_profile).deadline().period), expected, 1e-9) << t->name;
+  }
+}
+
+TEST(Contracts, WritersAndReadersOfOneClassAreCompatible)
+{
+  // A writer and a reader built from one class must match: same reliability and durability
+  // (a reader never asks more than the writer offers).
+  Participant p = testParticipant(154);
+  for (const auto& t : topics::kAll) {
+    const auto w = p.writerQos(t.qos_profile);
+    const auto r = p.readerQos(t.qos_profile);
+    EXPECT_EQ(w.reliability().kind, r.reliability().kind) << t.name;
+    EXPECT_EQ(w.durability().kind, r.durability().kind) << t.name;
+  }
+}
+
+}  // namespace
+}  // namespace quad::dds

@@ -1,0 +1,87 @@
+// Participant options from the environment: what every quad process shares with the launcher.
+#include "quad/dds/participant.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+namespace quad::dds {
+namespace {
+
+class EnvironmentOptions : public ::testing::Test {
+protected:
+  void SetUp() override { clear(); }
+  void TearDown() override { clear(); }
+  static void clear()
+  {
+    for (const char* v : {"QUAD_DOMAIN_ID", "QUAD_TRANSPORT", "QUAD_INITIAL_PEERS",
+                          "QUAD_DISCOVERY_SERVER", "QUAD_VEHICLE_ID"}) {
+      unsetenv(v);
+    }
+  }
+  static std::string errorOf()
+  {
+    try {
+      optionsFromEnvironment("test");
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "accepted";
+  }
+};
+
+TEST_F(EnvironmentOptions, DefaultsAreDomainZeroAndBuiltinTransports)
+{
+  const auto o = optionsFromEnvironment("test");
+  EXPECT_EQ(o.domain_id, 0);
+  EXPECT_EQ(o.transport, Transport::kDefault);
+  EXPECT_TRUE(o.initial_peers.empty());
+  EXPECT_FALSE(o.qos_file.empty());
+}
+
+TEST_F(EnvironmentOptions, ValidValuesAreTaken)
+{
+  setenv("QUAD_DOMAIN_ID", "42", 1);
+  setenv("QUAD_TRANSPORT", "udp", 1);
+  setenv("QUAD_INITIAL_PEERS", "10.0.0.1,10.0.0.2:7412", 1);
+  setenv("QUAD_DISCOVERY_SERVER", "10.0.0.9:11811", 1);
+  setenv("QUAD_VEHICLE_ID", "2", 1);
+  const auto o = optionsFromEnvironment("test");
+  EXPECT_EQ(o.domain_id, 42);
+  EXPECT_EQ(o.transport, Transport::kUdp);
+  EXPECT_EQ(o.initial_peers, (std::vector<std::string>{"10.0.0.1", "10.0.0.2:7412"}));
+  EXPECT_EQ(o.discovery_server, "10.0.0.9:11811");
+  EXPECT_EQ(o.vehicle_id, 2U);
+}
+
+TEST_F(EnvironmentOptions, BadValuesNameTheVariableAndTheValue)
+{
+  setenv("QUAD_DOMAIN_ID", "abc", 1);
+  EXPECT_EQ(errorOf(), "QUAD_DOMAIN_ID: abc: expected an integer in [0, 232]");
+  setenv("QUAD_DOMAIN_ID", "233", 1);
+  EXPECT_EQ(errorOf(), "QUAD_DOMAIN_ID: 233: expected an integer in [0, 232]");
+  clear();
+  setenv("QUAD_TRANSPORT", "tcp", 1);
+  EXPECT_EQ(errorOf(), "QUAD_TRANSPORT: tcp: expected default, udp or shm");
+  clear();
+  setenv("QUAD_INITIAL_PEERS", "10.0.0.1,10.0.0", 1);
+  EXPECT_EQ(errorOf(), "QUAD_INITIAL_PEERS: 10.0.0: not an IPv4 address");
+  clear();
+  setenv("QUAD_DISCOVERY_SERVER", "10.0.0.9", 1);
+  EXPECT_EQ(errorOf(), "QUAD_DISCOVERY_SERVER: 10.0.0.9: expected IP:PORT");
+  setenv("QUAD_DISCOVERY_SERVER", "10.0.0.9:99999", 1);
+  EXPECT_EQ(errorOf(), "QUAD_DISCOVERY_SERVER: 99999: expected an integer in [1, 65535]");
+}
+
+TEST_F(EnvironmentOptions, MissingQosFileIsRefusedNamingIt)
+{
+  try {
+    Participant p(ParticipantOptions{.name = "t", .domain_id = 155, .qos_file = "/nope/qos.xml"});
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "QoS profiles file /nope/qos.xml does not exist");
+  }
+}
+
+}  // namespace
+}  // namespace quad::dds

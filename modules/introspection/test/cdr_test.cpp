@@ -1,0 +1,168 @@
+#include "quad/introspection/cdr.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fastcdr/Cdr.h>
+#include <fastcdr/FastBuffer.h>
+
+#include <quad/msg/HeartbeatPubSubTypes.h>
+#include <quad/msg/PointCloudPubSubTypes.h>
+#include <quad/msg/VehicleStatePubSubTypes.h>
+
+#include <random>
+#include <vector>
+
+namespace quad::introspection {
+namespace {
+
+/// Serializes a generated message as Fast DDS does: encapsulation header, then CDR.
+template <class Message>
+std::vector<std::uint8_t> serialize(Message& m, bool big_endian = false)
+{
+  std::vector<char> buffer(Message::getMaxCdrSerializedSize() + 4);
+  eprosima::fastcdr::FastBuffer fb(buffer.data(), buffer.size());
+  eprosima::fastcdr::Cdr cdr(fb,
+                             big_endian ? eprosima::fastcdr::Cdr::BIG_ENDIANNESS
+                                        : eprosima::fastcdr::Cdr::LITTLE_ENDIANNESS,
+                             eprosima::fastcdr::Cdr::DDS_CDR);
+  cdr.serialize_encapsulation();
+  m.serialize(cdr);
+  return {buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(cdr.getSerializedDataLength())};
+}
+
+msg::VehicleState sampleState()
+{
+  msg::VehicleState s;
+  s.header().vehicle_id(7);
+  s.header().stamp_ns(1'234'567'890'123LL);
+  s.header().seq(42);
+  s.p_W().x(1.5);
+  s.p_W().y(-2.25);
+  s.p_W().z(3.0);
+  s.q_WB().w(0.5);
+  s.q_WB().x(-0.5);
+  s.w_B().z(0.125);
+  s.landed(true);
+  return s;
+}
+
+TEST(Cdr, DecodesWhatFastCdrSerializedInBothByteOrders)
+{
+  for (const bool big_endian : {false, true}) {
+    msg::VehicleState s = sampleState();
+    const auto bytes = serialize(s, big_endian);
+    const auto j = decodeCdr(quadSchema(), "quad::msg::VehicleState", bytes);
+    EXPECT_EQ(j["header"]["vehicle_id"], 7);
+    EXPECT_EQ(j["header"]["stamp_ns"], 1'234'567'890'123LL);
+    EXPECT_EQ(j["header"]["seq"], 42);
+    EXPECT_EQ(j["p_W"]["y"], -2.25);
+    EXPECT_EQ(j["q_WB"]["w"], 0.5);
+    EXPECT_EQ(j["q_WB"]["x"], -0.5);
+    EXPECT_EQ(j["w_B"]["z"], 0.125);
+    EXPECT_EQ(j["landed"], true);
+  }
+}
+
+TEST(Cdr, DecodesStringsEnumsAndSequences)
+{
+  msg::Heartbeat hb;
+  hb.module_name("mapping");
+  hb.host("host-a");
+  hb.pid(4242);
+  hb.state(msg::MODULE_DEGRADED);
+  hb.errors(3);
+  auto j = decodeCdr(quadSchema(), "quad::msg::Heartbeat", serialize(hb));
+  EXPECT_EQ(j["module_name"], "mapping");
+  EXPECT_EQ(j["host"], "host-a");
+  EXPECT_EQ(j["pid"], 4242);
+  EXPECT_EQ(j["state"], "MODULE_DEGRADED");
+  EXPECT_EQ(j["errors"], 3);
+
+  msg::PointCloud cloud;
+  cloud.frame_id("depth_front");
+  for (int i = 0; i < 10; ++i) {
+    msg::Point3f p;
+    p.x(static_cast<float>(i));
+    cloud.points().push_back(p);
+  }
+  cloud.max_range(12.5f);
+  j = decodeCdr(quadSchema(), "quad::msg::PointCloud", serialize(cloud), {.max_elements = 3});
+  EXPECT_EQ(j["frame_id"], "depth_front");
+  ASSERT_EQ(j["points"].size(), 4U);  // three points, then the count of the others
+  EXPECT_EQ(j["points"][2]["x"], 2.0);
+  EXPECT_EQ(j["points"][3], "... 7 more");
+  EXPECT_EQ(j["max_range"], 12.5);
+}
+
+TEST(Cdr, EveryTruncationIsAnErrorNeverACrash)
+{
+  msg::Heartbeat hb;
+  hb.module_name("control");
+  hb.host("h");
+  const auto bytes = serialize(hb);
+  for (std::size_t n = 0; n < bytes.size(); ++n) {
+    EXPECT_THROW(decodeCdr(quadSchema(), "quad::msg::Heartbeat",
+                           std::span<const std::uint8_t>(bytes.data(), n)),
+                 DecodeError)
+        << "prefix of " << n << " bytes";
+  }
+}
+
+TEST(Cdr, RandomCorruptionIsDecodedOrRefusedNeverACrash)
+{
+  msg::PointCloud cloud;
+  cloud.frame_id("depth_front");
+  cloud.points().resize(16);
+  const auto clean = serialize(cloud);
+  std::mt19937 rng(1234);
+  int refused = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    auto bytes = clean;
+    for (int k = 0; k < 3; ++k) {
+      bytes[4 + rng() % (bytes.size() - 4)] = static_cast<std::uint8_t>(rng());
+    }
+    try {
+      decodeCdr(quadSchema(), "quad::msg::PointCloud", bytes);
+    } catch (const DecodeError&) {
+      ++refused;
+    }
+  }
+  EXPECT_GT(refused, 0);  // the corruptions did hit lengths, enums and strings
+}
+
+TEST(Cdr, BoundsEnumsAndEncapsulationAreChecked)
+{
+  msg::Heartbeat hb;
+  hb.module_name("x");
+  auto bytes = serialize(hb);
+  // module_name is the first member after the 32-byte Header: its length word at body 32.
+  bytes[4 + 32] = 200;  // length 200 > bound 32
+  EXPECT_THROW(decodeCdr(quadSchema(), "quad::msg::Heartbeat", bytes), DecodeError);
+
+  msg::VehicleState s = sampleState();
+  auto state = serialize(s);
+  state[1] = 0x02;  // PL_CDR_BE: not plain CDR
+  try {
+    decodeCdr(quadSchema(), "quad::msg::VehicleState", state);
+    FAIL();
+  } catch (const DecodeError& e) {
+    EXPECT_NE(std::string(e.what()).find("unsupported encapsulation"), std::string::npos);
+  }
+  EXPECT_THROW(decodeCdr(quadSchema(), "quad::msg::Nope", state), DecodeError);
+}
+
+TEST(Cdr, ErrorsNameTheFieldPath)
+{
+  msg::VehicleState s = sampleState();
+  const auto bytes = serialize(s);
+  try {
+    decodeCdr(quadSchema(), "quad::msg::VehicleState",
+              std::span<const std::uint8_t>(bytes.data(), 4 + 32 + 8));
+    FAIL();
+  } catch (const DecodeError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("p_W.y: truncated", 0), 0U) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace quad::introspection

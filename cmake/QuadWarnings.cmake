@@ -4,7 +4,7 @@ add_library(quad_warnings INTERFACE)
 add_library(quad::warnings ALIAS quad_warnings)
 target_compile_options(quad_warnings INTERFACE
   -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wold-style-cast -Wcast-align
-  -Wunused -Woverloaded-virtual -Wconversion -Wsign-conversion -Wnull-dereference
+  -Wunused -Woverloaded-virtual -Wconversion -Wsign-conversion
   -Wdouble-promotion -Wformat=2 -Wimplicit-fallthrough
   # Designated initializers leave members at their defaults on purpose.
   -Wno-missing-field-initializers)

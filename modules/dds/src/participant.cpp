@@ -278,32 +278,37 @@ fdds::Topic* Participant::topic(const TopicInfo& info, const fdds::TypeSupport& 
   return topic;
 }
 
-fdds::DataWriterQos Participant::writerQos(std::string_view qos_class) const
+namespace {
+/// Reads `<class>.<role>` from the loaded profiles; data-sharing off for UDP-only runs, or
+/// local peers would bypass UDP through shared memory.
+template <class Qos, class Entity, class Getter>
+Qos profileQos(Entity* entity, Getter getter, std::string_view qos_class, const char* role,
+               const ParticipantOptions& options)
 {
-  const std::string profile = std::string(qos_class) + ".writer";
-  fdds::DataWriterQos qos;
-  if (publisher_->get_datawriter_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
-    throw std::runtime_error("QoS profiles file " + options_.qos_file.string() +
-                             " has no data_writer profile '" + profile + "'");
+  const std::string profile = std::string(qos_class) + "." + role;
+  Qos qos;
+  if ((entity->*getter)(profile, qos) != ReturnCode_t::RETCODE_OK) {
+    throw std::runtime_error("QoS profiles file " + options.qos_file.string() + " has no " +
+                             role + " profile '" + profile + "'");
   }
-  if (options_.transport == Transport::kUdp) {
-    qos.data_sharing().off();  // else local peers bypass UDP through shared memory
+  if (options.transport == Transport::kUdp) {
+    qos.data_sharing().off();
   }
   return qos;
+}
+}  // namespace
+
+fdds::DataWriterQos Participant::writerQos(std::string_view qos_class) const
+{
+  return profileQos<fdds::DataWriterQos>(publisher_, &fdds::Publisher::get_datawriter_qos_from_profile,
+                                         qos_class, "writer", options_);
 }
 
 fdds::DataReaderQos Participant::readerQos(std::string_view qos_class) const
 {
-  const std::string profile = std::string(qos_class) + ".reader";
-  fdds::DataReaderQos qos;
-  if (subscriber_->get_datareader_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
-    throw std::runtime_error("QoS profiles file " + options_.qos_file.string() +
-                             " has no data_reader profile '" + profile + "'");
-  }
-  if (options_.transport == Transport::kUdp) {
-    qos.data_sharing().off();
-  }
-  return qos;
+  return profileQos<fdds::DataReaderQos>(subscriber_,
+                                         &fdds::Subscriber::get_datareader_qos_from_profile,
+                                         qos_class, "reader", options_);
 }
 
 void Participant::addLocalEndpoint(const std::string& topic, const std::string& type_name,

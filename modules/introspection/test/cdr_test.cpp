@@ -166,3 +166,71 @@ TEST(Cdr, ErrorsNameTheFieldPath)
 
 }  // namespace
 }  // namespace quad::introspection
+
+namespace quad::introspection {
+namespace {
+
+TEST(CdrEncode, EncodedSamplesDeserializeIntoTheGeneratedType)
+{
+  // GIVEN a sample described as decodeCdr prints it, with members left out
+  const auto value = nlohmann::ordered_json::parse(R"({
+    "header": {"vehicle_id": 7, "stamp_ns": 123, "seq": 9},
+    "p_W": {"x": 1.5, "y": -2.0},
+    "q_WB": {"w": 1.0},
+    "landed": true})");
+  // WHEN it is encoded and deserialized by the generated code
+  auto bytes = encodeCdr(quadSchema(), "quad::msg::VehicleState", value);
+  eprosima::fastcdr::FastBuffer fb(reinterpret_cast<char*>(bytes.data()), bytes.size());
+  eprosima::fastcdr::Cdr cdr(fb, eprosima::fastcdr::Cdr::DEFAULT_ENDIAN,
+                             eprosima::fastcdr::Cdr::DDS_CDR);
+  cdr.read_encapsulation();
+  msg::VehicleState s;
+  s.deserialize(cdr);
+  // THEN given members carry their values and the others are zero
+  EXPECT_EQ(s.header().vehicle_id(), 7U);
+  EXPECT_EQ(s.header().seq(), 9U);
+  EXPECT_EQ(s.p_W().x(), 1.5);
+  EXPECT_EQ(s.p_W().y(), -2.0);
+  EXPECT_EQ(s.p_W().z(), 0.0);
+  EXPECT_EQ(s.q_WB().w(), 1.0);
+  EXPECT_TRUE(s.landed());
+}
+
+TEST(CdrEncode, DecodeOfEncodeIsTheIdentityOnFullSamples)
+{
+  msg::Heartbeat hb;
+  hb.module_name("planning");
+  hb.host("h1");
+  hb.pid(77);
+  hb.state(msg::MODULE_STOPPING);
+  const auto decoded = decodeCdr(quadSchema(), "quad::msg::Heartbeat", serialize(hb));
+  const auto again = encodeCdr(quadSchema(), "quad::msg::Heartbeat", decoded);
+  EXPECT_EQ(again, serialize(hb));
+}
+
+TEST(CdrEncode, BadValuesNameTheFieldPath)
+{
+  const auto error = [](const char* type, const char* json) {
+    try {
+      encodeCdr(quadSchema(), type, nlohmann::ordered_json::parse(json));
+    } catch (const EncodeError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(error("quad::msg::Goal", R"({"p_W": {"w": 1}})"),
+            "p_W.w: unknown field of quad::msg::Vector3 (fields: x, y, z)");
+  EXPECT_EQ(error("quad::msg::Goal", R"({"goal_id": -1})"), "goal_id: -1 is negative");
+  EXPECT_EQ(error("quad::msg::Goal", R"({"tolerance": "far"})"),
+            "tolerance: expected a number, got \"far\"");
+  EXPECT_EQ(error("quad::msg::VehicleCommand", R"({"kind": "COMMAND_FLIP"})"),
+            "kind: \"COMMAND_FLIP\" is not one of COMMAND_ARM, COMMAND_DISARM, COMMAND_TAKEOFF, "
+            "COMMAND_START_MISSION, COMMAND_HOLD, COMMAND_LAND");
+  EXPECT_EQ(error("quad::msg::ActuatorCommand", R"({"rotor_speed": [1, 2, 3]})"),
+            "rotor_speed: expected a list of 4, got [1,2,3]");
+  EXPECT_EQ(error("quad::msg::Heartbeat", R"({"module_name": "a-module-name-longer-than-32-chars"})"),
+            "module_name: string of 34 characters exceeds its bound 32");
+}
+
+}  // namespace
+}  // namespace quad::introspection

@@ -55,6 +55,10 @@ struct MessageTraits;
     using PubSubType = VehicleKeyedType<quad::msg::Name##PubSubType, quad::msg::Name>;    \
     static constexpr std::string_view kTypeName = "quad::msg::" #Name;                   \
     static constexpr std::string_view kIdlFile = "quad/msg/" #Name ".idl";               \
+    static std::uint32_t maxSerializedSize()                                              \
+    {                                                                                     \
+      return static_cast<std::uint32_t>(quad::msg::Name::getMaxCdrSerializedSize()) + 4;  \
+    }                                                                                     \
   }
 
 QUAD_DDS_MESSAGE(ActuatorCommand);

@@ -2,6 +2,7 @@
 /// @file
 /// The shape of a topic contract: what every topic declares once.
 
+#include <cstdint>
 #include <string_view>
 
 #include "quad/dds/message_types.hpp"
@@ -22,6 +23,8 @@ struct TopicInfo {
   double rate_hz;                ///< expected rate; 0 for event-driven topics
   Owner owner;
   std::string_view description;
+  /// Largest serialized sample, encapsulation included [bytes]: sizes type-agnostic readers.
+  std::uint32_t (*max_serialized_size)() = nullptr;
 };
 
 /// A typed topic contract. Publisher<T> and Subscriber<T> accept only a Topic<T>, so a topic
@@ -39,7 +42,7 @@ constexpr Topic<Message> makeTopic(std::string_view name, std::string_view qos_p
 {
   return Topic<Message>{TopicInfo{name, MessageTraits<Message>::kTypeName,
                                   MessageTraits<Message>::kIdlFile, qos_profile, rate_hz, owner,
-                                  description}};
+                                  description, &MessageTraits<Message>::maxSerializedSize}};
 }
 
 }  // namespace quad::dds

@@ -9,6 +9,7 @@
 #include <span>
 #include <stdexcept>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -33,5 +34,18 @@ struct DecodeOptions {
 nlohmann::ordered_json decodeCdr(const Schema& schema, std::string_view type_name,
                                  std::span<const std::uint8_t> payload,
                                  const DecodeOptions& options = {});
+
+class EncodeError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Serializes `value` (an object shaped like decodeCdr's output) as `type_name` in plain
+/// little-endian CDR, encapsulation header included. Members left out are zero, false, empty
+/// or the first enumerator. An unknown member, a wrong JSON type, an integer out of its
+/// type's range, a string or sequence over its bound, an unknown enumerator or an array of
+/// the wrong length is an EncodeError naming the field path.
+std::vector<std::uint8_t> encodeCdr(const Schema& schema, std::string_view type_name,
+                                    const nlohmann::ordered_json& value);
 
 }  // namespace quad::introspection

@@ -1,0 +1,108 @@
+#include "quad/dds/raw_type.hpp"
+
+#include <cstring>
+
+#include "quad/dds/message_types.hpp"
+
+namespace quad::dds {
+
+namespace frtps = eprosima::fastrtps::rtps;
+namespace fdds = eprosima::fastdds::dds;
+
+std::optional<std::uint32_t> payloadVehicleId(std::span<const std::uint8_t> payload)
+{
+  // Encapsulation (2 bytes id, 2 bytes options), then Header.vehicle_id at body offset 0.
+  if (payload.size() < 8 || payload[0] != 0 || payload[1] > 1) {
+    return std::nullopt;
+  }
+  const std::uint8_t* b = payload.data() + 4;
+  if (payload[1] == 1) {  // CDR_LE
+    return static_cast<std::uint32_t>(b[0] | (b[1] << 8) | (b[2] << 16) |
+                                      (static_cast<std::uint32_t>(b[3]) << 24));
+  }
+  return static_cast<std::uint32_t>((static_cast<std::uint32_t>(b[0]) << 24) | (b[1] << 16) |
+                                    (b[2] << 8) | b[3]);
+}
+
+RawType::RawType(const std::string& type_name, bool keyed, std::uint32_t max_size)
+{
+  setName(type_name.c_str());
+  m_typeSize = max_size;
+  m_isGetKeyDefined = keyed;
+}
+
+bool RawType::serialize(void* data, frtps::SerializedPayload_t* payload)
+{
+  const auto& bytes = static_cast<RawSample*>(data)->payload;
+  if (bytes.size() < 4 || bytes.size() > payload->max_size) {
+    return false;
+  }
+  std::memcpy(payload->data, bytes.data(), bytes.size());
+  payload->length = static_cast<std::uint32_t>(bytes.size());
+  payload->encapsulation = bytes[1] == 1 ? CDR_LE : CDR_BE;
+  return true;
+}
+
+bool RawType::deserialize(frtps::SerializedPayload_t* payload, void* data)
+{
+  auto& bytes = static_cast<RawSample*>(data)->payload;
+  bytes.assign(payload->data, payload->data + payload->length);
+  return true;
+}
+
+std::function<std::uint32_t()> RawType::getSerializedSizeProvider(void* data)
+{
+  const auto size = static_cast<std::uint32_t>(static_cast<RawSample*>(data)->payload.size());
+  return [size] { return size; };
+}
+
+void* RawType::createData() { return new RawSample(); }
+
+void RawType::deleteData(void* data) { delete static_cast<RawSample*>(data); }
+
+bool RawType::getKey(void* data, frtps::InstanceHandle_t* handle, bool /*force_md5*/)
+{
+  if (!m_isGetKeyDefined) {
+    return false;
+  }
+  const auto id = payloadVehicleId(static_cast<RawSample*>(data)->payload);
+  if (!id) {
+    return false;
+  }
+  vehicleKeyHash(*id, *handle);
+  return true;
+}
+
+fdds::TypeSupport rawTypeFor(const TopicInfo& info)
+{
+  return fdds::TypeSupport(new RawType(std::string(info.type_name), true,
+                                       info.max_serialized_size != nullptr
+                                           ? info.max_serialized_size()
+                                           : 64U * 1024U * 1024U));
+}
+
+namespace {
+// Raw samples vary in size: allocate per sample instead of preallocating the maximum.
+template <class Qos>
+Qos dynamicMemory(Qos qos)
+{
+  qos.endpoint().history_memory_policy = frtps::DYNAMIC_REUSABLE_MEMORY_MODE;
+  return qos;
+}
+}  // namespace
+
+RawPublisher::RawPublisher(Participant& participant, const TopicInfo& info,
+                           std::optional<fdds::DataWriterQos> qos)
+    : WriterEndpoint(participant, info, rawTypeFor(info),
+                     dynamicMemory(qos ? *qos : participant.writerQos(info.qos_profile)))
+{
+}
+
+RawSubscriber::RawSubscriber(Participant& participant, const TopicInfo& info, Waker* waker,
+                             std::optional<fdds::DataReaderQos> qos)
+    : ReaderEndpoint(participant, info, rawTypeFor(info), waker,
+                     dynamicMemory(qos ? *qos : participant.readerQos(info.qos_profile)))
+{
+}
+
+}  // namespace quad::dds

@@ -1,0 +1,94 @@
+// A node on the shared skeleton, driven and inspected with the quad command.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <string>
+
+#include "process.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+using quad::test::ChildProcess;
+
+std::map<std::string, std::string> env(int domain)
+{
+  return {{"QUAD_DOMAIN_ID", std::to_string(domain)}};
+}
+
+TEST(NodeAndTools, EchoPrintsTheHeartbeatAnotherProcessPublished)
+{
+  ChildProcess node({QUAD_TEST_NODE}, env(130));
+  ASSERT_TRUE(node.waitForOutput("running on domain 130", 10s)) << node.output();
+  ChildProcess echo({QUAD_TOOL, "topic", "echo", "quad/system/heartbeat", "-n", "1", "--timeout",
+                     "15"},
+                    env(130));
+  ASSERT_EQ(echo.wait(20s), 0) << echo.output();
+  EXPECT_NE(echo.output().find("module_name: test_node"), std::string::npos) << echo.output();
+  EXPECT_NE(echo.output().find("state: MODULE_RUNNING"), std::string::npos) << echo.output();
+}
+
+TEST(NodeAndTools, PublishedCommandReachesTheNode)
+{
+  ChildProcess node({QUAD_TEST_NODE}, env(131));
+  ASSERT_TRUE(node.waitForOutput("running on domain 131", 10s)) << node.output();
+  ChildProcess pub({QUAD_TOOL, "topic", "pub", "quad/system/command",
+                    "{kind: COMMAND_HOLD, command_id: 1}"},
+                   env(131));
+  ASSERT_EQ(pub.wait(20s), 0) << pub.output();
+  EXPECT_TRUE(node.waitForOutput("command 4 received (1 so far)", 5s)) << node.output();
+}
+
+void stopsCleanlyOn(int signal_number, int domain)
+{
+  ChildProcess node({QUAD_TEST_NODE}, env(domain));
+  ASSERT_TRUE(node.waitForOutput("running on domain", 10s)) << node.output();
+  node.signal(signal_number);
+  EXPECT_EQ(node.wait(5s), 0) << node.output();
+  EXPECT_NE(node.output().find("stopped cleanly"), std::string::npos) << node.output();
+}
+
+TEST(NodeAndTools, NodeStopsCleanlyOnSigterm) { stopsCleanlyOn(SIGTERM, 132); }
+
+TEST(NodeAndTools, NodeStopsCleanlyOnSigint) { stopsCleanlyOn(SIGINT, 133); }
+
+TEST(NodeAndTools, TopicListShowsWritersAndReadersOfTheNode)
+{
+  ChildProcess node({QUAD_TEST_NODE}, env(134));
+  ASSERT_TRUE(node.waitForOutput("running on domain 134", 10s)) << node.output();
+  ChildProcess list({QUAD_TOOL, "topic", "list", "--wait", "3"}, env(134));
+  ASSERT_EQ(list.wait(20s), 0) << list.output();
+  const std::string& out = list.output();
+  EXPECT_NE(out.find("quad/system/heartbeat      quad::msg::Heartbeat               1       0  "
+                     "every module"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("quad/system/command        quad::msg::VehicleCommand          0       1  "
+                     "operator"),
+            std::string::npos)
+      << out;
+}
+
+TEST(NodeAndTools, UnknownTopicIsRefusedWithTheKnownOnes)
+{
+  ChildProcess echo({QUAD_TOOL, "topic", "echo", "quad/sim/stat"}, env(135));
+  EXPECT_EQ(echo.wait(10s), 1) << echo.output();
+  EXPECT_NE(echo.output().find("quad: unknown topic 'quad/sim/stat'; quad's topics are:"),
+            std::string::npos)
+      << echo.output();
+  EXPECT_NE(echo.output().find("\n  quad/sim/state\n"), std::string::npos) << echo.output();
+}
+
+TEST(NodeAndTools, PublishRefusesABadFieldBeforeSendingAnything)
+{
+  ChildProcess pub({QUAD_TOOL, "topic", "pub", "quad/planning/goal", "{p_W: {x: 1, q: 2}}"},
+                   env(136));
+  EXPECT_EQ(pub.wait(10s), 1) << pub.output();
+  EXPECT_NE(pub.output().find("quad: quad/planning/goal: p_W.q: unknown field of "
+                              "quad::msg::Vector3 (fields: x, y, z)"),
+            std::string::npos)
+      << pub.output();
+}
+
+}  // namespace

@@ -1,0 +1,44 @@
+// A minimal node on the shared skeleton: counts the vehicle commands it receives. Tests use it
+// to check the skeleton (heartbeats, wake-ups, clean shutdown on SIGINT/SIGTERM) and the tools.
+#include <memory>
+
+#include <spdlog/spdlog.h>
+
+#include "quad/common/logging.hpp"
+#include "quad/dds/node.hpp"
+#include "quad/dds/subscriber.hpp"
+#include "quad/dds/topics.hpp"
+
+namespace {
+
+class TestNode : public quad::dds::Node {
+public:
+  TestNode()
+      : Node("test_node", quad::dds::optionsFromEnvironment("test_node")),
+        commands_(participant(), quad::dds::topics::kVehicleCommand, waker())
+  {
+  }
+
+protected:
+  void onWake() override
+  {
+    while (auto command = commands_.take()) {
+      ++received_;
+      counters().samples_in++;
+      spdlog::info("command {} received ({} so far)", static_cast<int>(command->kind()), received_);
+    }
+  }
+  void onStop() override { spdlog::info("stopped cleanly; received {}", received_); }
+
+private:
+  quad::dds::Subscriber<quad::msg::VehicleCommand> commands_;
+  int received_ = 0;
+};
+
+}  // namespace
+
+int main()
+{
+  quad::common::setupLogging("test_node");
+  return quad::dds::runNode("test_node", [] { return std::make_unique<TestNode>(); });
+}

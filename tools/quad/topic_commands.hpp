@@ -1,0 +1,44 @@
+#pragma once
+/// @file
+/// `quad topic ...`: inspect and drive the topics of a running stack.
+
+#include <optional>
+#include <string>
+
+namespace quad::tools {
+
+/// What every quad command shares: the domain and discovery of the running stack. Unset
+/// fields come from the environment (QUAD_DOMAIN_ID, ...), as for every module.
+struct ConnectionOptions {
+  std::optional<int> domain_id;
+};
+
+struct TopicListOptions {
+  ConnectionOptions connection;
+  double wait_s = 2.0;      ///< how long to listen to discovery
+  bool contracts = false;   ///< print the declared contracts instead
+};
+
+struct TopicEchoOptions {
+  ConnectionOptions connection;
+  std::string topic;
+  int count = 0;            ///< stop after this many samples; 0 = until Ctrl-C
+  double timeout_s = 0.0;   ///< give up (exit 1) after this long without `count` samples; 0 = never
+  bool json = false;        ///< one JSON object per line instead of YAML
+  std::size_t max_elements = 16;
+};
+
+struct TopicPubOptions {
+  ConnectionOptions connection;
+  std::string topic;
+  std::string values;       ///< YAML, e.g. "{kind: COMMAND_HOLD}"
+  int count = 1;
+  double rate_hz = 1.0;
+  double wait_match_s = 5.0;
+};
+
+int topicList(const TopicListOptions& options);
+int topicEcho(const TopicEchoOptions& options);
+int topicPub(const TopicPubOptions& options);
+
+}  // namespace quad::tools

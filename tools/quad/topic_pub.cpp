@@ -1,0 +1,88 @@
+#include <chrono>
+#include <cstdio>
+#include <stdexcept>
+#include <thread>
+
+#include "connection.hpp"
+#include "quad/common/time.hpp"
+#include "quad/dds/node.hpp"
+#include "quad/dds/raw_type.hpp"
+#include "quad/introspection/cdr.hpp"
+#include "text_format.hpp"
+#include "topic_commands.hpp"
+
+namespace quad::tools {
+
+int topicPub(const TopicPubOptions& options)
+{
+  const dds::TopicInfo info = requireTopic(options.topic);
+  if (options.count < 1 || !(options.rate_hz > 0.0)) {
+    throw std::invalid_argument("--count must be >= 1 and --rate > 0");
+  }
+  nlohmann::ordered_json value;
+  try {
+    value = yamlToJson(options.values);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("values '" + options.values + "': " + e.what());
+  }
+  if (!value.is_object()) {
+    throw std::invalid_argument("values '" + options.values + "': expected a map of fields");
+  }
+  const auto& schema = introspection::quadSchema();
+  // Check the fields once before any DDS work, so a typo costs nothing.
+  try {
+    introspection::encodeCdr(schema, info.type_name, value);
+  } catch (const introspection::EncodeError& e) {
+    throw std::invalid_argument(options.topic + ": " + e.what());
+  }
+
+  dds::SignalWatcher signals;
+  const dds::ParticipantOptions participant_options =
+      participantOptions("quad_topic_pub", options.connection);
+  dds::Participant participant(participant_options);
+  dds::RawPublisher publisher(participant, info);
+
+  const std::int64_t match_deadline =
+      common::steadyTimeNs() + common::toNanoseconds(options.wait_match_s);
+  while (publisher.matchedReaders() == 0 && common::steadyTimeNs() < match_deadline &&
+         signals.received() == 0) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (publisher.matchedReaders() == 0) {
+    std::fprintf(stderr, "quad topic pub: no reader of %s within %.1f s; publishing anyway\n",
+                 options.topic.c_str(), options.wait_match_s);
+  }
+
+  const auto period = std::chrono::duration<double>(1.0 / options.rate_hz);
+  auto next = std::chrono::steady_clock::now();
+  for (int i = 1; i <= options.count && signals.received() == 0; ++i) {
+    // The header is the publisher's to fill, as Publisher<T> does for the modules.
+    nlohmann::ordered_json sample = value;
+    auto& header = sample["header"];
+    if (!header.contains("stamp_ns")) {
+      header["stamp_ns"] = common::wallTimeNs();
+    }
+    header["publish_ns"] = common::wallTimeNs();
+    header["seq"] = i;
+    header["vehicle_id"] = participant_options.vehicle_id;
+    dds::RawSample raw{introspection::encodeCdr(schema, info.type_name, sample)};
+    if (!publisher.write(raw)) {
+      std::fprintf(stderr, "quad topic pub: %s: write %d refused\n", options.topic.c_str(), i);
+      return 1;
+    }
+    std::printf("published %s #%d\n", options.topic.c_str(), i);
+    std::fflush(stdout);
+    if (i < options.count) {
+      next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(period);
+      std::this_thread::sleep_until(next);
+    }
+  }
+  if (publisher.matchedReaders() > 0 && !publisher.waitForAcknowledgments(std::chrono::seconds(5))) {
+    std::fprintf(stderr, "quad topic pub: %s: not every reader acknowledged within 5 s\n",
+                 options.topic.c_str());
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace quad::tools

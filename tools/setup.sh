@@ -20,7 +20,8 @@ cd "$root"
 
 # Everything quad needs from Debian 12, toolchain included (a fresh system has no compiler).
 packages=(
-  build-essential cmake ninja-build ccache pkg-config git iproute2 procps
+  build-essential cmake ninja-build ccache pkg-config git iproute2 procps python3
+  default-jre-headless
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
   libeigen3-dev liboctomap-dev libmrpt-poses-dev libmrpt-math-dev
   libspdlog-dev libfmt-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev

@@ -81,3 +81,38 @@ TEST(DdsExchange, TypeMismatchIsReportedWithBothTypes)
 }
 
 }  // namespace
+
+namespace {
+
+std::map<std::string, std::string> serverEnv(int domain, int port)
+{
+  auto e = env(domain, "udp");
+  e["QUAD_DISCOVERY_SERVER"] = "127.0.0.1:" + std::to_string(port);
+  return e;
+}
+
+TEST(DdsExchange, ClientsMeetThroughADiscoveryServer)
+{
+  // GIVEN a Fast DDS discovery server and two clients of it (no multicast discovery)
+  ChildProcess server({QUAD_FASTDDS_TOOL, "discovery", "-i", "0", "-l", "127.0.0.1", "-p", "11916"});
+  ASSERT_TRUE(server.waitForOutput("Server is running", 10s)) << server.output();
+  ChildProcess reader({QUAD_DDS_PROBE, "receive-commands", "50", "30000"}, serverEnv(116, 11916));
+  ASSERT_TRUE(reader.waitForOutput("ready", 10s)) << reader.output();
+  ChildProcess writer({QUAD_DDS_PROBE, "send-commands", "50"}, serverEnv(116, 11916));
+  // THEN the commands arrive
+  EXPECT_EQ(writer.wait(40s), 0) << writer.output();
+  EXPECT_EQ(reader.wait(40s), 0) << reader.output();
+  EXPECT_NE(reader.output().find("received 50 of 50"), std::string::npos) << reader.output();
+}
+
+TEST(DdsExchange, ClientsOfAnAbsentDiscoveryServerDoNotMeet)
+{
+  // The same clients without their server: they really rely on it, not on multicast.
+  ChildProcess reader({QUAD_DDS_PROBE, "receive-commands", "1", "4000"}, serverEnv(117, 11917));
+  ASSERT_TRUE(reader.waitForOutput("ready", 10s)) << reader.output();
+  ChildProcess writer({QUAD_DDS_PROBE, "send-commands", "1"}, serverEnv(117, 11917));
+  EXPECT_EQ(reader.wait(20s), 1) << reader.output();
+  EXPECT_NE(reader.output().find("received 0 of 1"), std::string::npos) << reader.output();
+}
+
+}  // namespace

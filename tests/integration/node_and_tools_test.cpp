@@ -92,3 +92,37 @@ TEST(NodeAndTools, PublishRefusesABadFieldBeforeSendingAnything)
 }
 
 }  // namespace
+
+namespace {
+
+TEST(NodeAndTools, NodeStartsWithAValidConfig)
+{
+  ChildProcess node({QUAD_TEST_NODE, "--config", QUAD_FIXTURES "/test_node_ok.yaml"}, env(137));
+  EXPECT_TRUE(node.waitForOutput("greeting: from the fixture", 10s)) << node.output();
+  EXPECT_TRUE(node.waitForOutput("running on domain 137", 10s)) << node.output();
+}
+
+TEST(NodeAndTools, NodeRefusesToStartOnABadConfigNamingFileKeyAndValue)
+{
+  const std::string file = QUAD_FIXTURES "/test_node_bad.yaml";
+  ChildProcess node({QUAD_TEST_NODE, "--config", file}, env(138));
+  EXPECT_EQ(node.wait(10s), 1) << node.output();
+  const std::string& out = node.output();
+  EXPECT_NE(out.find(file + ":greting: hi: unknown key (did you mean 'greeting'?)"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find(file + ":command_timeout: .nan: not a finite number"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find("refusing to start"), std::string::npos) << out;
+  EXPECT_EQ(out.find("running on domain"), std::string::npos) << out;
+}
+
+TEST(NodeAndTools, NodeRefusesAMissingConfigFile)
+{
+  ChildProcess node({QUAD_TEST_NODE, "--config", "/nonexistent/test_node.yaml"}, env(139));
+  EXPECT_EQ(node.wait(10s), 1) << node.output();
+  EXPECT_NE(node.output().find("/nonexistent/test_node.yaml: cannot open"), std::string::npos)
+      << node.output();
+}
+
+}  // namespace

@@ -51,6 +51,9 @@ int sendCommands(Participant& p, int count)
     std::cout << "no reader matched" << std::endl;
     return 1;
   }
+  // Our side matched; a volatile reader drops samples from writers it has not matched yet,
+  // and its side of discovery completes on its own schedule.
+  std::this_thread::sleep_for(500ms);
   for (int i = 0; i < count; ++i) {
     quad::msg::VehicleCommand cmd;
     cmd.header().stamp_ns(quad::common::wallTimeNs());

@@ -48,6 +48,7 @@ ChildProcess::ChildProcess(std::vector<std::string> argv, std::map<std::string, 
     throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
   }
   if (pid_ == 0) {
+    setpgid(0, 0);  // its own process group: whatever it starts is stopped with it
     dup2(fds[1], STDOUT_FILENO);
     dup2(fds[1], STDERR_FILENO);
     // Signals blocked by the test (none normally) must not be inherited blocked.
@@ -64,9 +65,11 @@ ChildProcess::ChildProcess(std::vector<std::string> argv, std::map<std::string, 
 ChildProcess::~ChildProcess()
 {
   if (!status_) {
-    kill(pid_, SIGKILL);
+    kill(-pid_, SIGKILL);
     int status = 0;
     waitpid(pid_, &status, 0);
+  } else {
+    kill(-pid_, SIGKILL);  // grandchildren left behind by a child that exited
   }
   close(out_fd_);
 }
@@ -123,6 +126,6 @@ std::optional<int> ChildProcess::wait(std::chrono::milliseconds timeout)
   return status_;
 }
 
-void ChildProcess::signal(int signal) { kill(pid_, signal); }
+void ChildProcess::signal(int signal) { kill(-pid_, signal); }
 
 }  // namespace quad::test

@@ -16,12 +16,13 @@ class ChildProcess {
 public:
   /// Starts `argv[0]` (a path) with `env` added to this process's environment.
   ChildProcess(std::vector<std::string> argv, std::map<std::string, std::string> env = {});
-  ~ChildProcess();  // SIGKILLs and reaps a child still running
+  ~ChildProcess();  // SIGKILLs the child's process group and reaps the child
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;
 
   /// Exit status, or nothing if it did not exit within `timeout` (the child keeps running).
   std::optional<int> wait(std::chrono::milliseconds timeout);
+  /// Sends `signal` to the child's process group.
   void signal(int signal);
   pid_t pid() const { return pid_; }
 

@@ -4,7 +4,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "quad/common/logging.hpp"
+#include "quad/common/params.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
@@ -13,10 +13,11 @@ namespace {
 
 class TestNode : public quad::dds::Node {
 public:
-  TestNode()
+  explicit TestNode(const quad::common::Params& params)
       : Node("test_node", quad::dds::optionsFromEnvironment("test_node")),
         commands_(participant(), quad::dds::topics::kVehicleCommand, waker())
   {
+    spdlog::info("greeting: {}", params.getString("greeting"));
   }
 
 protected:
@@ -37,8 +38,13 @@ private:
 
 }  // namespace
 
-int main()
+int main(int argc, char** argv)
 {
-  quad::common::setupLogging("test_node");
-  return quad::dds::runNode("test_node", [] { return std::make_unique<TestNode>(); });
+  quad::common::ParamSchema schema;
+  schema.addString("greeting", "hello", {}, "logged at start")
+      .addDouble("command_timeout", 1.0, 0.01, 60.0, "s", "unused; gives the tests a number");
+  return quad::dds::runNodeMain(argc, argv, "test_node", std::move(schema),
+                                [](const quad::common::Params& params) {
+                                  return std::make_unique<TestNode>(params);
+                                });
 }

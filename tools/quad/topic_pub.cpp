@@ -13,6 +13,10 @@
 
 namespace quad::tools {
 
+namespace {
+constexpr auto kReaderMatchSettle = std::chrono::milliseconds(300);
+}  // namespace
+
 int topicPub(const TopicPubOptions& options)
 {
   const dds::TopicInfo info = requireTopic(options.topic);
@@ -51,6 +55,10 @@ int topicPub(const TopicPubOptions& options)
   if (publisher.matchedReaders() == 0) {
     std::fprintf(stderr, "quad topic pub: no reader of %s within %.1f s; publishing anyway\n",
                  options.topic.c_str(), options.wait_match_s);
+  } else {
+    // A volatile reader drops samples from a writer it has not matched yet, and the readers'
+    // side of discovery completes on its own schedule: give it a moment.
+    std::this_thread::sleep_for(kReaderMatchSettle);
   }
 
   const auto period = std::chrono::duration<double>(1.0 / options.rate_hz);

@@ -1,11 +1,13 @@
 #include "quad/dds/node.hpp"
 
 #include <csignal>
+#include <optional>
 #include <ctime>
 #include <unistd.h>
 
 #include <spdlog/spdlog.h>
 
+#include "quad/common/logging.hpp"
 #include "quad/common/time.hpp"
 #include "quad/dds/topics.hpp"
 
@@ -182,6 +184,41 @@ int runNode(std::string_view module_name, const std::function<std::unique_ptr<No
   signals.onSignal({});  // before the node goes away
   node.reset();
   return status;
+}
+
+int runNodeMain(int argc, char** argv, std::string_view module_name, common::ParamSchema schema,
+                const std::function<std::unique_ptr<Node>(const common::Params&)>& make)
+{
+  std::optional<std::string> config;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--config" && i + 1 < argc) {
+      config = argv[++i];
+    } else {
+      common::setupLogging(module_name);
+      spdlog::critical("{}: unexpected argument '{}'; usage: {} [--config FILE]", module_name, arg,
+                       argv[0]);
+      return 1;
+    }
+  }
+  common::addLoggingParams(schema);
+  common::Params params;
+  try {
+    params = config ? common::loadParams(*config, schema) : common::defaultParams(schema);
+    common::setupLogging(module_name, common::logOptionsFrom(params));
+  } catch (const common::ConfigError& e) {
+    common::setupLogging(module_name);
+    for (const auto& problem : e.problems()) {
+      spdlog::critical("{}", problem);
+    }
+    spdlog::critical("{}: refusing to start with an invalid config", module_name);
+    return 1;
+  } catch (const std::exception& e) {
+    common::setupLogging(module_name);
+    spdlog::critical("{}: {}", module_name, e.what());
+    return 1;
+  }
+  return runNode(module_name, [&] { return make(params); });
 }
 
 }  // namespace quad::dds

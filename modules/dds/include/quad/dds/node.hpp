@@ -15,6 +15,7 @@
 
 #include <quad/msg/Heartbeat.h>
 
+#include "quad/common/params.hpp"
 #include "quad/dds/participant.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/waker.hpp"
@@ -99,5 +100,13 @@ private:
 /// The body of every node's main(): installs signal handling, builds the node with `make`,
 /// runs it, and turns an exception into one logged line and exit status 1.
 int runNode(std::string_view module_name, const std::function<std::unique_ptr<Node>()>& make);
+
+/// runNode() for a node with parameters: reads `--config FILE` from the command line (the
+/// schema's defaults without it), validates it against `schema` (plus the logging keys, which
+/// set up logging), and hands the params to `make`. A bad command line or config is refused
+/// before any DDS entity exists: each problem is logged as `file:key: value: reason` and the
+/// exit status is 1.
+int runNodeMain(int argc, char** argv, std::string_view module_name, common::ParamSchema schema,
+                const std::function<std::unique_ptr<Node>(const common::Params&)>& make);
 
 }  // namespace quad::dds

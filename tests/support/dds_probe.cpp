@@ -142,6 +142,7 @@ int lockstepClock(Participant& p, int steps, std::chrono::milliseconds timeout,
   // Participants that are up must be listening before time starts; a missing one is what
   // the barrier's timeout reports.
   waitUntil([&] { return clock.matchedReaders() >= expected; }, 5s);
+  const std::int64_t start = quad::common::steadyTimeNs();
   for (int step = 1; step <= steps; ++step) {
     quad::msg::SimClock tick;
     const std::int64_t sim_ns = step * 1'000'000LL;
@@ -156,7 +157,9 @@ int lockstepClock(Participant& p, int steps, std::chrono::milliseconds timeout,
       return 1;
     }
   }
-  std::cout << "stepped " << steps << std::endl;
+  const double elapsed_s = quad::common::toSeconds(quad::common::steadyTimeNs() - start);
+  std::cout << "stepped " << steps << " in " << elapsed_s * 1e3 << " ms ("
+            << elapsed_s * 1e6 / steps << " us per step)" << std::endl;
   return 0;
 }
 

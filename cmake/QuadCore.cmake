@@ -42,3 +42,17 @@ function(quad_check_core target)
     endforeach()
   endwhile()
 endfunction()
+
+# quad_add_core_library(<module> SOURCES <files...> [PUBLIC <libs...>] [PRIVATE <libs...>])
+#
+# A module's core: target quad_<module> (alias quad::<module>) with headers in include/,
+# quad's warnings, and the check above that it stays free of DDS.
+function(quad_add_core_library module)
+  cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC;PRIVATE" ${ARGN})
+  set(target quad_${module})
+  add_library(${target} ${ARG_SOURCES})
+  add_library(quad::${module} ALIAS ${target})
+  target_include_directories(${target} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
+  target_link_libraries(${target} PUBLIC ${ARG_PUBLIC} PRIVATE ${ARG_PRIVATE} quad::warnings)
+  quad_check_core(${target})
+endfunction()

@@ -126,3 +126,25 @@ TEST(NodeAndTools, NodeRefusesAMissingConfigFile)
 }
 
 }  // namespace
+
+namespace {
+
+TEST(NodeAndTools, So3AnswersAndRefusesWithExitCodeTwo)
+{
+  ChildProcess ok({QUAD_TOOL, "so3", "distance", "--matrix", "1", "0", "0", "0", "0", "-1", "0",
+                   "1", "0", "--quat", "0.7071067811865476", "0", "0", "-0.7071067811865476"});
+  EXPECT_EQ(ok.wait(10s), 0) << ok.output();
+  EXPECT_NE(ok.output().find("(120 deg)"), std::string::npos) << ok.output();
+  for (const std::vector<std::string>& bad :
+       {std::vector<std::string>{"convert", "--matrix", "1", "2"},
+        std::vector<std::string>{"convert", "--quat", "1", "one", "0", "0"},
+        std::vector<std::string>{"convert", "--matrix", "2", "0", "0", "0", "2", "0", "0", "0", "2"},
+        std::vector<std::string>{"sample", "-n", "many"}}) {
+    std::vector<std::string> argv{QUAD_TOOL, "so3"};
+    argv.insert(argv.end(), bad.begin(), bad.end());
+    ChildProcess refused(argv);
+    EXPECT_EQ(refused.wait(10s), 2) << refused.output();
+  }
+}
+
+}  // namespace

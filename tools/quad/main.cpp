@@ -4,6 +4,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <iostream>
+
+#include "so3_command.hpp"
 #include "topic_commands.hpp"
 
 namespace {
@@ -61,7 +64,59 @@ int main(int argc, char** argv)
                   "Seconds to wait for a reader before the first sample")
       ->check(CLI::NonNegativeNumber);
 
-  CLI11_PARSE(app, argc, argv);
+  auto* so3 = app.add_subcommand("so3", "Rotations for students: convert, distance, sample");
+  so3->require_subcommand(1);
+  quad::tools::So3Options so3_options;
+  const auto addSo3Options = [&so3_options](CLI::App* command) {
+    command->add_flag("--degrees", so3_options.degrees, "Angles in and out in degrees");
+    command->add_option("--tolerance", so3_options.tolerance,
+                        "Tolerance of the SO(3) check of --matrix input")
+        ->check(CLI::PositiveNumber);
+  };
+  const char* kRotationHelp =
+      "Rotations: --matrix r11 r12 r13 r21 r22 r23 r31 r32 r33 | --quat w x y z | "
+      "--axis-angle x y z angle | --ypr yaw pitch roll";
+  auto* convert = so3->add_subcommand("convert", "Print one rotation in every representation");
+  convert->footer(kRotationHelp);
+  addSo3Options(convert);
+  convert->allow_extras();
+  auto* distance = so3->add_subcommand("distance", "Print every distance between two rotations");
+  distance->footer(kRotationHelp);
+  addSo3Options(distance);
+  distance->allow_extras();
+  int sample_count = 1;
+  std::uint64_t sample_seed = 1;
+  std::string sample_as = "quat";
+  auto* sample = so3->add_subcommand("sample", "Haar-uniform random rotations (Shoemake 1992)");
+  addSo3Options(sample);
+  sample->add_option("-n,--count", sample_count, "How many");
+  sample->add_option("--seed", sample_seed, "Seed of the generator (same seed, same rotations)");
+  sample->add_option("--as", sample_as, "quat (w x y z), matrix (9, row by row), axis-angle or ypr");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // Usage errors exit with 2, like every bad input to quad's commands.
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+
+  try {
+    if (convert->parsed()) {
+      quad::tools::so3Convert(convert->remaining(), so3_options, std::cout);
+      return 0;
+    }
+    if (distance->parsed()) {
+      quad::tools::so3Distance(distance->remaining(), so3_options, std::cout);
+      return 0;
+    }
+    if (sample->parsed()) {
+      quad::tools::so3Sample(sample_count, sample_seed, sample_as, so3_options, std::cout);
+      return 0;
+    }
+  } catch (const quad::tools::UsageError& e) {
+    std::fprintf(stderr, "quad so3: %s\n", e.what());
+    return 2;
+  }
 
   try {
     if (list->parsed()) {

@@ -32,10 +32,16 @@ std::string formatNumber(double v)
   if (std::isinf(v)) {
     return v > 0 ? ".inf" : "-.inf";
   }
-  std::ostringstream os;
-  os.precision(17);
-  os << v;
-  return os.str();
+  // The shortest of 15 or 17 significant digits that reads back as the same double.
+  for (const int precision : {15, 17}) {
+    std::ostringstream os;
+    os.precision(precision);
+    os << v;
+    if (precision == 17 || std::stod(os.str()) == v) {
+      return os.str();
+    }
+  }
+  return {};
 }
 
 std::string rangeText(const ParamSpec& spec)

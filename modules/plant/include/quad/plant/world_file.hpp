@@ -1,0 +1,38 @@
+#pragma once
+/// @file
+/// World files (YAML): bounds, start, goal, obstacles and seeded generators.
+///
+/// ```yaml
+/// bounds: {min: [-5, -10, 0], max: [60, 10, 10]}     # m, ENU
+/// start: [0, 0, 0]
+/// goal:  [50, 0, 2]
+/// obstacles:
+///   - {type: box, center: [10, 1, 2], size: [2, 2, 4], yaw: 0.3}
+///   - {type: cylinder, center: [20, -2], radius: 0.4, height: 8}   # vertical, base at z = 0
+///   - {type: sphere, center: [30, 0, 3], radius: 1.2}
+/// generators:
+///   - {type: forest, seed: 7, min: [5, -8], max: [45, 8], density: 0.05,
+///      radius: [0.2, 0.6], height: [5, 9]}
+///   - {type: walls, seed: 3, min: [12, -10], max: [40, 10], count: 3, gap: 2.5,
+///      thickness: 0.3, height: 8}
+/// ```
+///
+/// Obstacles are numbered in file order, generated ones after the listed ones, in generator
+/// order. Generators keep `clearance` (default 2 m) free around start and goal. The same
+/// file and seeds give the same world, bit for bit.
+
+#include <filesystem>
+#include <string_view>
+
+#include "quad/plant/world.hpp"
+
+namespace quad::plant {
+
+/// Parses and validates world YAML. Every problem is reported at once, as
+/// `origin:key: value: reason` lines of a common::ConfigError.
+World parseWorld(std::string_view yaml_text, std::string_view origin);
+
+/// Reads a world file; an unreadable file is a ConfigError naming it.
+World loadWorld(const std::filesystem::path& file);
+
+}  // namespace quad::plant

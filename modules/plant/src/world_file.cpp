@@ -1,0 +1,321 @@
+#include "quad/plant/world_file.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <random>
+#include <set>
+#include <sstream>
+
+#include "quad/common/params.hpp"
+
+namespace quad::plant {
+
+namespace {
+
+std::string text(const YAML::Node& node)
+{
+  if (!node.IsDefined() || node.IsNull()) {
+    return "(missing)";
+  }
+  if (node.IsScalar()) {
+    return node.Scalar();
+  }
+  YAML::Node flow = YAML::Clone(node);
+  flow.SetStyle(YAML::EmitterStyle::Flow);
+  YAML::Emitter out;
+  out << flow;
+  return out.c_str();
+}
+
+/// Reads typed values out of YAML, recording `origin:key: value: reason` for each problem.
+class Reader {
+public:
+  explicit Reader(std::string_view origin) : origin_(origin) {}
+
+  void problem(const std::string& key, const YAML::Node& node, const std::string& why)
+  {
+    problems_.push_back(origin_ + ":" + key + ": " + text(node) + ": " + why);
+  }
+  bool ok() const { return problems_.empty(); }
+  std::vector<std::string>& problems() { return problems_; }
+
+  /// Rejects keys of a map not in `allowed`.
+  void onlyKeys(const YAML::Node& map, const std::string& prefix, const std::set<std::string>& allowed)
+  {
+    for (const auto& entry : map) {
+      const std::string key = entry.first.Scalar();
+      if (!allowed.contains(key)) {
+        std::string list;
+        for (const auto& a : allowed) {
+          list += (list.empty() ? "" : ", ") + a;
+        }
+        problem(prefix + key, entry.second, "unknown key (expected one of: " + list + ")");
+      }
+    }
+  }
+
+  std::optional<double> number(const YAML::Node& node, const std::string& key,
+                               std::optional<double> fallback, double lo, double hi)
+  {
+    if (!node.IsDefined() || node.IsNull()) {
+      if (!fallback) {
+        problem(key, node, "required");
+      }
+      return fallback;
+    }
+    double v = 0.0;
+    if (!node.IsScalar() || !YAML::convert<double>::decode(node, v)) {
+      problem(key, node, "expected a number");
+      return std::nullopt;
+    }
+    if (!std::isfinite(v)) {
+      problem(key, node, "not a finite number");
+      return std::nullopt;
+    }
+    if (v < lo || v > hi) {
+      problem(key, node, "out of range [" + common::formatValue(lo) + ", " + common::formatValue(hi) + "]");
+      return std::nullopt;
+    }
+    return v;
+  }
+
+  std::optional<std::vector<double>> numbers(const YAML::Node& node, const std::string& key,
+                                             std::size_t count, double lo, double hi)
+  {
+    if (!node.IsDefined() || node.IsNull()) {
+      problem(key, node, "required");
+      return std::nullopt;
+    }
+    if (!node.IsSequence() || node.size() != count) {
+      problem(key, node, "expected a list of " + std::to_string(count) + " numbers");
+      return std::nullopt;
+    }
+    std::vector<double> out;
+    for (std::size_t i = 0; i < count; ++i) {
+      const auto v = number(node[i], key + "[" + std::to_string(i) + "]", std::nullopt, lo, hi);
+      if (!v) {
+        return std::nullopt;
+      }
+      out.push_back(*v);
+    }
+    return out;
+  }
+
+  std::optional<Vector3> vector3(const YAML::Node& node, const std::string& key)
+  {
+    const auto v = numbers(node, key, 3, -1e6, 1e6);
+    return v ? std::optional<Vector3>(Vector3((*v)[0], (*v)[1], (*v)[2])) : std::nullopt;
+  }
+
+  /// [lo, hi] with 0 < lo <= hi <= max.
+  std::optional<std::pair<double, double>> range(const YAML::Node& node, const std::string& key, double max)
+  {
+    const auto v = numbers(node, key, 2, 1e-6, max);
+    if (!v) {
+      return std::nullopt;
+    }
+    if ((*v)[0] > (*v)[1]) {
+      problem(key, node, "expected [low, high] with low <= high");
+      return std::nullopt;
+    }
+    return std::pair((*v)[0], (*v)[1]);
+  }
+
+private:
+  std::string origin_;
+  std::vector<std::string> problems_;
+};
+
+/// Uniform in [0, 1) from 53 bits: the same numbers on every platform for a seed.
+double unit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+double uniform(std::mt19937_64& rng, double lo, double hi) { return lo + (hi - lo) * unit(rng); }
+
+bool clearOf(const Vector3& p, double radius, const Vector3& start, const Vector3& goal, double clearance)
+{
+  const auto horizontal = [](const Vector3& a, const Vector3& b) { return std::hypot(a.x() - b.x(), a.y() - b.y()); };
+  return horizontal(p, start) > radius + clearance && horizontal(p, goal) > radius + clearance;
+}
+
+void parseObstacle(Reader& r, const YAML::Node& node, const std::string& key, std::vector<Obstacle>& out)
+{
+  if (!node.IsMap()) {
+    r.problem(key, node, "expected a map with a type");
+    return;
+  }
+  const std::string type = node["type"].IsScalar() ? node["type"].Scalar() : "";
+  if (type == "box") {
+    r.onlyKeys(node, key + ".", {"type", "center", "size", "yaw"});
+    const auto c = r.vector3(node["center"], key + ".center");
+    const auto s = r.numbers(node["size"], key + ".size", 3, 1e-6, 1e5);
+    const auto yaw = r.number(node["yaw"], key + ".yaw", 0.0, -100.0, 100.0);
+    if (c && s && yaw) {
+      out.push_back(Obstacle::makeBox({*c, Vector3((*s)[0], (*s)[1], (*s)[2]), *yaw}));
+    }
+  } else if (type == "cylinder") {
+    r.onlyKeys(node, key + ".", {"type", "center", "radius", "height"});
+    const auto c = r.numbers(node["center"], key + ".center", 2, -1e6, 1e6);
+    const auto radius = r.number(node["radius"], key + ".radius", std::nullopt, 1e-6, 1e5);
+    const auto height = r.number(node["height"], key + ".height", std::nullopt, 1e-6, 1e5);
+    if (c && radius && height) {
+      out.push_back(Obstacle::makeCylinder({(*c)[0], (*c)[1], *radius, *height}));
+    }
+  } else if (type == "sphere") {
+    r.onlyKeys(node, key + ".", {"type", "center", "radius"});
+    const auto c = r.vector3(node["center"], key + ".center");
+    const auto radius = r.number(node["radius"], key + ".radius", std::nullopt, 1e-6, 1e5);
+    if (c && radius) {
+      out.push_back(Obstacle::makeSphere({*c, *radius}));
+    }
+  } else {
+    r.problem(key + ".type", node["type"], "expected box, cylinder or sphere");
+  }
+}
+
+void generate(Reader& r, const YAML::Node& node, const std::string& key, const Vector3& start,
+              const Vector3& goal, std::vector<Obstacle>& out)
+{
+  if (!node.IsMap()) {
+    r.problem(key, node, "expected a map with a type");
+    return;
+  }
+  const std::string type = node["type"].IsScalar() ? node["type"].Scalar() : "";
+  const auto seed = r.number(node["seed"], key + ".seed", std::nullopt, 0.0, 4294967295.0);
+  const auto lo = r.numbers(node["min"], key + ".min", 2, -1e6, 1e6);
+  const auto hi = r.numbers(node["max"], key + ".max", 2, -1e6, 1e6);
+  const auto clearance = r.number(node["clearance"], key + ".clearance", 2.0, 0.0, 1e3);
+  if (lo && hi && ((*lo)[0] >= (*hi)[0] || (*lo)[1] >= (*hi)[1])) {
+    r.problem(key + ".max", node["max"], "must exceed min on x and y");
+  }
+  if (type == "forest") {
+    r.onlyKeys(node, key + ".", {"type", "seed", "min", "max", "density", "radius", "height", "clearance"});
+    const auto density = r.number(node["density"], key + ".density", std::nullopt, 1e-6, 10.0);
+    const auto radius = r.range(node["radius"], key + ".radius", 100.0);
+    const auto height = r.range(node["height"], key + ".height", 1e4);
+    if (!r.ok() || !seed || !lo || !hi || !density || !radius || !height || !clearance) {
+      return;
+    }
+    std::mt19937_64 rng(static_cast<std::uint64_t>(*seed));
+    const double area = ((*hi)[0] - (*lo)[0]) * ((*hi)[1] - (*lo)[1]);
+    const auto count = static_cast<long>(std::lround(*density * area));
+    for (long k = 0; k < count; ++k) {
+      const double x = uniform(rng, (*lo)[0], (*hi)[0]);
+      const double y = uniform(rng, (*lo)[1], (*hi)[1]);
+      const double rad = uniform(rng, radius->first, radius->second);
+      const double h = uniform(rng, height->first, height->second);
+      if (clearOf({x, y, 0.0}, rad, start, goal, *clearance)) {
+        out.push_back(Obstacle::makeCylinder({x, y, rad, h}));
+      }
+    }
+  } else if (type == "walls") {
+    r.onlyKeys(node, key + ".", {"type", "seed", "min", "max", "count", "gap", "thickness", "height", "clearance"});
+    const auto count = r.number(node["count"], key + ".count", std::nullopt, 1.0, 1000.0);
+    const auto gap = r.number(node["gap"], key + ".gap", std::nullopt, 1e-3, 1e4);
+    const auto thickness = r.number(node["thickness"], key + ".thickness", 0.3, 1e-3, 100.0);
+    const auto height = r.number(node["height"], key + ".height", std::nullopt, 1e-3, 1e4);
+    if (!r.ok() || !seed || !lo || !hi || !count || !gap || !thickness || !height || !clearance) {
+      return;
+    }
+    if (*gap >= (*hi)[1] - (*lo)[1]) {
+      r.problem(key + ".gap", node["gap"], "wider than the walls' span in y");
+      return;
+    }
+    std::mt19937_64 rng(static_cast<std::uint64_t>(*seed));
+    const int n = static_cast<int>(*count);
+    for (int k = 0; k < n; ++k) {
+      // Walls across y at evenly spaced x, each with one gap at a random position.
+      const double x = (*lo)[0] + ((*hi)[0] - (*lo)[0]) * (k + 0.5) / n;
+      const double gap_lo = uniform(rng, (*lo)[1], (*hi)[1] - *gap);
+      const double gap_hi = gap_lo + *gap;
+      for (const auto& [y0, y1] : {std::pair((*lo)[1], gap_lo), std::pair(gap_hi, (*hi)[1])}) {
+        if (y1 - y0 < 1e-6) {
+          continue;
+        }
+        const Box b{Vector3(x, (y0 + y1) / 2.0, *height / 2.0), Vector3(*thickness, y1 - y0, *height), 0.0};
+        const Obstacle wall = Obstacle::makeBox(b);
+        if (wall.signedDistance(start) > *clearance && wall.signedDistance(goal) > *clearance) {
+          out.push_back(wall);
+        }
+      }
+    }
+  } else {
+    r.problem(key + ".type", node["type"], "expected forest or walls");
+  }
+}
+
+}  // namespace
+
+World parseWorld(std::string_view yaml_text, std::string_view origin)
+{
+  Reader r(origin);
+  YAML::Node root;
+  try {
+    root = YAML::Load(std::string(yaml_text));
+  } catch (const YAML::Exception& e) {
+    throw common::ConfigError({std::string(origin) + ":(line " + std::to_string(e.mark.line + 1) +
+                               "): (yaml): " + e.msg});
+  }
+  if (!root.IsMap()) {
+    throw common::ConfigError({std::string(origin) + ":(top level): " + text(root) +
+                               ": expected a map with bounds, start, goal"});
+  }
+  r.onlyKeys(root, "", {"bounds", "start", "goal", "obstacles", "generators", "index_cell_size"});
+  const YAML::Node bounds = root["bounds"];
+  std::optional<Vector3> lo, hi;
+  if (!bounds.IsMap()) {
+    r.problem("bounds", bounds, "expected {min: [x, y, z], max: [x, y, z]}");
+  } else {
+    r.onlyKeys(bounds, "bounds.", {"min", "max"});
+    lo = r.vector3(bounds["min"], "bounds.min");
+    hi = r.vector3(bounds["max"], "bounds.max");
+    if (lo && hi && !((*hi - *lo).array() > 0.0).all()) {
+      r.problem("bounds.max", bounds["max"], "must exceed bounds.min on every axis");
+    }
+  }
+  const auto start = r.vector3(root["start"], "start");
+  const auto goal = r.vector3(root["goal"], "goal");
+  const auto cell = r.number(root["index_cell_size"], "index_cell_size", 2.0, 0.05, 1000.0);
+  if (lo && hi && start && !Bounds{*lo, *hi}.contains(*start)) {
+    r.problem("start", root["start"], "outside the bounds");
+  }
+  if (lo && hi && goal && !Bounds{*lo, *hi}.contains(*goal)) {
+    r.problem("goal", root["goal"], "outside the bounds");
+  }
+  std::vector<Obstacle> obstacles;
+  const YAML::Node listed = root["obstacles"];
+  if (listed.IsDefined() && !listed.IsNull() && !listed.IsSequence()) {
+    r.problem("obstacles", listed, "expected a list");
+  } else if (listed.IsSequence()) {
+    for (std::size_t i = 0; i < listed.size(); ++i) {
+      parseObstacle(r, listed[i], "obstacles[" + std::to_string(i) + "]", obstacles);
+    }
+  }
+  const YAML::Node generators = root["generators"];
+  if (generators.IsDefined() && !generators.IsNull() && !generators.IsSequence()) {
+    r.problem("generators", generators, "expected a list");
+  } else if (generators.IsSequence() && start && goal) {
+    for (std::size_t i = 0; i < generators.size(); ++i) {
+      generate(r, generators[i], "generators[" + std::to_string(i) + "]", *start, *goal, obstacles);
+    }
+  }
+  if (!r.ok()) {
+    throw common::ConfigError(std::move(r.problems()));
+  }
+  return World(Bounds{*lo, *hi}, *start, *goal, std::move(obstacles), *cell);
+}
+
+World loadWorld(const std::filesystem::path& file)
+{
+  std::ifstream in(file);
+  if (!in) {
+    throw common::ConfigError({file.string() + ": cannot open: " + std::strerror(errno)});
+  }
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parseWorld(buffer.str(), file.string());
+}
+
+}  // namespace quad::plant

@@ -1,0 +1,102 @@
+// The plant's costs: RK4 physics steps, depth frames in a 1,000-obstacle forest (indexed ray
+// casting beside brute force), and world generation.
+#include <benchmark/benchmark.h>
+
+#include "quad/plant/sensors.hpp"
+#include "quad/plant/simulation.hpp"
+#include "quad/plant/world_file.hpp"
+
+namespace {
+
+using namespace quad::plant;
+
+const char* kForest = R"(
+bounds: {min: [-5, -30, 0], max: [105, 30, 20]}
+start: [0, 0, 2]
+goal: [100, 0, 2]
+generators:
+  - {type: forest, seed: 11, min: [0, -28], max: [100, 28], density: 0.18, radius: [0.2, 0.6], height: [5, 15]}
+)";
+
+void BM_PhysicsStep(benchmark::State& state)
+{
+  quad::vehicle::VehicleParams v;
+  const QuadrotorDynamics dyn(v);
+  RigidBodyState s;
+  s.p_W.z() = 1e6;  // far from the ground for the whole run
+  s.w_B = {0.1, 0.2, 0.3};
+  const double w = v.hoverRotorSpeed(9.81);
+  const RotorArray cmd{w, w * 1.01, w, w * 0.99};
+  const Environment env;
+  for (auto _ : state) {
+    dyn.step(s, cmd, env, 1e-3);
+    benchmark::DoNotOptimize(s);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+void BM_SimulationStepNoSensors(benchmark::State& state)
+{
+  SimulationConfig config;
+  config.state_rate_hz = 0;
+  config.imu.rate_hz = 0;
+  config.depth.rate_hz = 0;
+  Simulation sim({}, parseWorld(kForest, "forest"), config);
+  quad::plant::RigidBodyState s;
+  s.p_W = {0, 0, 2};
+  sim.setState(s);
+  const double w = sim.dynamics().params().hoverRotorSpeed(9.81);
+  for (auto _ : state) {
+    sim.commands().submit({w, w, w, w}, true, sim.timeNs(), sim.timeNs());
+    benchmark::DoNotOptimize(sim.step());
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+template <bool kBruteForce>
+void depthFrame(benchmark::State& state)
+{
+  const World world = parseWorld(kForest, "forest");
+  DepthCameraConfig config;
+  config.width = 64;
+  config.height = 48;
+  config.max_range = 20.0;
+  const DepthCamera camera(config);
+  const quad::geometry::Pose3 body{quad::geometry::Vector3(0, 0, 2), {}};
+  std::mt19937_64 rng(1);
+  const auto pose = camera.sensorPose(body);
+  const auto R = quad::geometry::toMatrix(pose.q);
+  for (auto _ : state) {
+    if constexpr (kBruteForce) {
+      int hits = 0;
+      for (const auto& d : camera.directions_S()) {
+        hits += world.raycastBruteForce(pose.p, R * d, config.max_range) ? 1 : 0;
+      }
+      benchmark::DoNotOptimize(hits);
+    } else {
+      benchmark::DoNotOptimize(camera.capture(world, body, rng));
+    }
+  }
+  state.counters["obstacles"] = static_cast<double>(world.obstacles().size());
+  state.SetItemsProcessed(state.iterations());
+}
+
+void BM_DepthFrame64x48_Indexed(benchmark::State& state) { depthFrame<false>(state); }
+void BM_DepthFrame64x48_BruteForce(benchmark::State& state) { depthFrame<true>(state); }
+
+void BM_WorldGeneration1000Trees(benchmark::State& state)
+{
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(parseWorld(kForest, "forest"));
+  }
+}
+
+BENCHMARK(BM_PhysicsStep);
+BENCHMARK(BM_SimulationStepNoSensors);
+BENCHMARK(BM_DepthFrame64x48_Indexed)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DepthFrame64x48_BruteForce)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_WorldGeneration1000Trees)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,47 @@
+#pragma once
+/// @file
+/// Faults the plant applies to itself: rotor failure or degradation, sensor dropout, stuck
+/// sensor, extra sensor noise, wind gusts. Each has an id, a start and a duration in sim time;
+/// the simulation reports when each takes effect and when it clears.
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "quad/geometry/so3.hpp"
+
+namespace quad::plant {
+
+enum class Sensor { kDepth, kImu, kState };
+
+std::string_view toString(Sensor s);
+std::optional<Sensor> parseSensor(std::string_view text);
+
+struct Fault {
+  enum class Kind { kMotor, kSensorDropout, kSensorStuck, kSensorNoise, kWindGust };
+  std::uint32_t id = 0;
+  Kind kind = Kind::kMotor;
+  int rotor = 0;                         ///< kMotor: 0..3
+  double magnitude = 0.0;                ///< kMotor: remaining efficiency [0, 1];
+                                         ///< kSensorNoise: extra std dev (SI units)
+  Sensor sensor = Sensor::kDepth;        ///< sensor faults
+  geometry::Vector3 wind_W = geometry::Vector3::Zero();  ///< kWindGust [m/s]
+  std::int64_t start_ns = 0;             ///< sim time it takes effect
+  std::int64_t duration_ns = 0;          ///< <= 0: until cleared
+
+  std::string describe() const;
+};
+
+std::string_view toString(Fault::Kind k);
+
+/// A schedule file: a YAML list of faults, e.g.
+/// `- {id: 1, kind: motor, rotor: 2, efficiency: 0.5, at: 10.0, duration: 5.0}`
+/// (kinds: motor, sensor_dropout, sensor_stuck, sensor_noise, wind_gust; times in seconds).
+/// Every problem is reported as `file:key: value: reason` in a common::ConfigError.
+std::vector<Fault> parseFaultSchedule(std::string_view yaml_text, std::string_view origin);
+std::vector<Fault> loadFaultSchedule(const std::filesystem::path& file);
+
+}  // namespace quad::plant

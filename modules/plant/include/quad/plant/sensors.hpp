@@ -1,0 +1,78 @@
+#pragma once
+/// @file
+/// Simulated sensors: a forward-looking depth camera (ray casting against the world) and an
+/// IMU (specific force and angular rate with bias and white noise). Randomness comes from a
+/// generator the caller owns, so a run is reproducible for a seed.
+
+#include <random>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "quad/geometry/cspace.hpp"
+#include "quad/plant/world.hpp"
+
+namespace quad::plant {
+
+struct DepthCameraConfig {
+  int width = 64;                       ///< pixels
+  int height = 48;                      ///< pixels
+  double horizontal_fov = 1.5707963;    ///< [rad]
+  double max_range = 20.0;              ///< [m]
+  double noise_std = 0.01;              ///< [m] range noise, Gaussian
+  double rate_hz = 10.0;                ///< [Hz]
+  Vector3 position_B{0.1, 0.0, 0.0};    ///< [m] mount point, body frame
+  double tilt_down = 0.0;               ///< [rad] pitch of the optical axis below body x
+};
+
+/// One depth frame: points in the sensor frame (x forward, y left, z up) and the sensor pose.
+struct DepthScan {
+  geometry::Pose3 sensor_W;                 ///< sensor pose in the world at capture
+  std::vector<Eigen::Vector3f> points_S;    ///< every ray: hits, and misses beyond max range
+  int hits = 0;
+};
+
+class DepthCamera {
+public:
+  /// A ray that hits nothing within max_range is reported as a point at kMissFactor ×
+  /// max_range: beyond the range, so a mapper only clears space along it.
+  static constexpr double kMissFactor = 1.25;
+
+  /// Throws std::invalid_argument on a non-positive size, range or field of view.
+  explicit DepthCamera(DepthCameraConfig config);
+
+  const DepthCameraConfig& config() const { return config_; }
+  /// Unit ray directions in the sensor frame, row by row from the top-left pixel.
+  const std::vector<Vector3>& directions_S() const { return directions_; }
+  /// Sensor pose for a body pose.
+  geometry::Pose3 sensorPose(const geometry::Pose3& body_W) const;
+
+  DepthScan capture(const World& world, const geometry::Pose3& body_W, std::mt19937_64& rng,
+                    double extra_noise_std = 0.0) const;
+
+private:
+  DepthCameraConfig config_;
+  geometry::Quaternion q_BS_;
+  std::vector<Vector3> directions_;
+};
+
+struct ImuConfig {
+  double accel_noise_std = 0.02;          ///< [m/s²] per sample
+  double gyro_noise_std = 0.002;          ///< [rad/s] per sample
+  Vector3 accel_bias = Vector3::Zero();   ///< [m/s²]
+  Vector3 gyro_bias = Vector3::Zero();    ///< [rad/s]
+  double rate_hz = 250.0;                 ///< [Hz]
+};
+
+struct ImuSample {
+  Vector3 specific_force_B;  ///< [m/s²] R_WBᵀ (a_W − g_W): +9.81 z at rest
+  Vector3 angular_rate_B;    ///< [rad/s]
+};
+
+/// The ideal readings plus bias plus white noise (`extra_noise_std` adds to both channels'
+/// standard deviation, in their units).
+ImuSample measureImu(const ImuConfig& config, const geometry::Quaternion& q_WB, const Vector3& a_W,
+                     const Vector3& w_B, const Vector3& gravity_W, std::mt19937_64& rng,
+                     double extra_noise_std = 0.0);
+
+}  // namespace quad::plant

@@ -1,0 +1,230 @@
+#include "quad/plant/faults.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "quad/common/params.hpp"
+#include "quad/common/time.hpp"
+
+namespace quad::plant {
+
+std::string_view toString(Sensor s)
+{
+  switch (s) {
+    case Sensor::kDepth:
+      return "depth";
+    case Sensor::kImu:
+      return "imu";
+    case Sensor::kState:
+      return "state";
+  }
+  return "?";
+}
+
+std::optional<Sensor> parseSensor(std::string_view text)
+{
+  for (const Sensor s : {Sensor::kDepth, Sensor::kImu, Sensor::kState}) {
+    if (toString(s) == text) {
+      return s;
+    }
+  }
+  return std::nullopt;
+}
+
+std::string_view toString(Fault::Kind k)
+{
+  switch (k) {
+    case Fault::Kind::kMotor:
+      return "motor";
+    case Fault::Kind::kSensorDropout:
+      return "sensor_dropout";
+    case Fault::Kind::kSensorStuck:
+      return "sensor_stuck";
+    case Fault::Kind::kSensorNoise:
+      return "sensor_noise";
+    case Fault::Kind::kWindGust:
+      return "wind_gust";
+  }
+  return "?";
+}
+
+std::string Fault::describe() const
+{
+  std::string out = "fault " + std::to_string(id) + " " + std::string(toString(kind));
+  switch (kind) {
+    case Kind::kMotor:
+      out += ": rotor " + std::to_string(rotor) + " at " + common::formatValue(magnitude) + " efficiency";
+      break;
+    case Kind::kSensorDropout:
+    case Kind::kSensorStuck:
+      out += ": " + std::string(toString(sensor));
+      break;
+    case Kind::kSensorNoise:
+      out += ": " + std::string(toString(sensor)) + " +" + common::formatValue(magnitude) + " std dev";
+      break;
+    case Kind::kWindGust:
+      out += ": wind " + common::formatValue(std::vector<double>{wind_W.x(), wind_W.y(), wind_W.z()}) + " m/s";
+      break;
+  }
+  return out;
+}
+
+namespace {
+
+std::string text(const YAML::Node& n)
+{
+  if (!n.IsDefined() || n.IsNull()) {
+    return "(missing)";
+  }
+  if (n.IsScalar()) {
+    return n.Scalar();
+  }
+  YAML::Node flow = YAML::Clone(n);
+  flow.SetStyle(YAML::EmitterStyle::Flow);
+  YAML::Emitter e;
+  e << flow;
+  return e.c_str();
+}
+
+}  // namespace
+
+std::vector<Fault> parseFaultSchedule(std::string_view yaml_text, std::string_view origin)
+{
+  std::vector<std::string> problems;
+  const auto problem = [&](const std::string& key, const YAML::Node& n, const std::string& why) {
+    problems.push_back(std::string(origin) + ":" + key + ": " + text(n) + ": " + why);
+  };
+  YAML::Node root;
+  try {
+    root = YAML::Load(std::string(yaml_text));
+  } catch (const YAML::Exception& e) {
+    throw common::ConfigError({std::string(origin) + ":(line " + std::to_string(e.mark.line + 1) +
+                               "): (yaml): " + e.msg});
+  }
+  std::vector<Fault> out;
+  if (root.IsNull()) {
+    return out;
+  }
+  if (!root.IsSequence()) {
+    throw common::ConfigError({std::string(origin) + ":(top level): " + text(root) + ": expected a list of faults"});
+  }
+  std::set<std::uint32_t> ids;
+  for (std::size_t i = 0; i < root.size(); ++i) {
+    const YAML::Node f = root[i];
+    const std::string key = "[" + std::to_string(i) + "]";
+    const auto number = [&](const char* name, std::optional<double> fallback, double lo, double hi) -> std::optional<double> {
+      const YAML::Node n = f[name];
+      if (!n.IsDefined() || n.IsNull()) {
+        if (!fallback) {
+          problem(key + "." + name, n, "required");
+        }
+        return fallback;
+      }
+      double v = 0.0;
+      if (!n.IsScalar() || !YAML::convert<double>::decode(n, v) || !std::isfinite(v)) {
+        problem(key + "." + name, n, "expected a finite number");
+        return std::nullopt;
+      }
+      if (v < lo || v > hi) {
+        problem(key + "." + name, n, "out of range [" + common::formatValue(lo) + ", " + common::formatValue(hi) + "]");
+        return std::nullopt;
+      }
+      return v;
+    };
+    if (!f.IsMap()) {
+      problem(key, f, "expected a map");
+      continue;
+    }
+    Fault fault;
+    const std::string kind = f["kind"].IsScalar() ? f["kind"].Scalar() : "";
+    std::set<std::string> allowed = {"id", "kind", "at", "duration"};
+    const auto id = number("id", std::nullopt, 1.0, 4294967295.0);
+    const auto at = number("at", std::nullopt, 0.0, 1e7);
+    const auto duration = number("duration", 0.0, 0.0, 1e7);
+    bool ok = id && at && duration;
+    if (kind == "motor") {
+      allowed.insert({"rotor", "efficiency"});
+      fault.kind = Fault::Kind::kMotor;
+      const auto rotor = number("rotor", std::nullopt, 0.0, 3.0);
+      const auto eff = number("efficiency", std::nullopt, 0.0, 1.0);
+      ok = ok && rotor && eff;
+      if (rotor && eff) {
+        fault.rotor = static_cast<int>(*rotor);
+        fault.magnitude = *eff;
+      }
+    } else if (kind == "sensor_dropout" || kind == "sensor_stuck" || kind == "sensor_noise") {
+      allowed.insert("sensor");
+      fault.kind = kind == "sensor_dropout" ? Fault::Kind::kSensorDropout
+                   : kind == "sensor_stuck" ? Fault::Kind::kSensorStuck
+                                            : Fault::Kind::kSensorNoise;
+      const auto sensor = f["sensor"].IsScalar() ? parseSensor(f["sensor"].Scalar()) : std::nullopt;
+      if (!sensor) {
+        problem(key + ".sensor", f["sensor"], "expected depth, imu or state");
+        ok = false;
+      } else {
+        fault.sensor = *sensor;
+      }
+      if (kind == "sensor_noise") {
+        allowed.insert("std_dev");
+        const auto s = number("std_dev", std::nullopt, 0.0, 1e3);
+        ok = ok && s;
+        fault.magnitude = s.value_or(0.0);
+      }
+    } else if (kind == "wind_gust") {
+      allowed.insert("wind");
+      fault.kind = Fault::Kind::kWindGust;
+      const YAML::Node w = f["wind"];
+      double x = 0.0, y = 0.0, z = 0.0;
+      if (!w.IsSequence() || w.size() != 3 || !YAML::convert<double>::decode(w[0], x) ||
+          !YAML::convert<double>::decode(w[1], y) || !YAML::convert<double>::decode(w[2], z) ||
+          !std::isfinite(x + y + z)) {
+        problem(key + ".wind", w, "expected [x, y, z] in m/s");
+        ok = false;
+      }
+      fault.wind_W = {x, y, z};
+    } else {
+      problem(key + ".kind", f["kind"], "expected motor, sensor_dropout, sensor_stuck, sensor_noise or wind_gust");
+      continue;
+    }
+    for (const auto& entry : f) {
+      if (!allowed.contains(entry.first.Scalar())) {
+        problem(key + "." + entry.first.Scalar(), entry.second, "unknown key for kind " + kind);
+        ok = false;
+      }
+    }
+    if (!ok) {
+      continue;
+    }
+    fault.id = static_cast<std::uint32_t>(*id);
+    if (!ids.insert(fault.id).second) {
+      problem(key + ".id", f["id"], "used twice");
+      continue;
+    }
+    fault.start_ns = common::toNanoseconds(*at);
+    fault.duration_ns = common::toNanoseconds(*duration);
+    out.push_back(fault);
+  }
+  if (!problems.empty()) {
+    throw common::ConfigError(problems);
+  }
+  return out;
+}
+
+std::vector<Fault> loadFaultSchedule(const std::filesystem::path& file)
+{
+  std::ifstream in(file);
+  if (!in) {
+    throw common::ConfigError({file.string() + ": cannot open: " + std::strerror(errno)});
+  }
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parseFaultSchedule(buffer.str(), file.string());
+}
+
+}  // namespace quad::plant

@@ -1,0 +1,70 @@
+#include "quad/plant/sensors.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace quad::plant {
+
+DepthCamera::DepthCamera(DepthCameraConfig config)
+    : config_(std::move(config)),
+      q_BS_(geometry::fromAxisAngle(Vector3::UnitY(), config_.tilt_down))
+{
+  if (config_.width < 1 || config_.height < 1 || !(config_.max_range > 0.0) ||
+      !(config_.horizontal_fov > 0.0 && config_.horizontal_fov < geometry::kPi)) {
+    throw std::invalid_argument("DepthCamera: size, max range and field of view (0, pi) must be positive");
+  }
+  // Pinhole: pixel centres on the image plane x = 1.
+  const double tan_h = std::tan(config_.horizontal_fov / 2.0);
+  const double tan_v = tan_h * config_.height / config_.width;  // square pixels
+  directions_.reserve(static_cast<std::size_t>(config_.width * config_.height));
+  for (int v = 0; v < config_.height; ++v) {
+    for (int u = 0; u < config_.width; ++u) {
+      const double y = (0.5 - (u + 0.5) / config_.width) * 2.0 * tan_h;   // left positive
+      const double z = (0.5 - (v + 0.5) / config_.height) * 2.0 * tan_v;  // up positive
+      directions_.push_back(Vector3(1.0, y, z).normalized());
+    }
+  }
+}
+
+geometry::Pose3 DepthCamera::sensorPose(const geometry::Pose3& body_W) const
+{
+  return body_W * geometry::Pose3{config_.position_B, q_BS_};
+}
+
+DepthScan DepthCamera::capture(const World& world, const geometry::Pose3& body_W,
+                               std::mt19937_64& rng, double extra_noise_std) const
+{
+  DepthScan scan;
+  scan.sensor_W = sensorPose(body_W);
+  const geometry::Matrix3 R_WS = geometry::toMatrix(scan.sensor_W.q);
+  const double noise_std = config_.noise_std + extra_noise_std;
+  std::normal_distribution<double> noise(0.0, 1.0);
+  scan.points_S.reserve(directions_.size());
+  for (const Vector3& d_S : directions_) {
+    const auto hit = world.raycast(scan.sensor_W.p, R_WS * d_S, config_.max_range);
+    double range = config_.max_range * kMissFactor;
+    if (hit) {
+      range = std::max(0.0, hit->distance + noise_std * noise(rng));
+      ++scan.hits;
+    }
+    scan.points_S.push_back((d_S * range).cast<float>());
+  }
+  return scan;
+}
+
+ImuSample measureImu(const ImuConfig& config, const geometry::Quaternion& q_WB, const Vector3& a_W,
+                     const Vector3& w_B, const Vector3& gravity_W, std::mt19937_64& rng,
+                     double extra_noise_std)
+{
+  std::normal_distribution<double> n(0.0, 1.0);
+  const auto white = [&](double std_dev) { return Vector3(n(rng), n(rng), n(rng)) * std_dev; };
+  const geometry::Matrix3 R_WB = geometry::toMatrix(q_WB);
+  ImuSample out;
+  out.specific_force_B = R_WB.transpose() * (a_W - gravity_W) + config.accel_bias +
+                         white(config.accel_noise_std + extra_noise_std);
+  out.angular_rate_B = w_B + config.gyro_bias + white(config.gyro_noise_std + extra_noise_std);
+  return out;
+}
+
+}  // namespace quad::plant

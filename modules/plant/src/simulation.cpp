@@ -1,0 +1,177 @@
+#include "quad/plant/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "quad/common/time.hpp"
+
+namespace quad::plant {
+
+Simulation::Simulation(vehicle::VehicleParams vehicle, World world, SimulationConfig config,
+                       std::vector<Fault> schedule)
+    : dynamics_(vehicle),
+      world_(std::move(world)),
+      config_(std::move(config)),
+      camera_(config_.depth),
+      guard_(vehicle, config_.command_timeout_ns),
+      rng_(config_.seed)
+{
+  state_.p_W = world_.start();
+  state_.landed = state_.p_W.z() <= 0.0;
+  state_.p_W.z() = std::max(0.0, state_.p_W.z());
+  for (auto& f : schedule) {
+    injectFault(f);
+  }
+  // Samples fall on each rate's grid: k × period.
+  const auto first = [](double rate_hz) {
+    return rate_hz > 0.0 ? static_cast<std::int64_t>(std::llround(1e9 / rate_hz)) : 0;
+  };
+  next_state_ns_ = first(config_.state_rate_hz);
+  next_imu_ns_ = first(config_.imu.rate_hz);
+  next_depth_ns_ = first(config_.depth.rate_hz);
+}
+
+bool Simulation::injectFault(Fault fault)
+{
+  const bool known = std::any_of(faults_.begin(), faults_.end(),
+                                 [&](const Active& a) { return a.fault.id == fault.id; });
+  if (known) {
+    return false;
+  }
+  faults_.push_back({fault, false});
+  return true;
+}
+
+bool Simulation::clearFault(std::uint32_t id)
+{
+  for (auto& a : faults_) {
+    if (a.fault.id == id) {
+      // Expire it at the next step, which reports the clearing.
+      a.fault.start_ns = std::min(a.fault.start_ns, t_ns_);
+      a.fault.duration_ns = std::max<std::int64_t>(1, t_ns_ - a.fault.start_ns);
+      return true;
+    }
+  }
+  return false;
+}
+
+Environment Simulation::environment() const
+{
+  Environment env;
+  env.gravity_W = config_.gravity_W;
+  for (const auto& a : faults_) {
+    if (!a.applied) {
+      continue;
+    }
+    if (a.fault.kind == Fault::Kind::kMotor) {
+      env.rotor_efficiency[static_cast<std::size_t>(a.fault.rotor)] *= a.fault.magnitude;
+    } else if (a.fault.kind == Fault::Kind::kWindGust) {
+      env.wind_W += a.fault.wind_W;
+    }
+  }
+  return env;
+}
+
+bool Simulation::sensorFault(Sensor s, Fault::Kind k) const
+{
+  return std::any_of(faults_.begin(), faults_.end(), [&](const Active& a) {
+    return a.applied && a.fault.kind == k && a.fault.sensor == s;
+  });
+}
+
+double Simulation::sensorNoise(Sensor s) const
+{
+  double extra = 0.0;
+  for (const auto& a : faults_) {
+    if (a.applied && a.fault.kind == Fault::Kind::kSensorNoise && a.fault.sensor == s) {
+      extra += a.fault.magnitude;
+    }
+  }
+  return extra;
+}
+
+void Simulation::applyFaults(StepOutputs& out)
+{
+  for (auto it = faults_.begin(); it != faults_.end();) {
+    const Fault& f = it->fault;
+    if (!it->applied && t_ns_ >= f.start_ns) {
+      it->applied = true;
+      out.events.push_back({SimEventRecord::Kind::kFaultApplied, t_ns_, state_.p_W, f.id, f.describe()});
+    }
+    if (it->applied && f.duration_ns > 0 && t_ns_ >= f.start_ns + f.duration_ns) {
+      out.events.push_back({SimEventRecord::Kind::kFaultCleared, t_ns_, state_.p_W, f.id, f.describe()});
+      it = faults_.erase(it);
+      continue;
+    }
+    ++it;
+  }
+}
+
+bool Simulation::due(std::int64_t t_ns, std::int64_t& next_ns, double rate_hz)
+{
+  if (rate_hz <= 0.0 || t_ns < next_ns) {
+    return false;
+  }
+  const auto period = static_cast<std::int64_t>(std::llround(1e9 / rate_hz));
+  // The next sample on the period's grid after t (a slow step never bursts samples).
+  next_ns = (t_ns / period + 1) * period;
+  return true;
+}
+
+StepOutputs Simulation::step()
+{
+  StepOutputs out;
+  const RotorArray command = guard_.command(t_ns_);
+  const Environment env = environment();
+  const bool was_landed = state_.landed;
+  dynamics_.step(state_, command, env, common::toSeconds(config_.step_ns));
+  t_ns_ += config_.step_ns;
+  applyFaults(out);
+
+  if (was_landed != state_.landed) {
+    out.events.push_back({state_.landed ? SimEventRecord::Kind::kGroundContact : SimEventRecord::Kind::kTakeoff,
+                          t_ns_, state_.p_W, -1, state_.landed ? "landed" : "took off"});
+  }
+  // A collision is the start of a contact with an obstacle (or the bounds).
+  const std::vector<int> now = world_.contacts(state_.p_W, dynamics_.params().radius);
+  for (const int id : now) {
+    if (!std::binary_search(contacts_.begin(), contacts_.end(), id)) {
+      ++collisions_;
+      out.events.push_back({SimEventRecord::Kind::kCollision, t_ns_, state_.p_W, id,
+                            id == World::kBounds ? "left the bounds" : "hit obstacle " + std::to_string(id)});
+    }
+  }
+  contacts_ = now;
+
+  const Environment after = environment();
+  if (due(t_ns_, next_state_ns_, config_.state_rate_hz) && !sensorFault(Sensor::kState, Fault::Kind::kSensorDropout)) {
+    if (!sensorFault(Sensor::kState, Fault::Kind::kSensorStuck) || !last_state_) {
+      last_state_ = StateSample{t_ns_, state_, dynamics_.acceleration(state_, after)};
+      if (const double extra = sensorNoise(Sensor::kState); extra > 0.0) {
+        // A noise fault on the state: position [m] and velocity [m/s] get white noise.
+        std::normal_distribution<double> n(0.0, extra);
+        last_state_->state.p_W += Vector3(n(rng_), n(rng_), n(rng_));
+        last_state_->state.v_W += Vector3(n(rng_), n(rng_), n(rng_));
+      }
+    }
+    out.state = last_state_;
+  }
+  if (due(t_ns_, next_imu_ns_, config_.imu.rate_hz) && !sensorFault(Sensor::kImu, Fault::Kind::kSensorDropout)) {
+    if (!sensorFault(Sensor::kImu, Fault::Kind::kSensorStuck) || !last_imu_) {
+      last_imu_ = ImuReading{t_ns_, measureImu(config_.imu, state_.q_WB, dynamics_.acceleration(state_, after),
+                                               state_.w_B, after.gravity_W, rng_, sensorNoise(Sensor::kImu))};
+    }
+    out.imu = last_imu_;
+  }
+  if (due(t_ns_, next_depth_ns_, config_.depth.rate_hz) &&
+      !sensorFault(Sensor::kDepth, Fault::Kind::kSensorDropout)) {
+    if (!sensorFault(Sensor::kDepth, Fault::Kind::kSensorStuck) || !last_depth_) {
+      last_depth_ = DepthReading{t_ns_, camera_.capture(world_, geometry::Pose3{state_.p_W, state_.q_WB}, rng_,
+                                                        sensorNoise(Sensor::kDepth))};
+    }
+    out.depth = last_depth_;
+  }
+  return out;
+}
+
+}  // namespace quad::plant

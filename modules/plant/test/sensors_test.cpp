@@ -1,0 +1,96 @@
+#include "quad/plant/sensors.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace quad::plant {
+namespace {
+
+World wallAt(double x)
+{
+  return World(Bounds{Vector3(-20, -50, 0), Vector3(50, 50, 50)}, Vector3::Zero(), Vector3(1, 0, 0),
+               {Obstacle::makeBox({Vector3(x + 0.5, 0, 25), Vector3(1, 100, 50), 0.0})});
+}
+
+TEST(DepthCamera, AWallAheadIsAPlaneAtItsDistance)
+{
+  DepthCameraConfig config;
+  config.noise_std = 0.0;
+  config.position_B = Vector3::Zero();
+  const DepthCamera camera(config);
+  std::mt19937_64 rng(1);
+  const DepthScan scan = camera.capture(wallAt(8.0), {Vector3(0, 0, 10), {}}, rng);
+  ASSERT_EQ(scan.points_S.size(), 64U * 48U);
+  EXPECT_EQ(scan.hits, 64 * 48);
+  for (const auto& p : scan.points_S) {
+    EXPECT_NEAR(p.x(), 8.0f, 1e-5f);  // every point of the plane x = 8
+  }
+}
+
+TEST(DepthCamera, MissesLieBeyondTheRangeAndTiltSeesTheGround)
+{
+  DepthCameraConfig config;
+  config.noise_std = 0.0;
+  config.max_range = 10.0;
+  const DepthCamera camera(config);
+  std::mt19937_64 rng(1);
+  const DepthScan open = camera.capture(wallAt(40.0), {Vector3(0, 0, 25), {}}, rng);
+  EXPECT_EQ(open.hits, 0);
+  for (const auto& p : open.points_S) {
+    EXPECT_NEAR(p.norm(), 12.5f, 1e-4f);
+  }
+  config.tilt_down = geometry::kPi / 2.0;  // looking straight down from 3 m
+  const DepthCamera down(config);
+  const DepthScan ground = down.capture(wallAt(40.0), {Vector3(0, 0, 3), {}}, rng);
+  EXPECT_EQ(ground.hits, 64 * 48);
+  const auto centre = ground.points_S[static_cast<std::size_t>(24 * 64 + 32)];
+  EXPECT_NEAR(centre.norm(), 3.0f, 0.1f);
+}
+
+TEST(DepthCamera, RangeNoiseHasTheConfiguredSpread)
+{
+  DepthCameraConfig config;
+  config.noise_std = 0.05;
+  config.position_B = Vector3::Zero();
+  const DepthCamera camera(config);
+  std::mt19937_64 rng(3);
+  double sum = 0.0, sum2 = 0.0;
+  int n = 0;
+  for (int k = 0; k < 20; ++k) {
+    for (const auto& p : camera.capture(wallAt(8.0), {Vector3(0, 0, 10), {}}, rng).points_S) {
+      const double e = static_cast<double>(p.x()) - 8.0;
+      sum += e;
+      sum2 += e * e;
+      ++n;
+    }
+  }
+  EXPECT_NEAR(sum / n, 0.0, 0.005);
+  EXPECT_NEAR(std::sqrt(sum2 / n), 0.05 * 0.9, 0.01);  // range noise projected on x (cos of ray angles)
+}
+
+TEST(Imu, AtRestItReadsGravityUpPlusBias)
+{
+  ImuConfig config;
+  config.accel_bias = {0.1, -0.2, 0.05};
+  config.gyro_bias = {0.01, 0.0, -0.02};
+  std::mt19937_64 rng(9);
+  Vector3 f_sum = Vector3::Zero();
+  Vector3 w_sum = Vector3::Zero();
+  const int n = 20000;
+  for (int k = 0; k < n; ++k) {
+    const ImuSample s = measureImu(config, {}, Vector3::Zero(), Vector3::Zero(), Vector3(0, 0, -9.81), rng);
+    f_sum += s.specific_force_B;
+    w_sum += s.angular_rate_B;
+  }
+  EXPECT_LT((f_sum / n - Vector3(0.1, -0.2, 9.86)).norm(), 1e-3);
+  EXPECT_LT((w_sum / n - Vector3(0.01, 0.0, -0.02)).norm(), 1e-4);
+  // In free fall the accelerometer reads zero (besides bias and noise).
+  config = ImuConfig{};
+  config.accel_noise_std = 0.0;
+  const ImuSample falling = measureImu(config, {}, Vector3(0, 0, -9.81), Vector3::Zero(), Vector3(0, 0, -9.81), rng);
+  EXPECT_LT(falling.specific_force_B.norm(), 1e-12);
+}
+
+}  // namespace
+}  // namespace quad::plant

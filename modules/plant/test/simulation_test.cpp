@@ -1,0 +1,242 @@
+#include "quad/plant/simulation.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "quad/common/params.hpp"
+
+namespace quad::plant {
+namespace {
+
+vehicle::VehicleParams vehicle()
+{
+  vehicle::VehicleParams v;
+  v.mass = 2.0;
+  v.radius = 0.35;
+  v.drag_linear.setZero();
+  v.drag_quadratic.setZero();
+  return v;
+}
+
+World corridor()
+{
+  return World(Bounds{Vector3(-10, -10, 0), Vector3(60, 10, 20)}, Vector3(0, 0, 0), Vector3(50, 0, 2),
+               {Obstacle::makeBox({Vector3(6, 0, 5), Vector3(2, 4, 10), 0.0}),
+                Obstacle::makeCylinder({20, 5, 0.5, 8})});
+}
+
+RotorArray hoverCommand(const Simulation& sim)
+{
+  const double w = sim.dynamics().params().hoverRotorSpeed(9.81);
+  return {w, w, w, w};
+}
+
+TEST(Simulation, CollisionIsDetectedAtTheRightTime)
+{
+  SimulationConfig config;
+  config.gravity_W.setZero();
+  Simulation sim(vehicle(), corridor(), config);
+  RigidBodyState s;
+  s.p_W = {0, 0, 5};
+  s.v_W = {2, 0, 0};
+  sim.setState(s);
+  // The sphere (r = 0.35) meets the box face x = 5 at t = (5 − 0.35) / 2 = 2.325 s.
+  std::optional<SimEventRecord> hit;
+  for (int k = 0; k < 4000 && !hit; ++k) {
+    for (const auto& e : sim.step().events) {
+      if (e.kind == SimEventRecord::Kind::kCollision) {
+        hit = e;
+      }
+    }
+  }
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->subject_id, 0);
+  EXPECT_GE(hit->t_ns, 2'325'000'000);
+  EXPECT_LE(hit->t_ns, 2'326'000'000);
+  EXPECT_EQ(sim.collisionCount(), 1U);
+  // Staying in contact is one collision, not one per step.
+  for (int k = 0; k < 100; ++k) {
+    sim.step();
+  }
+  EXPECT_EQ(sim.collisionCount(), 1U);
+}
+
+TEST(Simulation, SameSeedSameCommandsGiveBitIdenticalRuns)
+{
+  const auto run = [](std::uint64_t seed) {
+    SimulationConfig config;
+    config.seed = seed;
+    Simulation sim(vehicle(), corridor(), config);
+    std::vector<double> trace;
+    for (int k = 0; k < 3000; ++k) {
+      const double w = sim.dynamics().params().hoverRotorSpeed(9.81) * (1.05 + 0.02 * std::sin(k * 0.01));
+      sim.commands().submit({w, w * 1.001, w, w * 0.999}, true, sim.timeNs(), sim.timeNs());
+      const StepOutputs out = sim.step();
+      if (out.imu) {
+        trace.push_back(out.imu->sample.specific_force_B.x());
+      }
+      if (out.depth) {
+        for (const auto& p : out.depth->scan.points_S) {
+          trace.push_back(p.x());
+        }
+      }
+    }
+    trace.push_back(sim.state().p_W.x());
+    trace.push_back(sim.state().q_WB.w);
+    return trace;
+  };
+  const auto a = run(42);
+  const auto b = run(42);
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(double)));  // bit for bit
+  EXPECT_NE(run(43), a);
+}
+
+TEST(Simulation, BadMotorCommandsAreRejectedCountedAndNeverIntegrated)
+{
+  Simulation sim(vehicle(), corridor(), {});
+  const RotorArray good = hoverCommand(sim);
+  EXPECT_EQ(sim.commands().submit(good, true, 0, 0), CommandGuard::Verdict::kAccepted);
+  EXPECT_EQ(sim.commands().submit({NAN, 1, 1, 1}, true, 0, 0), CommandGuard::Verdict::kRejectedInvalid);
+  EXPECT_EQ(sim.commands().submit({INFINITY, 1, 1, 1}, true, 0, 0), CommandGuard::Verdict::kRejectedInvalid);
+  EXPECT_EQ(sim.commands().command(0), good);  // the last good command is held
+  EXPECT_EQ(sim.commands().submit({-5, 1e6, 1, 1}, true, 1, 1), CommandGuard::Verdict::kClamped);
+  const RotorArray clamped = sim.commands().command(1);
+  EXPECT_EQ(clamped[0], 0.0);
+  EXPECT_EQ(clamped[1], sim.dynamics().params().rotor_speed_max);
+  // Late (older than the 100 ms timeout) and out-of-order commands are ignored.
+  EXPECT_EQ(sim.commands().submit(good, true, 0, 200'000'000), CommandGuard::Verdict::kRejectedLate);
+  EXPECT_EQ(sim.commands().submit(good, true, 0, 50'000'000), CommandGuard::Verdict::kRejectedOld);
+  const auto& c = sim.commands().counters();
+  EXPECT_EQ(c.accepted, 1U);
+  EXPECT_EQ(c.rejected_invalid, 2U);
+  EXPECT_EQ(c.clamped, 1U);
+  EXPECT_EQ(c.rejected_late, 1U);
+  EXPECT_EQ(c.rejected_old, 1U);
+  // Missing commands: the held one is used, and each stale step counted.
+  for (int k = 0; k < 300; ++k) {
+    sim.step();
+    ASSERT_TRUE(sim.state().p_W.allFinite());
+  }
+  EXPECT_GT(sim.commands().counters().stale_steps, 150U);
+  // Disarmed: rotors spin down whatever the speeds say.
+  sim.commands().submit(good, false, sim.timeNs(), sim.timeNs());
+  EXPECT_EQ(sim.commands().command(sim.timeNs()), RotorArray{});
+}
+
+TEST(Simulation, StartOnTheGroundIsLandedAndTakeoffIsAnEvent)
+{
+  Simulation sim(vehicle(), corridor(), {});
+  EXPECT_TRUE(sim.state().landed);
+  const double w = sim.dynamics().params().hoverRotorSpeed(9.81) * 1.2;
+  bool took_off = false;
+  for (int k = 0; k < 1000; ++k) {
+    sim.commands().submit({w, w, w, w}, true, sim.timeNs(), sim.timeNs());
+    for (const auto& e : sim.step().events) {
+      took_off = took_off || e.kind == SimEventRecord::Kind::kTakeoff;
+    }
+  }
+  EXPECT_TRUE(took_off);
+  EXPECT_GT(sim.state().p_W.z(), 0.5);
+}
+
+TEST(Simulation, SensorsComeAtTheirRates)
+{
+  SimulationConfig config;
+  config.state_rate_hz = 250;
+  config.imu.rate_hz = 500;
+  config.depth.rate_hz = 10;
+  Simulation sim(vehicle(), corridor(), config);
+  int states = 0, imus = 0, depths = 0;
+  for (int k = 0; k < 1000; ++k) {
+    const StepOutputs out = sim.step();
+    states += out.state ? 1 : 0;
+    imus += out.imu ? 1 : 0;
+    depths += out.depth ? 1 : 0;
+  }
+  EXPECT_EQ(states, 250);
+  EXPECT_EQ(imus, 500);
+  EXPECT_EQ(depths, 10);
+}
+
+TEST(Simulation, FaultsTakeEffectAreAcknowledgedAndClear)
+{
+  Simulation sim(vehicle(), corridor(), {});
+  RigidBodyState s;
+  s.p_W = {0, 0, 10};
+  sim.setState(s);
+  Fault motor;
+  motor.id = 7;
+  motor.kind = Fault::Kind::kMotor;
+  motor.rotor = 0;
+  motor.magnitude = 0.0;
+  motor.start_ns = 100'000'000;
+  motor.duration_ns = 200'000'000;
+  ASSERT_TRUE(sim.injectFault(motor));
+  EXPECT_FALSE(sim.injectFault(motor));  // one id, once
+  Fault dropout;
+  dropout.id = 8;
+  dropout.kind = Fault::Kind::kSensorDropout;
+  dropout.sensor = Sensor::kState;
+  dropout.start_ns = 0;
+  dropout.duration_ns = 50'000'000;
+  ASSERT_TRUE(sim.injectFault(dropout));
+  std::vector<SimEventRecord> events;
+  int states_during_dropout = 0;
+  for (int k = 0; k < 400; ++k) {
+    sim.commands().submit(hoverCommand(sim), true, sim.timeNs(), sim.timeNs());
+    const StepOutputs out = sim.step();
+    events.insert(events.end(), out.events.begin(), out.events.end());
+    if (sim.timeNs() < 50'000'000 && out.state) {
+      ++states_during_dropout;
+    }
+  }
+  EXPECT_EQ(states_during_dropout, 0);
+  ASSERT_GE(events.size(), 4U);
+  const auto find = [&](SimEventRecord::Kind kind, std::int64_t id) {
+    return std::find_if(events.begin(), events.end(),
+                        [&](const SimEventRecord& e) { return e.kind == kind && e.subject_id == id; });
+  };
+  const auto applied = find(SimEventRecord::Kind::kFaultApplied, 7);
+  ASSERT_NE(applied, events.end());
+  EXPECT_EQ(applied->t_ns, 100'000'000);
+  EXPECT_EQ(applied->detail, "fault 7 motor: rotor 0 at 0 efficiency");
+  const auto cleared = find(SimEventRecord::Kind::kFaultCleared, 7);
+  ASSERT_NE(cleared, events.end());
+  EXPECT_EQ(cleared->t_ns, 300'000'000);
+  // With rotor 0 (front-left) dead at hover speed, the vehicle rolls left and sinks.
+  EXPECT_LT(sim.state().p_W.z(), 10.0);
+}
+
+TEST(FaultSchedule, FileIsValidatedAndParsed)
+{
+  const auto faults = parseFaultSchedule(R"(
+- {id: 1, kind: motor, rotor: 2, efficiency: 0.5, at: 10.0, duration: 5.0}
+- {id: 2, kind: sensor_dropout, sensor: depth, at: 3}
+- {id: 3, kind: wind_gust, wind: [4, 0, 0], at: 1, duration: 2}
+- {id: 4, kind: sensor_noise, sensor: imu, std_dev: 0.5, at: 0}
+)",
+                                         "faults.yaml");
+  ASSERT_EQ(faults.size(), 4U);
+  EXPECT_EQ(faults[0].rotor, 2);
+  EXPECT_EQ(faults[0].start_ns, 10'000'000'000);
+  EXPECT_EQ(faults[1].sensor, Sensor::kDepth);
+  EXPECT_EQ(faults[2].wind_W, Vector3(4, 0, 0));
+  try {
+    parseFaultSchedule("- {id: 1, kind: motor, rotor: 5, efficiency: 0.5, at: 1}\n"
+                       "- {id: 2, kind: sensor_stuck, sensor: lidar, at: 1}\n"
+                       "- {id: 3, kind: meteor, at: 1}",
+                       "faults.yaml");
+    FAIL();
+  } catch (const common::ConfigError& e) {
+    ASSERT_EQ(e.problems().size(), 3U) << e.what();
+    EXPECT_EQ(e.problems()[0], "faults.yaml:[0].rotor: 5: out of range [0, 3]");
+    EXPECT_EQ(e.problems()[1], "faults.yaml:[1].sensor: lidar: expected depth, imu or state");
+    EXPECT_EQ(e.problems()[2], "faults.yaml:[2].kind: meteor: expected motor, sensor_dropout, "
+                               "sensor_stuck, sensor_noise or wind_gust");
+  }
+}
+
+}  // namespace
+}  // namespace quad::plant

@@ -58,7 +58,14 @@ ImuSample measureImu(const ImuConfig& config, const geometry::Quaternion& q_WB, 
                      double extra_noise_std)
 {
   std::normal_distribution<double> n(0.0, 1.0);
-  const auto white = [&](double std_dev) { return Vector3(n(rng), n(rng), n(rng)) * std_dev; };
+  // Explicit Vector3 result (an Eigen expression would outlive its temporary) and draws in a
+  // fixed order (argument evaluation order is unspecified), for reproducible runs.
+  const auto white = [&](double std_dev) -> Vector3 {
+    const double x = n(rng);
+    const double y = n(rng);
+    const double z = n(rng);
+    return Vector3(x, y, z) * std_dev;
+  };
   const geometry::Matrix3 R_WB = geometry::toMatrix(q_WB);
   ImuSample out;
   out.specific_force_B = R_WB.transpose() * (a_W - gravity_W) + config.accel_bias +

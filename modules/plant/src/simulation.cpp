@@ -150,8 +150,12 @@ StepOutputs Simulation::step()
       if (const double extra = sensorNoise(Sensor::kState); extra > 0.0) {
         // A noise fault on the state: position [m] and velocity [m/s] get white noise.
         std::normal_distribution<double> n(0.0, extra);
-        last_state_->state.p_W += Vector3(n(rng_), n(rng_), n(rng_));
-        last_state_->state.v_W += Vector3(n(rng_), n(rng_), n(rng_));
+        for (int a = 0; a < 3; ++a) {  // one draw at a time: a fixed order, reproducible
+          last_state_->state.p_W[a] += n(rng_);
+        }
+        for (int a = 0; a < 3; ++a) {
+          last_state_->state.v_W[a] += n(rng_);
+        }
       }
     }
     out.state = last_state_;

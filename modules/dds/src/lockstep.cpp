@@ -23,9 +23,18 @@ bool LockstepReporter::reportDone(std::int64_t done_ns)
   return publisher_.write(report);
 }
 
-LockstepBarrier::LockstepBarrier(Participant& participant, std::vector<std::string> participants)
-    : ledger_(std::move(participants)), subscriber_(participant, topics::kLockstep, &waker_)
+LockstepBarrier::LockstepBarrier(Participant& participant, std::vector<std::string> participants,
+                                 Waker* waker)
+    : ledger_(std::move(participants)),
+      waker_(waker != nullptr ? waker : &own_waker_),
+      subscriber_(participant, topics::kLockstep, waker_)
 {
+}
+
+bool LockstepBarrier::poll(std::int64_t sim_ns)
+{
+  collect();
+  return ledger_.caughtUp(sim_ns);
 }
 
 void LockstepBarrier::collect()
@@ -62,7 +71,7 @@ LockstepBarrier::Result LockstepBarrier::waitUntilDone(std::int64_t sim_ns,
       }
       return result;
     }
-    waker_.waitUntil(deadline);
+    waker_->waitUntil(deadline);
     collect();
   }
   return Result{.caught_up = true};

@@ -35,7 +35,10 @@ private:
 /// The clock owner's side: collects reports and waits until everyone caught up.
 class LockstepBarrier {
 public:
-  LockstepBarrier(Participant& participant, std::vector<std::string> participants);
+  /// `waker` (optional) is notified when reports arrive, for a caller that polls from its own
+  /// loop instead of blocking in waitUntilDone.
+  LockstepBarrier(Participant& participant, std::vector<std::string> participants,
+                  Waker* waker = nullptr);
 
   struct Result {
     bool caught_up = false;
@@ -48,6 +51,10 @@ public:
   /// Blocks until every participant reported done up to `sim_ns`, or `timeout` passes.
   Result waitUntilDone(std::int64_t sim_ns, std::chrono::milliseconds timeout);
 
+  /// Non-blocking: takes the reports that arrived and says whether everyone is done up to
+  /// `sim_ns`.
+  bool poll(std::int64_t sim_ns);
+
   /// Reports ignored so far (unknown participant or time going backwards).
   std::uint64_t ignoredReports() const { return ignored_; }
   const common::LockstepLedger& ledger() const { return ledger_; }
@@ -56,7 +63,8 @@ private:
   void collect();
 
   common::LockstepLedger ledger_;
-  Waker waker_;
+  Waker own_waker_;
+  Waker* waker_;  // the one the subscriber notifies: the caller's, or own_waker_
   Subscriber<msg::LockstepReport> subscriber_;
   std::uint64_t ignored_ = 0;
 };

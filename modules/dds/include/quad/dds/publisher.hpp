@@ -36,6 +36,13 @@ public:
     return writeSample(&sample);
   }
 
+  /// For a sample built in place: `publisher.write(toMessage(x))`.
+  bool write(Message&& sample)
+  {
+    Message& filled = sample;
+    return write(filled);
+  }
+
 private:
   std::uint32_t vehicle_id_;
   std::uint64_t seq_ = 0;

@@ -1,0 +1,36 @@
+#pragma once
+/// @file
+/// The plant node's parameters (configs/plant.yaml): declared once, here.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "quad/common/params.hpp"
+#include "quad/plant/simulation.hpp"
+
+namespace quad::plant {
+
+struct PlantNodeConfig {
+  enum class Mode { kRealTime, kLockstep };
+  Mode mode = Mode::kRealTime;
+  double real_time_factor = 1.0;
+  double duration_s = 0.0;                      ///< stop after this much sim time; 0 = never
+  std::vector<std::string> lockstep_participants;
+  bool lockstep_wait_for_command = true;
+  double lockstep_timeout_s = 5.0;              ///< [s] wall time before a lockstep wait is reported
+  std::int64_t lockstep_period_ns = 4'000'000;  ///< sim time between lockstep rounds
+  std::filesystem::path vehicle_file;
+  std::filesystem::path world_file;
+  std::filesystem::path fault_schedule_file;    ///< empty: none
+  SimulationConfig simulation;
+};
+
+common::ParamSchema plantSchema();
+
+/// Relative file paths resolve against the directory of the config file (or configs/ for
+/// the defaults). Throws common::ConfigError on contradictions (e.g. a lockstep period that
+/// is not a whole number of steps).
+PlantNodeConfig plantConfigFrom(const common::Params& params);
+
+}  // namespace quad::plant

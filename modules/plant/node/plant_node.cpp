@@ -1,0 +1,272 @@
+#include "plant_node.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include "conversions.hpp"
+#include "quad/common/time.hpp"
+#include "quad/plant/world_file.hpp"
+
+namespace quad::plant {
+
+namespace {
+constexpr std::int64_t kRealTimeTickNs = 1'000'000;      // pace in 1 ms slices
+constexpr std::int64_t kMaxCatchUpNs = 100'000'000;      // further behind than this: drop time
+constexpr std::int64_t kRepublishNs = 20'000'000;        // lockstep: resend a round's state this often
+std::string verdictText(CommandGuard::Verdict v)
+{
+  switch (v) {
+    case CommandGuard::Verdict::kAccepted:
+      return "accepted";
+    case CommandGuard::Verdict::kClamped:
+      return "clamped to the rotor limits";
+    case CommandGuard::Verdict::kRejectedInvalid:
+      return "rejected: non-finite speed";
+    case CommandGuard::Verdict::kRejectedLate:
+      return "rejected: late";
+    case CommandGuard::Verdict::kRejectedOld:
+      return "rejected: older than the command held";
+  }
+  return "?";
+}
+}  // namespace
+
+PlantNode::PlantNode(PlantNodeConfig config, dds::ParticipantOptions options)
+    : Node("plant", std::move(options)),
+      config_(std::move(config)),
+      sim_(std::make_unique<Simulation>(
+          vehicle::loadVehicle(config_.vehicle_file), loadWorld(config_.world_file),
+          config_.simulation,
+          config_.fault_schedule_file.empty() ? std::vector<Fault>{}
+                                              : loadFaultSchedule(config_.fault_schedule_file))),
+      clock_(participant(), dds::topics::kSimClock),
+      state_(participant(), dds::topics::kSimState),
+      imu_(participant(), dds::topics::kSimImu),
+      depth_(participant(), dds::topics::kSimDepth),
+      events_(participant(), dds::topics::kSimEvents),
+      actuators_(participant(), dds::topics::kActuators, waker()),
+      faults_(participant(), dds::topics::kFault, waker())
+{
+  if (config_.mode == PlantNodeConfig::Mode::kLockstep && !config_.lockstep_participants.empty()) {
+    barrier_ = std::make_unique<dds::LockstepBarrier>(participant(), config_.lockstep_participants, waker());
+  }
+  setTickPeriod(kRealTimeTickNs);
+  spdlog::info("plant: vehicle {}, world {} ({} obstacles), {} mode, seed {}", config_.vehicle_file.string(),
+               config_.world_file.string(), sim_->world().obstacles().size(),
+               config_.mode == PlantNodeConfig::Mode::kLockstep ? "lockstep" : "real-time",
+               config_.simulation.seed);
+}
+
+void PlantNode::event(msg::SimEventKind kind, std::int64_t subject, const std::string& detail)
+{
+  msg::SimEvent e;
+  e.header().stamp_ns(sim_->timeNs());
+  e.kind(kind);
+  msg::Vector3 p;
+  p.x(sim_->state().p_W.x());
+  p.y(sim_->state().p_W.y());
+  p.z(sim_->state().p_W.z());
+  e.p_W(p);
+  e.subject_id(subject);
+  e.detail(detail.substr(0, 256));
+  events_.write(e);
+}
+
+void PlantNode::onStart()
+{
+  wall_start_ns_ = common::steadyTimeNs();
+  event(msg::SIM_EVENT_RUN_STARTED, -1, "plant started");
+  publishClock();
+  // The initial state, so that a controller can compute the first command.
+  last_state_ = StateSample{0, sim_->state(), Vector3::Zero()};
+  state_.write(toMessage(*last_state_));
+  last_state_publish_ns_ = common::steadyTimeNs();
+}
+
+void PlantNode::onEvent(const dds::EndpointEvent& event)
+{
+  // In lockstep, sim time waits for the slowest module: wall-clock deadlines say nothing.
+  if (config_.mode == PlantNodeConfig::Mode::kLockstep && event.kind == dds::EventKind::kDeadlineMissed) {
+    return;
+  }
+  Node::onEvent(event);
+}
+
+void PlantNode::takeInputs()
+{
+  while (auto cmd = actuators_.take()) {
+    counters().samples_in++;
+    const RotorArray speeds{cmd->rotor_speed()[0], cmd->rotor_speed()[1], cmd->rotor_speed()[2],
+                            cmd->rotor_speed()[3]};
+    const auto verdict = sim_->commands().submit(speeds, cmd->armed(), cmd->header().stamp_ns(), sim_->timeNs());
+    if (verdict == CommandGuard::Verdict::kAccepted || verdict == CommandGuard::Verdict::kClamped) {
+      latest_command_stamp_ns_ = std::max(latest_command_stamp_ns_, cmd->header().stamp_ns());
+    }
+    if (verdict != CommandGuard::Verdict::kAccepted) {
+      counters().errors++;
+      spdlog::warn("quad/control/actuators: command seq {} stamped {} ns {}", cmd->header().seq(),
+                   cmd->header().stamp_ns(), verdictText(verdict));
+    }
+  }
+  while (auto fault = faults_.take()) {
+    counters().samples_in++;
+    if (fault->module_name().to_string() != "plant") {
+      continue;  // for another module
+    }
+    if (fault->kind() == msg::FAULT_CLEAR) {
+      if (!sim_->clearFault(fault->fault_id())) {
+        event(msg::SIM_EVENT_FAULT_REJECTED, fault->fault_id(), "no fault " + std::to_string(fault->fault_id()) + " to clear");
+      }
+      continue;
+    }
+    std::string why_not;
+    const auto core = faultFrom(*fault, sim_->timeNs(), why_not);
+    if (!core || !sim_->injectFault(*core)) {
+      const std::string reason = core ? "fault id already in use" : why_not;
+      spdlog::warn("quad/system/fault: fault {} rejected: {}", fault->fault_id(), reason);
+      event(msg::SIM_EVENT_FAULT_REJECTED, fault->fault_id(), "fault " + std::to_string(fault->fault_id()) + " rejected: " + reason);
+    }
+  }
+}
+
+void PlantNode::publishClock()
+{
+  msg::SimClock clock;
+  clock.header().stamp_ns(sim_->timeNs());
+  clock.sim_ns(sim_->timeNs());
+  clock.step_ns(config_.simulation.step_ns);
+  clock.real_time_factor(config_.real_time_factor);
+  clock.lockstep(config_.mode == PlantNodeConfig::Mode::kLockstep);
+  clock_.write(clock);
+}
+
+void PlantNode::publish(const StepOutputs& out)
+{
+  if (out.state) {
+    last_state_ = out.state;
+    last_state_publish_ns_ = common::steadyTimeNs();
+    state_.write(toMessage(*out.state));
+    publishClock();  // the clock at the state's rate: its contract's 250 Hz
+    counters().samples_out += 2;
+  }
+  if (out.imu) {
+    imu_.write(toMessage(*out.imu));
+    counters().samples_out++;
+  }
+  if (out.depth) {
+    depth_.write(toMessage(*out.depth, config_.simulation.depth.max_range));
+    counters().samples_out++;
+  }
+  for (const auto& e : out.events) {
+    events_.write(toMessage(e));
+    if (e.kind == SimEventRecord::Kind::kCollision) {
+      spdlog::warn("plant: collision at t = {:.3f} s: {}", common::toSeconds(e.t_ns), e.detail);
+    } else {
+      spdlog::info("plant: t = {:.3f} s: {}", common::toSeconds(e.t_ns), e.detail);
+    }
+  }
+}
+
+void PlantNode::stepOnce()
+{
+  publish(sim_->step());
+  if (config_.duration_s > 0.0 && common::toSeconds(sim_->timeNs()) >= config_.duration_s) {
+    spdlog::info("plant: sim time {:.3f} s reached its duration", common::toSeconds(sim_->timeNs()));
+    stop();
+  }
+}
+
+void PlantNode::runRealTime(std::int64_t steady_ns)
+{
+  const auto target = static_cast<std::int64_t>(
+      static_cast<double>(steady_ns - wall_start_ns_) * config_.real_time_factor);
+  const std::int64_t behind = target - sim_->timeNs() - static_cast<std::int64_t>(dropped_steps_) * config_.simulation.step_ns;
+  if (behind > kMaxCatchUpNs) {
+    // Too far behind the wall clock (a stalled process): skip the lost time, count it.
+    const std::int64_t skip = (behind - kMaxCatchUpNs) / config_.simulation.step_ns;
+    dropped_steps_ += static_cast<std::uint64_t>(skip);
+    spdlog::warn("plant: {:.3f} s behind real time; skipping {} steps", common::toSeconds(behind), skip);
+  }
+  while (!stopping() &&
+         sim_->timeNs() + static_cast<std::int64_t>(dropped_steps_) * config_.simulation.step_ns < target) {
+    stepOnce();
+  }
+}
+
+void PlantNode::runLockstep()
+{
+  while (!stopping()) {
+    if (!round_open_) {
+      round_end_ns_ = sim_->timeNs() + config_.lockstep_period_ns;
+      round_open_ = true;
+      round_wait_since_ns_ = common::steadyTimeNs();
+      next_wait_report_ns_ = round_wait_since_ns_ + common::toNanoseconds(config_.lockstep_timeout_s);
+    }
+    // A round may run once the controller answered the state of its start and every
+    // participant finished its work up to then.
+    const std::int64_t round_start = round_end_ns_ - config_.lockstep_period_ns;
+    const bool command_ready = !config_.lockstep_wait_for_command || latest_command_stamp_ns_ >= round_start;
+    const bool others_ready = !barrier_ || barrier_->poll(round_start);
+    if (!command_ready || !others_ready) {
+      const std::int64_t now = common::steadyTimeNs();
+      if (!command_ready && last_state_ && now - last_state_publish_ns_ >= kRepublishNs) {
+        // State is best effort: a sample lost (or sent before the controller matched) would
+        // stall the round for good. Resend it; an answer to a repeat is the same answer.
+        state_.write(toMessage(*last_state_));
+        last_state_publish_ns_ = now;
+      }
+      if (now >= next_wait_report_ns_) {
+        std::string late = command_ready ? "" : "control (no command for t = " + std::to_string(round_start) + " ns)";
+        if (barrier_ && !others_ready) {
+          for (const auto& l : barrier_->ledger().late(round_start)) {
+            late += (late.empty() ? "" : ", ") + l;
+          }
+        }
+        spdlog::warn("lockstep: at sim time {:.3f} s, still waiting after {:.1f} s for: {}",
+                     common::toSeconds(round_start), common::toSeconds(now - round_wait_since_ns_), late);
+        next_wait_report_ns_ = now + common::toNanoseconds(config_.lockstep_timeout_s);
+      }
+      return;  // woken again by commands or reports
+    }
+    while (!stopping() && sim_->timeNs() < round_end_ns_) {
+      stepOnce();
+    }
+    round_open_ = false;
+  }
+}
+
+void PlantNode::onWake()
+{
+  takeInputs();
+  if (config_.mode == PlantNodeConfig::Mode::kLockstep) {
+    runLockstep();
+  }
+}
+
+void PlantNode::onTick(std::int64_t steady_ns)
+{
+  takeInputs();
+  if (config_.mode == PlantNodeConfig::Mode::kRealTime) {
+    runRealTime(steady_ns);
+  } else {
+    runLockstep();
+  }
+}
+
+void PlantNode::onStop()
+{
+  const auto& c = sim_->commands().counters();
+  const std::string summary =
+      "sim time " + std::to_string(common::toSeconds(sim_->timeNs())) + " s, collisions " +
+      std::to_string(sim_->collisionCount()) + ", commands accepted " + std::to_string(c.accepted) +
+      ", clamped " + std::to_string(c.clamped) + ", rejected " +
+      std::to_string(c.rejected_invalid + c.rejected_late + c.rejected_old) + ", stale steps " +
+      std::to_string(c.stale_steps) + ", dropped steps " + std::to_string(dropped_steps_);
+  spdlog::info("plant: run ended: {}", summary);
+  const auto& st = sim_->state();
+  // Full precision, so that runs can be compared bit for bit from their logs.
+  spdlog::info("plant: final state t {} ns p ({:.17g}, {:.17g}, {:.17g}) q ({:.17g}, {:.17g}, {:.17g}, {:.17g})",
+               sim_->timeNs(), st.p_W.x(), st.p_W.y(), st.p_W.z(), st.q_WB.w, st.q_WB.x, st.q_WB.y, st.q_WB.z);
+  event(msg::SIM_EVENT_RUN_ENDED, static_cast<std::int64_t>(sim_->collisionCount()), summary);
+}
+
+}  // namespace quad::plant

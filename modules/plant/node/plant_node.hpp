@@ -1,0 +1,63 @@
+#pragma once
+/// @file
+/// The plant participant: owns the Simulation, publishes clock, state, IMU, depth and events,
+/// takes rotor commands and faults, and paces sim time (real time, or lockstep).
+
+#include <memory>
+#include <optional>
+
+#include "plant_config.hpp"
+#include "quad/dds/lockstep.hpp"
+#include "quad/dds/node.hpp"
+#include "quad/dds/publisher.hpp"
+#include "quad/dds/subscriber.hpp"
+#include "quad/dds/topics.hpp"
+
+namespace quad::plant {
+
+class PlantNode : public dds::Node {
+public:
+  /// Loads vehicle, world and fault schedule; throws common::ConfigError naming the file.
+  PlantNode(PlantNodeConfig config, dds::ParticipantOptions options);
+
+  const Simulation& simulation() const { return *sim_; }
+
+protected:
+  void onStart() override;
+  void onWake() override;
+  void onTick(std::int64_t steady_ns) override;
+  void onStop() override;
+  void onEvent(const dds::EndpointEvent& event) override;
+
+private:
+  void takeInputs();
+  void publish(const StepOutputs& out);
+  void publishClock();
+  void stepOnce();
+  void runRealTime(std::int64_t steady_ns);
+  void runLockstep();
+  void event(msg::SimEventKind kind, std::int64_t subject, const std::string& detail);
+
+  PlantNodeConfig config_;
+  std::unique_ptr<Simulation> sim_;
+  dds::Publisher<msg::SimClock> clock_;
+  dds::Publisher<msg::VehicleState> state_;
+  dds::Publisher<msg::Imu> imu_;
+  dds::Publisher<msg::PointCloud> depth_;
+  dds::Publisher<msg::SimEvent> events_;
+  dds::Subscriber<msg::ActuatorCommand> actuators_;
+  dds::Subscriber<msg::FaultCommand> faults_;
+  std::unique_ptr<dds::LockstepBarrier> barrier_;
+
+  std::int64_t wall_start_ns_ = 0;
+  std::int64_t latest_command_stamp_ns_ = -1;
+  std::int64_t round_end_ns_ = 0;          // lockstep: sim time the current round runs to
+  bool round_open_ = false;                // lockstep: waiting for the round's inputs
+  std::int64_t round_wait_since_ns_ = 0;   // steady time the wait began
+  std::int64_t next_wait_report_ns_ = 0;
+  std::uint64_t dropped_steps_ = 0;        // real time: steps skipped when far behind
+  std::optional<StateSample> last_state_;  // last state published
+  std::int64_t last_state_publish_ns_ = 0; // steady time of that publication
+};
+
+}  // namespace quad::plant

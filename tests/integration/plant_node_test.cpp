@@ -1,0 +1,115 @@
+// The plant node as a process: real time, lockstep determinism, faults, bad configuration.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+
+#include "process.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+using quad::test::ChildProcess;
+
+std::map<std::string, std::string> env(int domain)
+{
+  return {{"QUAD_DOMAIN_ID", std::to_string(domain)}, {"QUAD_TRANSPORT", "udp"}};
+}
+
+/// Writes a plant config next to the shipped ones (so its relative paths resolve) and
+/// returns its path.
+std::string config(const std::string& name, const std::string& body)
+{
+  const auto dir = std::filesystem::temp_directory_path() / "quad_plant_node_test";
+  std::filesystem::create_directories(dir);
+  const auto path = dir / name;
+  std::ofstream(path) << "vehicle: " << QUAD_CONFIG_DIR << "/vehicles/x500.yaml\n"
+                      << "world: " << QUAD_CONFIG_DIR << "/worlds/demo.yaml\n"
+                      << body;
+  return path.string();
+}
+
+// x500: sqrt(m g / (4 k_f)) = sqrt(2 * 9.81 / (4 * 8.54858e-6))
+const std::string kHover = "757.5";
+
+std::string finalState(const std::string& log)
+{
+  std::smatch m;
+  const std::regex line("final state t [0-9]+ ns p \\([^)]*\\) q \\([^)]*\\)");
+  return std::regex_search(log, m, line) ? m.str() : "";
+}
+
+TEST(PlantNode, RealTimeRunPublishesStateAndStopsAtItsDuration)
+{
+  ChildProcess plant({QUAD_PLANT_NODE, "--config", config("realtime.yaml", "sim: {duration: 3.0}\n")}, env(140));
+  ChildProcess echo({QUAD_TOOL, "topic", "echo", "quad/sim/state", "-n", "3", "--timeout", "10"}, env(140));
+  EXPECT_EQ(echo.wait(15s), 0) << echo.output();
+  EXPECT_NE(echo.output().find("landed: true"), std::string::npos) << echo.output();
+  EXPECT_EQ(plant.wait(15s), 0) << plant.output();
+  EXPECT_NE(plant.output().find("reached its duration"), std::string::npos) << plant.output();
+  EXPECT_NE(plant.output().find("final state t 3000000000 ns"), std::string::npos) << plant.output();
+}
+
+std::string lockstepRun(int domain)
+{
+  ChildProcess controller({QUAD_ALTITUDE_CONTROLLER, kHover, "2.0"}, env(domain));
+  EXPECT_TRUE(controller.waitForOutput("ready", 10s)) << controller.output();
+  ChildProcess plant({QUAD_PLANT_NODE, "--config",
+                      config("lockstep.yaml", "sim: {mode: lockstep, duration: 4.0, seed: 5}\n")},
+                     env(domain));
+  EXPECT_EQ(plant.wait(60s), 0) << plant.output();
+  return finalState(plant.output());
+}
+
+TEST(PlantNode, TwoLockstepRunsWithOneSeedAreBitIdentical)
+{
+  // GIVEN a controller whose commands depend on the state they answer
+  // WHEN two lockstep runs of 4 s fly it (their wall-clock timing differs)
+  const std::string a = lockstepRun(141);
+  const std::string b = lockstepRun(142);
+  // THEN the final states agree to the last bit, and the vehicle did climb
+  ASSERT_FALSE(a.empty());
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(a.find("p (0, 0, 0)"), std::string::npos) << a;
+}
+
+TEST(PlantNode, FaultCommandIsAcknowledgedOnTheEventsTopic)
+{
+  ChildProcess plant({QUAD_PLANT_NODE, "--config", config("faults.yaml", "sim: {duration: 20.0}\n")}, env(143));
+  ASSERT_TRUE(plant.waitForOutput("running on domain 143", 10s)) << plant.output();
+  ChildProcess events({QUAD_TOOL, "topic", "echo", "quad/sim/events", "-n", "3", "--timeout", "15"}, env(143));
+  ChildProcess pub({QUAD_TOOL, "topic", "pub", "quad/system/fault",
+                    "{fault_id: 9, module_name: plant, kind: FAULT_MOTOR_FAILURE, index: 1, magnitude: 0.5}"},
+                   env(143));
+  ASSERT_EQ(pub.wait(15s), 0) << pub.output();
+  ChildProcess bad({QUAD_TOOL, "topic", "pub", "quad/system/fault",
+                    "{fault_id: 10, module_name: plant, kind: FAULT_DATAGRAM_LOSS, magnitude: 0.5}"},
+                   env(143));
+  ASSERT_EQ(bad.wait(15s), 0) << bad.output();
+  EXPECT_EQ(events.wait(20s), 0) << events.output();
+  EXPECT_NE(events.output().find("kind: SIM_EVENT_FAULT_APPLIED"), std::string::npos) << events.output();
+  EXPECT_NE(events.output().find("detail: fault 9 motor: rotor 1 at 0.5 efficiency"), std::string::npos)
+      << events.output();
+  EXPECT_NE(events.output().find("kind: SIM_EVENT_FAULT_REJECTED"), std::string::npos) << events.output();
+}
+
+TEST(PlantNode, BadWorldIsRefusedNamingFileKeyAndValue)
+{
+  const auto dir = std::filesystem::temp_directory_path() / "quad_plant_node_test";
+  std::filesystem::create_directories(dir);
+  const auto world = dir / "bad_world.yaml";
+  std::ofstream(world) << "bounds: {min: [0, 0, 0], max: [10, 10, 10]}\nstart: [1, 1, 0]\ngoal: [9, 9, 2]\n"
+                          "obstacles:\n  - {type: sphere, center: [5, 5, 5], radius: .nan}\n";
+  const auto path = dir / "bad.yaml";
+  std::ofstream(path) << "world: " << world.string() << "\n";
+  ChildProcess plant({QUAD_PLANT_NODE, "--config", path.string()}, env(144));
+  EXPECT_EQ(plant.wait(10s), 1) << plant.output();
+  EXPECT_NE(plant.output().find(world.string() + ":obstacles[0].radius: .nan: not a finite number"),
+            std::string::npos)
+      << plant.output();
+}
+
+}  // namespace

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "quad/common/time.hpp"
 
@@ -16,6 +18,14 @@ Simulation::Simulation(vehicle::VehicleParams vehicle, World world, SimulationCo
       guard_(vehicle, config_.command_timeout_ns),
       rng_(config_.seed)
 {
+  // RK4 is stable on the motor lag only while step/τ stays inside its region (2.78): keep a
+  // margin, and refuse a vehicle whose motors are too fast for the step.
+  const double step_s = common::toSeconds(config_.step_ns);
+  const double fastest = std::min(vehicle.motor_time_constant_up, vehicle.motor_time_constant_down);
+  if (fastest < 0.4 * step_s) {
+    throw std::invalid_argument("motor time constant " + std::to_string(fastest) + " s is below 0.4 x the step " +
+                                std::to_string(step_s) + " s: RK4 would be unstable; shorten sim.step");
+  }
   state_.p_W = world_.start();
   state_.landed = state_.p_W.z() <= 0.0;
   state_.p_W.z() = std::max(0.0, state_.p_W.z());

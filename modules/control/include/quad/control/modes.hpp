@@ -1,0 +1,75 @@
+#pragma once
+/// @file
+/// The controller's modes and failsafe: a pure state machine, stepped with what the node
+/// observed this tick. Every transition has a reason, which the node publishes.
+///
+///   DISARMED --arm--> IDLE --takeoff--> TAKEOFF --altitude--> HOVER --mission--> MISSION
+///   MISSION --goal reached--> HOVER;  any airborne --land--> LAND --landed--> IDLE
+///   MISSION --path stale--> HOVER --path still stale for path_stale_land_after--> LAND
+///   any airborne --state stale--> FAILSAFE_LAND --landed--> IDLE --idle timeout--> DISARMED
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace quad::control {
+
+enum class Mode { kDisarmed, kIdle, kTakeoff, kMission, kHover, kLand, kFailsafeLand };
+enum class Reason { kNone, kStateStale, kPathStale, kInputInvalid, kSaturation, kCommanded };
+enum class Command { kNone, kArm, kDisarm, kTakeoff, kStartMission, kHold, kLand };
+
+std::string_view toString(Mode m);
+std::string_view toString(Reason r);
+std::string_view toString(Command c);
+
+bool airborne(Mode m);
+
+struct ModeInputs {
+  double t = 0.0;                 ///< [s] now
+  Command command = Command::kNone;
+  bool state_fresh = true;        ///< a valid state within its timeout
+  bool path_fresh = false;        ///< a valid path (status OK) within its timeout
+  bool landed = true;
+  bool takeoff_altitude_reached = false;
+  bool goal_reached = false;
+};
+
+struct ModeConfig {
+  double path_stale_land_after = 5.0;  ///< [s] in HOVER without a path before landing
+  double idle_disarm_after = 10.0;     ///< [s] on the ground, armed, before disarming
+  bool auto_mission = false;           ///< HOVER with a fresh path starts the mission by itself
+};
+
+struct Transition {
+  Mode from;
+  Mode to;
+  Reason reason;
+  std::string why;  ///< "path stale", "commanded: land", ...
+};
+
+class ModeMachine {
+public:
+  explicit ModeMachine(ModeConfig config = {});
+
+  Mode mode() const { return mode_; }
+  Reason reason() const { return reason_; }
+
+  /// One tick. Returns the transition taken, if any. A command that does not apply in the
+  /// current mode (disarm while flying, mission without a path) is refused: no transition,
+  /// and `refused` says why.
+  std::optional<Transition> update(const ModeInputs& in);
+
+  const std::string& refused() const { return refused_; }
+
+private:
+  std::optional<Transition> go(Mode to, Reason reason, std::string why, double t);
+
+  ModeConfig config_;
+  Mode mode_ = Mode::kDisarmed;
+  Reason reason_ = Reason::kNone;
+  double entered_ = 0.0;          // time the current mode began
+  double path_stale_since_ = -1;  // time the path went stale in HOVER, -1 if fresh
+  std::string refused_;
+};
+
+}  // namespace quad::control

@@ -1,0 +1,201 @@
+#include "quad/control/modes.hpp"
+
+namespace quad::control {
+
+std::string_view toString(Mode m)
+{
+  switch (m) {
+    case Mode::kDisarmed:
+      return "DISARMED";
+    case Mode::kIdle:
+      return "IDLE";
+    case Mode::kTakeoff:
+      return "TAKEOFF";
+    case Mode::kMission:
+      return "MISSION";
+    case Mode::kHover:
+      return "HOVER";
+    case Mode::kLand:
+      return "LAND";
+    case Mode::kFailsafeLand:
+      return "FAILSAFE_LAND";
+  }
+  return "?";
+}
+
+std::string_view toString(Reason r)
+{
+  switch (r) {
+    case Reason::kNone:
+      return "none";
+    case Reason::kStateStale:
+      return "state stale";
+    case Reason::kPathStale:
+      return "path stale";
+    case Reason::kInputInvalid:
+      return "input invalid";
+    case Reason::kSaturation:
+      return "saturation";
+    case Reason::kCommanded:
+      return "commanded";
+  }
+  return "?";
+}
+
+std::string_view toString(Command c)
+{
+  switch (c) {
+    case Command::kNone:
+      return "none";
+    case Command::kArm:
+      return "arm";
+    case Command::kDisarm:
+      return "disarm";
+    case Command::kTakeoff:
+      return "takeoff";
+    case Command::kStartMission:
+      return "start mission";
+    case Command::kHold:
+      return "hold";
+    case Command::kLand:
+      return "land";
+  }
+  return "?";
+}
+
+bool airborne(Mode m)
+{
+  return m == Mode::kTakeoff || m == Mode::kMission || m == Mode::kHover || m == Mode::kLand ||
+         m == Mode::kFailsafeLand;
+}
+
+ModeMachine::ModeMachine(ModeConfig config) : config_(config) {}
+
+std::optional<Transition> ModeMachine::go(Mode to, Reason reason, std::string why, double t)
+{
+  Transition tr{mode_, to, reason, std::move(why)};
+  mode_ = to;
+  reason_ = reason;
+  entered_ = t;
+  path_stale_since_ = -1.0;
+  return tr;
+}
+
+std::optional<Transition> ModeMachine::update(const ModeInputs& in)
+{
+  refused_.clear();
+  const auto commanded = [&](Command c) { return in.command == c; };
+  const auto refuse = [&](const char* why) {
+    refused_ = std::string(toString(in.command)) + " refused in " + std::string(toString(mode_)) + ": " + why;
+  };
+
+  // Safety first: losing the state while flying lands, whatever was asked.
+  if (airborne(mode_) && mode_ != Mode::kFailsafeLand && !in.state_fresh) {
+    return go(Mode::kFailsafeLand, Reason::kStateStale, "vehicle state stale", in.t);
+  }
+  if (commanded(Command::kDisarm)) {
+    if (mode_ == Mode::kDisarmed) {
+      return std::nullopt;
+    }
+    if (!in.landed) {
+      refuse("the vehicle is in the air");
+      return std::nullopt;
+    }
+    return go(Mode::kDisarmed, Reason::kCommanded, "commanded: disarm", in.t);
+  }
+
+  switch (mode_) {
+    case Mode::kDisarmed:
+      if (commanded(Command::kArm)) {
+        if (!in.landed || !in.state_fresh) {
+          refuse(!in.landed ? "not on the ground" : "no fresh vehicle state");
+          return std::nullopt;
+        }
+        return go(Mode::kIdle, Reason::kCommanded, "commanded: arm", in.t);
+      }
+      if (in.command != Command::kNone) {
+        refuse("arm first");
+      }
+      return std::nullopt;
+    case Mode::kIdle:
+      if (commanded(Command::kTakeoff)) {
+        if (!in.state_fresh) {
+          refuse("no fresh vehicle state");
+          return std::nullopt;
+        }
+        return go(Mode::kTakeoff, Reason::kCommanded, "commanded: takeoff", in.t);
+      }
+      if (in.t - entered_ >= config_.idle_disarm_after) {
+        return go(Mode::kDisarmed, Reason::kNone, "idle on the ground: disarmed", in.t);
+      }
+      if (in.command != Command::kNone && !commanded(Command::kArm)) {
+        refuse("take off first");
+      }
+      return std::nullopt;
+    case Mode::kFailsafeLand:
+      if (in.landed) {
+        return go(Mode::kIdle, Reason::kStateStale, "landed after failsafe", in.t);
+      }
+      if (in.command != Command::kNone) {
+        refuse("failsafe landing");
+      }
+      return std::nullopt;
+    default:
+      break;
+  }
+
+  // Airborne modes with a fresh state.
+  if (commanded(Command::kLand) && mode_ != Mode::kLand) {
+    return go(Mode::kLand, Reason::kCommanded, "commanded: land", in.t);
+  }
+  if (commanded(Command::kHold) && mode_ != Mode::kHover) {
+    return go(Mode::kHover, Reason::kCommanded, "commanded: hold", in.t);
+  }
+  switch (mode_) {
+    case Mode::kTakeoff:
+      if (in.takeoff_altitude_reached) {
+        return go(Mode::kHover, Reason::kNone, "takeoff altitude reached", in.t);
+      }
+      break;
+    case Mode::kHover:
+      if (commanded(Command::kStartMission) || (config_.auto_mission && in.path_fresh && !in.goal_reached)) {
+        if (!in.path_fresh) {
+          refuse("no fresh path");
+          return std::nullopt;
+        }
+        return go(Mode::kMission, commanded(Command::kStartMission) ? Reason::kCommanded : Reason::kNone,
+                  commanded(Command::kStartMission) ? "commanded: start mission" : "path available", in.t);
+      }
+      if (reason_ == Reason::kPathStale) {
+        if (in.path_fresh) {
+          path_stale_since_ = -1.0;
+        } else {
+          if (path_stale_since_ < 0.0) {
+            path_stale_since_ = entered_;
+          }
+          if (in.t - path_stale_since_ >= config_.path_stale_land_after) {
+            return go(Mode::kLand, Reason::kPathStale, "path stale too long: landing", in.t);
+          }
+        }
+      }
+      break;
+    case Mode::kMission:
+      if (!in.path_fresh) {
+        return go(Mode::kHover, Reason::kPathStale, "path stale", in.t);
+      }
+      if (in.goal_reached) {
+        return go(Mode::kHover, Reason::kNone, "goal reached", in.t);
+      }
+      break;
+    case Mode::kLand:
+      if (in.landed) {
+        return go(Mode::kIdle, Reason::kNone, "landed", in.t);
+      }
+      break;
+    default:
+      break;
+  }
+  return std::nullopt;
+}
+
+}  // namespace quad::control

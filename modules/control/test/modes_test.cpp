@@ -1,0 +1,168 @@
+// The mode machine, table-driven: every condition in every mode.
+#include "quad/control/modes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <functional>
+
+namespace quad::control {
+namespace {
+
+constexpr std::array kModes = {Mode::kDisarmed, Mode::kIdle, Mode::kTakeoff, Mode::kMission,
+                               Mode::kHover, Mode::kLand, Mode::kFailsafeLand};
+
+/// A machine put into `mode` through legal transitions.
+ModeMachine machineIn(Mode mode, ModeConfig config = {})
+{
+  ModeMachine m(config);
+  ModeInputs in;
+  const auto step = [&](Command c, std::function<void(ModeInputs&)> tweak = {}) {
+    ModeInputs i = in;
+    i.command = c;
+    if (tweak) {
+      tweak(i);
+    }
+    m.update(i);
+  };
+  if (mode == Mode::kDisarmed) {
+    return m;
+  }
+  step(Command::kArm);
+  if (mode == Mode::kIdle) {
+    return m;
+  }
+  in.landed = false;
+  step(Command::kTakeoff);
+  if (mode == Mode::kTakeoff) {
+    return m;
+  }
+  step(Command::kNone, [](ModeInputs& i) { i.takeoff_altitude_reached = true; });
+  if (mode == Mode::kHover) {
+    return m;
+  }
+  if (mode == Mode::kMission) {
+    step(Command::kStartMission, [](ModeInputs& i) { i.path_fresh = true; });
+  } else if (mode == Mode::kLand) {
+    step(Command::kLand);
+  } else if (mode == Mode::kFailsafeLand) {
+    step(Command::kNone, [](ModeInputs& i) { i.state_fresh = false; });
+  }
+  EXPECT_EQ(m.mode(), mode);
+  return m;
+}
+
+struct Row {
+  const char* condition;
+  std::function<void(ModeInputs&)> apply;
+  std::array<Mode, 7> expected;  // in the order of kModes
+};
+
+TEST(Modes, EveryConditionInEveryMode)
+{
+  using enum Mode;
+  const Mode D = kDisarmed, I = kIdle, T = kTakeoff, M = kMission, H = kHover, L = kLand, F = kFailsafeLand;
+  const std::vector<Row> table = {
+      //                                                         DISARMED IDLE TAKEOFF MISSION HOVER LAND FAILSAFE
+      {"nothing", [](ModeInputs&) {}, {D, I, T, M, H, L, F}},
+      {"arm", [](ModeInputs& i) { i.command = Command::kArm; }, {I, I, T, M, H, L, F}},
+      {"disarm", [](ModeInputs& i) { i.command = Command::kDisarm; }, {D, D, T, M, H, L, F}},
+      {"takeoff", [](ModeInputs& i) { i.command = Command::kTakeoff; }, {D, T, T, M, H, L, F}},
+      {"start mission", [](ModeInputs& i) { i.command = Command::kStartMission; }, {D, I, T, M, M, L, F}},
+      {"hold", [](ModeInputs& i) { i.command = Command::kHold; }, {D, I, H, H, H, H, F}},
+      {"land", [](ModeInputs& i) { i.command = Command::kLand; }, {D, I, L, L, L, L, F}},
+      {"state stale", [](ModeInputs& i) { i.state_fresh = false; }, {D, I, F, F, F, F, F}},
+      {"path stale", [](ModeInputs& i) { i.path_fresh = false; }, {D, I, T, H, H, L, F}},
+      {"landed", [](ModeInputs& i) { i.landed = true; }, {D, I, T, M, H, I, I}},
+      {"altitude reached", [](ModeInputs& i) { i.takeoff_altitude_reached = true; }, {D, I, H, M, H, L, F}},
+      {"goal reached", [](ModeInputs& i) { i.goal_reached = true; }, {D, I, T, H, H, L, F}},
+  };
+  for (const Row& row : table) {
+    for (std::size_t k = 0; k < kModes.size(); ++k) {
+      ModeMachine m = machineIn(kModes[k]);
+      ModeInputs in;
+      in.landed = !airborne(kModes[k]);
+      in.path_fresh = true;
+      row.apply(in);
+      m.update(in);
+      EXPECT_EQ(m.mode(), row.expected[k])
+          << row.condition << " in " << toString(kModes[k]) << ": got " << toString(m.mode());
+    }
+  }
+}
+
+TEST(Modes, TransitionsCarryTheirReason)
+{
+  ModeMachine m = machineIn(Mode::kMission);
+  ModeInputs in;
+  in.landed = false;
+  in.path_fresh = false;
+  const auto tr = m.update(in);
+  ASSERT_TRUE(tr.has_value());
+  EXPECT_EQ(tr->from, Mode::kMission);
+  EXPECT_EQ(tr->to, Mode::kHover);
+  EXPECT_EQ(tr->reason, Reason::kPathStale);
+  in.state_fresh = false;
+  EXPECT_EQ(m.update(in)->reason, Reason::kStateStale);
+}
+
+TEST(Modes, StalePathInHoverLandsAfterItsTimeout)
+{
+  ModeConfig config;
+  config.path_stale_land_after = 5.0;
+  ModeMachine m = machineIn(Mode::kMission, config);
+  ModeInputs in;
+  in.landed = false;
+  in.path_fresh = false;
+  in.t = 10.0;
+  m.update(in);
+  ASSERT_EQ(m.mode(), Mode::kHover);
+  in.t = 14.9;
+  m.update(in);
+  EXPECT_EQ(m.mode(), Mode::kHover);
+  in.t = 15.0;
+  const auto tr = m.update(in);
+  EXPECT_EQ(m.mode(), Mode::kLand);
+  EXPECT_EQ(tr->reason, Reason::kPathStale);
+}
+
+TEST(Modes, IdleDisarmsAfterItsTimeoutAndAutoMissionStartsWithAPath)
+{
+  ModeConfig config;
+  config.idle_disarm_after = 10.0;
+  config.auto_mission = true;
+  ModeMachine idle = machineIn(Mode::kIdle, config);
+  ModeInputs in;
+  in.t = 10.0;
+  idle.update(in);
+  EXPECT_EQ(idle.mode(), Mode::kDisarmed);
+
+  ModeMachine hover = machineIn(Mode::kHover, config);
+  ModeInputs air;
+  air.landed = false;
+  air.path_fresh = true;
+  hover.update(air);
+  EXPECT_EQ(hover.mode(), Mode::kMission);
+}
+
+TEST(Modes, RefusedCommandsSayWhy)
+{
+  ModeMachine flying = machineIn(Mode::kHover);
+  ModeInputs in;
+  in.landed = false;
+  in.command = Command::kDisarm;
+  EXPECT_FALSE(flying.update(in).has_value());
+  EXPECT_EQ(flying.refused(), "disarm refused in HOVER: the vehicle is in the air");
+  in.command = Command::kStartMission;
+  in.path_fresh = false;
+  flying.update(in);
+  EXPECT_EQ(flying.refused(), "start mission refused in HOVER: no fresh path");
+  ModeMachine ground;
+  ModeInputs g;
+  g.command = Command::kTakeoff;
+  ground.update(g);
+  EXPECT_EQ(ground.refused(), "takeoff refused in DISARMED: arm first");
+}
+
+}  // namespace
+}  // namespace quad::control

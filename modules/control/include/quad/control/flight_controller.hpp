@@ -1,0 +1,98 @@
+#pragma once
+/// @file
+/// The whole controller core: validated inputs, modes and failsafe, the path follower, the
+/// SE(3) controller and the mixer, stepped once per vehicle state. No DDS: the node feeds it
+/// and publishes what it returns.
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "quad/control/geometric_controller.hpp"
+#include "quad/control/mixer.hpp"
+#include "quad/control/modes.hpp"
+#include "quad/control/path_follower.hpp"
+#include "quad/vehicle/vehicle.hpp"
+
+namespace quad::control {
+
+struct FlightControllerConfig {
+  GeometricGains gains;
+  FollowerLimits follower;
+  ModeConfig modes;
+  double takeoff_altitude = 2.0;  ///< [m] above the take-off point
+  double land_speed = 0.5;        ///< [m/s] descent in LAND
+  double state_timeout = 0.1;     ///< [s] a state older than this is stale
+  double path_timeout = 3.0;      ///< [s] a path not (re)published for this long is stale
+  double goal_tolerance = 0.3;    ///< [m] default when the goal does not give one
+  double failsafe_thrust = 0.85;  ///< fraction of the weight for a blind failsafe descent
+};
+
+struct FlightOutput {
+  std::array<double, vehicle::kRotorCount> rotor_speed{};  ///< [rad/s]
+  bool armed = false;
+  Mode mode = Mode::kDisarmed;
+  Reason reason = Reason::kNone;
+  std::optional<Transition> transition;  ///< taken this tick
+  std::string refused;                   ///< a command refused this tick, and why
+  Reference reference;
+  ControlOutput control;
+  MixerOutput mixer;
+  Vector3 position_error_W = Vector3::Zero();  ///< reference − actual
+  Vector3 velocity_error_W = Vector3::Zero();
+};
+
+class FlightController {
+public:
+  FlightController(const vehicle::VehicleParams& vehicle, FlightControllerConfig config);
+
+  /// A vehicle state at sim time t [s]. Rejected (false, counted) when non-finite, the
+  /// quaternion is not unit within 1e-3, or t goes back.
+  bool onState(const VehicleState& state, bool landed, double t);
+  /// A planned path. `ok` is the planner's status (waypoints are meaningful only when OK).
+  /// Rejected (false, counted) when a waypoint is non-finite or an OK path has none.
+  bool onPath(const std::vector<Vector3>& waypoints, std::uint32_t version, bool ok, double t);
+  /// The goal the mission flies to; rejected (false, counted) when non-finite.
+  bool onGoal(const Vector3& p, double tolerance);
+  /// An operator command, applied at the next update.
+  void onCommand(Command command) { pending_ = command; }
+
+  /// One control tick at sim time t [s].
+  FlightOutput update(double t);
+
+  std::uint64_t rejectedInputs() const { return rejected_; }
+  Mode mode() const { return modes_.mode(); }
+  std::optional<std::uint32_t> pathVersion() const { return path_version_; }
+  double lastStateTime() const { return state_t_; }
+
+private:
+  void enter(Mode mode, double t);
+
+  vehicle::VehicleParams vehicle_;
+  FlightControllerConfig config_;
+  ModeMachine modes_;
+  PathFollower follower_;
+  GeometricController controller_;
+  Mixer mixer_;
+
+  std::optional<VehicleState> state_;
+  bool landed_ = true;
+  double state_t_ = -1.0;
+  std::vector<Vector3> path_;
+  std::optional<std::uint32_t> path_version_;
+  bool path_ok_ = false;
+  double path_t_ = -1e300;
+  bool path_changed_ = false;
+  std::optional<Vector3> goal_;
+  double goal_tolerance_ = 0.3;
+  Command pending_ = Command::kNone;
+  double last_update_t_ = -1.0;
+  Vector3 takeoff_target_ = Vector3::Zero();
+  Vector3 land_xy_ = Vector3::Zero();
+  double land_z0_ = 0.0;
+  double land_t0_ = 0.0;
+  std::uint64_t rejected_ = 0;
+};
+
+}  // namespace quad::control

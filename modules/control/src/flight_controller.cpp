@@ -1,0 +1,176 @@
+#include "quad/control/flight_controller.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "quad/geometry/so3.hpp"
+
+namespace quad::control {
+
+namespace {
+double yawOf(const Quaternion& q)
+{
+  const Vector3 x = geometry::toMatrix(q).col(0);
+  return std::atan2(x.y(), x.x());
+}
+}  // namespace
+
+FlightController::FlightController(const vehicle::VehicleParams& vehicle, FlightControllerConfig config)
+    : vehicle_(vehicle),
+      config_(config),
+      modes_(config.modes),
+      follower_(config.follower),
+      controller_(vehicle.mass, vehicle.inertia, config.gains),
+      mixer_(vehicle),
+      goal_tolerance_(config.goal_tolerance)
+{
+}
+
+bool FlightController::onState(const VehicleState& s, bool landed, double t)
+{
+  const double n = s.q_WB.norm();
+  const bool valid = s.p_W.allFinite() && s.v_W.allFinite() && s.w_B.allFinite() && std::isfinite(n) &&
+                     std::abs(n - 1.0) < 1e-3 && std::isfinite(t) && t >= state_t_;
+  if (!valid) {
+    ++rejected_;
+    return false;
+  }
+  state_ = VehicleState{s.p_W, s.v_W, s.q_WB.normalized(), s.w_B};
+  landed_ = landed;
+  state_t_ = t;
+  return true;
+}
+
+bool FlightController::onPath(const std::vector<Vector3>& waypoints, std::uint32_t version, bool ok, double t)
+{
+  const bool finite = std::all_of(waypoints.begin(), waypoints.end(), [](const Vector3& w) { return w.allFinite(); });
+  if (!finite || (ok && waypoints.empty()) || !std::isfinite(t)) {
+    ++rejected_;
+    return false;
+  }
+  path_t_ = t;
+  path_ok_ = ok;
+  if (ok && (!path_version_ || version != *path_version_)) {
+    path_ = waypoints;
+    path_version_ = version;
+    path_changed_ = true;
+  }
+  return true;
+}
+
+bool FlightController::onGoal(const Vector3& p, double tolerance)
+{
+  if (!p.allFinite() || !std::isfinite(tolerance)) {
+    ++rejected_;
+    return false;
+  }
+  goal_ = p;
+  goal_tolerance_ = tolerance > 0.0 ? tolerance : config_.goal_tolerance;
+  return true;
+}
+
+void FlightController::enter(Mode mode, double t)
+{
+  const Vector3 p = state_ ? state_->p_W : Vector3::Zero();
+  const double yaw = state_ ? yawOf(state_->q_WB) : 0.0;
+  switch (mode) {
+    case Mode::kDisarmed:
+    case Mode::kIdle:
+      follower_.hold(p, yaw);
+      controller_.reset();
+      break;
+    case Mode::kTakeoff:
+      follower_.hold(p, yaw);
+      takeoff_target_ = p + Vector3(0.0, 0.0, config_.takeoff_altitude);
+      follower_.setPath({p, takeoff_target_}, 0);
+      break;
+    case Mode::kHover: {
+      // Hold where the reference is, unless the vehicle is far from it (after a failsafe).
+      const Vector3 hold = (follower_.reference().p_W - p).norm() < 1.0 ? follower_.reference().p_W : p;
+      follower_.hold(hold, follower_.reference().yaw);
+      break;
+    }
+    case Mode::kMission:
+      follower_.setPath(path_, path_version_.value_or(0));
+      path_changed_ = false;
+      break;
+    case Mode::kLand:
+    case Mode::kFailsafeLand:
+      land_xy_ = p;
+      land_z0_ = std::min(p.z(), follower_.reference().p_W.z());
+      land_t0_ = t;
+      break;
+  }
+}
+
+FlightOutput FlightController::update(double t)
+{
+  FlightOutput out;
+  const double dt = last_update_t_ < 0.0 ? 0.0 : std::clamp(t - last_update_t_, 0.0, 0.1);
+  last_update_t_ = t;
+
+  ModeInputs in;
+  in.t = t;
+  in.command = pending_;
+  pending_ = Command::kNone;
+  in.state_fresh = state_ && t - state_t_ <= config_.state_timeout;
+  in.path_fresh = path_ok_ && path_version_ && t - path_t_ <= config_.path_timeout;
+  in.landed = landed_;
+  in.takeoff_altitude_reached = modes_.mode() == Mode::kTakeoff && state_ && follower_.finished() &&
+                                std::abs(state_->p_W.z() - takeoff_target_.z()) < 0.1;
+  in.goal_reached = modes_.mode() == Mode::kMission && state_ && goal_ && follower_.finished() &&
+                    (state_->p_W - *goal_).norm() <= goal_tolerance_;
+  out.transition = modes_.update(in);
+  out.refused = modes_.refused();
+  if (out.transition) {
+    enter(out.transition->to, t);
+  }
+  out.mode = modes_.mode();
+  out.reason = modes_.reason();
+  if (out.mode == Mode::kMission && path_changed_) {
+    follower_.setPath(path_, path_version_.value_or(0));  // a replan: joined without a jump
+    path_changed_ = false;
+  }
+
+  switch (out.mode) {
+    case Mode::kDisarmed:
+      out.armed = false;
+      return out;
+    case Mode::kIdle:
+      out.armed = true;  // rotors at their minimum speed on the ground
+      out.rotor_speed.fill(vehicle_.rotor_speed_min);
+      return out;
+    default:
+      break;
+  }
+  out.armed = true;
+  if (!in.state_fresh) {
+    // Blind: no state to close any loop on. Descend on a little less than the weight.
+    const MixerOutput m = mixer_.mix(config_.failsafe_thrust * vehicle_.mass * 9.81, Vector3::Zero());
+    out.rotor_speed = m.rotor_speed;
+    out.mixer = m;
+    return out;
+  }
+  Reference ref;
+  if (out.mode == Mode::kLand || out.mode == Mode::kFailsafeLand) {
+    // Straight down at the landing speed, aiming a little below the ground to touch down.
+    const double z = std::max(-0.3, land_z0_ - config_.land_speed * (t - land_t0_));
+    ref.p_W = Vector3(land_xy_.x(), land_xy_.y(), z);
+    ref.v_W = Vector3(0.0, 0.0, z > -0.3 ? -config_.land_speed : 0.0);
+    ref.yaw = follower_.reference().yaw;
+  } else {
+    ref = follower_.step(dt);
+  }
+  out.reference = ref;
+  out.control = controller_.update(*state_, ref, dt);
+  if (!out.control.valid) {
+    ++rejected_;
+  }
+  out.mixer = mixer_.mix(out.control.thrust, out.control.torque_B);
+  out.rotor_speed = out.mixer.rotor_speed;
+  out.position_error_W = ref.p_W - state_->p_W;
+  out.velocity_error_W = ref.v_W - state_->v_W;
+  return out;
+}
+
+}  // namespace quad::control

@@ -1,0 +1,191 @@
+// The whole controller core flying the plant simulation: missions, failsafes, fuzzing.
+#include "quad/control/flight_controller.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "closed_loop.hpp"
+#include "quad/common/time.hpp"
+#include "quad/plant/simulation.hpp"
+
+namespace quad::control {
+namespace {
+
+struct Rig {
+  vehicle::VehicleParams v = test::loadVehicle("x500");
+  plant::Simulation sim{v,
+                        plant::World(plant::Bounds{Vector3(-50, -50, 0), Vector3(50, 50, 30)}, Vector3::Zero(),
+                                     Vector3(10, 0, 2), {}),
+                        plant::SimulationConfig{}};
+  FlightController fc;
+  std::vector<FlightOutput> log;
+  bool feed_state = true;
+
+  explicit Rig(FlightControllerConfig config = defaults()) : fc(v, withGains(config, v)) {}
+
+  static FlightControllerConfig defaults()
+  {
+    FlightControllerConfig c;
+    c.modes.idle_disarm_after = 1e9;
+    return c;
+  }
+  static FlightControllerConfig withGains(FlightControllerConfig c, const vehicle::VehicleParams& v)
+  {
+    c.gains = test::scaledGains(v);
+    return c;
+  }
+  double t() const { return common::toSeconds(sim.timeNs()); }
+
+  /// Runs until `done` or `seconds` of sim time pass; the controller answers every state.
+  void run(double seconds, const std::function<bool()>& done = [] { return false; })
+  {
+    const double end = t() + seconds;
+    while (t() < end && !done()) {
+      const plant::StepOutputs out = sim.step();
+      if (out.state && feed_state) {
+        const auto& s = out.state->state;
+        fc.onState({s.p_W, s.v_W, s.q_WB, s.w_B}, s.landed, common::toSeconds(out.state->t_ns));
+      }
+      if (out.state) {
+        log.push_back(fc.update(t()));
+        sim.commands().submit(log.back().rotor_speed, log.back().armed, sim.timeNs(), sim.timeNs());
+      }
+    }
+  }
+  Mode mode() const { return fc.mode(); }
+};
+
+TEST(FlightController, ArmTakeOffFlyTheMissionAndLand)
+{
+  Rig rig;
+  rig.run(0.1);
+  rig.fc.onCommand(Command::kArm);
+  rig.run(0.1);
+  ASSERT_EQ(rig.mode(), Mode::kIdle);
+  rig.fc.onCommand(Command::kTakeoff);
+  rig.run(15.0, [&] { return rig.mode() == Mode::kHover; });
+  ASSERT_EQ(rig.mode(), Mode::kHover);
+  EXPECT_NEAR(rig.sim.state().p_W.z(), 2.0, 0.1);
+  const std::vector<Vector3> path = {{0, 0, 2}, {5, 0, 2}, {5, 5, 3}, {10, 5, 2}};
+  rig.fc.onGoal(path.back(), 0.3);
+  rig.fc.onPath(path, 1, true, rig.t());
+  rig.fc.onCommand(Command::kStartMission);
+  // The planner re-publishes its path; here every 0.5 s.
+  double next_path = rig.t() + 0.5;
+  rig.run(40.0, [&] {
+    if (rig.t() >= next_path) {
+      rig.fc.onPath(path, 1, true, rig.t());
+      next_path += 0.5;
+    }
+    return rig.log.back().transition && rig.log.back().transition->why == "goal reached";
+  });
+  ASSERT_EQ(rig.mode(), Mode::kHover);
+  EXPECT_EQ(rig.log.back().transition->why, "goal reached");
+  EXPECT_LT((rig.sim.state().p_W - path.back()).norm(), 0.3);
+  rig.fc.onCommand(Command::kLand);
+  rig.run(20.0, [&] { return rig.mode() == Mode::kIdle; });
+  EXPECT_EQ(rig.mode(), Mode::kIdle);
+  EXPECT_TRUE(rig.sim.state().landed);
+  EXPECT_EQ(rig.sim.collisionCount(), 0U);
+}
+
+/// Takes off to hover and starts a long mission; returns the rig in MISSION.
+void intoMission(Rig& rig)
+{
+  rig.fc.onCommand(Command::kArm);
+  rig.run(0.1);
+  rig.fc.onCommand(Command::kTakeoff);
+  rig.run(15.0, [&] { return rig.mode() == Mode::kHover; });
+  rig.fc.onPath({{0, 0, 2}, {40, 0, 2}}, 1, true, rig.t());
+  rig.fc.onGoal(Vector3(40, 0, 2), 0.3);
+  rig.fc.onCommand(Command::kStartMission);
+  rig.run(0.5);
+  ASSERT_EQ(rig.mode(), Mode::kMission);
+}
+
+TEST(FlightController, StalePathHoversWithinATickOfItsTimeoutThenLands)
+{
+  FlightControllerConfig config = Rig::defaults();
+  config.path_timeout = 1.0;
+  config.modes.path_stale_land_after = 3.0;
+  Rig rig(config);
+  intoMission(rig);
+  const double last_path = rig.t() - 0.5;  // the path came at the start of the mission
+  rig.run(5.0, [&] { return rig.mode() == Mode::kHover; });
+  ASSERT_EQ(rig.mode(), Mode::kHover);
+  EXPECT_EQ(rig.log.back().reason, Reason::kPathStale);
+  // Stale at last_path + 1.0 s: hover within 0.1 s of that (one 4 ms tick here).
+  EXPECT_LE(rig.t() - (last_path + config.path_timeout), 0.1);
+  const double hover_at = rig.t();
+  rig.run(10.0, [&] { return rig.mode() == Mode::kLand; });
+  EXPECT_EQ(rig.mode(), Mode::kLand);
+  EXPECT_NEAR(rig.t() - hover_at, 3.0, 0.01);
+}
+
+TEST(FlightController, StaleStateLandsWithinATickOfItsTimeout)
+{
+  Rig rig;
+  intoMission(rig);
+  rig.feed_state = false;  // the state stops arriving
+  const double lost = rig.t();
+  rig.run(1.0, [&] { return rig.mode() == Mode::kFailsafeLand; });
+  ASSERT_EQ(rig.mode(), Mode::kFailsafeLand);
+  EXPECT_LE(rig.t() - lost, 0.1 + 0.008);
+  // Blind descent: below the weight, never non-finite.
+  for (const double w : rig.log.back().rotor_speed) {
+    EXPECT_TRUE(std::isfinite(w));
+    EXPECT_LT(w, rig.v.hoverRotorSpeed());
+  }
+}
+
+TEST(FlightController, InvalidInputsAreRejectedCountedAndTheLastGoodKept)
+{
+  Rig rig;
+  EXPECT_FALSE(rig.fc.onState({Vector3(NAN, 0, 0), Vector3::Zero(), Quaternion::identity(), Vector3::Zero()}, true, 0.0));
+  EXPECT_FALSE(rig.fc.onState({Vector3::Zero(), Vector3::Zero(), Quaternion{2, 0, 0, 0}, Vector3::Zero()}, true, 0.0));
+  EXPECT_FALSE(rig.fc.onPath({{0, 0, 0}, {INFINITY, 0, 0}}, 3, true, 0.0));
+  EXPECT_FALSE(rig.fc.onPath({}, 4, true, 0.0));
+  EXPECT_FALSE(rig.fc.onGoal(Vector3(NAN, 0, 0), 0.3));
+  EXPECT_EQ(rig.fc.rejectedInputs(), 5U);
+  EXPECT_FALSE(rig.fc.pathVersion().has_value());
+}
+
+TEST(FlightController, FuzzedInputsNeverProduceANonFiniteCommand)
+{
+  Rig rig;
+  intoMission(rig);
+  std::mt19937_64 rng(99);
+  std::uniform_real_distribution<double> u(-1e4, 1e4);
+  const double specials[] = {NAN, INFINITY, -INFINITY, 1e308, 0.0};
+  const auto value = [&] { return rng() % 5 == 0 ? specials[rng() % 5] : u(rng); };
+  for (int k = 0; k < 20000; ++k) {
+    const double t = rig.t() + 0.004 * static_cast<double>(k);
+    switch (rng() % 4) {
+      case 0:
+        rig.fc.onState({Vector3(value(), value(), value()), Vector3(value(), value(), value()),
+                        Quaternion{value(), value(), value(), value()}, Vector3(value(), value(), value())},
+                       rng() % 2 == 0, t);
+        break;
+      case 1:
+        rig.fc.onPath({Vector3(value(), value(), value()), Vector3(value(), value(), value())},
+                      static_cast<std::uint32_t>(rng() % 5), rng() % 2 == 0, t);
+        break;
+      case 2:
+        rig.fc.onGoal(Vector3(value(), value(), value()), value());
+        break;
+      default:
+        rig.fc.onCommand(static_cast<Command>(rng() % 7));
+    }
+    const FlightOutput out = rig.fc.update(t);
+    for (const double w : out.rotor_speed) {
+      ASSERT_TRUE(std::isfinite(w)) << "iteration " << k;
+      ASSERT_GE(w, rig.v.rotor_speed_min);
+      ASSERT_LE(w, rig.v.rotor_speed_max);
+    }
+  }
+  EXPECT_GT(rig.fc.rejectedInputs(), 0U);
+}
+
+}  // namespace
+}  // namespace quad::control

@@ -118,8 +118,10 @@ FlightOutput FlightController::update(double t)
   in.landed = landed_;
   in.takeoff_altitude_reached = modes_.mode() == Mode::kTakeoff && state_ && follower_.finished() &&
                                 std::abs(state_->p_W.z() - takeoff_target_.z()) < 0.1;
-  in.goal_reached = modes_.mode() == Mode::kMission && state_ && goal_ && follower_.finished() &&
-                    (state_->p_W - *goal_).norm() <= goal_tolerance_;
+  // At the goal: within tolerance, and (in a mission) at the end of the path. Outside a
+  // mission this keeps auto_mission from starting again for a goal already reached.
+  in.goal_reached = state_ && goal_ && (state_->p_W - *goal_).norm() <= goal_tolerance_ &&
+                    (modes_.mode() != Mode::kMission || follower_.finished());
   out.transition = modes_.update(in);
   out.refused = modes_.refused();
   if (out.transition) {
@@ -160,6 +162,7 @@ FlightOutput FlightController::update(double t)
     ref.yaw = follower_.reference().yaw;
   } else {
     ref = follower_.step(dt);
+    out.progress = follower_.progress();
   }
   out.reference = ref;
   out.control = controller_.update(*state_, ref, dt);

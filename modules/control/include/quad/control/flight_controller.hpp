@@ -41,6 +41,7 @@ struct FlightOutput {
   MixerOutput mixer;
   Vector3 position_error_W = Vector3::Zero();  ///< reference − actual
   Vector3 velocity_error_W = Vector3::Zero();
+  double progress = 0.0;  ///< [m] arc length along the path being followed
 };
 
 class FlightController {

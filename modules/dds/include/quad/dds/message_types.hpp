@@ -13,6 +13,7 @@
 #include <fastdds/dds/topic/TopicDataType.hpp>
 
 #include <quad/msg/ActuatorCommandPubSubTypes.h>
+#include <quad/msg/ControlReferencePubSubTypes.h>
 #include <quad/msg/ControlStatusPubSubTypes.h>
 #include <quad/msg/FaultCommandPubSubTypes.h>
 #include <quad/msg/GoalPubSubTypes.h>
@@ -62,6 +63,7 @@ struct MessageTraits;
   }
 
 QUAD_DDS_MESSAGE(ActuatorCommand);
+QUAD_DDS_MESSAGE(ControlReference);
 QUAD_DDS_MESSAGE(ControlStatus);
 QUAD_DDS_MESSAGE(FaultCommand);
 QUAD_DDS_MESSAGE(Goal);

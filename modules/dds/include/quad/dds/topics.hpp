@@ -11,7 +11,7 @@
 
 namespace quad::dds::topics {
 
-using msg::ActuatorCommand, msg::ControlStatus, msg::FaultCommand, msg::Goal, msg::Heartbeat,
+using msg::ActuatorCommand, msg::ControlReference, msg::ControlStatus, msg::FaultCommand, msg::Goal, msg::Heartbeat,
     msg::Imu, msg::LockstepReport, msg::MapSnapshot, msg::MapUpdate, msg::Path,
     msg::PointCloud, msg::SimClock, msg::SimEvent, msg::VehicleCommand, msg::VehicleState;
 
@@ -52,6 +52,9 @@ inline constexpr auto kActuators = makeTopic<ActuatorCommand>(
 inline constexpr auto kControlStatus = makeTopic<ControlStatus>(
     "quad/control/status", "latched", 20.0, Owner::kControl,
     "Controller mode, failsafe reason, tracking errors");
+inline constexpr auto kControlReference = makeTopic<ControlReference>(
+    "quad/control/reference", "sensor", 250.0, Owner::kControl,
+    "The reference the controller tracks, each tick");
 inline constexpr auto kHeartbeat = makeTopic<Heartbeat>(
     "quad/system/heartbeat", "heartbeat", 2.0, Owner::kEveryModule,
     "Every module's sign of life");
@@ -68,7 +71,7 @@ inline constexpr std::array kAll{
     kSimClock.info, kSimState.info,  kSimImu.info,        kSimDepth.info,
     kSimEvents.info, kLockstep.info, kMapUpdate.info,     kMapSnapshot.info,
     kGoal.info,      kPath.info,     kActuators.info,     kControlStatus.info,
-    kHeartbeat.info, kVehicleCommand.info, kFault.info};
+    kControlReference.info, kHeartbeat.info, kVehicleCommand.info, kFault.info};
 
 /// The contract of a topic name, if quad declares one.
 std::optional<TopicInfo> find(std::string_view name);

@@ -1,0 +1,157 @@
+#include "control_node.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include "conversions.hpp"
+#include "quad/common/time.hpp"
+
+namespace quad::control {
+
+namespace {
+constexpr std::int64_t kTickNs = 20'000'000;  // watch for a silent plant at 50 Hz
+}
+
+ControlNode::ControlNode(ControlNodeConfig config, dds::ParticipantOptions options)
+    : Node("control", std::move(options)),
+      config_(std::move(config)),
+      fc_(vehicle::loadVehicle(config_.vehicle_file), config_.flight),
+      state_(participant(), dds::topics::kSimState, waker()),
+      path_(participant(), dds::topics::kPath, waker()),
+      goal_(participant(), dds::topics::kGoal, waker()),
+      command_(participant(), dds::topics::kVehicleCommand, waker()),
+      clock_(participant(), dds::topics::kSimClock, waker()),
+      actuators_(participant(), dds::topics::kActuators),
+      status_(participant(), dds::topics::kControlStatus),
+      reference_(participant(), dds::topics::kControlReference)
+{
+  setTickPeriod(kTickNs);
+  spdlog::info("control: vehicle {}, autostart {}", config_.vehicle_file.string(), config_.autostart);
+}
+
+void ControlNode::takeInputs()
+{
+  while (auto c = clock_.take()) {
+    lockstep_ = c->lockstep();
+  }
+  while (auto c = command_.take()) {
+    counters().samples_in++;
+    const Command command = fromMessage(c->kind());
+    spdlog::info("control: command {} ({})", static_cast<int>(c->kind()), toString(command));
+    fc_.onCommand(command);
+  }
+  while (auto g = goal_.take()) {
+    counters().samples_in++;
+    if (!fc_.onGoal(fromMessage(g->p_W()), g->tolerance())) {
+      counters().errors++;
+      spdlog::warn("quad/planning/goal: goal {} rejected: non-finite", g->goal_id());
+    }
+  }
+  while (auto p = path_.take()) {
+    counters().samples_in++;
+    const double t = latest_t_ >= 0.0 ? latest_t_ : common::toSeconds(p->header().stamp_ns());
+    if (!fc_.onPath(waypointsOf(*p), p->version(), p->status() == msg::PLAN_OK, t)) {
+      counters().errors++;
+      spdlog::warn("quad/planning/path: version {} rejected: invalid waypoints", p->version());
+    }
+  }
+}
+
+void ControlNode::autostart()
+{
+  if (!config_.autostart || autostart_stage_ >= 2) {
+    return;
+  }
+  if (autostart_stage_ == 0 && fc_.mode() == Mode::kDisarmed) {
+    fc_.onCommand(Command::kArm);
+    autostart_stage_ = 1;
+  } else if (autostart_stage_ == 1 && fc_.mode() == Mode::kIdle) {
+    fc_.onCommand(Command::kTakeoff);
+    autostart_stage_ = 2;
+  }
+}
+
+void ControlNode::control(double t, std::int64_t stamp_ns)
+{
+  autostart();
+  const FlightOutput out = fc_.update(t);
+  msg::ActuatorCommand cmd;
+  cmd.header().stamp_ns(stamp_ns);
+  cmd.rotor_speed({out.rotor_speed[0], out.rotor_speed[1], out.rotor_speed[2], out.rotor_speed[3]});
+  cmd.armed(out.armed);
+  actuators_.write(cmd);
+  msg::ControlReference ref = toMessage(out.reference, out.progress);
+  ref.header().stamp_ns(stamp_ns);
+  reference_.write(ref);
+  counters().samples_out += 2;
+  if (out.transition) {
+    spdlog::info("control: {} -> {}: {}", toString(out.transition->from), toString(out.transition->to),
+                 out.transition->why);
+  }
+  if (!out.refused.empty()) {
+    spdlog::warn("control: {}", out.refused);
+  }
+  if (out.transition || t >= next_status_t_) {
+    publishStatus(out, stamp_ns);
+    next_status_t_ = t + 1.0 / config_.status_rate;
+  }
+  last_ = out;
+}
+
+void ControlNode::publishStatus(const FlightOutput& out, std::int64_t stamp_ns)
+{
+  msg::ControlStatus s;
+  s.header().stamp_ns(stamp_ns);
+  s.mode(toMessage(out.mode));
+  s.failsafe_reason(toMessage(out.reason));
+  s.position_error_W(toMessage(out.position_error_W));
+  s.velocity_error_W(toMessage(out.velocity_error_W));
+  s.attitude_error(out.control.attitude_error);
+  s.path_version(fc_.pathVersion().value_or(0));
+  s.saturated(out.mixer.saturated);
+  s.rejected_inputs(fc_.rejectedInputs());
+  status_.write(s);
+}
+
+void ControlNode::onEvent(const dds::EndpointEvent& event)
+{
+  // In lockstep the plant's clock waits for the slowest module: wall-clock deadlines mean
+  // nothing there. Staleness is judged in sim time by the flight controller instead.
+  if (lockstep_ && event.kind == dds::EventKind::kDeadlineMissed) {
+    return;
+  }
+  Node::onEvent(event);
+}
+
+void ControlNode::onWake()
+{
+  takeInputs();
+  for (const auto& s : state_.takeAll()) {
+    counters().samples_in++;
+    const double t = common::toSeconds(s.header().stamp_ns());
+    if (!fc_.onState(fromMessage(s), s.landed(), t)) {
+      counters().errors++;
+      spdlog::warn("quad/sim/state: sample seq {} rejected: invalid or out of order", s.header().seq());
+      continue;
+    }
+    latest_t_ = t;
+    latest_wall_ns_ = common::steadyTimeNs();
+    control(t, s.header().stamp_ns());
+  }
+}
+
+void ControlNode::onTick(std::int64_t steady_ns)
+{
+  takeInputs();
+  // In real time a silent plant (or a lost link) must still reach the failsafe: advance the
+  // controller's clock by the wall time since the last state. In lockstep the plant waits.
+  if (lockstep_ || latest_t_ < 0.0) {
+    return;
+  }
+  const double silent = common::toSeconds(steady_ns - latest_wall_ns_);
+  if (silent > config_.flight.state_timeout) {
+    const double t = latest_t_ + silent;
+    control(t, common::toNanoseconds(t));
+  }
+}
+
+}  // namespace quad::control

@@ -1,0 +1,51 @@
+#pragma once
+/// @file
+/// The control participant: answers every vehicle state with rotor commands stamped with that
+/// state's time (so the plant's lockstep pairs them), publishes its status and reference, and
+/// takes paths, goals and operator commands.
+
+#include <optional>
+
+#include "control_config.hpp"
+#include "quad/dds/node.hpp"
+#include "quad/dds/publisher.hpp"
+#include "quad/dds/subscriber.hpp"
+#include "quad/dds/topics.hpp"
+
+namespace quad::control {
+
+class ControlNode : public dds::Node {
+public:
+  ControlNode(ControlNodeConfig config, dds::ParticipantOptions options);
+
+protected:
+  void onWake() override;
+  void onTick(std::int64_t steady_ns) override;
+  void onEvent(const dds::EndpointEvent& event) override;
+
+private:
+  void takeInputs();
+  void control(double t, std::int64_t stamp_ns);
+  void publishStatus(const FlightOutput& out, std::int64_t stamp_ns);
+  void autostart();
+
+  ControlNodeConfig config_;
+  FlightController fc_;
+  dds::Subscriber<msg::VehicleState> state_;
+  dds::Subscriber<msg::Path> path_;
+  dds::Subscriber<msg::Goal> goal_;
+  dds::Subscriber<msg::VehicleCommand> command_;
+  dds::Subscriber<msg::SimClock> clock_;
+  dds::Publisher<msg::ActuatorCommand> actuators_;
+  dds::Publisher<msg::ControlStatus> status_;
+  dds::Publisher<msg::ControlReference> reference_;
+
+  bool lockstep_ = false;
+  double latest_t_ = -1.0;                 // sim time of the newest state [s]
+  std::int64_t latest_wall_ns_ = 0;        // steady time it arrived
+  double next_status_t_ = 0.0;
+  FlightOutput last_;
+  int autostart_stage_ = 0;
+};
+
+}  // namespace quad::control

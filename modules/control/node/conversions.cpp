@@ -1,0 +1,103 @@
+#include "conversions.hpp"
+
+namespace quad::control {
+
+Vector3 fromMessage(const msg::Vector3& v) { return {v.x(), v.y(), v.z()}; }
+
+msg::Vector3 toMessage(const Vector3& v)
+{
+  msg::Vector3 out;
+  out.x(v.x());
+  out.y(v.y());
+  out.z(v.z());
+  return out;
+}
+
+VehicleState fromMessage(const msg::VehicleState& m)
+{
+  return {fromMessage(m.p_W()), fromMessage(m.v_W()),
+          Quaternion{m.q_WB().w(), m.q_WB().x(), m.q_WB().y(), m.q_WB().z()}, fromMessage(m.w_B())};
+}
+
+std::vector<Vector3> waypointsOf(const msg::Path& m)
+{
+  std::vector<Vector3> out;
+  out.reserve(m.waypoints_W().size());
+  for (const auto& w : m.waypoints_W()) {
+    out.push_back(fromMessage(w));
+  }
+  return out;
+}
+
+Command fromMessage(msg::CommandKind kind)
+{
+  switch (kind) {
+    case msg::COMMAND_ARM:
+      return Command::kArm;
+    case msg::COMMAND_DISARM:
+      return Command::kDisarm;
+    case msg::COMMAND_TAKEOFF:
+      return Command::kTakeoff;
+    case msg::COMMAND_START_MISSION:
+      return Command::kStartMission;
+    case msg::COMMAND_HOLD:
+      return Command::kHold;
+    case msg::COMMAND_LAND:
+      return Command::kLand;
+  }
+  return Command::kNone;
+}
+
+msg::ControlMode toMessage(Mode mode)
+{
+  switch (mode) {
+    case Mode::kDisarmed:
+      return msg::CONTROL_DISARMED;
+    case Mode::kIdle:
+      return msg::CONTROL_IDLE;
+    case Mode::kTakeoff:
+      return msg::CONTROL_TAKEOFF;
+    case Mode::kMission:
+      return msg::CONTROL_MISSION;
+    case Mode::kHover:
+      return msg::CONTROL_HOVER;
+    case Mode::kLand:
+      return msg::CONTROL_LAND;
+    case Mode::kFailsafeLand:
+      return msg::CONTROL_FAILSAFE_LAND;
+  }
+  return msg::CONTROL_DISARMED;
+}
+
+msg::FailsafeReason toMessage(Reason reason)
+{
+  switch (reason) {
+    case Reason::kNone:
+      return msg::FAILSAFE_NONE;
+    case Reason::kStateStale:
+      return msg::FAILSAFE_STATE_STALE;
+    case Reason::kPathStale:
+      return msg::FAILSAFE_PATH_STALE;
+    case Reason::kInputInvalid:
+      return msg::FAILSAFE_INPUT_INVALID;
+    case Reason::kSaturation:
+      return msg::FAILSAFE_SATURATION;
+    case Reason::kCommanded:
+      return msg::FAILSAFE_COMMANDED;
+  }
+  return msg::FAILSAFE_NONE;
+}
+
+msg::ControlReference toMessage(const Reference& r, double progress)
+{
+  msg::ControlReference m;
+  m.p_W(toMessage(r.p_W));
+  m.v_W(toMessage(r.v_W));
+  m.a_W(toMessage(r.a_W));
+  m.yaw(r.yaw);
+  m.yaw_rate(r.yaw_rate);
+  m.progress(progress);
+  return m;
+}
+
+}  // namespace quad::control

@@ -1,0 +1,26 @@
+#pragma once
+/// @file
+/// Control core types ⇄ messages. Only the node includes generated types.
+
+#include <vector>
+
+#include <quad/msg/ControlReference.h>
+#include <quad/msg/ControlStatus.h>
+#include <quad/msg/Path.h>
+#include <quad/msg/VehicleCommand.h>
+#include <quad/msg/VehicleState.h>
+
+#include "quad/control/flight_controller.hpp"
+
+namespace quad::control {
+
+VehicleState fromMessage(const msg::VehicleState& m);
+std::vector<Vector3> waypointsOf(const msg::Path& m);
+Command fromMessage(msg::CommandKind kind);
+msg::ControlMode toMessage(Mode mode);
+msg::FailsafeReason toMessage(Reason reason);
+msg::ControlReference toMessage(const Reference& r, double progress);
+Vector3 fromMessage(const msg::Vector3& v);
+msg::Vector3 toMessage(const Vector3& v);
+
+}  // namespace quad::control

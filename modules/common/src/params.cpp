@@ -1,5 +1,7 @@
 #include "quad/common/params.hpp"
 
+#include "quad/common/yaml_input.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -85,18 +87,6 @@ std::string closestKey(const ParamSchema& schema, std::string_view key)
     }
   }
   return best;
-}
-
-std::string yamlText(const YAML::Node& node)
-{
-  if (node.IsScalar()) {
-    return node.Scalar();
-  }
-  YAML::Node flow = YAML::Clone(node);
-  flow.SetStyle(YAML::EmitterStyle::Flow);
-  YAML::Emitter out;
-  out << flow;
-  return out.c_str();
 }
 
 /// Collects problems as `origin:key: value: reason` lines.
@@ -493,13 +483,7 @@ Params parseParams(std::string_view yaml_text, std::string_view origin, const Pa
 
 Params loadParams(const std::filesystem::path& file, const ParamSchema& schema)
 {
-  std::ifstream in(file);
-  if (!in) {
-    throw ConfigError({file.string() + ": cannot open: " + std::strerror(errno)});
-  }
-  std::stringstream text;
-  text << in.rdbuf();
-  return parseParams(text.str(), file.string(), schema);
+  return parseParams(readTextFile(file), file.string(), schema);
 }
 
 Params defaultParams(const ParamSchema& schema) { return parseParams("", "<defaults>", schema); }

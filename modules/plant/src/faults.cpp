@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "quad/common/params.hpp"
+#include "quad/common/yaml_input.hpp"
 #include "quad/common/time.hpp"
 
 namespace quad::plant {
@@ -75,72 +76,29 @@ std::string Fault::describe() const
   return out;
 }
 
-namespace {
-
-std::string text(const YAML::Node& n)
-{
-  if (!n.IsDefined() || n.IsNull()) {
-    return "(missing)";
-  }
-  if (n.IsScalar()) {
-    return n.Scalar();
-  }
-  YAML::Node flow = YAML::Clone(n);
-  flow.SetStyle(YAML::EmitterStyle::Flow);
-  YAML::Emitter e;
-  e << flow;
-  return e.c_str();
-}
-
-}  // namespace
-
 std::vector<Fault> parseFaultSchedule(std::string_view yaml_text, std::string_view origin)
 {
-  std::vector<std::string> problems;
-  const auto problem = [&](const std::string& key, const YAML::Node& n, const std::string& why) {
-    problems.push_back(std::string(origin) + ":" + key + ": " + text(n) + ": " + why);
-  };
-  YAML::Node root;
-  try {
-    root = YAML::Load(std::string(yaml_text));
-  } catch (const YAML::Exception& e) {
-    throw common::ConfigError({std::string(origin) + ":(line " + std::to_string(e.mark.line + 1) +
-                               "): (yaml): " + e.msg});
-  }
+  common::YamlReader r(origin);
+  YAML::Node root = common::parseYaml(yaml_text, origin);  // not const: a missing key must read as undefined, not invalid
   std::vector<Fault> out;
   if (root.IsNull()) {
     return out;
   }
   if (!root.IsSequence()) {
-    throw common::ConfigError({std::string(origin) + ":(top level): " + text(root) + ": expected a list of faults"});
+    r.problem("(top level)", root, "expected a list of faults");
+    r.throwIfAny();
   }
   std::set<std::uint32_t> ids;
   for (std::size_t i = 0; i < root.size(); ++i) {
-    const YAML::Node f = root[i];
+    YAML::Node f = root[i];
     const std::string key = "[" + std::to_string(i) + "]";
-    const auto number = [&](const char* name, std::optional<double> fallback, double lo, double hi) -> std::optional<double> {
-      const YAML::Node n = f[name];
-      if (!n.IsDefined() || n.IsNull()) {
-        if (!fallback) {
-          problem(key + "." + name, n, "required");
-        }
-        return fallback;
-      }
-      double v = 0.0;
-      if (!n.IsScalar() || !YAML::convert<double>::decode(n, v) || !std::isfinite(v)) {
-        problem(key + "." + name, n, "expected a finite number");
-        return std::nullopt;
-      }
-      if (v < lo || v > hi) {
-        problem(key + "." + name, n, "out of range [" + common::formatValue(lo) + ", " + common::formatValue(hi) + "]");
-        return std::nullopt;
-      }
-      return v;
-    };
     if (!f.IsMap()) {
-      problem(key, f, "expected a map");
+      r.problem(key, f, "expected a map");
       continue;
     }
+    const auto number = [&](const char* name, std::optional<double> fallback, double lo, double hi) {
+      return r.number(f[name], key + "." + name, fallback, lo, hi);
+    };
     Fault fault;
     const std::string kind = f["kind"].IsScalar() ? f["kind"].Scalar() : "";
     std::set<std::string> allowed = {"id", "kind", "at", "duration"};
@@ -165,7 +123,7 @@ std::vector<Fault> parseFaultSchedule(std::string_view yaml_text, std::string_vi
                                             : Fault::Kind::kSensorNoise;
       const auto sensor = f["sensor"].IsScalar() ? parseSensor(f["sensor"].Scalar()) : std::nullopt;
       if (!sensor) {
-        problem(key + ".sensor", f["sensor"], "expected depth, imu or state");
+        r.problem(key + ".sensor", f["sensor"], "expected depth, imu or state");
         ok = false;
       } else {
         fault.sensor = *sensor;
@@ -179,22 +137,18 @@ std::vector<Fault> parseFaultSchedule(std::string_view yaml_text, std::string_vi
     } else if (kind == "wind_gust") {
       allowed.insert("wind");
       fault.kind = Fault::Kind::kWindGust;
-      const YAML::Node w = f["wind"];
-      double x = 0.0, y = 0.0, z = 0.0;
-      if (!w.IsSequence() || w.size() != 3 || !YAML::convert<double>::decode(w[0], x) ||
-          !YAML::convert<double>::decode(w[1], y) || !YAML::convert<double>::decode(w[2], z) ||
-          !std::isfinite(x + y + z)) {
-        problem(key + ".wind", w, "expected [x, y, z] in m/s");
-        ok = false;
+      const auto w = r.numbers(f["wind"], key + ".wind", 3, -1e3, 1e3);
+      ok = ok && w;
+      if (w) {
+        fault.wind_W = {(*w)[0], (*w)[1], (*w)[2]};
       }
-      fault.wind_W = {x, y, z};
     } else {
-      problem(key + ".kind", f["kind"], "expected motor, sensor_dropout, sensor_stuck, sensor_noise or wind_gust");
+      r.problem(key + ".kind", f["kind"], "expected motor, sensor_dropout, sensor_stuck, sensor_noise or wind_gust");
       continue;
     }
     for (const auto& entry : f) {
       if (!allowed.contains(entry.first.Scalar())) {
-        problem(key + "." + entry.first.Scalar(), entry.second, "unknown key for kind " + kind);
+        r.problem(key + "." + entry.first.Scalar(), entry.second, "unknown key for kind " + kind);
         ok = false;
       }
     }
@@ -203,28 +157,20 @@ std::vector<Fault> parseFaultSchedule(std::string_view yaml_text, std::string_vi
     }
     fault.id = static_cast<std::uint32_t>(*id);
     if (!ids.insert(fault.id).second) {
-      problem(key + ".id", f["id"], "used twice");
+      r.problem(key + ".id", f["id"], "used twice");
       continue;
     }
     fault.start_ns = common::toNanoseconds(*at);
     fault.duration_ns = common::toNanoseconds(*duration);
     out.push_back(fault);
   }
-  if (!problems.empty()) {
-    throw common::ConfigError(problems);
-  }
+  r.throwIfAny();
   return out;
 }
 
 std::vector<Fault> loadFaultSchedule(const std::filesystem::path& file)
 {
-  std::ifstream in(file);
-  if (!in) {
-    throw common::ConfigError({file.string() + ": cannot open: " + std::strerror(errno)});
-  }
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return parseFaultSchedule(buffer.str(), file.string());
+  return parseFaultSchedule(common::readTextFile(file), file.string());
 }
 
 }  // namespace quad::plant

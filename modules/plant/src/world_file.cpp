@@ -10,124 +10,22 @@
 #include <set>
 #include <sstream>
 
-#include "quad/common/params.hpp"
+#include "quad/common/yaml_input.hpp"
 
 namespace quad::plant {
 
 namespace {
 
-std::string text(const YAML::Node& node)
-{
-  if (!node.IsDefined() || node.IsNull()) {
-    return "(missing)";
-  }
-  if (node.IsScalar()) {
-    return node.Scalar();
-  }
-  YAML::Node flow = YAML::Clone(node);
-  flow.SetStyle(YAML::EmitterStyle::Flow);
-  YAML::Emitter out;
-  out << flow;
-  return out.c_str();
-}
-
-/// Reads typed values out of YAML, recording `origin:key: value: reason` for each problem.
-class Reader {
+/// The common reader plus the one shape only worlds have: a 3-vector.
+class Reader : public common::YamlReader {
 public:
-  explicit Reader(std::string_view origin) : origin_(origin) {}
-
-  void problem(const std::string& key, const YAML::Node& node, const std::string& why)
-  {
-    problems_.push_back(origin_ + ":" + key + ": " + text(node) + ": " + why);
-  }
-  bool ok() const { return problems_.empty(); }
-  std::vector<std::string>& problems() { return problems_; }
-
-  /// Rejects keys of a map not in `allowed`.
-  void onlyKeys(const YAML::Node& map, const std::string& prefix, const std::set<std::string>& allowed)
-  {
-    for (const auto& entry : map) {
-      const std::string key = entry.first.Scalar();
-      if (!allowed.contains(key)) {
-        std::string list;
-        for (const auto& a : allowed) {
-          list += (list.empty() ? "" : ", ") + a;
-        }
-        problem(prefix + key, entry.second, "unknown key (expected one of: " + list + ")");
-      }
-    }
-  }
-
-  std::optional<double> number(const YAML::Node& node, const std::string& key,
-                               std::optional<double> fallback, double lo, double hi)
-  {
-    if (!node.IsDefined() || node.IsNull()) {
-      if (!fallback) {
-        problem(key, node, "required");
-      }
-      return fallback;
-    }
-    double v = 0.0;
-    if (!node.IsScalar() || !YAML::convert<double>::decode(node, v)) {
-      problem(key, node, "expected a number");
-      return std::nullopt;
-    }
-    if (!std::isfinite(v)) {
-      problem(key, node, "not a finite number");
-      return std::nullopt;
-    }
-    if (v < lo || v > hi) {
-      problem(key, node, "out of range [" + common::formatValue(lo) + ", " + common::formatValue(hi) + "]");
-      return std::nullopt;
-    }
-    return v;
-  }
-
-  std::optional<std::vector<double>> numbers(const YAML::Node& node, const std::string& key,
-                                             std::size_t count, double lo, double hi)
-  {
-    if (!node.IsDefined() || node.IsNull()) {
-      problem(key, node, "required");
-      return std::nullopt;
-    }
-    if (!node.IsSequence() || node.size() != count) {
-      problem(key, node, "expected a list of " + std::to_string(count) + " numbers");
-      return std::nullopt;
-    }
-    std::vector<double> out;
-    for (std::size_t i = 0; i < count; ++i) {
-      const auto v = number(node[i], key + "[" + std::to_string(i) + "]", std::nullopt, lo, hi);
-      if (!v) {
-        return std::nullopt;
-      }
-      out.push_back(*v);
-    }
-    return out;
-  }
+  using YamlReader::YamlReader;
 
   std::optional<Vector3> vector3(const YAML::Node& node, const std::string& key)
   {
     const auto v = numbers(node, key, 3, -1e6, 1e6);
     return v ? std::optional<Vector3>(Vector3((*v)[0], (*v)[1], (*v)[2])) : std::nullopt;
   }
-
-  /// [lo, hi] with 0 < lo <= hi <= max.
-  std::optional<std::pair<double, double>> range(const YAML::Node& node, const std::string& key, double max)
-  {
-    const auto v = numbers(node, key, 2, 1e-6, max);
-    if (!v) {
-      return std::nullopt;
-    }
-    if ((*v)[0] > (*v)[1]) {
-      problem(key, node, "expected [low, high] with low <= high");
-      return std::nullopt;
-    }
-    return std::pair((*v)[0], (*v)[1]);
-  }
-
-private:
-  std::string origin_;
-  std::vector<std::string> problems_;
 };
 
 /// Uniform in [0, 1) from 53 bits: the same numbers on every platform for a seed.
@@ -140,7 +38,7 @@ bool clearOf(const Vector3& p, double radius, const Vector3& start, const Vector
   return horizontal(p, start) > radius + clearance && horizontal(p, goal) > radius + clearance;
 }
 
-void parseObstacle(Reader& r, const YAML::Node& node, const std::string& key, std::vector<Obstacle>& out)
+void parseObstacle(Reader& r, YAML::Node node, const std::string& key, std::vector<Obstacle>& out)
 {
   if (!node.IsMap()) {
     r.problem(key, node, "expected a map with a type");
@@ -175,7 +73,7 @@ void parseObstacle(Reader& r, const YAML::Node& node, const std::string& key, st
   }
 }
 
-void generate(Reader& r, const YAML::Node& node, const std::string& key, const Vector3& start,
+void generate(Reader& r, YAML::Node node, const std::string& key, const Vector3& start,
               const Vector3& goal, std::vector<Obstacle>& out)
 {
   if (!node.IsMap()) {
@@ -193,8 +91,8 @@ void generate(Reader& r, const YAML::Node& node, const std::string& key, const V
   if (type == "forest") {
     r.onlyKeys(node, key + ".", {"type", "seed", "min", "max", "density", "radius", "height", "clearance"});
     const auto density = r.number(node["density"], key + ".density", std::nullopt, 1e-6, 10.0);
-    const auto radius = r.range(node["radius"], key + ".radius", 100.0);
-    const auto height = r.range(node["height"], key + ".height", 1e4);
+    const auto radius = r.range(node["radius"], key + ".radius", 1e-6, 100.0);
+    const auto height = r.range(node["height"], key + ".height", 1e-6, 1e4);
     if (!r.ok() || !seed || !lo || !hi || !density || !radius || !height || !clearance) {
       return;
     }
@@ -251,19 +149,13 @@ void generate(Reader& r, const YAML::Node& node, const std::string& key, const V
 World parseWorld(std::string_view yaml_text, std::string_view origin)
 {
   Reader r(origin);
-  YAML::Node root;
-  try {
-    root = YAML::Load(std::string(yaml_text));
-  } catch (const YAML::Exception& e) {
-    throw common::ConfigError({std::string(origin) + ":(line " + std::to_string(e.mark.line + 1) +
-                               "): (yaml): " + e.msg});
-  }
+  YAML::Node root = common::parseYaml(yaml_text, origin);  // not const: a missing key must read as undefined, not invalid
   if (!root.IsMap()) {
-    throw common::ConfigError({std::string(origin) + ":(top level): " + text(root) +
-                               ": expected a map with bounds, start, goal"});
+    r.problem("(top level)", root, "expected a map with bounds, start, goal");
+    r.throwIfAny();
   }
   r.onlyKeys(root, "", {"bounds", "start", "goal", "obstacles", "generators", "index_cell_size"});
-  const YAML::Node bounds = root["bounds"];
+  YAML::Node bounds = root["bounds"];
   std::optional<Vector3> lo, hi;
   if (!bounds.IsMap()) {
     r.problem("bounds", bounds, "expected {min: [x, y, z], max: [x, y, z]}");
@@ -285,7 +177,7 @@ World parseWorld(std::string_view yaml_text, std::string_view origin)
     r.problem("goal", root["goal"], "outside the bounds");
   }
   std::vector<Obstacle> obstacles;
-  const YAML::Node listed = root["obstacles"];
+  YAML::Node listed = root["obstacles"];
   if (listed.IsDefined() && !listed.IsNull() && !listed.IsSequence()) {
     r.problem("obstacles", listed, "expected a list");
   } else if (listed.IsSequence()) {
@@ -293,7 +185,7 @@ World parseWorld(std::string_view yaml_text, std::string_view origin)
       parseObstacle(r, listed[i], "obstacles[" + std::to_string(i) + "]", obstacles);
     }
   }
-  const YAML::Node generators = root["generators"];
+  YAML::Node generators = root["generators"];
   if (generators.IsDefined() && !generators.IsNull() && !generators.IsSequence()) {
     r.problem("generators", generators, "expected a list");
   } else if (generators.IsSequence() && start && goal) {
@@ -301,21 +193,13 @@ World parseWorld(std::string_view yaml_text, std::string_view origin)
       generate(r, generators[i], "generators[" + std::to_string(i) + "]", *start, *goal, obstacles);
     }
   }
-  if (!r.ok()) {
-    throw common::ConfigError(std::move(r.problems()));
-  }
+  r.throwIfAny();
   return World(Bounds{*lo, *hi}, *start, *goal, std::move(obstacles), *cell);
 }
 
 World loadWorld(const std::filesystem::path& file)
 {
-  std::ifstream in(file);
-  if (!in) {
-    throw common::ConfigError({file.string() + ": cannot open: " + std::strerror(errno)});
-  }
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return parseWorld(buffer.str(), file.string());
+  return parseWorld(common::readTextFile(file), file.string());
 }
 
 }  // namespace quad::plant

@@ -226,11 +226,14 @@ TEST(FaultSchedule, FileIsValidatedAndParsed)
   try {
     parseFaultSchedule("- {id: 1, kind: motor, rotor: 5, efficiency: 0.5, at: 1}\n"
                        "- {id: 2, kind: sensor_stuck, sensor: lidar, at: 1}\n"
-                       "- {id: 3, kind: meteor, at: 1}",
+                       "- {id: 3, kind: meteor, at: 1}\n"
+                       "- {id: 4, at: 1}",
                        "faults.yaml");
     FAIL();
   } catch (const common::ConfigError& e) {
-    ASSERT_EQ(e.problems().size(), 3U) << e.what();
+    ASSERT_EQ(e.problems().size(), 4U) << e.what();
+    EXPECT_EQ(e.problems()[3], "faults.yaml:[3].kind: (missing): expected motor, sensor_dropout, "
+                               "sensor_stuck, sensor_noise or wind_gust");
     EXPECT_EQ(e.problems()[0], "faults.yaml:[0].rotor: 5: out of range [0, 3]");
     EXPECT_EQ(e.problems()[1], "faults.yaml:[1].sensor: lidar: expected depth, imu or state");
     EXPECT_EQ(e.problems()[2], "faults.yaml:[2].kind: meteor: expected motor, sensor_dropout, "

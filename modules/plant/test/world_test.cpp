@@ -159,6 +159,9 @@ TEST(WorldFile, BadInputNamesFileKeyAndValue)
   const std::string head = "bounds: {min: [0, 0, 0], max: [10, 10, 10]}\nstart: [1, 1, 0]\ngoal: [9, 9, 2]\n";
   EXPECT_EQ(problems(head + "obstacles:\n  - {type: sphere, center: [5, 5, 5], radius: -1}"),
             std::vector<std::string>{"w.yaml:obstacles[0].radius: -1: out of range [1e-06, 100000]"});
+  EXPECT_EQ(problems(head + "obstacles:\n  - {center: [5, 5, 5], radius: 1}\n  - {type: sphere, center: [1, 1, 1]}"),
+            (std::vector<std::string>{"w.yaml:obstacles[0].type: (missing): expected box, cylinder or sphere",
+                                      "w.yaml:obstacles[1].radius: (missing): required"}));
   EXPECT_EQ(problems(head + "obstacles:\n  - {type: cone, center: [5, 5, 5]}"),
             std::vector<std::string>{"w.yaml:obstacles[0].type: cone: expected box, cylinder or sphere"});
   EXPECT_EQ(problems(head + "obstacles:\n  - {type: box, center: [5, 5], size: [1, 1, 1]}"),

@@ -48,6 +48,8 @@ fi
 
 # ccache keeps rebuilds of a fresh clone cheap.
 export CCACHE_DIR=${CCACHE_DIR:-$HOME/.cache/ccache}
+# Paths below the checkout are hashed relative to it, so another clone reuses the cache.
+export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$root}
 
 if [[ $job == test ]]; then
   cmake --preset ci

@@ -1,0 +1,134 @@
+#pragma once
+/// @file
+/// Probabilistic 3D occupancy mapping with OctoMap (Hornung et al., "OctoMap: an efficient
+/// probabilistic 3D mapping framework based on octrees", Autonomous Robots 2013), and the
+/// change sets an incremental planner needs: after each scan, exactly the voxels whose
+/// classification (unknown, free, occupied) changed.
+///
+/// Voxels are OctoMap's leaves at the map resolution; their indices are quad::geometry's
+/// (VoxelGrid: voxel i covers [i·res, (i+1)·res), OctoMap key = i + 32768).
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <octomap/OcTree.h>
+
+#include "quad/common/params.hpp"
+#include "quad/geometry/grid.hpp"
+
+namespace quad::mapping {
+
+using geometry::Vector3;
+using geometry::VoxelIndex;
+
+enum class VoxelState : std::uint8_t { kUnknown, kFree, kOccupied };
+
+struct VoxelChange {
+  VoxelIndex index;
+  VoxelState state;  ///< after the change
+};
+
+struct MapperConfig {
+  double resolution = 0.2;           ///< [m] voxel edge
+  double min_range = 0.0;            ///< [m] closer points are dropped
+  double max_range = 20.0;           ///< [m] farther points only clear space (with the sensor's own)
+  double prob_hit = 0.7;
+  double prob_miss = 0.4;
+  double clamp_min = 0.12;
+  double clamp_max = 0.97;
+  double occupancy_threshold = 0.5;
+  std::optional<double> min_z;       ///< [m] points below are dropped
+  std::optional<double> max_z;       ///< [m] points above are dropped
+  std::size_t max_points = 65536;    ///< larger clouds are refused as absurd
+};
+
+/// The schema of the mapper's parameters (`map.*` keys of configs/mapping.yaml).
+void addMapperParams(common::ParamSchema& schema);
+/// Reads them, refusing contradictions (hit <= 0.5, clamp_min >= threshold, ...) with
+/// `file:key: value: reason`.
+MapperConfig mapperConfigFrom(const common::Params& params);
+
+/// One depth scan in the world frame.
+struct Scan {
+  Vector3 origin_W = Vector3::Zero();  ///< [m] sensor origin
+  std::vector<Vector3> points_W;       ///< [m] hits, and misses beyond max_range
+  double max_range = 0.0;              ///< [m] the sensor's; 0: the mapper's only
+};
+
+struct IntegrationResult {
+  bool accepted = false;
+  std::string rejection;               ///< why not, when not accepted
+  std::vector<VoxelChange> changes;    ///< sorted by index
+  std::size_t points = 0;              ///< points integrated (after range and height limits)
+};
+
+class Mapper {
+public:
+  /// Throws std::invalid_argument on an inconsistent config (as mapperConfigFrom checks).
+  explicit Mapper(MapperConfig config);
+
+  /// Integrates a scan: free space along each ray from the origin, the endpoint occupied
+  /// when within range; points beyond range only clear up to it. A scan with a non-finite
+  /// origin or point, or more than max_points, is refused whole: nothing changes.
+  IntegrationResult integrate(const Scan& scan);
+
+  VoxelState classify(const VoxelIndex& index) const;
+  /// Every known voxel with its state (pruned octree nodes expanded to the resolution).
+  std::vector<VoxelChange> classification() const;
+
+  /// The map as OctoMap's binary (.bt) bytes: maximum-likelihood free/occupied per voxel.
+  std::vector<std::uint8_t> snapshot() const;
+  /// Writes a .bt file that OctoMap's own tools (octovis, binvox2bt ...) read; false on I/O failure.
+  bool save(const std::filesystem::path& file) const;
+
+  std::size_t nodes() const { return tree_.size(); }
+  std::size_t bytes() const { return tree_.memoryUsage(); }
+  double resolution() const { return config_.resolution; }
+  const octomap::OcTree& tree() const { return tree_; }
+
+private:
+  MapperConfig config_;
+  octomap::OcTree tree_;
+  geometry::VoxelGrid grid_;
+};
+
+/// A consumer's copy of the classification (the planner's): a snapshot, then change sets
+/// applied in order, reproduce the mapper's classification exactly.
+class VoxelMap {
+public:
+  explicit VoxelMap(double resolution) : resolution_(resolution) {}
+
+  /// Replaces the contents with a snapshot's classification; false when the bytes are not an
+  /// OctoMap binary tree of this resolution.
+  bool applySnapshot(const std::vector<std::uint8_t>& bytes);
+  void apply(const std::vector<VoxelChange>& changes);
+  VoxelState classify(const VoxelIndex& index) const;
+  std::size_t known() const { return cells_.size(); }
+
+  /// Every known voxel, sorted by index.
+  std::vector<VoxelChange> contents() const;
+
+private:
+  struct Hash {
+    std::size_t operator()(const VoxelIndex& i) const
+    {
+      return (static_cast<std::size_t>(static_cast<std::uint32_t>(i.x())) * 73856093U) ^
+             (static_cast<std::size_t>(static_cast<std::uint32_t>(i.y())) * 19349663U) ^
+             (static_cast<std::size_t>(static_cast<std::uint32_t>(i.z())) * 83492791U);
+    }
+  };
+  double resolution_;
+  std::unordered_map<VoxelIndex, VoxelState, Hash> cells_;
+};
+
+/// Orders voxel indices x, then y, then z (for sorted change sets).
+bool indexLess(const VoxelIndex& a, const VoxelIndex& b);
+
+/// Every known voxel of an octree, expanded to its resolution, sorted.
+std::vector<VoxelChange> classificationOf(const octomap::OcTree& tree);
+
+}  // namespace quad::mapping

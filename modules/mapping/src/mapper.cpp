@@ -1,0 +1,247 @@
+#include "quad/mapping/mapper.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace quad::mapping {
+
+namespace {
+
+constexpr int kKeyOffset = 32768;  // OcTree's tree_max_val at depth 16
+
+VoxelIndex indexOf(const octomap::OcTreeKey& key)
+{
+  return {static_cast<int>(key[0]) - kKeyOffset, static_cast<int>(key[1]) - kKeyOffset,
+          static_cast<int>(key[2]) - kKeyOffset};
+}
+
+std::vector<std::string> problemsOf(const MapperConfig& c, const std::string& origin)
+{
+  std::vector<std::string> p;
+  const auto add = [&](const char* key, double value, const std::string& why) {
+    p.push_back(origin + ":" + key + ": " + common::formatValue(value) + ": " + why);
+  };
+  if (!(c.prob_hit > 0.5)) {
+    add("map.prob_hit", c.prob_hit, "must exceed 0.5, or hits would clear space");
+  }
+  if (!(c.prob_miss < 0.5)) {
+    add("map.prob_miss", c.prob_miss, "must be below 0.5, or misses would fill space");
+  }
+  if (!(c.clamp_min < c.occupancy_threshold)) {
+    add("map.clamp_min", c.clamp_min, "must be below map.occupancy_threshold (" + common::formatValue(c.occupancy_threshold) + ")");
+  }
+  if (!(c.clamp_max > c.occupancy_threshold)) {
+    add("map.clamp_max", c.clamp_max, "must exceed map.occupancy_threshold (" + common::formatValue(c.occupancy_threshold) + ")");
+  }
+  if (!(c.min_range < c.max_range)) {
+    add("map.min_range", c.min_range, "must be below map.max_range (" + common::formatValue(c.max_range) + ")");
+  }
+  if (c.min_z && c.max_z && !(*c.min_z < *c.max_z)) {
+    add("map.min_z", *c.min_z, "must be below map.max_z (" + common::formatValue(*c.max_z) + ")");
+  }
+  return p;
+}
+
+}  // namespace
+
+bool indexLess(const VoxelIndex& a, const VoxelIndex& b)
+{
+  return std::tie(a.x(), a.y(), a.z()) < std::tie(b.x(), b.y(), b.z());
+}
+
+void addMapperParams(common::ParamSchema& s)
+{
+  s.addDouble("map.resolution", 0.2, 0.01, 10.0, "m", "voxel edge (the planner's lattice too)")
+      .addDouble("map.min_range", 0.0, 0.0, 100.0, "m", "closer points are dropped")
+      .addDouble("map.max_range", 20.0, 0.1, 500.0, "m", "farther points only clear space")
+      .addDouble("map.prob_hit", 0.7, 0.0, 1.0, "", "occupancy probability of a hit")
+      .addDouble("map.prob_miss", 0.4, 0.0, 1.0, "", "occupancy probability of a miss")
+      .addDouble("map.clamp_min", 0.12, 0.0, 1.0, "", "lower clamping of a voxel's probability")
+      .addDouble("map.clamp_max", 0.97, 0.0, 1.0, "", "upper clamping of a voxel's probability")
+      .addDouble("map.occupancy_threshold", 0.5, 0.0, 1.0, "", "occupied above this probability")
+      .addBool("map.height_limits", false, "drop points outside [map.min_z, map.max_z]")
+      .addDouble("map.min_z", -1.0, -1e4, 1e4, "m", "lowest point kept (with height_limits)")
+      .addDouble("map.max_z", 50.0, -1e4, 1e4, "m", "highest point kept (with height_limits)")
+      .addInt("map.max_points", 65536, 1, 10'000'000, "", "clouds with more points are refused");
+}
+
+MapperConfig mapperConfigFrom(const common::Params& p)
+{
+  MapperConfig c;
+  c.resolution = p.getDouble("map.resolution");
+  c.min_range = p.getDouble("map.min_range");
+  c.max_range = p.getDouble("map.max_range");
+  c.prob_hit = p.getDouble("map.prob_hit");
+  c.prob_miss = p.getDouble("map.prob_miss");
+  c.clamp_min = p.getDouble("map.clamp_min");
+  c.clamp_max = p.getDouble("map.clamp_max");
+  c.occupancy_threshold = p.getDouble("map.occupancy_threshold");
+  if (p.getBool("map.height_limits")) {
+    c.min_z = p.getDouble("map.min_z");
+    c.max_z = p.getDouble("map.max_z");
+  }
+  c.max_points = static_cast<std::size_t>(p.getInt("map.max_points"));
+  if (auto problems = problemsOf(c, p.origin()); !problems.empty()) {
+    throw common::ConfigError(std::move(problems));
+  }
+  return c;
+}
+
+Mapper::Mapper(MapperConfig config) : config_(config), tree_(config.resolution), grid_(config.resolution)
+{
+  if (const auto problems = problemsOf(config_, "mapper config"); !problems.empty()) {
+    throw std::invalid_argument(problems.front());
+  }
+  tree_.setProbHit(config_.prob_hit);
+  tree_.setProbMiss(config_.prob_miss);
+  tree_.setClampingThresMin(config_.clamp_min);
+  tree_.setClampingThresMax(config_.clamp_max);
+  tree_.setOccupancyThres(config_.occupancy_threshold);
+  tree_.enableChangeDetection(true);
+}
+
+IntegrationResult Mapper::integrate(const Scan& scan)
+{
+  IntegrationResult out;
+  if (!scan.origin_W.allFinite() || !std::isfinite(scan.max_range) || scan.max_range < 0.0) {
+    out.rejection = "sensor origin or range is not finite";
+    return out;
+  }
+  if (scan.points_W.size() > config_.max_points) {
+    out.rejection = std::to_string(scan.points_W.size()) + " points exceed map.max_points (" +
+                    std::to_string(config_.max_points) + ")";
+    return out;
+  }
+  for (std::size_t i = 0; i < scan.points_W.size(); ++i) {
+    if (!scan.points_W[i].allFinite()) {
+      out.rejection = "point " + std::to_string(i) + " is not finite";
+      return out;
+    }
+  }
+  const double max_range = scan.max_range > 0.0 ? std::min(scan.max_range, config_.max_range) : config_.max_range;
+  octomap::Pointcloud cloud;
+  cloud.reserve(scan.points_W.size());
+  for (const Vector3& p : scan.points_W) {
+    if ((p - scan.origin_W).norm() < config_.min_range) {
+      continue;
+    }
+    if ((config_.min_z && p.z() < *config_.min_z) || (config_.max_z && p.z() > *config_.max_z)) {
+      continue;
+    }
+    cloud.push_back(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()));
+  }
+  out.points = cloud.size();
+  const octomap::point3d origin(static_cast<float>(scan.origin_W.x()), static_cast<float>(scan.origin_W.y()),
+                                static_cast<float>(scan.origin_W.z()));
+  tree_.resetChangeDetection();
+  // Discretized: each voxel is updated once per scan, however many rays cross it.
+  tree_.insertPointCloud(cloud, origin, max_range, false, true);
+  for (auto it = tree_.changedKeysBegin(); it != tree_.changedKeysEnd(); ++it) {
+    const VoxelIndex index = indexOf(it->first);
+    out.changes.push_back({index, classify(index)});
+  }
+  tree_.resetChangeDetection();
+  std::sort(out.changes.begin(), out.changes.end(),
+            [](const VoxelChange& a, const VoxelChange& b) { return indexLess(a.index, b.index); });
+  out.accepted = true;
+  return out;
+}
+
+VoxelState Mapper::classify(const VoxelIndex& index) const
+{
+  const auto key = grid_.octomapKey(index);
+  if (!key) {
+    return VoxelState::kUnknown;
+  }
+  const octomap::OcTreeNode* node = tree_.search(octomap::OcTreeKey((*key)[0], (*key)[1], (*key)[2]));
+  if (node == nullptr) {
+    return VoxelState::kUnknown;
+  }
+  return tree_.isNodeOccupied(node) ? VoxelState::kOccupied : VoxelState::kFree;
+}
+
+std::vector<VoxelChange> classificationOf(const octomap::OcTree& tree)
+{
+  std::vector<VoxelChange> out;
+  const unsigned max_depth = tree.getTreeDepth();
+  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+    const VoxelState state = tree.isNodeOccupied(*it) ? VoxelState::kOccupied : VoxelState::kFree;
+    const octomap::OcTreeKey key = it.getKey();
+    // A pruned leaf at depth d stands for 2^(16−d) voxels per axis, from its aligned key.
+    const unsigned span = 1U << (max_depth - it.getDepth());
+    const octomap::key_type mask = static_cast<octomap::key_type>(~(span - 1U));
+    for (unsigned dx = 0; dx < span; ++dx) {
+      for (unsigned dy = 0; dy < span; ++dy) {
+        for (unsigned dz = 0; dz < span; ++dz) {
+          const octomap::OcTreeKey k(static_cast<octomap::key_type>((key[0] & mask) + dx),
+                                     static_cast<octomap::key_type>((key[1] & mask) + dy),
+                                     static_cast<octomap::key_type>((key[2] & mask) + dz));
+          out.push_back({indexOf(k), state});
+        }
+      }
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const VoxelChange& a, const VoxelChange& b) { return indexLess(a.index, b.index); });
+  return out;
+}
+
+std::vector<VoxelChange> Mapper::classification() const { return classificationOf(tree_); }
+
+std::vector<std::uint8_t> Mapper::snapshot() const
+{
+  std::ostringstream out;
+  tree_.writeBinaryConst(out);
+  const std::string bytes = out.str();
+  return {bytes.begin(), bytes.end()};
+}
+
+bool Mapper::save(const std::filesystem::path& file) const
+{
+  return tree_.writeBinaryConst(file.string());
+}
+
+bool VoxelMap::applySnapshot(const std::vector<std::uint8_t>& bytes)
+{
+  std::istringstream in(std::string(bytes.begin(), bytes.end()));
+  octomap::OcTree tree(resolution_);
+  if (!tree.readBinary(in) || std::abs(tree.getResolution() - resolution_) > 1e-9) {
+    return false;
+  }
+  cells_.clear();
+  for (const auto& c : classificationOf(tree)) {
+    cells_[c.index] = c.state;
+  }
+  return true;
+}
+
+void VoxelMap::apply(const std::vector<VoxelChange>& changes)
+{
+  for (const auto& c : changes) {
+    if (c.state == VoxelState::kUnknown) {
+      cells_.erase(c.index);
+    } else {
+      cells_[c.index] = c.state;
+    }
+  }
+}
+
+VoxelState VoxelMap::classify(const VoxelIndex& index) const
+{
+  const auto it = cells_.find(index);
+  return it == cells_.end() ? VoxelState::kUnknown : it->second;
+}
+
+std::vector<VoxelChange> VoxelMap::contents() const
+{
+  std::vector<VoxelChange> out;
+  out.reserve(cells_.size());
+  for (const auto& [index, state] : cells_) {
+    out.push_back({index, state});
+  }
+  std::sort(out.begin(), out.end(), [](const VoxelChange& a, const VoxelChange& b) { return indexLess(a.index, b.index); });
+  return out;
+}
+
+}  // namespace quad::mapping

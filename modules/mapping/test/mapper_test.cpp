@@ -1,0 +1,194 @@
+// The mapper on scans ray-cast by the plant's depth camera, fixed seeds.
+#include "quad/mapping/mapper.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <random>
+
+#include "quad/plant/sensors.hpp"
+
+namespace quad::mapping {
+namespace {
+
+/// A world with one box (x 5..7, y −1..1, z 0..3) in an open field.
+plant::World boxWorld()
+{
+  return plant::World(plant::Bounds{Vector3(-20, -20, 0), Vector3(40, 20, 20)}, Vector3::Zero(), Vector3(30, 0, 2),
+                      {plant::Obstacle::makeBox({Vector3(6, 0, 1.5), Vector3(2, 2, 3), 0.0})});
+}
+
+/// What the plant's camera sees from `p` facing yaw, as a world-frame scan.
+Scan scanFrom(const plant::World& world, const Vector3& p, double yaw, std::mt19937_64& rng)
+{
+  plant::DepthCameraConfig config;
+  config.width = 64;
+  config.height = 48;
+  config.max_range = 15.0;
+  config.noise_std = 0.0;
+  config.position_B = Vector3::Zero();
+  const plant::DepthCamera camera(config);
+  const geometry::Pose3 body{p, geometry::fromAxisAngle(Vector3::UnitZ(), yaw)};
+  const plant::DepthScan depth = camera.capture(world, body, rng);
+  Scan scan;
+  scan.origin_W = depth.sensor_W.p;
+  scan.max_range = config.max_range;
+  for (const auto& point : depth.points_S) {
+    scan.points_W.push_back(depth.sensor_W.transform(point.cast<double>()));
+  }
+  return scan;
+}
+
+VoxelIndex voxelAt(const Mapper& m, const Vector3& p) { return geometry::VoxelGrid(m.resolution()).toIndex(p); }
+
+TEST(Mapper, AKnownBoxIsOccupiedOnItsFaceFreeInFrontUnknownBehind)
+{
+  const plant::World world = boxWorld();
+  std::mt19937_64 rng(1);
+  Mapper mapper(MapperConfig{});
+  const auto result = mapper.integrate(scanFrom(world, Vector3(0, 0, 1.5), 0.0, rng));
+  ASSERT_TRUE(result.accepted) << result.rejection;
+  EXPECT_GT(result.changes.size(), 100U);
+  // The face x = 5 seen head-on: its voxels (x in [5.0, 5.2)) are occupied.
+  for (const double y : {-0.7, -0.3, 0.1, 0.5}) {
+    for (const double z : {0.5, 1.1, 1.7, 2.3}) {
+      EXPECT_EQ(mapper.classify(voxelAt(mapper, Vector3(5.05, y, z))), VoxelState::kOccupied) << y << " " << z;
+    }
+  }
+  // In front of it: free.
+  for (const double x : {1.0, 2.5, 4.0, 4.7}) {
+    EXPECT_EQ(mapper.classify(voxelAt(mapper, Vector3(x, 0.1, 1.5))), VoxelState::kFree) << x;
+  }
+  // Inside and behind it: never seen.
+  for (const double x : {5.9, 6.5, 7.5, 9.0}) {
+    EXPECT_EQ(mapper.classify(voxelAt(mapper, Vector3(x, 0.1, 1.5))), VoxelState::kUnknown) << x;
+  }
+}
+
+TEST(Mapper, ChangeSetsReplayedInOrderReproduceTheMapExactly)
+{
+  const plant::World world = boxWorld();
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Mapper mapper(MapperConfig{});
+  VoxelMap replica(mapper.resolution());
+  for (int k = 0; k < 25; ++k) {
+    const Vector3 p(-2.0 + 0.3 * k, 4.0 * u(rng), 1.0 + 0.5 * (u(rng) + 1.0));
+    const auto result = mapper.integrate(scanFrom(world, p, 0.6 * u(rng), rng));
+    ASSERT_TRUE(result.accepted);
+    replica.apply(result.changes);
+    ASSERT_EQ(replica.contents().size(), mapper.classification().size()) << "after scan " << k;
+  }
+  const auto expected = mapper.classification();
+  const auto actual = replica.contents();
+  ASSERT_EQ(actual.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    ASSERT_EQ(actual[i].index, expected[i].index) << i;
+    ASSERT_EQ(actual[i].state, expected[i].state) << i;
+  }
+}
+
+TEST(Mapper, ALateJoinerCatchesUpFromASnapshotAndLaterChanges)
+{
+  const plant::World world = boxWorld();
+  std::mt19937_64 rng(11);
+  Mapper mapper(MapperConfig{});
+  VoxelMap from_start(mapper.resolution());
+  VoxelMap late(mapper.resolution());
+  for (int k = 0; k < 20; ++k) {
+    const auto result = mapper.integrate(scanFrom(world, Vector3(-1.0 + 0.4 * k, 0.2 * k - 2.0, 1.5), 0.1 * k, rng));
+    from_start.apply(result.changes);
+    if (k == 9) {
+      ASSERT_TRUE(late.applySnapshot(mapper.snapshot()));
+    } else if (k > 9) {
+      late.apply(result.changes);
+    }
+  }
+  const auto a = from_start.contents();
+  const auto b = late.contents();
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a[i].index, b[i].index);
+    ASSERT_EQ(a[i].state, b[i].state);
+  }
+}
+
+TEST(Mapper, SavedBtFilesLoadInOctomapWithTheSameClassification)
+{
+  const plant::World world = boxWorld();
+  std::mt19937_64 rng(3);
+  Mapper mapper(MapperConfig{});
+  mapper.integrate(scanFrom(world, Vector3(0, 0, 1.5), 0.0, rng));
+  const auto file = std::filesystem::temp_directory_path() / "quad_mapper_test.bt";
+  ASSERT_TRUE(mapper.save(file));
+  octomap::OcTree loaded(file.string());
+  EXPECT_DOUBLE_EQ(loaded.getResolution(), 0.2);
+  const auto expected = mapper.classification();
+  const auto actual = classificationOf(loaded);
+  ASSERT_EQ(actual.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    ASSERT_EQ(actual[i].state, expected[i].state);
+  }
+  std::filesystem::remove(file);
+}
+
+TEST(Mapper, BadCloudsAreRefusedWholeAndChangeNothing)
+{
+  const plant::World world = boxWorld();
+  std::mt19937_64 rng(5);
+  MapperConfig config;
+  config.max_points = 5000;
+  Mapper mapper(config);
+  mapper.integrate(scanFrom(world, Vector3(0, 0, 1.5), 0.0, rng));
+  const auto before = mapper.classification();
+  Scan bad = scanFrom(world, Vector3(1, 0, 1.5), 0.0, rng);
+  bad.points_W[100].y() = std::nan("");
+  EXPECT_EQ(mapper.integrate(bad).rejection, "point 100 is not finite");
+  bad = scanFrom(world, Vector3(1, 0, 1.5), 0.0, rng);
+  bad.origin_W.x() = INFINITY;
+  EXPECT_EQ(mapper.integrate(bad).rejection, "sensor origin or range is not finite");
+  bad = scanFrom(world, Vector3(1, 0, 1.5), 0.0, rng);
+  bad.points_W.resize(6000, Vector3(3, 0, 1));
+  EXPECT_EQ(mapper.integrate(bad).rejection, "6000 points exceed map.max_points (5000)");
+  const auto after = mapper.classification();
+  EXPECT_EQ(after.size(), before.size());
+}
+
+TEST(Mapper, ContradictoryConfigIsRefusedNamingTheKey)
+{
+  common::ParamSchema schema;
+  addMapperParams(schema);
+  const auto problems = [&](const std::string& yaml) {
+    try {
+      mapperConfigFrom(common::parseParams(yaml, "mapping.yaml", schema));
+    } catch (const common::ConfigError& e) {
+      return e.problems();
+    }
+    return std::vector<std::string>{"accepted"};
+  };
+  EXPECT_EQ(problems("map: {prob_hit: 0.4}"),
+            std::vector<std::string>{"mapping.yaml:map.prob_hit: 0.4: must exceed 0.5, or hits would clear space"});
+  EXPECT_EQ(problems("map: {clamp_min: 0.6}"),
+            std::vector<std::string>{"mapping.yaml:map.clamp_min: 0.6: must be below map.occupancy_threshold (0.5)"});
+  EXPECT_EQ(problems("map: {resolution: 0}"),
+            std::vector<std::string>{"mapping.yaml:map.resolution: 0: out of range [0.01, 10] m"});
+  EXPECT_EQ(problems("map: {max_range: .nan}"),
+            std::vector<std::string>{"mapping.yaml:map.max_range: .nan: not a finite number"});
+}
+
+TEST(Mapper, HeightLimitsAndMinimumRangeDropPoints)
+{
+  const plant::World world = boxWorld();
+  std::mt19937_64 rng(5);
+  MapperConfig config;
+  config.max_z = 1.0;
+  config.min_z = 0.1;
+  Mapper mapper(config);
+  const auto result = mapper.integrate(scanFrom(world, Vector3(0, 0, 1.5), 0.0, rng));
+  EXPECT_LT(result.points, 64U * 48U);
+  EXPECT_EQ(mapper.classify(voxelAt(mapper, Vector3(5.05, 0.1, 2.3))), VoxelState::kUnknown);  // above max_z
+  EXPECT_EQ(mapper.classify(voxelAt(mapper, Vector3(5.05, 0.1, 0.5))), VoxelState::kOccupied);
+}
+
+}  // namespace
+}  // namespace quad::mapping

@@ -44,6 +44,8 @@ Command fromMessage(msg::CommandKind kind)
       return Command::kHold;
     case msg::COMMAND_LAND:
       return Command::kLand;
+    case msg::COMMAND_SAVE_MAP:
+      return Command::kNone;  // the mapper's
   }
   return Command::kNone;
 }

@@ -9,6 +9,7 @@
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 
 #include "quad/dds/participant.hpp"
+#include "quad/dds/raw_type.hpp"
 #include "quad/introspection/idl.hpp"
 
 namespace quad::dds {
@@ -75,6 +76,19 @@ TEST(Contracts, EveryQosClassHasAWriterAndAReaderProfile)
     EXPECT_NO_THROW(p.readerQos(t.qos_profile)) << t.name;
   }
   EXPECT_THROW(p.writerQos("no_such_class"), std::runtime_error);
+}
+
+TEST(Contracts, EveryTopicCanHaveAWriterAndAReader)
+{
+  // Loading a profile is not enough: Fast DDS checks resource limits only when it creates
+  // the entity.
+  Participant p = testParticipant(156);
+  for (const auto& t : topics::kAll) {
+    EXPECT_NO_THROW({
+      RawPublisher writer(p, t);
+      RawSubscriber reader(p, t, nullptr);
+    }) << t.name;
+  }
 }
 
 TEST(Contracts, ParticipantUsesTheBaselineLeaseNotTheTwentySecondDefault)

@@ -123,11 +123,11 @@ IntegrationResult Mapper::integrate(const Scan& scan)
   const double max_range = scan.max_range > 0.0 ? std::min(scan.max_range, config_.max_range) : config_.max_range;
   octomap::Pointcloud cloud;
   cloud.reserve(scan.points_W.size());
+  const double min_range2 = config_.min_range * config_.min_range;
+  const bool limited = min_range2 > 0.0 || config_.min_z || config_.max_z;
   for (const Vector3& p : scan.points_W) {
-    if ((p - scan.origin_W).norm() < config_.min_range) {
-      continue;
-    }
-    if ((config_.min_z && p.z() < *config_.min_z) || (config_.max_z && p.z() > *config_.max_z)) {
+    if (limited && ((p - scan.origin_W).squaredNorm() < min_range2 || (config_.min_z && p.z() < *config_.min_z) ||
+                    (config_.max_z && p.z() > *config_.max_z))) {
       continue;
     }
     cloud.push_back(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()));
@@ -136,8 +136,10 @@ IntegrationResult Mapper::integrate(const Scan& scan)
   const octomap::point3d origin(static_cast<float>(scan.origin_W.x()), static_cast<float>(scan.origin_W.y()),
                                 static_cast<float>(scan.origin_W.z()));
   tree_.resetChangeDetection();
-  // Discretized: each voxel is updated once per scan, however many rays cross it.
-  tree_.insertPointCloud(cloud, origin, max_range, false, true);
+  // OctoMap's own insertion, unchanged (not discretized: a voxel crossed by many rays gets
+  // their evidence), so the map is the one octomap would build; change detection is the
+  // only addition.
+  tree_.insertPointCloud(cloud, origin, max_range);
   for (auto it = tree_.changedKeysBegin(); it != tree_.changedKeysEnd(); ++it) {
     const VoxelIndex index = indexOf(it->first);
     out.changes.push_back({index, classify(index)});

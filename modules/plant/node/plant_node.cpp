@@ -136,11 +136,18 @@ void PlantNode::publishClock()
   clock.step_ns(config_.simulation.step_ns);
   clock.real_time_factor(config_.real_time_factor);
   clock.lockstep(config_.mode == PlantNodeConfig::Mode::kLockstep);
+  clock.depth_frames(depth_frames_);
   clock_.write(clock);
 }
 
 void PlantNode::publish(const StepOutputs& out)
 {
+  // Depth first: the clock that follows counts it.
+  if (out.depth) {
+    depth_.write(toMessage(*out.depth, config_.simulation.depth.max_range));
+    ++depth_frames_;
+    counters().samples_out++;
+  }
   if (out.state) {
     last_state_ = out.state;
     last_state_publish_ns_ = common::steadyTimeNs();
@@ -150,10 +157,6 @@ void PlantNode::publish(const StepOutputs& out)
   }
   if (out.imu) {
     imu_.write(toMessage(*out.imu));
-    counters().samples_out++;
-  }
-  if (out.depth) {
-    depth_.write(toMessage(*out.depth, config_.simulation.depth.max_range));
     counters().samples_out++;
   }
   for (const auto& e : out.events) {
@@ -208,10 +211,11 @@ void PlantNode::runLockstep()
     const bool others_ready = !barrier_ || barrier_->poll(round_start);
     if (!command_ready || !others_ready) {
       const std::int64_t now = common::steadyTimeNs();
-      if (!command_ready && last_state_ && now - last_state_publish_ns_ >= kRepublishNs) {
-        // State is best effort: a sample lost (or sent before the controller matched) would
-        // stall the round for good. Resend it; an answer to a repeat is the same answer.
+      if (last_state_ && now - last_state_publish_ns_ >= kRepublishNs) {
+        // A state or clock sample lost, or sent before a participant matched, would stall
+        // the round for good. Resend both; an answer to a repeat is the same answer.
         state_.write(toMessage(*last_state_));
+        publishClock();
         last_state_publish_ns_ = now;
       }
       if (now >= next_wait_report_ns_) {

@@ -21,6 +21,7 @@
 #include <quad/msg/ImuPubSubTypes.h>
 #include <quad/msg/LockstepReportPubSubTypes.h>
 #include <quad/msg/MapSnapshotPubSubTypes.h>
+#include <quad/msg/MapStatsPubSubTypes.h>
 #include <quad/msg/MapUpdatePubSubTypes.h>
 #include <quad/msg/PathPubSubTypes.h>
 #include <quad/msg/PointCloudPubSubTypes.h>
@@ -71,6 +72,7 @@ QUAD_DDS_MESSAGE(Heartbeat);
 QUAD_DDS_MESSAGE(Imu);
 QUAD_DDS_MESSAGE(LockstepReport);
 QUAD_DDS_MESSAGE(MapSnapshot);
+QUAD_DDS_MESSAGE(MapStats);
 QUAD_DDS_MESSAGE(MapUpdate);
 QUAD_DDS_MESSAGE(Path);
 QUAD_DDS_MESSAGE(PointCloud);

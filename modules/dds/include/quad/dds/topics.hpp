@@ -12,7 +12,7 @@
 namespace quad::dds::topics {
 
 using msg::ActuatorCommand, msg::ControlReference, msg::ControlStatus, msg::FaultCommand, msg::Goal, msg::Heartbeat,
-    msg::Imu, msg::LockstepReport, msg::MapSnapshot, msg::MapUpdate, msg::Path,
+    msg::Imu, msg::LockstepReport, msg::MapSnapshot, msg::MapStats, msg::MapUpdate, msg::Path,
     msg::PointCloud, msg::SimClock, msg::SimEvent, msg::VehicleCommand, msg::VehicleState;
 
 // clang-format off
@@ -40,6 +40,9 @@ inline constexpr auto kMapUpdate = makeTopic<MapUpdate>(
 inline constexpr auto kMapSnapshot = makeTopic<MapSnapshot>(
     "quad/mapping/octomap", "latched", 1.0, Owner::kMapping,
     "The whole map as OctoMap binary bytes, for late joiners");
+inline constexpr auto kMapStats = makeTopic<MapStats>(
+    "quad/mapping/stats", "sensor", 10.0, Owner::kMapping,
+    "Per scan: insert time, points, changed voxels, map size");
 inline constexpr auto kGoal = makeTopic<Goal>(
     "quad/planning/goal", "latched", 0.0, Owner::kOperator,
     "Where the vehicle should go");
@@ -69,7 +72,7 @@ inline constexpr auto kFault = makeTopic<FaultCommand>(
 /// Every contract, for tools that iterate over topics.
 inline constexpr std::array kAll{
     kSimClock.info, kSimState.info,  kSimImu.info,        kSimDepth.info,
-    kSimEvents.info, kLockstep.info, kMapUpdate.info,     kMapSnapshot.info,
+    kSimEvents.info, kLockstep.info, kMapUpdate.info,     kMapSnapshot.info, kMapStats.info,
     kGoal.info,      kPath.info,     kActuators.info,     kControlStatus.info,
     kControlReference.info, kHeartbeat.info, kVehicleCommand.info, kFault.info};
 

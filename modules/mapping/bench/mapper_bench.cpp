@@ -1,0 +1,134 @@
+// The mapper's cost per scan beside a bare OcTree::insertPointCloud on the same clouds,
+// resolution and range, and how far their classifications agree.
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <random>
+
+#include "quad/mapping/mapper.hpp"
+#include "quad/plant/sensors.hpp"
+#include "quad/plant/world_file.hpp"
+
+namespace {
+
+using namespace quad;
+
+const char* kForest = R"(
+bounds: {min: [-5, -30, 0], max: [105, 30, 20]}
+start: [0, 0, 2]
+goal: [100, 0, 2]
+generators:
+  - {type: forest, seed: 11, min: [0, -28], max: [100, 28], density: 0.18, radius: [0.2, 0.6], height: [5, 15]}
+)";
+
+struct Scans {
+  std::vector<mapping::Scan> scans;
+};
+
+/// 100 scans of a 160x120 camera flying through the forest.
+const Scans& scans()
+{
+  static const Scans s = [] {
+    const plant::World world = plant::parseWorld(kForest, "forest");
+    plant::DepthCameraConfig config;
+    config.width = 160;
+    config.height = 120;
+    config.max_range = 20.0;
+    const plant::DepthCamera camera(config);
+    std::mt19937_64 rng(1);
+    Scans out;
+    for (int k = 0; k < 100; ++k) {
+      const geometry::Pose3 body{geometry::Vector3(0.5 * k, 0.0, 2.0), geometry::fromAxisAngle(geometry::Vector3::UnitZ(), 0.02 * k)};
+      const plant::DepthScan d = camera.capture(world, body, rng);
+      mapping::Scan scan;
+      scan.origin_W = d.sensor_W.p;
+      scan.max_range = config.max_range;
+      for (const auto& p : d.points_S) {
+        scan.points_W.push_back(d.sensor_W.transform(p.cast<double>()));
+      }
+      out.scans.push_back(std::move(scan));
+    }
+    return out;
+  }();
+  return s;
+}
+
+octomap::Pointcloud cloudOf(const mapping::Scan& s)
+{
+  octomap::Pointcloud cloud;
+  for (const auto& p : s.points_W) {
+    cloud.push_back(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()));
+  }
+  return cloud;
+}
+
+// Each iteration maps the whole flight (100 scans) into a fresh tree, so both sides see the
+// same sequence of tree states; items are scans.
+void BM_Mapper_Integrate(benchmark::State& state)
+{
+  for (auto _ : state) {
+    mapping::Mapper mapper(mapping::MapperConfig{});
+    for (const auto& s : scans().scans) {
+      benchmark::DoNotOptimize(mapper.integrate(s));
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(scans().scans.size()));
+  state.counters["points_per_scan"] = static_cast<double>(scans().scans.front().points_W.size());
+}
+
+void BM_OcTree_InsertPointCloud(benchmark::State& state)
+{
+  std::vector<octomap::Pointcloud> clouds;
+  for (const auto& s : scans().scans) {
+    clouds.push_back(cloudOf(s));
+  }
+  for (auto _ : state) {
+    octomap::OcTree tree(0.2);
+    for (std::size_t k = 0; k < clouds.size(); ++k) {
+      const auto& s = scans().scans[k];
+      tree.insertPointCloud(clouds[k],
+                            octomap::point3d(static_cast<float>(s.origin_W.x()), static_cast<float>(s.origin_W.y()),
+                                             static_cast<float>(s.origin_W.z())),
+                            20.0);
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(clouds.size()));
+}
+
+/// Agreement of the final classification after all scans, over the union of known voxels.
+void BM_ClassificationAgreement(benchmark::State& state)
+{
+  mapping::Mapper mapper(mapping::MapperConfig{});
+  octomap::OcTree tree(0.2);
+  for (const auto& s : scans().scans) {
+    mapper.integrate(s);
+    tree.insertPointCloud(cloudOf(s),
+                          octomap::point3d(static_cast<float>(s.origin_W.x()), static_cast<float>(s.origin_W.y()),
+                                           static_cast<float>(s.origin_W.z())),
+                          20.0);
+  }
+  std::map<std::tuple<int, int, int>, std::pair<int, int>> both;  // state + 1, 0 for unknown
+  for (const auto& c : mapper.classification()) {
+    both[{c.index.x(), c.index.y(), c.index.z()}].first = static_cast<int>(c.state);
+  }
+  for (const auto& c : mapping::classificationOf(tree)) {
+    both[{c.index.x(), c.index.y(), c.index.z()}].second = static_cast<int>(c.state);
+  }
+  std::size_t same = 0;
+  for (const auto& [index, states] : both) {
+    same += states.first == states.second ? 1U : 0U;
+  }
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(same);
+  }
+  state.counters["voxels"] = static_cast<double>(both.size());
+  state.counters["agreement_percent"] = 100.0 * static_cast<double>(same) / static_cast<double>(both.size());
+}
+
+BENCHMARK(BM_Mapper_Integrate)->Unit(benchmark::kMillisecond)->MinTime(5.0);
+BENCHMARK(BM_OcTree_InsertPointCloud)->Unit(benchmark::kMillisecond)->MinTime(5.0);
+BENCHMARK(BM_ClassificationAgreement)->Iterations(1);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,212 @@
+#include "mapping_node.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "quad/common/time.hpp"
+#include "quad/geometry/cspace.hpp"
+
+namespace quad::mapping {
+
+namespace {
+constexpr std::size_t kMaxChangesPerMessage = 262144;  // MapUpdate's bound
+
+msg::VoxelState toMessage(VoxelState s)
+{
+  switch (s) {
+    case VoxelState::kFree:
+      return msg::VOXEL_FREE;
+    case VoxelState::kOccupied:
+      return msg::VOXEL_OCCUPIED;
+    default:
+      return msg::VOXEL_UNKNOWN;
+  }
+}
+}  // namespace
+
+common::ParamSchema mappingSchema()
+{
+  common::ParamSchema s;
+  addMapperParams(s);
+  s.addString("frames", "depth_front", {}, "comma-separated sensor frames accepted")
+      .addDouble("snapshot.period", 1.0, 0.05, 3600.0, "s", "sim time between map snapshots")
+      .addString("save_path", "", {}, ".bt file written on shutdown and on COMMAND_SAVE_MAP; empty: never");
+  return s;
+}
+
+MappingNodeConfig mappingConfigFrom(const common::Params& p)
+{
+  MappingNodeConfig c;
+  c.map = mapperConfigFrom(p);
+  std::stringstream list(p.getString("frames"));
+  for (std::string f; std::getline(list, f, ',');) {
+    if (!f.empty()) {
+      c.frames.insert(f);
+    }
+  }
+  c.snapshot_period_s = p.getDouble("snapshot.period");
+  c.save_path = p.getString("save_path");
+  return c;
+}
+
+MappingNode::MappingNode(MappingNodeConfig config, dds::ParticipantOptions options)
+    : Node("mapping", std::move(options)),
+      config_(std::move(config)),
+      mapper_(config_.map),
+      depth_(participant(), dds::topics::kSimDepth, waker()),
+      clock_(participant(), dds::topics::kSimClock, waker()),
+      commands_(participant(), dds::topics::kVehicleCommand, waker()),
+      updates_(participant(), dds::topics::kMapUpdate),
+      snapshots_(participant(), dds::topics::kMapSnapshot),
+      stats_(participant(), dds::topics::kMapStats),
+      lockstep_(participant(), "mapping")
+{
+  spdlog::info("mapping: resolution {} m, max range {} m", config_.map.resolution, config_.map.max_range);
+}
+
+void MappingNode::onEvent(const dds::EndpointEvent& event)
+{
+  if (lockstep_mode_ && event.kind == dds::EventKind::kDeadlineMissed) {
+    return;  // sim time waits in lockstep: wall-clock deadlines say nothing
+  }
+  Node::onEvent(event);
+}
+
+void MappingNode::integrate(const msg::PointCloud& cloud)
+{
+  counters().samples_in++;
+  const std::string frame = cloud.frame_id().to_string();
+  const auto& q = cloud.sensor_q_WS();
+  const geometry::Quaternion q_WS{q.w(), q.x(), q.y(), q.z()};
+  std::string problem;
+  if (!config_.frames.contains(frame)) {
+    problem = "unknown frame '" + frame + "'";
+  } else if (!std::isfinite(q_WS.norm()) || std::abs(q_WS.norm() - 1.0) > 1e-3) {
+    problem = "sensor attitude is not a unit quaternion";
+  }
+  Scan scan;
+  if (problem.empty()) {
+    const geometry::Pose3 sensor{Vector3(cloud.sensor_p_W().x(), cloud.sensor_p_W().y(), cloud.sensor_p_W().z()),
+                                 q_WS.normalized()};
+    scan.origin_W = sensor.p;
+    scan.max_range = cloud.max_range();
+    scan.points_W.reserve(cloud.points().size());
+    for (const auto& p : cloud.points()) {
+      scan.points_W.push_back(sensor.transform(Vector3(p.x(), p.y(), p.z())));
+    }
+  }
+  const std::int64_t start = common::steadyTimeNs();
+  const IntegrationResult result = problem.empty() ? mapper_.integrate(scan) : IntegrationResult{false, problem, {}, 0};
+  const double insert_s = common::toSeconds(common::steadyTimeNs() - start);
+  if (!result.accepted) {
+    ++rejected_;
+    counters().errors++;
+    spdlog::warn("quad/sim/depth: cloud seq {} rejected: {}", cloud.header().seq(), result.rejection);
+    return;
+  }
+  // The change set, in as many messages as its bound needs, each with its own number.
+  const std::uint64_t first_seq = update_seq_ + 1;
+  for (std::size_t begin = 0; begin == 0 || begin < result.changes.size(); begin += kMaxChangesPerMessage) {
+    msg::MapUpdate update;
+    update.header().stamp_ns(cloud.header().stamp_ns());
+    update.update_seq(++update_seq_);
+    update.resolution(mapper_.resolution());
+    const std::size_t end = std::min(result.changes.size(), begin + kMaxChangesPerMessage);
+    update.changes().reserve(end - begin);
+    for (std::size_t i = begin; i < end; ++i) {
+      msg::VoxelChange c;
+      c.ix(result.changes[i].index.x());
+      c.iy(result.changes[i].index.y());
+      c.iz(result.changes[i].index.z());
+      c.state(toMessage(result.changes[i].state));
+      update.changes().push_back(c);
+    }
+    if (!updates_.write(update)) {
+      counters().errors++;
+    }
+    counters().samples_out++;
+  }
+  msg::MapStats stats;
+  stats.header().stamp_ns(cloud.header().stamp_ns());
+  stats.update_seq(first_seq);
+  stats.points(static_cast<std::uint32_t>(result.points));
+  stats.changed_voxels(static_cast<std::uint32_t>(result.changes.size()));
+  stats.insert_time_s(insert_s);
+  stats.map_nodes(mapper_.nodes());
+  stats.map_bytes(mapper_.bytes());
+  stats.rejected_clouds(rejected_);
+  stats.skipped_clouds(skipped_);
+  stats_.write(stats);
+  if (cloud.header().stamp_ns() >= next_snapshot_ns_) {
+    const auto bytes = mapper_.snapshot();
+    if (bytes.size() <= 4194304) {
+      msg::MapSnapshot snapshot;
+      snapshot.header().stamp_ns(cloud.header().stamp_ns());
+      snapshot.update_seq(update_seq_);
+      snapshot.resolution(mapper_.resolution());
+      snapshot.octree(bytes);
+      snapshots_.write(snapshot);
+    } else {
+      spdlog::warn("mapping: snapshot of {} bytes exceeds the 4 MiB a MapSnapshot carries; not sent", bytes.size());
+    }
+    next_snapshot_ns_ = cloud.header().stamp_ns() + common::toNanoseconds(config_.snapshot_period_s);
+  }
+}
+
+void MappingNode::reportLockstep()
+{
+  // Done with time t once every depth frame published up to t is integrated.
+  if (lockstep_mode_ && clock_ns_ > reported_ns_ && frames_seen_ >= clock_frames_) {
+    lockstep_.reportDone(clock_ns_);
+    reported_ns_ = clock_ns_;
+  }
+}
+
+void MappingNode::save()
+{
+  if (config_.save_path.empty()) {
+    return;
+  }
+  if (mapper_.save(config_.save_path)) {
+    spdlog::info("mapping: map saved to {}", config_.save_path.string());
+  } else {
+    spdlog::error("mapping: cannot write {}", config_.save_path.string());
+  }
+}
+
+void MappingNode::onWake()
+{
+  while (auto c = clock_.take()) {
+    lockstep_mode_ = c->lockstep();
+    clock_ns_ = std::max(clock_ns_, c->sim_ns());
+    clock_frames_ = std::max(clock_frames_, c->depth_frames());
+  }
+  while (auto c = commands_.take()) {
+    if (c->kind() == msg::COMMAND_SAVE_MAP) {
+      save();
+    }
+  }
+  auto clouds = depth_.takeAll();
+  frames_seen_ += clouds.size();
+  if (!lockstep_mode_ && clouds.size() > 1) {
+    // Behind in real time: the newest cloud carries the freshest view; count the others.
+    skipped_ += clouds.size() - 1;
+    spdlog::debug("mapping: skipped {} older clouds", clouds.size() - 1);
+    clouds.erase(clouds.begin(), clouds.end() - 1);
+  }
+  for (const auto& cloud : clouds) {
+    integrate(cloud);
+  }
+  reportLockstep();
+}
+
+void MappingNode::onStop()
+{
+  save();
+  spdlog::info("mapping: {} updates, {} clouds rejected, {} skipped, map {} nodes", update_seq_, rejected_, skipped_,
+               mapper_.nodes());
+}
+
+}  // namespace quad::mapping

@@ -1,0 +1,65 @@
+#pragma once
+/// @file
+/// The mapping participant: integrates depth clouds into the map, publishes each scan's
+/// change set, a snapshot for late joiners and per-scan stats, and takes part in lockstep.
+
+#include <filesystem>
+#include <memory>
+#include <set>
+#include <string>
+
+#include "quad/dds/lockstep.hpp"
+#include "quad/dds/node.hpp"
+#include "quad/dds/publisher.hpp"
+#include "quad/dds/subscriber.hpp"
+#include "quad/dds/topics.hpp"
+#include "quad/mapping/mapper.hpp"
+
+namespace quad::mapping {
+
+struct MappingNodeConfig {
+  MapperConfig map;
+  std::set<std::string> frames;      ///< sensor frames accepted
+  double snapshot_period_s = 1.0;    ///< [s] of sim time between snapshots
+  std::filesystem::path save_path;   ///< .bt written on shutdown and on COMMAND_SAVE_MAP; empty: never
+};
+
+common::ParamSchema mappingSchema();
+MappingNodeConfig mappingConfigFrom(const common::Params& params);
+
+class MappingNode : public dds::Node {
+public:
+  MappingNode(MappingNodeConfig config, dds::ParticipantOptions options);
+
+protected:
+  void onWake() override;
+  void onStop() override;
+  void onEvent(const dds::EndpointEvent& event) override;
+
+private:
+  void integrate(const msg::PointCloud& cloud);
+  void reportLockstep();
+  void save();
+
+  MappingNodeConfig config_;
+  Mapper mapper_;
+  dds::Subscriber<msg::PointCloud> depth_;
+  dds::Subscriber<msg::SimClock> clock_;
+  dds::Subscriber<msg::VehicleCommand> commands_;
+  dds::Publisher<msg::MapUpdate> updates_;
+  dds::Publisher<msg::MapSnapshot> snapshots_;
+  dds::Publisher<msg::MapStats> stats_;
+  dds::LockstepReporter lockstep_;
+
+  bool lockstep_mode_ = false;
+  std::int64_t clock_ns_ = -1;             // newest clock time
+  std::uint64_t clock_frames_ = 0;         // depth frames the plant had published by then
+  std::uint64_t frames_seen_ = 0;          // depth frames taken (integrated, refused or skipped)
+  std::int64_t reported_ns_ = -1;
+  std::uint64_t update_seq_ = 0;
+  std::int64_t next_snapshot_ns_ = 0;
+  std::uint64_t rejected_ = 0;
+  std::uint64_t skipped_ = 0;
+};
+
+}  // namespace quad::mapping

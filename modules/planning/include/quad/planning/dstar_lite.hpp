@@ -1,0 +1,130 @@
+#pragma once
+/// @file
+/// D* Lite (Koenig & Likhachev, "D* Lite", AAAI 2002; the optimised version of their
+/// Figure 4) on a 3D lattice of the quadcopter's C-space: a cell is blocked when an occupied
+/// voxel lies within the vehicle radius of its centre (the C-space obstacle of a sphere), so
+/// the vehicle's centre may go wherever a cell is free. Edge costs are Euclidean step
+/// lengths (6-, 18- or 26-connectivity), the heuristic is the Euclidean distance
+/// (consistent), the key modifier k_m follows the moving start, the queue uses lazy deletion
+/// with deterministic tie-breaking (key, then cell number). Memory grows with the cells the
+/// search touched, not with the box.
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <queue>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "quad/geometry/grid.hpp"
+
+namespace quad::planning {
+
+using geometry::Lattice;
+using geometry::Vector3;
+using geometry::VoxelIndex;
+using Cell = std::int64_t;
+
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+enum class Occupancy : std::uint8_t { kUnknown, kFree, kOccupied };
+
+struct PlannerConfig {
+  int connectivity = 26;            ///< 6, 18 or 26
+  bool unknown_traversable = true;  ///< optimistic about unknown space
+  double vehicle_radius = 0.35;     ///< [m] inflation
+};
+
+enum class PlanStatus { kOk, kNoPath, kStartBlocked, kGoalBlocked, kOutOfBounds, kNoGoal, kBudgetExceeded };
+std::string_view toString(PlanStatus s);
+
+struct PlanResult {
+  PlanStatus status = PlanStatus::kNoGoal;
+  std::vector<Cell> cells;          ///< start first, goal last (when kOk)
+  double cost = kInfinity;          ///< [m]
+  std::uint64_t expansions = 0;     ///< vertices expanded by this replan
+  std::uint64_t heap_pushes = 0;
+};
+
+struct VoxelHash {
+  std::size_t operator()(const VoxelIndex& i) const
+  {
+    return (static_cast<std::size_t>(static_cast<std::uint32_t>(i.x())) * 73856093U) ^
+           (static_cast<std::size_t>(static_cast<std::uint32_t>(i.y())) * 19349663U) ^
+           (static_cast<std::size_t>(static_cast<std::uint32_t>(i.z())) * 83492791U);
+  }
+};
+
+class DStarLite {
+public:
+  /// Throws std::invalid_argument on a connectivity other than 6, 18, 26 or a bad radius.
+  DStarLite(Lattice lattice, PlannerConfig config);
+
+  const Lattice& lattice() const { return lattice_; }
+
+  /// A voxel's classification changed (from the mapper's change sets). Updates the
+  /// inflated blocking of the cells within the radius and the edges around every cell whose
+  /// traversability changed. Voxels outside the lattice still block cells inside it.
+  void updateVoxel(const VoxelIndex& voxel, Occupancy state);
+
+  /// Sets the goal; a new goal re-initialises the search.
+  void setGoal(Cell goal);
+  /// Moves the start (every replan): k_m grows by the heuristic between old and new start.
+  void setStart(Cell start);
+
+  /// Repairs the search and extracts the path. `max_expansions` bounds the work (0: none);
+  /// when it runs out the status is kBudgetExceeded and the next call continues.
+  PlanResult plan(std::uint64_t max_expansions = 0);
+
+  bool traversable(Cell c) const;
+  double edgeCost(Cell a, Cell b) const;  ///< kInfinity when either end is blocked or not neighbours
+  /// Neighbours of c inside the lattice with the step length to each.
+  void neighbours(Cell c, std::vector<std::pair<Cell, double>>& out) const;
+  double heuristic(Cell a, Cell b) const;
+
+  std::size_t touched() const { return g_.size(); }
+
+private:
+  struct Key {
+    double k1;
+    double k2;
+    bool operator<(const Key& o) const { return k1 < o.k1 || (k1 == o.k1 && k2 < o.k2); }
+    bool operator==(const Key& o) const { return k1 == o.k1 && k2 == o.k2; }
+  };
+  struct Entry {
+    Key key;
+    Cell cell;
+    bool operator>(const Entry& o) const { return o.key < key || (key == o.key && cell > o.cell); }
+  };
+
+  double g(Cell c) const;
+  double rhs(Cell c) const;
+  Key calculateKey(Cell c) const;
+  void updateVertex(Cell u);
+  void cellChanged(Cell c);
+  void reset();
+
+  Lattice lattice_;
+  PlannerConfig config_;
+  std::vector<VoxelIndex> offsets_;           // neighbour offsets
+  std::vector<double> offset_costs_;
+  std::vector<VoxelIndex> inflation_;         // inflation offsets
+  std::unordered_map<Cell, std::uint16_t> blockers_;   // occupied voxels blocking each cell
+  std::unordered_map<VoxelIndex, Occupancy, VoxelHash> voxels_;
+  std::unordered_map<Cell, Occupancy> cell_state_;     // the voxel of each cell, when known
+  std::unordered_map<Cell, double> g_;
+  std::unordered_map<Cell, double> rhs_;
+  std::unordered_map<Cell, Key> queued_;               // current key of each queued cell
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open_;
+  std::optional<Cell> start_;
+  std::optional<Cell> goal_;
+  std::optional<Cell> last_;
+  double km_ = 0.0;
+  std::uint64_t pushes_ = 0;
+};
+
+/// Dijkstra from scratch on the same graph: the reference D* Lite's costs are checked against.
+double shortestPathCost(const DStarLite& graph, Cell start, Cell goal);
+
+}  // namespace quad::planning

@@ -1,0 +1,382 @@
+#include "quad/planning/dstar_lite.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "quad/geometry/inflation.hpp"
+
+namespace quad::planning {
+
+std::string_view toString(PlanStatus s)
+{
+  switch (s) {
+    case PlanStatus::kOk:
+      return "ok";
+    case PlanStatus::kNoPath:
+      return "no path";
+    case PlanStatus::kStartBlocked:
+      return "start blocked";
+    case PlanStatus::kGoalBlocked:
+      return "goal blocked";
+    case PlanStatus::kOutOfBounds:
+      return "out of bounds";
+    case PlanStatus::kNoGoal:
+      return "no goal";
+    case PlanStatus::kBudgetExceeded:
+      return "budget exceeded";
+  }
+  return "?";
+}
+
+DStarLite::DStarLite(Lattice lattice, PlannerConfig config) : lattice_(std::move(lattice)), config_(config)
+{
+  if (config_.connectivity != 6 && config_.connectivity != 18 && config_.connectivity != 26) {
+    throw std::invalid_argument("planner connectivity " + std::to_string(config_.connectivity) + ": expected 6, 18 or 26");
+  }
+  if (!(config_.vehicle_radius >= 0.0) || !std::isfinite(config_.vehicle_radius)) {
+    throw std::invalid_argument("planner vehicle radius must be finite and >= 0");
+  }
+  const double res = lattice_.grid().resolution();
+  for (int dz = -1; dz <= 1; ++dz) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int nonzero = (dx != 0) + (dy != 0) + (dz != 0);
+        if (nonzero == 0 || (config_.connectivity == 6 && nonzero > 1) || (config_.connectivity == 18 && nonzero > 2)) {
+          continue;
+        }
+        offsets_.emplace_back(dx, dy, dz);
+        offset_costs_.push_back(res * std::sqrt(static_cast<double>(nonzero)));
+      }
+    }
+  }
+  inflation_ = geometry::inflationOffsets(config_.vehicle_radius, res);
+}
+
+bool DStarLite::traversable(Cell c) const
+{
+  if (c < 0 || c >= lattice_.size()) {
+    return false;
+  }
+  if (const auto it = blockers_.find(c); it != blockers_.end() && it->second > 0) {
+    return false;
+  }
+  if (!config_.unknown_traversable) {
+    const auto it = cell_state_.find(c);
+    return it != cell_state_.end() && it->second != Occupancy::kUnknown;
+  }
+  return true;
+}
+
+void DStarLite::neighbours(Cell c, std::vector<std::pair<Cell, double>>& out) const
+{
+  out.clear();
+  const VoxelIndex v = lattice_.voxel(c);
+  for (std::size_t i = 0; i < offsets_.size(); ++i) {
+    if (const auto n = lattice_.cell(v + offsets_[i])) {
+      out.emplace_back(*n, offset_costs_[i]);
+    }
+  }
+}
+
+double DStarLite::edgeCost(Cell a, Cell b) const
+{
+  if (!traversable(a) || !traversable(b)) {
+    return kInfinity;
+  }
+  const VoxelIndex d = (lattice_.voxel(a) - lattice_.voxel(b)).cwiseAbs();
+  const int nonzero = (d.x() != 0) + (d.y() != 0) + (d.z() != 0);
+  if (d.maxCoeff() != 1 || (config_.connectivity == 6 && nonzero > 1) || (config_.connectivity == 18 && nonzero > 2)) {
+    return kInfinity;
+  }
+  return lattice_.grid().resolution() * std::sqrt(static_cast<double>(nonzero));
+}
+
+double DStarLite::heuristic(Cell a, Cell b) const
+{
+  return (lattice_.centre(a) - lattice_.centre(b)).norm();
+}
+
+double DStarLite::g(Cell c) const
+{
+  const auto it = g_.find(c);
+  return it == g_.end() ? kInfinity : it->second;
+}
+
+double DStarLite::rhs(Cell c) const
+{
+  const auto it = rhs_.find(c);
+  return it == rhs_.end() ? kInfinity : it->second;
+}
+
+DStarLite::Key DStarLite::calculateKey(Cell c) const
+{
+  const double m = std::min(g(c), rhs(c));
+  return {m + heuristic(*start_, c) + km_, m};
+}
+
+void DStarLite::updateVertex(Cell u)
+{
+  if (goal_ && u != *goal_) {
+    double best = kInfinity;
+    std::vector<std::pair<Cell, double>> succ;
+    neighbours(u, succ);
+    for (const auto& [s, step] : succ) {
+      const double c = edgeCost(u, s);
+      if (c < kInfinity) {
+        best = std::min(best, c + g(s));
+      }
+    }
+    if (best == kInfinity) {
+      rhs_.erase(u);
+    } else {
+      rhs_[u] = best;
+    }
+  }
+  queued_.erase(u);  // lazy deletion: an entry whose key no longer matches is skipped
+  if (g(u) != rhs(u)) {
+    const Key k = calculateKey(u);
+    queued_[u] = k;
+    open_.push({k, u});
+    ++pushes_;
+  }
+}
+
+void DStarLite::reset()
+{
+  g_.clear();
+  rhs_.clear();
+  queued_.clear();
+  open_ = {};
+  km_ = 0.0;
+  last_ = start_;
+  if (goal_) {
+    rhs_[*goal_] = 0.0;
+    if (start_) {
+      const Key k = calculateKey(*goal_);
+      queued_[*goal_] = k;
+      open_.push({k, *goal_});
+    }
+  }
+}
+
+void DStarLite::setGoal(Cell goal)
+{
+  if (goal_ && *goal_ == goal) {
+    return;
+  }
+  goal_ = goal;
+  reset();
+}
+
+void DStarLite::setStart(Cell start)
+{
+  if (start_ && *start_ == start) {
+    return;
+  }
+  const bool first = !start_;
+  start_ = start;
+  if (first || !last_) {
+    reset();
+    return;
+  }
+  km_ += heuristic(*last_, start);
+  last_ = start;
+}
+
+void DStarLite::cellChanged(Cell c)
+{
+  if (!start_ || !goal_) {
+    return;
+  }
+  // Every edge touching c changed: repair c and the cells around it.
+  updateVertex(c);
+  std::vector<std::pair<Cell, double>> around;
+  neighbours(c, around);
+  for (const auto& [n, step] : around) {
+    updateVertex(n);
+  }
+}
+
+void DStarLite::updateVoxel(const VoxelIndex& voxel, Occupancy state)
+{
+  const auto it = voxels_.find(voxel);
+  const Occupancy before = it == voxels_.end() ? Occupancy::kUnknown : it->second;
+  if (before == state) {
+    return;
+  }
+  if (state == Occupancy::kUnknown) {
+    voxels_.erase(voxel);
+  } else {
+    voxels_[voxel] = state;
+  }
+  std::vector<Cell> changed;
+  if (const auto own = lattice_.cell(voxel)) {
+    const bool was = traversable(*own);
+    cell_state_[*own] = state;
+    if (was != traversable(*own)) {
+      changed.push_back(*own);
+    }
+  }
+  if ((before == Occupancy::kOccupied) != (state == Occupancy::kOccupied)) {
+    const int delta = state == Occupancy::kOccupied ? 1 : -1;
+    for (const VoxelIndex& d : inflation_) {
+      const auto c = lattice_.cell(voxel + d);
+      if (!c) {
+        continue;
+      }
+      const bool was = traversable(*c);
+      auto& count = blockers_[*c];
+      count = static_cast<std::uint16_t>(count + delta);
+      if (count == 0) {
+        blockers_.erase(*c);
+      }
+      if (was != traversable(*c)) {
+        changed.push_back(*c);
+      }
+    }
+  }
+  std::sort(changed.begin(), changed.end());
+  changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+  for (const Cell c : changed) {
+    cellChanged(c);
+  }
+}
+
+PlanResult DStarLite::plan(std::uint64_t max_expansions)
+{
+  PlanResult out;
+  if (!goal_) {
+    out.status = PlanStatus::kNoGoal;
+    return out;
+  }
+  if (!start_) {
+    out.status = PlanStatus::kOutOfBounds;
+    return out;
+  }
+  if (!traversable(*start_)) {
+    out.status = PlanStatus::kStartBlocked;
+    return out;
+  }
+  if (!traversable(*goal_)) {
+    out.status = PlanStatus::kGoalBlocked;
+    return out;
+  }
+  const std::uint64_t pushes_before = pushes_;
+  // ComputeShortestPath, optimised version (Koenig & Likhachev 2002, Fig. 4).
+  std::vector<std::pair<Cell, double>> around;
+  while (!open_.empty()) {
+    const Entry top = open_.top();
+    const auto queued = queued_.find(top.cell);
+    if (queued == queued_.end() || !(queued->second == top.key)) {
+      open_.pop();  // stale entry
+      continue;
+    }
+    const Key k_start = calculateKey(*start_);
+    if (!(top.key < k_start) && rhs(*start_) <= g(*start_)) {
+      break;
+    }
+    if (max_expansions != 0 && out.expansions >= max_expansions) {
+      out.status = PlanStatus::kBudgetExceeded;
+      out.heap_pushes = pushes_ - pushes_before;
+      return out;
+    }
+    const Cell u = top.cell;
+    const Key k_new = calculateKey(u);
+    ++out.expansions;
+    if (top.key < k_new) {
+      open_.pop();
+      queued_[u] = k_new;
+      open_.push({k_new, u});
+      ++pushes_;
+    } else if (g(u) > rhs(u)) {
+      g_[u] = rhs(u);
+      open_.pop();
+      queued_.erase(u);
+      neighbours(u, around);
+      for (const auto& [s, step] : around) {
+        updateVertex(s);
+      }
+    } else {
+      g_.erase(u);  // g = ∞
+      open_.pop();
+      queued_.erase(u);
+      updateVertex(u);
+      neighbours(u, around);
+      for (const auto& [s, step] : around) {
+        updateVertex(s);
+      }
+    }
+  }
+  out.heap_pushes = pushes_ - pushes_before;
+  out.cost = rhs(*start_);
+  if (*start_ == *goal_) {
+    out.cost = 0.0;
+  }
+  if (out.cost == kInfinity) {
+    out.status = PlanStatus::kNoPath;
+    return out;
+  }
+  // Follow the gradient: argmin over successors of c(s, s') + g(s'), ties by cell number.
+  Cell s = *start_;
+  out.cells.push_back(s);
+  const auto limit = static_cast<std::size_t>(lattice_.size());
+  while (s != *goal_ && out.cells.size() <= limit) {
+    neighbours(s, around);
+    Cell best = -1;
+    double best_cost = kInfinity;
+    for (const auto& [n, step] : around) {
+      const double c = edgeCost(s, n) + g(n);
+      if (c < best_cost || (c == best_cost && n < best)) {
+        best_cost = c;
+        best = n;
+      }
+    }
+    if (best < 0 || best_cost == kInfinity) {
+      out.status = PlanStatus::kNoPath;
+      out.cells.clear();
+      return out;
+    }
+    s = best;
+    out.cells.push_back(s);
+  }
+  out.status = s == *goal_ ? PlanStatus::kOk : PlanStatus::kNoPath;
+  return out;
+}
+
+double shortestPathCost(const DStarLite& graph, Cell start, Cell goal)
+{
+  if (!graph.traversable(start) || !graph.traversable(goal)) {
+    return kInfinity;
+  }
+  std::unordered_map<Cell, double> dist{{start, 0.0}};
+  using Item = std::pair<double, Cell>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
+  open.push({0.0, start});
+  std::vector<std::pair<Cell, double>> around;
+  while (!open.empty()) {
+    const auto [d, u] = open.top();
+    open.pop();
+    if (d > dist[u]) {
+      continue;
+    }
+    if (u == goal) {
+      return d;
+    }
+    graph.neighbours(u, around);
+    for (const auto& [v, step] : around) {
+      const double c = graph.edgeCost(u, v);
+      if (c == kInfinity) {
+        continue;
+      }
+      const auto it = dist.find(v);
+      if (it == dist.end() || d + c < it->second) {
+        dist[v] = d + c;
+        open.push({d + c, v});
+      }
+    }
+  }
+  return kInfinity;
+}
+
+}  // namespace quad::planning

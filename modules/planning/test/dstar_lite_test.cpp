@@ -1,0 +1,199 @@
+// D* Lite against Dijkstra from scratch, and the ways D* Lite implementations are known to fail.
+#include "quad/planning/dstar_lite.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <set>
+
+namespace quad::planning {
+namespace {
+
+using geometry::VoxelGrid;
+
+Lattice box(int nx, int ny, int nz)
+{
+  // Resolution 1 m, voxel centres 0.5 ... n − 0.5.
+  return Lattice(VoxelGrid(1.0), Vector3(0, 0, 0), Vector3(nx, ny, nz));
+}
+
+Cell at(const DStarLite& p, int x, int y, int z) { return *p.lattice().cell(VoxelIndex(x, y, z)); }
+
+void expectCollisionFree(const DStarLite& p, const PlanResult& r)
+{
+  std::set<Cell> seen;
+  for (std::size_t i = 0; i < r.cells.size(); ++i) {
+    EXPECT_TRUE(p.traversable(r.cells[i])) << "cell " << r.cells[i];
+    EXPECT_TRUE(seen.insert(r.cells[i]).second) << "revisits cell " << r.cells[i];  // no oscillation
+    if (i > 0) {
+      EXPECT_LT(p.edgeCost(r.cells[i - 1], r.cells[i]), kInfinity);
+    }
+  }
+}
+
+TEST(DStarLite, CostEqualsDijkstraAfterEveryBatchOfUpdatesWithAMovingStart)
+{
+  for (const int connectivity : {6, 18, 26}) {
+    std::mt19937_64 rng(2024 + static_cast<unsigned>(connectivity));
+    DStarLite planner(box(24, 24, 6), {connectivity, true, 0.0});
+    Cell start = at(planner, 0, 0, 0);
+    const Cell goal = at(planner, 23, 23, 5);
+    planner.setStart(start);
+    planner.setGoal(goal);
+    std::uniform_int_distribution<int> x(0, 23), z(0, 5);
+    for (int batch = 0; batch < 30; ++batch) {
+      for (int k = 0; k < 25; ++k) {
+        const VoxelIndex v(x(rng), x(rng), z(rng));
+        if (planner.lattice().cell(v) == goal || planner.lattice().cell(v) == start) {
+          continue;
+        }
+        planner.updateVoxel(v, rng() % 5 == 0 ? Occupancy::kFree : Occupancy::kOccupied);
+      }
+      const PlanResult r = planner.plan();
+      const double reference = shortestPathCost(planner, start, goal);
+      if (reference == kInfinity) {
+        EXPECT_EQ(r.status, PlanStatus::kNoPath);
+        continue;
+      }
+      ASSERT_EQ(r.status, PlanStatus::kOk) << "connectivity " << connectivity << " batch " << batch;
+      EXPECT_NEAR(r.cost, reference, 1e-9) << "connectivity " << connectivity << " batch " << batch;
+      expectCollisionFree(planner, r);
+      // Move the start two cells along the path, as the vehicle would.
+      if (r.cells.size() > 3) {
+        start = r.cells[2];
+        planner.setStart(start);
+      }
+    }
+  }
+}
+
+TEST(DStarLite, InflationBlocksCellsWithinTheRadius)
+{
+  DStarLite planner(box(10, 10, 3), {26, true, 1.2});
+  planner.updateVoxel(VoxelIndex(5, 5, 1), Occupancy::kOccupied);
+  EXPECT_FALSE(planner.traversable(at(planner, 5, 5, 1)));
+  EXPECT_FALSE(planner.traversable(at(planner, 6, 5, 1)));   // 0.5 m from the box
+  EXPECT_FALSE(planner.traversable(at(planner, 6, 6, 1)));   // 0.71 m
+  EXPECT_FALSE(planner.traversable(at(planner, 6, 5, 2)));   // 0.71 m, a layer up
+  EXPECT_TRUE(planner.traversable(at(planner, 7, 5, 1)));    // 1.5 m from the box: clear of 1.2 m
+  planner.updateVoxel(VoxelIndex(5, 5, 1), Occupancy::kFree);
+  EXPECT_TRUE(planner.traversable(at(planner, 6, 5, 1)));    // cleared again, incrementally
+}
+
+TEST(DStarLiteRegression, StartEqualsGoal)
+{
+  DStarLite planner(box(5, 5, 1), {});
+  planner.setStart(at(planner, 2, 2, 0));
+  planner.setGoal(at(planner, 2, 2, 0));
+  const PlanResult r = planner.plan();
+  EXPECT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_EQ(r.cost, 0.0);
+  EXPECT_EQ(r.cells.size(), 1U);
+}
+
+TEST(DStarLiteRegression, OneCellGapInAWallIsFound)
+{
+  for (const int connectivity : {6, 26}) {
+    DStarLite planner(box(9, 9, 1), {connectivity, true, 0.0});
+    for (int y = 0; y < 9; ++y) {
+      if (y != 6) {
+        planner.updateVoxel(VoxelIndex(4, y, 0), Occupancy::kOccupied);  // wall x = 4, gap at y = 6
+      }
+    }
+    planner.setStart(at(planner, 0, 0, 0));
+    planner.setGoal(at(planner, 8, 0, 0));
+    const PlanResult r = planner.plan();
+    ASSERT_EQ(r.status, PlanStatus::kOk) << connectivity;
+    EXPECT_NE(std::find(r.cells.begin(), r.cells.end(), at(planner, 4, 6, 0)), r.cells.end());
+    EXPECT_NEAR(r.cost, shortestPathCost(planner, at(planner, 0, 0, 0), at(planner, 8, 0, 0)), 1e-9);
+  }
+}
+
+TEST(DStarLiteRegression, OneCellWallWithNoGapHasNoPathAndNoDiagonalLeak)
+{
+  DStarLite planner(box(9, 9, 1), {26, true, 0.0});
+  for (int y = 0; y < 9; ++y) {
+    planner.updateVoxel(VoxelIndex(4, y, 0), Occupancy::kOccupied);
+  }
+  planner.setStart(at(planner, 0, 0, 0));
+  planner.setGoal(at(planner, 8, 0, 0));
+  EXPECT_EQ(planner.plan().status, PlanStatus::kNoPath);
+}
+
+TEST(DStarLiteRegression, ReplanningAfterTheStartMoved)
+{
+  DStarLite planner(box(12, 12, 1), {26, true, 0.0});
+  planner.setStart(at(planner, 0, 0, 0));
+  planner.setGoal(at(planner, 11, 11, 0));
+  ASSERT_EQ(planner.plan().status, PlanStatus::kOk);
+  planner.setStart(at(planner, 5, 0, 0));
+  planner.updateVoxel(VoxelIndex(6, 1, 0), Occupancy::kOccupied);
+  const PlanResult r = planner.plan();
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_EQ(r.cells.front(), at(planner, 5, 0, 0));
+  EXPECT_NEAR(r.cost, shortestPathCost(planner, at(planner, 5, 0, 0), at(planner, 11, 11, 0)), 1e-9);
+}
+
+TEST(DStarLiteRegression, GoalBlockedThenUnblocked)
+{
+  DStarLite planner(box(8, 8, 1), {26, true, 0.0});
+  planner.setStart(at(planner, 0, 0, 0));
+  planner.setGoal(at(planner, 7, 7, 0));
+  ASSERT_EQ(planner.plan().status, PlanStatus::kOk);
+  planner.updateVoxel(VoxelIndex(7, 7, 0), Occupancy::kOccupied);
+  EXPECT_EQ(planner.plan().status, PlanStatus::kGoalBlocked);
+  planner.updateVoxel(VoxelIndex(7, 7, 0), Occupancy::kFree);
+  const PlanResult r = planner.plan();
+  EXPECT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_NEAR(r.cost, 7.0 * std::sqrt(2.0), 1e-9);
+}
+
+TEST(DStarLiteRegression, StartInsideAnObstacleIsAStatusNotAHang)
+{
+  DStarLite planner(box(6, 6, 1), {26, true, 0.0});
+  planner.updateVoxel(VoxelIndex(0, 0, 0), Occupancy::kOccupied);
+  planner.setStart(at(planner, 0, 0, 0));
+  planner.setGoal(at(planner, 5, 5, 0));
+  EXPECT_EQ(planner.plan().status, PlanStatus::kStartBlocked);
+}
+
+TEST(DStarLiteRegression, PathThroughUnknownLaterFoundOccupied)
+{
+  DStarLite planner(box(10, 10, 1), {6, true, 0.0});
+  planner.setStart(at(planner, 0, 5, 0));
+  planner.setGoal(at(planner, 9, 5, 0));
+  PlanResult r = planner.plan();
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_NEAR(r.cost, 9.0, 1e-9);  // straight through unknown space
+  for (int y = 2; y <= 8; ++y) {
+    planner.updateVoxel(VoxelIndex(5, y, 0), Occupancy::kOccupied);
+  }
+  r = planner.plan();
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_NEAR(r.cost, shortestPathCost(planner, at(planner, 0, 5, 0), at(planner, 9, 5, 0)), 1e-9);
+  EXPECT_GT(r.cost, 9.0);
+  // Pessimistic about unknown space: nothing known, nothing traversable.
+  DStarLite careful(box(10, 10, 1), {6, false, 0.0});
+  careful.setStart(at(careful, 0, 5, 0));
+  careful.setGoal(at(careful, 9, 5, 0));
+  EXPECT_EQ(careful.plan().status, PlanStatus::kStartBlocked);
+}
+
+TEST(DStarLiteRegression, BudgetStopsAndTheNextCallContinues)
+{
+  DStarLite planner(box(30, 30, 1), {26, true, 0.0});
+  planner.setStart(at(planner, 0, 0, 0));
+  planner.setGoal(at(planner, 29, 29, 0));
+  EXPECT_EQ(planner.plan(5).status, PlanStatus::kBudgetExceeded);
+  const PlanResult r = planner.plan();
+  EXPECT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_NEAR(r.cost, 29.0 * std::sqrt(2.0), 1e-9);
+}
+
+TEST(DStarLite, BadConnectivityIsRefused)
+{
+  EXPECT_THROW(DStarLite(box(3, 3, 3), {8, true, 0.0}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace quad::planning

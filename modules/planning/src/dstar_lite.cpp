@@ -51,6 +51,8 @@ DStarLite::DStarLite(Lattice lattice, PlannerConfig config) : lattice_(std::move
     }
   }
   inflation_ = geometry::inflationOffsets(config_.vehicle_radius, res);
+  blockers_.assign(static_cast<std::size_t>(lattice_.size()), 0);
+  cell_state_.assign(static_cast<std::size_t>(lattice_.size()), Occupancy::kUnknown);
 }
 
 bool DStarLite::traversable(Cell c) const
@@ -58,14 +60,8 @@ bool DStarLite::traversable(Cell c) const
   if (c < 0 || c >= lattice_.size()) {
     return false;
   }
-  if (const auto it = blockers_.find(c); it != blockers_.end() && it->second > 0) {
-    return false;
-  }
-  if (!config_.unknown_traversable) {
-    const auto it = cell_state_.find(c);
-    return it != cell_state_.end() && it->second != Occupancy::kUnknown;
-  }
-  return true;
+  const auto i = static_cast<std::size_t>(c);
+  return blockers_[i] == 0 && (config_.unknown_traversable || cell_state_[i] != Occupancy::kUnknown);
 }
 
 void DStarLite::neighbours(Cell c, std::vector<std::pair<Cell, double>>& out) const
@@ -119,12 +115,13 @@ void DStarLite::updateVertex(Cell u)
 {
   if (goal_ && u != *goal_) {
     double best = kInfinity;
-    std::vector<std::pair<Cell, double>> succ;
-    neighbours(u, succ);
-    for (const auto& [s, step] : succ) {
-      const double c = edgeCost(u, s);
-      if (c < kInfinity) {
-        best = std::min(best, c + g(s));
+    if (traversable(u)) {
+      thread_local std::vector<std::pair<Cell, double>> succ;
+      neighbours(u, succ);
+      for (const auto& [s, step] : succ) {
+        if (traversable(s)) {
+          best = std::min(best, step + g(s));
+        }
       }
     }
     if (best == kInfinity) {
@@ -213,7 +210,7 @@ void DStarLite::updateVoxel(const VoxelIndex& voxel, Occupancy state)
   std::vector<Cell> changed;
   if (const auto own = lattice_.cell(voxel)) {
     const bool was = traversable(*own);
-    cell_state_[*own] = state;
+    cell_state_[static_cast<std::size_t>(*own)] = state;
     if (was != traversable(*own)) {
       changed.push_back(*own);
     }
@@ -226,11 +223,8 @@ void DStarLite::updateVoxel(const VoxelIndex& voxel, Occupancy state)
         continue;
       }
       const bool was = traversable(*c);
-      auto& count = blockers_[*c];
+      auto& count = blockers_[static_cast<std::size_t>(*c)];
       count = static_cast<std::uint16_t>(count + delta);
-      if (count == 0) {
-        blockers_.erase(*c);
-      }
       if (was != traversable(*c)) {
         changed.push_back(*c);
       }
@@ -326,7 +320,7 @@ PlanResult DStarLite::plan(std::uint64_t max_expansions)
     Cell best = -1;
     double best_cost = kInfinity;
     for (const auto& [n, step] : around) {
-      const double c = edgeCost(s, n) + g(n);
+      const double c = traversable(n) ? step + g(n) : kInfinity;
       if (c < best_cost || (c == best_cost && n < best)) {
         best_cost = c;
         best = n;

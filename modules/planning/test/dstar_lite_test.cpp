@@ -197,3 +197,36 @@ TEST(DStarLite, BadConnectivityIsRefused)
 
 }  // namespace
 }  // namespace quad::planning
+
+#include "quad/planning/shortcut.hpp"
+
+namespace quad::planning {
+namespace {
+
+TEST(Shortcut, StraightensThePathWithoutCuttingBlockedCells)
+{
+  DStarLite planner(box(20, 20, 1), {26, true, 0.0});
+  for (int y = 0; y < 15; ++y) {
+    planner.updateVoxel(VoxelIndex(10, y, 0), Occupancy::kOccupied);  // a wall with a gap at the top
+  }
+  planner.setStart(at(planner, 0, 0, 0));
+  planner.setGoal(at(planner, 19, 0, 0));
+  const PlanResult r = planner.plan();
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  const auto waypoints = shortcut(planner, r.cells);
+  EXPECT_LT(waypoints.size(), r.cells.size());
+  EXPECT_EQ(waypoints.front(), planner.lattice().centre(r.cells.front()));
+  EXPECT_EQ(waypoints.back(), planner.lattice().centre(r.cells.back()));
+  for (std::size_t i = 0; i + 1 < waypoints.size(); ++i) {
+    EXPECT_TRUE(lineOfSight(planner, waypoints[i], waypoints[i + 1])) << i;
+  }
+  // Shortened, never longer than the lattice path.
+  double length = 0.0;
+  for (std::size_t i = 0; i + 1 < waypoints.size(); ++i) {
+    length += (waypoints[i + 1] - waypoints[i]).norm();
+  }
+  EXPECT_LE(length, r.cost + 1e-9);
+}
+
+}  // namespace
+}  // namespace quad::planning

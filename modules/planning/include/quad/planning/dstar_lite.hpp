@@ -110,9 +110,11 @@ private:
   std::vector<VoxelIndex> offsets_;           // neighbour offsets
   std::vector<double> offset_costs_;
   std::vector<VoxelIndex> inflation_;         // inflation offsets
-  std::unordered_map<Cell, std::uint16_t> blockers_;   // occupied voxels blocking each cell
+  // Per cell, flat over the lattice (3 bytes a cell): occupied voxels blocking it, and the
+  // classification of its own voxel. Traversability is asked for every edge: no hashing.
+  std::vector<std::uint16_t> blockers_;
+  std::vector<Occupancy> cell_state_;
   std::unordered_map<VoxelIndex, Occupancy, VoxelHash> voxels_;
-  std::unordered_map<Cell, Occupancy> cell_state_;     // the voxel of each cell, when known
   std::unordered_map<Cell, double> g_;
   std::unordered_map<Cell, double> rhs_;
   std::unordered_map<Cell, Key> queued_;               // current key of each queued cell

@@ -1,0 +1,270 @@
+#include "planning_node.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include "quad/common/time.hpp"
+#include "quad/plant/world_file.hpp"
+#include "quad/planning/shortcut.hpp"
+#include "quad/vehicle/vehicle.hpp"
+
+namespace quad::planning {
+
+namespace {
+Occupancy fromMessage(msg::VoxelState s)
+{
+  switch (s) {
+    case msg::VOXEL_FREE:
+      return Occupancy::kFree;
+    case msg::VOXEL_OCCUPIED:
+      return Occupancy::kOccupied;
+    default:
+      return Occupancy::kUnknown;
+  }
+}
+
+msg::PlanStatus toMessage(PlanStatus s)
+{
+  switch (s) {
+    case PlanStatus::kOk:
+      return msg::PLAN_OK;
+    case PlanStatus::kNoPath:
+      return msg::PLAN_NO_PATH;
+    case PlanStatus::kStartBlocked:
+      return msg::PLAN_START_BLOCKED;
+    case PlanStatus::kGoalBlocked:
+      return msg::PLAN_GOAL_BLOCKED;
+    case PlanStatus::kOutOfBounds:
+      return msg::PLAN_OUT_OF_BOUNDS;
+    case PlanStatus::kNoGoal:
+      return msg::PLAN_NO_GOAL;
+    case PlanStatus::kBudgetExceeded:
+      return msg::PLAN_BUDGET_EXCEEDED;
+  }
+  return msg::PLAN_NO_PATH;
+}
+
+std::filesystem::path resolve(const std::string& path, const std::string& origin)
+{
+  const std::filesystem::path p(path);
+  if (p.is_absolute()) {
+    return p;
+  }
+  return (origin.starts_with("<") ? std::filesystem::path(QUAD_CONFIG_DIR) : std::filesystem::path(origin).parent_path()) / p;
+}
+}  // namespace
+
+common::ParamSchema planningSchema()
+{
+  common::ParamSchema s;
+  s.addString("world", "worlds/demo.yaml", {}, "world file whose bounds the lattice covers")
+      .addString("vehicle", "vehicles/x500.yaml", {}, "vehicle file (its radius inflates obstacles)")
+      .addDouble("safety_margin", 0.15, 0.0, 10.0, "m", "added to the vehicle radius")
+      .addDouble("resolution", 0.2, 0.01, 10.0, "m", "lattice cell: the mapper's map.resolution")
+      .addInt("connectivity", 26, 6, 26, "", "6, 18 or 26 neighbours")
+      .addBool("unknown_traversable", true, "plan through unknown space")
+      .addDouble("replan_period", 0.2, 0.01, 60.0, "s", "sim time between replans")
+      .addDouble("republish_period", 0.5, 0.01, 60.0, "s", "sim time between repeats of an unchanged path")
+      .addInt("max_expansions", 200000, 1, 100000000, "", "replan budget per cycle");
+  return s;
+}
+
+PlanningNodeConfig planningConfigFrom(const common::Params& p)
+{
+  PlanningNodeConfig c;
+  const plant::World world = plant::loadWorld(resolve(p.getString("world"), p.origin()));
+  c.bounds_min = world.bounds().min;
+  c.bounds_max = world.bounds().max;
+  c.resolution = p.getDouble("resolution");
+  const vehicle::VehicleParams v = vehicle::loadVehicle(resolve(p.getString("vehicle"), p.origin()));
+  c.planner.vehicle_radius = v.radius + p.getDouble("safety_margin");
+  c.planner.connectivity = static_cast<int>(p.getInt("connectivity"));
+  if (c.planner.connectivity != 6 && c.planner.connectivity != 18 && c.planner.connectivity != 26) {
+    throw common::ConfigError({p.origin() + ":connectivity: " + std::to_string(c.planner.connectivity) +
+                               ": expected 6, 18 or 26"});
+  }
+  c.planner.unknown_traversable = p.getBool("unknown_traversable");
+  c.replan_period_s = p.getDouble("replan_period");
+  c.republish_period_s = p.getDouble("republish_period");
+  c.max_expansions = static_cast<std::uint64_t>(p.getInt("max_expansions"));
+  return c;
+}
+
+PlanningNode::PlanningNode(PlanningNodeConfig config, dds::ParticipantOptions options)
+    : Node("planning", std::move(options)),
+      config_(std::move(config)),
+      planner_(Lattice(geometry::VoxelGrid(config_.resolution), config_.bounds_min, config_.bounds_max), config_.planner),
+      known_(config_.resolution),
+      updates_(participant(), dds::topics::kMapUpdate, waker()),
+      snapshots_(participant(), dds::topics::kMapSnapshot, waker()),
+      state_(participant(), dds::topics::kSimState, waker()),
+      goal_(participant(), dds::topics::kGoal, waker()),
+      path_(participant(), dds::topics::kPath)
+{
+  spdlog::info("planning: lattice {} cells at {} m, inflation {} m", planner_.lattice().size(), config_.resolution,
+               config_.planner.vehicle_radius);
+}
+
+void PlanningNode::applySnapshot(const msg::MapSnapshot& snapshot)
+{
+  if (snapshot.update_seq() <= applied_seq_) {
+    return;  // already have everything in it
+  }
+  mapping::VoxelMap map(config_.resolution);
+  if (!map.applySnapshot(snapshot.octree())) {
+    counters().errors++;
+    spdlog::warn("quad/mapping/octomap: snapshot {} is not a map at {} m; ignored", snapshot.update_seq(), config_.resolution);
+    return;
+  }
+  // Whatever differs from what we knew: voxels the snapshot knows, and ours it does not.
+  std::vector<mapping::VoxelChange> diff;
+  for (const auto& c : map.contents()) {
+    if (known_.classify(c.index) != c.state) {
+      diff.push_back(c);
+    }
+  }
+  for (const auto& c : known_.contents()) {
+    if (map.classify(c.index) == mapping::VoxelState::kUnknown) {
+      diff.push_back({c.index, mapping::VoxelState::kUnknown});
+    }
+  }
+  known_.apply(diff);
+  for (const auto& c : diff) {
+    planner_.updateVoxel(c.index, static_cast<Occupancy>(c.state));
+  }
+  applied_seq_ = snapshot.update_seq();
+  dirty_ = true;
+  spdlog::info("planning: caught up from snapshot {} ({} voxels differed)", snapshot.update_seq(), diff.size());
+}
+
+void PlanningNode::applyUpdate(const msg::MapUpdate& update)
+{
+  if (std::abs(update.resolution() - config_.resolution) > 1e-9) {
+    counters().errors++;
+    spdlog::warn("quad/mapping/update: resolution {} m, the lattice's is {} m; ignored", update.resolution(),
+                 config_.resolution);
+    return;
+  }
+  if (update.update_seq() <= applied_seq_) {
+    return;  // in a snapshot already applied
+  }
+  if (update.update_seq() != applied_seq_ + 1 && applied_seq_ != 0) {
+    ++gaps_;
+    spdlog::warn("quad/mapping/update: {} follows {}: a gap until the next snapshot", update.update_seq(), applied_seq_);
+  }
+  std::vector<mapping::VoxelChange> changes;
+  changes.reserve(update.changes().size());
+  for (const auto& c : update.changes()) {
+    const VoxelIndex v(c.ix(), c.iy(), c.iz());
+    changes.push_back({v, static_cast<mapping::VoxelState>(fromMessage(c.state()))});
+    planner_.updateVoxel(v, fromMessage(c.state()));
+  }
+  known_.apply(changes);
+  applied_seq_ = update.update_seq();
+  dirty_ = true;
+}
+
+void PlanningNode::publish(std::int64_t t_ns, bool changed)
+{
+  if (changed) {
+    current_.version(++version_);
+  }
+  current_.header().stamp_ns(t_ns);
+  path_.write(current_);
+  counters().samples_out++;
+  next_publish_ns_ = t_ns + common::toNanoseconds(config_.republish_period_s);
+}
+
+void PlanningNode::replan(std::int64_t t_ns)
+{
+  if (!goal_id_ || !position_) {
+    return;
+  }
+  const auto start = planner_.lattice().cellAt(*position_);
+  const std::int64_t begin = common::steadyTimeNs();
+  PlanResult r;
+  if (!start) {
+    r.status = PlanStatus::kOutOfBounds;
+  } else {
+    planner_.setStart(*start);
+    r = planner_.plan(config_.max_expansions);
+  }
+  const double seconds = common::toSeconds(common::steadyTimeNs() - begin);
+  std::vector<Vector3> waypoints;
+  if (r.status == PlanStatus::kOk) {
+    waypoints = shortcut(planner_, r.cells);
+    waypoints.front() = *position_;  // from where the vehicle is, not its cell's centre
+  }
+  // Publish a new version only when the path changed meaningfully.
+  bool changed = static_cast<msg::PlanStatus>(toMessage(r.status)) != current_.status() ||
+                 waypoints.size() != current_.waypoints_W().size();
+  for (std::size_t i = 1; !changed && i < waypoints.size(); ++i) {  // the first point moves with the vehicle
+    const auto& w = current_.waypoints_W()[i];
+    changed = (waypoints[i] - Vector3(w.x(), w.y(), w.z())).norm() > config_.resolution;
+  }
+  if (r.status == PlanStatus::kBudgetExceeded) {
+    return;  // keep the previous path; the search continues next cycle
+  }
+  current_.goal_id(*goal_id_);
+  current_.status(toMessage(r.status));
+  current_.cost(r.status == PlanStatus::kOk ? r.cost : -1.0);
+  current_.expansions(r.expansions);
+  current_.replan_time_s(seconds);
+  current_.waypoints_W().clear();
+  for (const auto& w : waypoints) {
+    msg::Vector3 m;
+    m.x(w.x());
+    m.y(w.y());
+    m.z(w.z());
+    current_.waypoints_W().push_back(m);
+  }
+  if (changed) {
+    spdlog::info("planning: path {} {}: {} waypoints, cost {:.2f} m, {} expansions, {:.1f} ms", version_ + 1,
+                 toString(r.status), waypoints.size(), r.cost, r.expansions, seconds * 1e3);
+  }
+  if (changed || t_ns >= next_publish_ns_) {
+    publish(t_ns, changed);
+  }
+}
+
+void PlanningNode::onWake()
+{
+  while (auto s = snapshots_.take()) {
+    applySnapshot(*s);
+  }
+  for (const auto& u : updates_.takeAll()) {
+    counters().samples_in++;
+    applyUpdate(u);
+  }
+  while (auto g = goal_.take()) {
+    counters().samples_in++;
+    const Vector3 p(g->p_W().x(), g->p_W().y(), g->p_W().z());
+    const auto cell = p.allFinite() ? planner_.lattice().cellAt(p) : std::nullopt;
+    if (!cell) {
+      counters().errors++;
+      spdlog::error("quad/planning/goal: goal {} at ({}, {}, {}) is outside the planning bounds; refused", g->goal_id(),
+                    p.x(), p.y(), p.z());
+      goal_id_ = g->goal_id();
+      current_.status(msg::PLAN_OUT_OF_BOUNDS);
+      current_.goal_id(g->goal_id());
+      current_.waypoints_W().clear();
+      publish(now_ns_, true);
+      goal_id_.reset();
+      continue;
+    }
+    goal_id_ = g->goal_id();
+    planner_.setGoal(*cell);
+    dirty_ = true;
+    spdlog::info("planning: goal {} at ({}, {}, {})", g->goal_id(), p.x(), p.y(), p.z());
+  }
+  for (const auto& s : state_.takeAll()) {
+    position_ = Vector3(s.p_W().x(), s.p_W().y(), s.p_W().z());
+    now_ns_ = s.header().stamp_ns();
+  }
+  if (goal_id_ && position_ && (dirty_ || now_ns_ >= next_replan_ns_)) {
+    replan(now_ns_);
+    dirty_ = false;
+    next_replan_ns_ = now_ns_ + common::toNanoseconds(config_.replan_period_s);
+  }
+}
+
+}  // namespace quad::planning

@@ -1,0 +1,68 @@
+#pragma once
+/// @file
+/// The planning participant: keeps D* Lite's graph in step with the mapper's change sets
+/// (catching up from snapshots), replans from the vehicle's position to the goal, and
+/// publishes the shortened path (republished periodically, so followers know it is alive).
+
+#include <memory>
+#include <optional>
+
+#include "quad/dds/node.hpp"
+#include "quad/dds/publisher.hpp"
+#include "quad/dds/subscriber.hpp"
+#include "quad/dds/topics.hpp"
+#include "quad/mapping/mapper.hpp"
+#include "quad/planning/dstar_lite.hpp"
+
+namespace quad::planning {
+
+struct PlanningNodeConfig {
+  Vector3 bounds_min;
+  Vector3 bounds_max;
+  double resolution = 0.2;
+  PlannerConfig planner;
+  double replan_period_s = 0.2;      ///< [s] of sim time between replans
+  double republish_period_s = 0.5;   ///< [s] of sim time between repeats of an unchanged path
+  std::uint64_t max_expansions = 200000;
+};
+
+common::ParamSchema planningSchema();
+/// Bounds come from the world file the config names; the radius from the vehicle file plus
+/// the safety margin.
+PlanningNodeConfig planningConfigFrom(const common::Params& params);
+
+class PlanningNode : public dds::Node {
+public:
+  PlanningNode(PlanningNodeConfig config, dds::ParticipantOptions options);
+
+protected:
+  void onWake() override;
+
+private:
+  void applySnapshot(const msg::MapSnapshot& snapshot);
+  void applyUpdate(const msg::MapUpdate& update);
+  void replan(std::int64_t t_ns);
+  void publish(std::int64_t t_ns, bool changed);
+
+  PlanningNodeConfig config_;
+  DStarLite planner_;
+  mapping::VoxelMap known_;
+  dds::Subscriber<msg::MapUpdate> updates_;
+  dds::Subscriber<msg::MapSnapshot> snapshots_;
+  dds::Subscriber<msg::VehicleState> state_;
+  dds::Subscriber<msg::Goal> goal_;
+  dds::Publisher<msg::Path> path_;
+
+  std::uint64_t applied_seq_ = 0;
+  std::optional<std::uint32_t> goal_id_;
+  std::optional<Vector3> position_;
+  std::int64_t now_ns_ = 0;
+  std::int64_t next_replan_ns_ = 0;
+  std::int64_t next_publish_ns_ = 0;
+  bool dirty_ = false;
+  std::uint32_t version_ = 0;
+  msg::Path current_;
+  std::uint64_t gaps_ = 0;
+};
+
+}  // namespace quad::planning

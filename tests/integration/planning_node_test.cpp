@@ -1,0 +1,45 @@
+// The planning node as a process: a goal and the vehicle's state in, a path out.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <string>
+
+#include "process.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+using quad::test::ChildProcess;
+
+std::map<std::string, std::string> env(int domain)
+{
+  return {{"QUAD_DOMAIN_ID", std::to_string(domain)}, {"QUAD_TRANSPORT", "udp"}};
+}
+
+TEST(PlanningNode, PlansFromTheVehicleToTheGoalAndRefusesGoalsOutsideTheBounds)
+{
+  const int domain = 165;
+  ChildProcess planning({QUAD_PLANNING_NODE, "--config", std::string(QUAD_CONFIG_DIR) + "/planning.yaml"}, env(domain));
+  ASSERT_TRUE(planning.waitForOutput("running on domain", 15s)) << planning.output();
+  ChildProcess goal({QUAD_TOOL, "topic", "pub", "quad/planning/goal",
+                     "{goal_id: 1, p_W: {x: 10, y: 2, z: 2}, tolerance: 0.3}", "--wait-match", "5"},
+                    env(domain));
+  ASSERT_EQ(goal.wait(15s), 0) << goal.output();
+  ChildProcess path({QUAD_TOOL, "topic", "echo", "quad/planning/path", "-n", "1", "--timeout", "20"}, env(domain));
+  ChildProcess state({QUAD_TOOL, "topic", "pub", "quad/sim/state",
+                      "{p_W: {x: 0, y: 0, z: 2}, q_WB: {w: 1}}", "--count", "20", "--rate", "5"},
+                     env(domain));
+  ASSERT_EQ(path.wait(25s), 0) << path.output() << planning.output();
+  EXPECT_NE(path.output().find("status: PLAN_OK"), std::string::npos) << path.output();
+  EXPECT_NE(path.output().find("goal_id: 1"), std::string::npos) << path.output();
+  // Unknown space is traversable: the way is straight, so two waypoints remain.
+  EXPECT_NE(path.output().find("waypoints_W:\n  - x: 0.0\n"), std::string::npos) << path.output();
+  ChildProcess far({QUAD_TOOL, "topic", "pub", "quad/planning/goal",
+                    "{goal_id: 2, p_W: {x: 500, y: 0, z: 2}, tolerance: 0.3}"},
+                   env(domain));
+  EXPECT_EQ(far.wait(15s), 0) << far.output();
+  EXPECT_TRUE(planning.waitForOutput("goal 2 at (500, 0, 2) is outside the planning bounds; refused", 10s))
+      << planning.output();
+}
+
+}  // namespace

@@ -486,6 +486,17 @@ Params loadParams(const std::filesystem::path& file, const ParamSchema& schema)
   return parseParams(readTextFile(file), file.string(), schema);
 }
 
+std::filesystem::path configPath(const Params& params, std::string_view key,
+                                 const std::filesystem::path& defaults_dir)
+{
+  const std::filesystem::path path(params.getString(key));
+  if (path.empty() || path.is_absolute()) {
+    return path;
+  }
+  const bool from_file = !params.origin().starts_with("<");
+  return (from_file ? std::filesystem::path(params.origin()).parent_path() : defaults_dir) / path;
+}
+
 Params defaultParams(const ParamSchema& schema) { return parseParams("", "<defaults>", schema); }
 
 }  // namespace quad::common

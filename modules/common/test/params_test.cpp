@@ -156,3 +156,22 @@ TEST(ParamSchema, DefaultsAloneNeedEveryKeyToHaveOne)
 
 }  // namespace
 }  // namespace quad::common
+
+namespace quad::common {
+namespace {
+
+TEST(Params, ConfigPathsResolveAgainstTheirFileOrTheDefaults)
+{
+  ParamSchema schema;
+  schema.addString("world", "worlds/demo.yaml", {}, "").addString("none", "", {}, "");
+  const Params from_file = parseParams("world: ../worlds/open.yaml", "/etc/quad/plant.yaml", schema);
+  EXPECT_EQ(configPath(from_file, "world", "/opt/quad/configs"), "/etc/quad/../worlds/open.yaml");
+  const Params absolute = parseParams("world: /data/w.yaml", "/etc/quad/plant.yaml", schema);
+  EXPECT_EQ(configPath(absolute, "world", "/opt/quad/configs"), "/data/w.yaml");
+  const Params defaults = defaultParams(schema);
+  EXPECT_EQ(configPath(defaults, "world", "/opt/quad/configs"), "/opt/quad/configs/worlds/demo.yaml");
+  EXPECT_TRUE(configPath(defaults, "none", "/opt/quad/configs").empty());
+}
+
+}  // namespace
+}  // namespace quad::common

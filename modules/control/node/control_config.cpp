@@ -37,12 +37,7 @@ common::ParamSchema controlSchema()
 ControlNodeConfig controlConfigFrom(const common::Params& p)
 {
   ControlNodeConfig c;
-  const std::string& origin = p.origin();
-  const std::filesystem::path vehicle(p.getString("vehicle"));
-  c.vehicle_file = vehicle.is_absolute() ? vehicle
-                   : origin.starts_with("<")
-                       ? std::filesystem::path(QUAD_CONFIG_DIR) / vehicle
-                       : std::filesystem::path(origin).parent_path() / vehicle;
+  c.vehicle_file = common::configPath(p, "vehicle", QUAD_CONFIG_DIR);
   FlightControllerConfig& f = c.flight;
   f.gains.kx = p.getDouble("gains.position");
   f.gains.kv = p.getDouble("gains.velocity");

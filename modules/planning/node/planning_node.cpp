@@ -43,14 +43,6 @@ msg::PlanStatus toMessage(PlanStatus s)
   return msg::PLAN_NO_PATH;
 }
 
-std::filesystem::path resolve(const std::string& path, const std::string& origin)
-{
-  const std::filesystem::path p(path);
-  if (p.is_absolute()) {
-    return p;
-  }
-  return (origin.starts_with("<") ? std::filesystem::path(QUAD_CONFIG_DIR) : std::filesystem::path(origin).parent_path()) / p;
-}
 }  // namespace
 
 common::ParamSchema planningSchema()
@@ -71,11 +63,11 @@ common::ParamSchema planningSchema()
 PlanningNodeConfig planningConfigFrom(const common::Params& p)
 {
   PlanningNodeConfig c;
-  const plant::World world = plant::loadWorld(resolve(p.getString("world"), p.origin()));
+  const plant::World world = plant::loadWorld(common::configPath(p, "world", QUAD_CONFIG_DIR));
   c.bounds_min = world.bounds().min;
   c.bounds_max = world.bounds().max;
   c.resolution = p.getDouble("resolution");
-  const vehicle::VehicleParams v = vehicle::loadVehicle(resolve(p.getString("vehicle"), p.origin()));
+  const vehicle::VehicleParams v = vehicle::loadVehicle(common::configPath(p, "vehicle", QUAD_CONFIG_DIR));
   c.planner.vehicle_radius = v.radius + p.getDouble("safety_margin");
   c.planner.connectivity = static_cast<int>(p.getInt("connectivity"));
   if (c.planner.connectivity != 6 && c.planner.connectivity != 18 && c.planner.connectivity != 26) {

@@ -40,17 +40,6 @@ common::ParamSchema plantSchema()
 }
 
 namespace {
-std::filesystem::path resolve(const std::string& path, const std::string& origin)
-{
-  const std::filesystem::path p(path);
-  if (p.is_absolute() || path.empty()) {
-    return p;
-  }
-  const std::filesystem::path base = origin.starts_with("<") ? std::filesystem::path(QUAD_CONFIG_DIR)
-                                                             : std::filesystem::path(origin).parent_path();
-  return base / p;
-}
-
 Vector3 vec(const common::Params& p, const char* key)
 {
   const auto& v = p.getVector(key);
@@ -76,9 +65,9 @@ PlantNodeConfig plantConfigFrom(const common::Params& p)
   }
   c.lockstep_wait_for_command = p.getBool("lockstep.wait_for_command");
   c.lockstep_timeout_s = p.getDouble("lockstep.timeout");
-  c.vehicle_file = resolve(p.getString("vehicle"), origin);
-  c.world_file = resolve(p.getString("world"), origin);
-  c.fault_schedule_file = resolve(p.getString("faults.schedule"), origin);
+  c.vehicle_file = common::configPath(p, "vehicle", QUAD_CONFIG_DIR);
+  c.world_file = common::configPath(p, "world", QUAD_CONFIG_DIR);
+  c.fault_schedule_file = common::configPath(p, "faults.schedule", QUAD_CONFIG_DIR);
 
   SimulationConfig& s = c.simulation;
   s.step_ns = common::toNanoseconds(p.getDouble("sim.step"));

@@ -114,6 +114,12 @@ Params loadParams(const std::filesystem::path& file, const ParamSchema& schema);
 /// The schema's defaults; throws ConfigError if a key has no default.
 Params defaultParams(const ParamSchema& schema);
 
+/// A file path a config names under `key`: absolute as written; relative to the folder of
+/// the config file; for the schema's defaults (no file), relative to `defaults_dir`. Empty
+/// stays empty (no file).
+std::filesystem::path configPath(const Params& params, std::string_view key,
+                                 const std::filesystem::path& defaults_dir);
+
 /// Renders a value as it would be written in YAML ("0.5", "[1, 2, 3]", "true").
 std::string formatValue(const ParamValue& value);
 

@@ -486,6 +486,12 @@ Params loadParams(const std::filesystem::path& file, const ParamSchema& schema)
   return parseParams(readTextFile(file), file.string(), schema);
 }
 
+std::string configProblem(std::string_view origin, std::string_view key, const ParamValue& value,
+                          std::string_view why)
+{
+  return std::string(origin) + ":" + std::string(key) + ": " + formatValue(value) + ": " + std::string(why);
+}
+
 std::filesystem::path configPath(const Params& params, std::string_view key,
                                  const std::filesystem::path& defaults_dir)
 {

@@ -21,7 +21,7 @@ std::vector<std::string> problemsOf(const MapperConfig& c, const std::string& or
 {
   std::vector<std::string> p;
   const auto add = [&](const char* key, double value, const std::string& why) {
-    p.push_back(origin + ":" + key + ": " + common::formatValue(value) + ": " + why);
+    p.push_back(common::configProblem(origin, key, value, why));
   };
   if (!(c.prob_hit > 0.5)) {
     add("map.prob_hit", c.prob_hit, "must exceed 0.5, or hits would clear space");

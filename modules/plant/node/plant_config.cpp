@@ -91,13 +91,14 @@ PlantNodeConfig plantConfigFrom(const common::Params& p)
   std::vector<std::string> problems;
   c.lockstep_period_ns = common::toNanoseconds(p.getDouble("lockstep.period"));
   if (c.lockstep_period_ns % s.step_ns != 0) {
-    problems.push_back(origin + ":lockstep.period: " + common::formatValue(p.getDouble("lockstep.period")) +
-                       ": must be a whole number of sim.step (" + common::formatValue(p.getDouble("sim.step")) + ")");
+    problems.push_back(common::configProblem(origin, "lockstep.period", p.getDouble("lockstep.period"),
+                                             "must be a whole number of sim.step (" +
+                                                 common::formatValue(p.getDouble("sim.step")) + ")"));
   }
   if (s.depth.width * s.depth.height > 65536) {
-    problems.push_back(origin + ":depth.width: " + std::to_string(s.depth.width) + ": width x height = " +
-                       std::to_string(s.depth.width * s.depth.height) +
-                       " exceeds the 65536 points a PointCloud carries");
+    problems.push_back(common::configProblem(origin, "depth.width", std::int64_t{s.depth.width},
+                                             "width x height = " + std::to_string(s.depth.width * s.depth.height) +
+                                                 " exceeds the 65536 points a PointCloud carries"));
   }
   if (!problems.empty()) {
     throw common::ConfigError(problems);

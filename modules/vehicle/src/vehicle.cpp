@@ -79,20 +79,21 @@ VehicleParams vehicleFromParams(const common::Params& p)
   std::vector<std::string> problems;
   const std::string& origin = p.origin();
   if (v.rotor_speed_min >= v.rotor_speed_max) {
-    problems.push_back(origin + ":rotor.speed_min: " + common::formatValue(v.rotor_speed_min) +
-                       ": must be below rotor.speed_max (" +
-                       common::formatValue(v.rotor_speed_max) + ")");
+    problems.push_back(common::configProblem(origin, "rotor.speed_min", v.rotor_speed_min,
+                                             "must be below rotor.speed_max (" +
+                                                 common::formatValue(v.rotor_speed_max) + ")"));
   }
   const double max_thrust = kRotorCount * v.thrust_coefficient * v.rotor_speed_max * v.rotor_speed_max;
   if (max_thrust <= v.mass * 9.81) {
-    problems.push_back(origin + ":rotor.speed_max: " + common::formatValue(v.rotor_speed_max) +
-                       ": full thrust " + common::formatValue(max_thrust) +
-                       " N cannot lift the weight " + common::formatValue(v.mass * 9.81) + " N");
+    problems.push_back(common::configProblem(origin, "rotor.speed_max", v.rotor_speed_max,
+                                             "full thrust " + common::formatValue(max_thrust) +
+                                                 " N cannot lift the weight " +
+                                                 common::formatValue(v.mass * 9.81) + " N"));
   }
   const Eigen::Vector3d& J = v.inertia;
   if (J.x() + J.y() < J.z() || J.y() + J.z() < J.x() || J.x() + J.z() < J.y()) {
-    problems.push_back(origin + ":inertia: " + common::formatValue(std::vector<double>{J.x(), J.y(), J.z()}) +
-                       ": violates the triangle inequality of principal moments");
+    problems.push_back(common::configProblem(origin, "inertia", std::vector<double>{J.x(), J.y(), J.z()},
+                                             "violates the triangle inequality of principal moments"));
   }
   if (!problems.empty()) {
     throw common::ConfigError(problems);

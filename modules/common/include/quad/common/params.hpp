@@ -114,6 +114,11 @@ Params loadParams(const std::filesystem::path& file, const ParamSchema& schema);
 /// The schema's defaults; throws ConfigError if a key has no default.
 Params defaultParams(const ParamSchema& schema);
 
+/// One problem line in quad's format, `origin:key: value: why`, for checks across keys that
+/// a schema cannot express (a minimum above a maximum, ...).
+std::string configProblem(std::string_view origin, std::string_view key, const ParamValue& value,
+                          std::string_view why);
+
 /// A file path a config names under `key`: absolute as written; relative to the folder of
 /// the config file; for the schema's defaults (no file), relative to `defaults_dir`. Empty
 /// stays empty (no file).

@@ -111,25 +111,35 @@ DStarLite::Key DStarLite::calculateKey(Cell c) const
   return {m + heuristic(*start_, c) + km_, m};
 }
 
-void DStarLite::updateVertex(Cell u)
+double DStarLite::bestRhs(Cell u) const
 {
-  if (goal_ && u != *goal_) {
-    double best = kInfinity;
-    if (traversable(u)) {
-      thread_local std::vector<std::pair<Cell, double>> succ;
-      neighbours(u, succ);
-      for (const auto& [s, step] : succ) {
-        if (traversable(s)) {
-          best = std::min(best, step + g(s));
-        }
+  if (goal_ && u == *goal_) {
+    return 0.0;
+  }
+  double best = kInfinity;
+  if (traversable(u)) {
+    thread_local std::vector<std::pair<Cell, double>> succ;
+    neighbours(u, succ);
+    for (const auto& [s, step] : succ) {
+      if (traversable(s)) {
+        best = std::min(best, step + g(s));
       }
     }
-    if (best == kInfinity) {
-      rhs_.erase(u);
-    } else {
-      rhs_[u] = best;
-    }
   }
+  return best;
+}
+
+void DStarLite::setRhs(Cell u, double value)
+{
+  if (value == kInfinity) {
+    rhs_.erase(u);
+  } else {
+    rhs_[u] = value;
+  }
+}
+
+void DStarLite::updateVertex(Cell u)
+{
   queued_.erase(u);  // lazy deletion: an entry whose key no longer matches is skipped
   if (g(u) != rhs(u)) {
     const Key k = calculateKey(u);
@@ -181,17 +191,38 @@ void DStarLite::setStart(Cell start)
   last_ = start;
 }
 
-void DStarLite::cellChanged(Cell c)
+void DStarLite::cellChanged(Cell c, bool blocked)
 {
   if (!start_ || !goal_) {
     return;
   }
-  // Every edge touching c changed: repair c and the cells around it.
-  updateVertex(c);
+  // Koenig & Likhachev 2002, Fig. 4, lines 38-48, for every edge into and out of c.
   std::vector<std::pair<Cell, double>> around;
   neighbours(c, around);
-  for (const auto& [n, step] : around) {
-    updateVertex(n);
+  if (blocked) {
+    // Costs rose to infinity: only vertices whose rhs came through the lost edge recompute.
+    for (const auto& [n, step] : around) {
+      if (n != *goal_ && rhs(n) == step + g(c)) {
+        setRhs(n, bestRhs(n));
+        updateVertex(n);
+      }
+    }
+    if (c != *goal_) {
+      setRhs(c, kInfinity);  // no edge leaves a blocked cell
+    }
+    updateVertex(c);
+  } else {
+    // Costs fell: a neighbour may now do better through c, and c through its neighbours.
+    for (const auto& [n, step] : around) {
+      if (n != *goal_ && traversable(n) && step + g(c) < rhs(n)) {
+        setRhs(n, step + g(c));
+        updateVertex(n);
+      }
+    }
+    if (c != *goal_) {
+      setRhs(c, bestRhs(c));
+    }
+    updateVertex(c);
   }
 }
 
@@ -233,7 +264,7 @@ void DStarLite::updateVoxel(const VoxelIndex& voxel, Occupancy state)
   std::sort(changed.begin(), changed.end());
   changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
   for (const Cell c : changed) {
-    cellChanged(c);
+    cellChanged(c, !traversable(c));
   }
 }
 
@@ -284,22 +315,34 @@ PlanResult DStarLite::plan(std::uint64_t max_expansions)
       open_.push({k_new, u});
       ++pushes_;
     } else if (g(u) > rhs(u)) {
-      g_[u] = rhs(u);
+      // Overconsistent: settle g, and let predecessors improve through u.
+      const double gu = rhs(u);
+      g_[u] = gu;
       open_.pop();
       queued_.erase(u);
-      neighbours(u, around);
-      for (const auto& [s, step] : around) {
-        updateVertex(s);
+      if (traversable(u)) {
+        neighbours(u, around);
+        for (const auto& [s, step] : around) {
+          if (s != *goal_ && traversable(s) && step + gu < rhs(s)) {
+            setRhs(s, step + gu);
+            updateVertex(s);
+          }
+        }
       }
     } else {
-      g_.erase(u);  // g = ∞
+      // Underconsistent: raise g to infinity; whoever went through u recomputes.
+      const double g_old = g(u);
+      g_.erase(u);
       open_.pop();
       queued_.erase(u);
-      updateVertex(u);
       neighbours(u, around);
       for (const auto& [s, step] : around) {
+        if (s != *goal_ && rhs(s) == step + g_old) {
+          setRhs(s, bestRhs(s));
+        }
         updateVertex(s);
       }
+      updateVertex(u);  // rhs(u) does not depend on g(u): it stays, u is inconsistent now
     }
   }
   out.heap_pushes = pushes_ - pushes_before;

@@ -101,8 +101,13 @@ private:
   double g(Cell c) const;
   double rhs(Cell c) const;
   Key calculateKey(Cell c) const;
+  /// rhs(u) from scratch: min over successors of c(u, s') + g(s').
+  double bestRhs(Cell u) const;
+  void setRhs(Cell u, double value);
+  /// UpdateVertex of the optimised version: (re)queue u when inconsistent, drop it when not.
   void updateVertex(Cell u);
-  void cellChanged(Cell c);
+  /// Every edge touching c changed (c became blocked or free): the paper's edge-update rules.
+  void cellChanged(Cell c, bool blocked);
   void reset();
 
   Lattice lattice_;

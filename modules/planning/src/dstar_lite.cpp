@@ -355,10 +355,12 @@ PlanResult DStarLite::plan(std::uint64_t max_expansions)
     return out;
   }
   // Follow the gradient: argmin over successors of c(s, s') + g(s'), ties by cell number.
+  // A cell met twice means g is not yet consistent along the way (it can happen beyond the
+  // start's consistency): report no path now rather than walk in a circle.
   Cell s = *start_;
   out.cells.push_back(s);
-  const auto limit = static_cast<std::size_t>(lattice_.size());
-  while (s != *goal_ && out.cells.size() <= limit) {
+  std::unordered_map<Cell, bool> visited{{s, true}};
+  while (s != *goal_) {
     neighbours(s, around);
     Cell best = -1;
     double best_cost = kInfinity;
@@ -369,7 +371,7 @@ PlanResult DStarLite::plan(std::uint64_t max_expansions)
         best = n;
       }
     }
-    if (best < 0 || best_cost == kInfinity) {
+    if (best < 0 || best_cost == kInfinity || !visited.emplace(best, true).second) {
       out.status = PlanStatus::kNoPath;
       out.cells.clear();
       return out;

@@ -32,6 +32,7 @@ void ControlNode::takeInputs()
 {
   while (auto c = clock_.take()) {
     lockstep_ = c->lockstep();
+    clock_seen_ = true;
   }
   while (auto c = command_.take()) {
     counters().samples_in++;
@@ -61,12 +62,16 @@ void ControlNode::autostart()
   if (!config_.autostart || autostart_stage_ >= 2) {
     return;
   }
-  if (autostart_stage_ == 0 && fc_.mode() == Mode::kDisarmed) {
+  // Asks again until it takes (a command refused for a not-yet-fresh state is not lost);
+  // done once the vehicle is taking off, so a later landing is final.
+  if (fc_.mode() == Mode::kTakeoff) {
+    autostart_stage_ = 2;
+  } else if (fc_.mode() == Mode::kDisarmed) {
     fc_.onCommand(Command::kArm);
     autostart_stage_ = 1;
-  } else if (autostart_stage_ == 1 && fc_.mode() == Mode::kIdle) {
+  } else if (fc_.mode() == Mode::kIdle) {
     fc_.onCommand(Command::kTakeoff);
-    autostart_stage_ = 2;
+    autostart_stage_ = 1;
   }
 }
 
@@ -144,8 +149,8 @@ void ControlNode::onTick(std::int64_t steady_ns)
   takeInputs();
   // In real time a silent plant (or a lost link) must still reach the failsafe: advance the
   // controller's clock by the wall time since the last state. In lockstep the plant waits.
-  if (lockstep_ || latest_t_ < 0.0) {
-    return;
+  if (!clock_seen_ || lockstep_ || latest_t_ < 0.0) {
+    return;  // (until a clock says which, a quiet plant may be a lockstep one waiting for us)
   }
   const double silent = common::toSeconds(steady_ns - latest_wall_ns_);
   if (silent > config_.flight.state_timeout) {

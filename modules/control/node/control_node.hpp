@@ -41,6 +41,7 @@ private:
   dds::Publisher<msg::ControlReference> reference_;
 
   bool lockstep_ = false;
+  bool clock_seen_ = false;                // lockstep_ is known only once a clock arrived
   double latest_t_ = -1.0;                 // sim time of the newest state [s]
   std::int64_t latest_wall_ns_ = 0;        // steady time it arrived
   double next_status_t_ = 0.0;

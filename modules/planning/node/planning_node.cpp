@@ -171,7 +171,13 @@ void PlanningNode::replan(std::int64_t t_ns)
   if (!goal_id_ || !position_) {
     return;
   }
-  const auto start = planner_.lattice().cellAt(*position_);
+  auto start = planner_.lattice().cellAt(*position_);
+  if (start && !planner_.traversable(*start)) {
+    // Drifted into an inflated margin (or a cell just became blocked): leave it by the
+    // nearest free cell rather than report the start blocked.
+    start = planner_.nearestTraversable(*start, 2.0 * config_.planner.vehicle_radius + config_.resolution)
+                .value_or(*start);
+  }
   const std::int64_t begin = common::steadyTimeNs();
   PlanResult r;
   if (!start) {

@@ -64,6 +64,35 @@ bool DStarLite::traversable(Cell c) const
   return blockers_[i] == 0 && (config_.unknown_traversable || cell_state_[i] != Occupancy::kUnknown);
 }
 
+std::optional<Cell> DStarLite::nearestTraversable(Cell c, double max_distance) const
+{
+  if (traversable(c)) {
+    return c;
+  }
+  // Offsets sorted by distance: the inflation offsets of a zero-size box are exactly that.
+  const double res = lattice_.grid().resolution();
+  const VoxelIndex v = lattice_.voxel(c);
+  std::optional<Cell> best;
+  double best_d = kInfinity;
+  const int reach = static_cast<int>(std::ceil(max_distance / res));
+  for (int dz = -reach; dz <= reach; ++dz) {
+    for (int dy = -reach; dy <= reach; ++dy) {
+      for (int dx = -reach; dx <= reach; ++dx) {
+        const double d = res * std::sqrt(static_cast<double>(dx * dx + dy * dy + dz * dz));
+        if (d > max_distance || d >= best_d) {
+          continue;
+        }
+        const auto n = lattice_.cell(v + VoxelIndex(dx, dy, dz));
+        if (n && traversable(*n)) {
+          best = n;
+          best_d = d;
+        }
+      }
+    }
+  }
+  return best;
+}
+
 void DStarLite::neighbours(Cell c, std::vector<std::pair<Cell, double>>& out) const
 {
   out.clear();

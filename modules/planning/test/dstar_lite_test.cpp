@@ -190,6 +190,19 @@ TEST(DStarLiteRegression, BudgetStopsAndTheNextCallContinues)
   EXPECT_NEAR(r.cost, 29.0 * std::sqrt(2.0), 1e-9);
 }
 
+TEST(DStarLite, ADriftedStartEscapesToTheNearestFreeCell)
+{
+  DStarLite planner(box(10, 10, 1), {26, true, 1.2});
+  planner.updateVoxel(VoxelIndex(5, 5, 0), Occupancy::kOccupied);
+  const Cell inside = at(planner, 6, 5, 0);  // 0.5 m from the box: inside the margin
+  ASSERT_FALSE(planner.traversable(inside));
+  const auto out = planner.nearestTraversable(inside, 2.0);
+  ASSERT_TRUE(out.has_value());
+  EXPECT_TRUE(planner.traversable(*out));
+  EXPECT_EQ(*out, at(planner, 7, 5, 0));  // one cell further away
+  EXPECT_FALSE(planner.nearestTraversable(inside, 0.5).has_value());
+}
+
 TEST(DStarLite, BadConnectivityIsRefused)
 {
   EXPECT_THROW(DStarLite(box(3, 3, 3), {8, true, 0.0}), std::invalid_argument);

@@ -78,6 +78,9 @@ public:
   PlanResult plan(std::uint64_t max_expansions = 0);
 
   bool traversable(Cell c) const;
+  /// The traversable cell nearest to c (c itself when traversable), searching out to
+  /// `max_distance` [m]; for a vehicle that drifted into an inflated margin.
+  std::optional<Cell> nearestTraversable(Cell c, double max_distance) const;
   double edgeCost(Cell a, Cell b) const;  ///< kInfinity when either end is blocked or not neighbours
   /// Neighbours of c inside the lattice with the step length to each.
   void neighbours(Cell c, std::vector<std::pair<Cell, double>>& out) const;

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "conversions.hpp"
+#include "quad/dds/geometry_messages.hpp"
 #include "quad/common/time.hpp"
 
 namespace quad::control {
@@ -31,7 +32,7 @@ ControlNode::ControlNode(ControlNodeConfig config, dds::ParticipantOptions optio
 void ControlNode::takeInputs()
 {
   while (auto c = clock_.take()) {
-    lockstep_ = c->lockstep();
+    setLockstep(c->lockstep());
     clock_seen_ = true;
   }
   while (auto c = command_.take()) {
@@ -42,7 +43,7 @@ void ControlNode::takeInputs()
   }
   while (auto g = goal_.take()) {
     counters().samples_in++;
-    if (!fc_.onGoal(fromMessage(g->p_W()), g->tolerance())) {
+    if (!fc_.onGoal(dds::toVector(g->p_W()), g->tolerance())) {
       counters().errors++;
       spdlog::warn("quad/planning/goal: goal {} rejected: non-finite", g->goal_id());
     }
@@ -108,23 +109,13 @@ void ControlNode::publishStatus(const FlightOutput& out, std::int64_t stamp_ns)
   s.header().stamp_ns(stamp_ns);
   s.mode(toMessage(out.mode));
   s.failsafe_reason(toMessage(out.reason));
-  s.position_error_W(toMessage(out.position_error_W));
-  s.velocity_error_W(toMessage(out.velocity_error_W));
+  s.position_error_W(dds::toMessage(out.position_error_W));
+  s.velocity_error_W(dds::toMessage(out.velocity_error_W));
   s.attitude_error(out.control.attitude_error);
   s.path_version(fc_.pathVersion().value_or(0));
   s.saturated(out.mixer.saturated);
   s.rejected_inputs(fc_.rejectedInputs());
   status_.write(s);
-}
-
-void ControlNode::onEvent(const dds::EndpointEvent& event)
-{
-  // In lockstep the plant's clock waits for the slowest module: wall-clock deadlines mean
-  // nothing there. Staleness is judged in sim time by the flight controller instead.
-  if (lockstep_ && event.kind == dds::EventKind::kDeadlineMissed) {
-    return;
-  }
-  Node::onEvent(event);
 }
 
 void ControlNode::onWake()
@@ -149,7 +140,7 @@ void ControlNode::onTick(std::int64_t steady_ns)
   takeInputs();
   // In real time a silent plant (or a lost link) must still reach the failsafe: advance the
   // controller's clock by the wall time since the last state. In lockstep the plant waits.
-  if (!clock_seen_ || lockstep_ || latest_t_ < 0.0) {
+  if (!clock_seen_ || lockstep() || latest_t_ < 0.0) {
     return;  // (until a clock says which, a quiet plant may be a lockstep one waiting for us)
   }
   const double silent = common::toSeconds(steady_ns - latest_wall_ns_);

@@ -21,7 +21,6 @@ public:
 protected:
   void onWake() override;
   void onTick(std::int64_t steady_ns) override;
-  void onEvent(const dds::EndpointEvent& event) override;
 
 private:
   void takeInputs();
@@ -40,8 +39,7 @@ private:
   dds::Publisher<msg::ControlStatus> status_;
   dds::Publisher<msg::ControlReference> reference_;
 
-  bool lockstep_ = false;
-  bool clock_seen_ = false;                // lockstep_ is known only once a clock arrived
+  bool clock_seen_ = false;                // lockstep() is known only once a clock arrived
   double latest_t_ = -1.0;                 // sim time of the newest state [s]
   std::int64_t latest_wall_ns_ = 0;        // steady time it arrived
   double next_status_t_ = 0.0;

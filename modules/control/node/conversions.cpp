@@ -1,22 +1,14 @@
 #include "conversions.hpp"
 
+#include "quad/dds/geometry_messages.hpp"
+
 namespace quad::control {
 
-Vector3 fromMessage(const msg::Vector3& v) { return {v.x(), v.y(), v.z()}; }
-
-msg::Vector3 toMessage(const Vector3& v)
-{
-  msg::Vector3 out;
-  out.x(v.x());
-  out.y(v.y());
-  out.z(v.z());
-  return out;
-}
+using dds::toMessage;
 
 VehicleState fromMessage(const msg::VehicleState& m)
 {
-  return {fromMessage(m.p_W()), fromMessage(m.v_W()),
-          Quaternion{m.q_WB().w(), m.q_WB().x(), m.q_WB().y(), m.q_WB().z()}, fromMessage(m.w_B())};
+  return {dds::toVector(m.p_W()), dds::toVector(m.v_W()), dds::toQuaternion(m.q_WB()), dds::toVector(m.w_B())};
 }
 
 std::vector<Vector3> waypointsOf(const msg::Path& m)
@@ -24,7 +16,7 @@ std::vector<Vector3> waypointsOf(const msg::Path& m)
   std::vector<Vector3> out;
   out.reserve(m.waypoints_W().size());
   for (const auto& w : m.waypoints_W()) {
-    out.push_back(fromMessage(w));
+    out.push_back(dds::toVector(w));
   }
   return out;
 }

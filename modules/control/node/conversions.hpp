@@ -20,7 +20,5 @@ Command fromMessage(msg::CommandKind kind);
 msg::ControlMode toMessage(Mode mode);
 msg::FailsafeReason toMessage(Reason reason);
 msg::ControlReference toMessage(const Reference& r, double progress);
-Vector3 fromMessage(const msg::Vector3& v);
-msg::Vector3 toMessage(const Vector3& v);
 
 }  // namespace quad::control

@@ -102,6 +102,9 @@ void Node::publishHeartbeat(msg::ModuleState state)
 void Node::onEvent(const EndpointEvent& event)
 {
   if (event.kind == EventKind::kDeadlineMissed) {
+    if (lockstep_) {
+      return;
+    }
     const std::int64_t now = common::steadyTimeNs();
     if (now - last_deadline_log_ns_ < common::kNanosecondsPerSecond) {
       return;

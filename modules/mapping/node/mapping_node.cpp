@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "quad/common/time.hpp"
+#include "quad/dds/geometry_messages.hpp"
 #include "quad/geometry/cspace.hpp"
 
 namespace quad::mapping {
@@ -66,20 +67,11 @@ MappingNode::MappingNode(MappingNodeConfig config, dds::ParticipantOptions optio
   spdlog::info("mapping: resolution {} m, max range {} m", config_.map.resolution, config_.map.max_range);
 }
 
-void MappingNode::onEvent(const dds::EndpointEvent& event)
-{
-  if (lockstep_mode_ && event.kind == dds::EventKind::kDeadlineMissed) {
-    return;  // sim time waits in lockstep: wall-clock deadlines say nothing
-  }
-  Node::onEvent(event);
-}
-
 void MappingNode::integrate(const msg::PointCloud& cloud)
 {
   counters().samples_in++;
   const std::string frame = cloud.frame_id().to_string();
-  const auto& q = cloud.sensor_q_WS();
-  const geometry::Quaternion q_WS{q.w(), q.x(), q.y(), q.z()};
+  const geometry::Quaternion q_WS = dds::toQuaternion(cloud.sensor_q_WS());
   std::string problem;
   if (!config_.frames.contains(frame)) {
     problem = "unknown frame '" + frame + "'";
@@ -88,8 +80,7 @@ void MappingNode::integrate(const msg::PointCloud& cloud)
   }
   Scan scan;
   if (problem.empty()) {
-    const geometry::Pose3 sensor{Vector3(cloud.sensor_p_W().x(), cloud.sensor_p_W().y(), cloud.sensor_p_W().z()),
-                                 q_WS.normalized()};
+    const geometry::Pose3 sensor{dds::toVector(cloud.sensor_p_W()), q_WS.normalized()};
     scan.origin_W = sensor.p;
     scan.max_range = cloud.max_range();
     scan.points_W.reserve(cloud.points().size());
@@ -158,7 +149,7 @@ void MappingNode::integrate(const msg::PointCloud& cloud)
 void MappingNode::reportLockstep()
 {
   // Done with time t once every depth frame published up to t is integrated.
-  if (lockstep_mode_ && clock_ns_ > reported_ns_ && frames_seen_ >= clock_frames_) {
+  if (lockstep() && clock_ns_ > reported_ns_ && frames_seen_ >= clock_frames_) {
     lockstep_.reportDone(clock_ns_);
     reported_ns_ = clock_ns_;
   }
@@ -179,7 +170,7 @@ void MappingNode::save()
 void MappingNode::onWake()
 {
   while (auto c = clock_.take()) {
-    lockstep_mode_ = c->lockstep();
+    setLockstep(c->lockstep());
     clock_ns_ = std::max(clock_ns_, c->sim_ns());
     clock_frames_ = std::max(clock_frames_, c->depth_frames());
   }
@@ -190,7 +181,7 @@ void MappingNode::onWake()
   }
   auto clouds = depth_.takeAll();
   frames_seen_ += clouds.size();
-  if (!lockstep_mode_ && clouds.size() > 1) {
+  if (!lockstep() && clouds.size() > 1) {
     // Behind in real time: the newest cloud carries the freshest view; count the others.
     skipped_ += clouds.size() - 1;
     spdlog::debug("mapping: skipped {} older clouds", clouds.size() - 1);

@@ -34,7 +34,6 @@ public:
 protected:
   void onWake() override;
   void onStop() override;
-  void onEvent(const dds::EndpointEvent& event) override;
 
 private:
   void integrate(const msg::PointCloud& cloud);
@@ -51,7 +50,6 @@ private:
   dds::Publisher<msg::MapStats> stats_;
   dds::LockstepReporter lockstep_;
 
-  bool lockstep_mode_ = false;
   std::int64_t clock_ns_ = -1;             // newest clock time
   std::uint64_t clock_frames_ = 0;         // depth frames the plant had published by then
   std::uint64_t frames_seen_ = 0;          // depth frames taken (integrated, refused or skipped)

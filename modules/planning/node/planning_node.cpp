@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "quad/common/time.hpp"
+#include "quad/dds/geometry_messages.hpp"
 #include "quad/plant/world_file.hpp"
 #include "quad/planning/shortcut.hpp"
 #include "quad/vehicle/vehicle.hpp"
@@ -209,11 +210,7 @@ void PlanningNode::replan(std::int64_t t_ns)
   current_.replan_time_s(seconds);
   current_.waypoints_W().clear();
   for (const auto& w : waypoints) {
-    msg::Vector3 m;
-    m.x(w.x());
-    m.y(w.y());
-    m.z(w.z());
-    current_.waypoints_W().push_back(m);
+    current_.waypoints_W().push_back(dds::toMessage(w));
   }
   if (changed) {
     spdlog::info("planning: path {} {}: {} waypoints, cost {:.2f} m, {} expansions, {:.1f} ms", version_ + 1,
@@ -235,7 +232,7 @@ void PlanningNode::onWake()
   }
   while (auto g = goal_.take()) {
     counters().samples_in++;
-    const Vector3 p(g->p_W().x(), g->p_W().y(), g->p_W().z());
+    const Vector3 p = dds::toVector(g->p_W());
     const auto cell = p.allFinite() ? planner_.lattice().cellAt(p) : std::nullopt;
     if (!cell) {
       counters().errors++;
@@ -255,7 +252,7 @@ void PlanningNode::onWake()
     spdlog::info("planning: goal {} at ({}, {}, {})", g->goal_id(), p.x(), p.y(), p.z());
   }
   for (const auto& s : state_.takeAll()) {
-    position_ = Vector3(s.p_W().x(), s.p_W().y(), s.p_W().z());
+    position_ = dds::toVector(s.p_W());
     now_ns_ = s.header().stamp_ns();
   }
   if (goal_id_ && position_ && (dirty_ || now_ns_ >= next_replan_ns_)) {

@@ -1,41 +1,24 @@
 #include "conversions.hpp"
 
+#include "quad/dds/geometry_messages.hpp"
+
 #include <cmath>
 
 #include "quad/common/time.hpp"
 
 namespace quad::plant {
 
-namespace {
-msg::Vector3 vector(const Vector3& v)
-{
-  msg::Vector3 out;
-  out.x(v.x());
-  out.y(v.y());
-  out.z(v.z());
-  return out;
-}
-
-msg::Quaternion quaternion(const geometry::Quaternion& q)
-{
-  msg::Quaternion out;
-  out.w(q.w);
-  out.x(q.x);
-  out.y(q.y);
-  out.z(q.z);
-  return out;
-}
-}  // namespace
+using dds::toMessage;
 
 msg::VehicleState toMessage(const StateSample& s)
 {
   msg::VehicleState m;
   m.header().stamp_ns(s.t_ns);
-  m.p_W(vector(s.state.p_W));
-  m.v_W(vector(s.state.v_W));
-  m.q_WB(quaternion(s.state.q_WB));
-  m.w_B(vector(s.state.w_B));
-  m.a_W(vector(s.a_W));
+  m.p_W(toMessage(s.state.p_W));
+  m.v_W(toMessage(s.state.v_W));
+  m.q_WB(toMessage(s.state.q_WB));
+  m.w_B(toMessage(s.state.w_B));
+  m.a_W(toMessage(s.a_W));
   m.landed(s.state.landed);
   return m;
 }
@@ -44,8 +27,8 @@ msg::Imu toMessage(const ImuReading& r)
 {
   msg::Imu m;
   m.header().stamp_ns(r.t_ns);
-  m.specific_force_B(vector(r.sample.specific_force_B));
-  m.angular_rate_B(vector(r.sample.angular_rate_B));
+  m.specific_force_B(toMessage(r.sample.specific_force_B));
+  m.angular_rate_B(toMessage(r.sample.angular_rate_B));
   return m;
 }
 
@@ -54,8 +37,8 @@ msg::PointCloud toMessage(const DepthReading& r, double max_range)
   msg::PointCloud m;
   m.header().stamp_ns(r.t_ns);
   m.frame_id("depth_front");
-  m.sensor_p_W(vector(r.scan.sensor_W.p));
-  m.sensor_q_WS(quaternion(r.scan.sensor_W.q));
+  m.sensor_p_W(toMessage(r.scan.sensor_W.p));
+  m.sensor_q_WS(toMessage(r.scan.sensor_W.q));
   m.max_range(static_cast<float>(max_range));
   m.points().reserve(r.scan.points_S.size());
   for (const auto& p : r.scan.points_S) {
@@ -89,7 +72,7 @@ msg::SimEvent toMessage(const SimEventRecord& e)
       m.kind(msg::SIM_EVENT_FAULT_CLEARED);
       break;
   }
-  m.p_W(vector(e.p_W));
+  m.p_W(toMessage(e.p_W));
   m.subject_id(e.subject_id);
   m.detail(e.detail.substr(0, 256));
   return m;

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "conversions.hpp"
+#include "quad/dds/geometry_messages.hpp"
 #include "quad/common/time.hpp"
 #include "quad/plant/world_file.hpp"
 
@@ -50,6 +51,7 @@ PlantNode::PlantNode(PlantNodeConfig config, dds::ParticipantOptions options)
     barrier_ = std::make_unique<dds::LockstepBarrier>(participant(), config_.lockstep_participants, waker());
   }
   setTickPeriod(kRealTimeTickNs);
+  setLockstep(config_.mode == PlantNodeConfig::Mode::kLockstep);
   spdlog::info("plant: vehicle {}, world {} ({} obstacles), {} mode, seed {}", config_.vehicle_file.string(),
                config_.world_file.string(), sim_->world().obstacles().size(),
                config_.mode == PlantNodeConfig::Mode::kLockstep ? "lockstep" : "real-time",
@@ -61,11 +63,7 @@ void PlantNode::event(msg::SimEventKind kind, std::int64_t subject, const std::s
   msg::SimEvent e;
   e.header().stamp_ns(sim_->timeNs());
   e.kind(kind);
-  msg::Vector3 p;
-  p.x(sim_->state().p_W.x());
-  p.y(sim_->state().p_W.y());
-  p.z(sim_->state().p_W.z());
-  e.p_W(p);
+  e.p_W(dds::toMessage(sim_->state().p_W));
   e.subject_id(subject);
   e.detail(detail.substr(0, 256));
   events_.write(e);
@@ -80,15 +78,6 @@ void PlantNode::onStart()
   last_state_ = StateSample{0, sim_->state(), Vector3::Zero()};
   state_.write(toMessage(*last_state_));
   last_state_publish_ns_ = common::steadyTimeNs();
-}
-
-void PlantNode::onEvent(const dds::EndpointEvent& event)
-{
-  // In lockstep, sim time waits for the slowest module: wall-clock deadlines say nothing.
-  if (config_.mode == PlantNodeConfig::Mode::kLockstep && event.kind == dds::EventKind::kDeadlineMissed) {
-    return;
-  }
-  Node::onEvent(event);
 }
 
 void PlantNode::takeInputs()

@@ -27,7 +27,6 @@ protected:
   void onWake() override;
   void onTick(std::int64_t steady_ns) override;
   void onStop() override;
-  void onEvent(const dds::EndpointEvent& event) override;
 
 private:
   void takeInputs();

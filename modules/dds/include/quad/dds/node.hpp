@@ -76,11 +76,15 @@ protected:
   NodeCounters& counters() { return counters_; }
   /// 0 (the default) for no ticks.
   void setTickPeriod(std::int64_t period_ns) { tick_period_ns_ = period_ns; }
+  /// In lockstep, sim time waits for the slowest module: wall-clock deadlines say nothing,
+  /// and onEvent's default stops reporting them.
+  void setLockstep(bool lockstep) { lockstep_ = lockstep; }
+  bool lockstep() const { return lockstep_; }
 
   virtual void onStart() {}
   virtual void onWake() {}
   virtual void onTick(std::int64_t /*steady_ns*/) {}
-  /// Default: logs the event (deadline misses at most once a second per topic).
+  /// Default: logs the event (deadline misses at most once a second; none in lockstep).
   virtual void onEvent(const EndpointEvent& event);
   virtual void onStop() {}
 
@@ -94,6 +98,7 @@ private:
   Publisher<msg::Heartbeat> heartbeat_;
   std::atomic<bool> stop_{false};
   std::int64_t tick_period_ns_ = 0;
+  bool lockstep_ = false;
   std::int64_t last_deadline_log_ns_ = 0;
 };
 

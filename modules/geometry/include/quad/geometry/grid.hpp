@@ -20,6 +20,16 @@ namespace quad::geometry {
 
 using VoxelIndex = Eigen::Vector3i;
 
+/// Hash of a voxel index, for unordered containers of voxels.
+struct VoxelIndexHash {
+  std::size_t operator()(const VoxelIndex& i) const
+  {
+    return (static_cast<std::size_t>(static_cast<std::uint32_t>(i.x())) * 73856093U) ^
+           (static_cast<std::size_t>(static_cast<std::uint32_t>(i.y())) * 19349663U) ^
+           (static_cast<std::size_t>(static_cast<std::uint32_t>(i.z())) * 83492791U);
+  }
+};
+
 /// The voxel grid of the world at one resolution.
 class VoxelGrid {
 public:

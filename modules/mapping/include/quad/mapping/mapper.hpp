@@ -113,16 +113,8 @@ public:
   std::vector<VoxelChange> contents() const;
 
 private:
-  struct Hash {
-    std::size_t operator()(const VoxelIndex& i) const
-    {
-      return (static_cast<std::size_t>(static_cast<std::uint32_t>(i.x())) * 73856093U) ^
-             (static_cast<std::size_t>(static_cast<std::uint32_t>(i.y())) * 19349663U) ^
-             (static_cast<std::size_t>(static_cast<std::uint32_t>(i.z())) * 83492791U);
-    }
-  };
   double resolution_;
-  std::unordered_map<VoxelIndex, VoxelState, Hash> cells_;
+  std::unordered_map<VoxelIndex, VoxelState, geometry::VoxelIndexHash> cells_;
 };
 
 /// Orders voxel indices x, then y, then z (for sorted change sets).

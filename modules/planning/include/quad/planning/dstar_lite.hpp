@@ -47,15 +47,6 @@ struct PlanResult {
   std::uint64_t heap_pushes = 0;
 };
 
-struct VoxelHash {
-  std::size_t operator()(const VoxelIndex& i) const
-  {
-    return (static_cast<std::size_t>(static_cast<std::uint32_t>(i.x())) * 73856093U) ^
-           (static_cast<std::size_t>(static_cast<std::uint32_t>(i.y())) * 19349663U) ^
-           (static_cast<std::size_t>(static_cast<std::uint32_t>(i.z())) * 83492791U);
-  }
-};
-
 class DStarLite {
 public:
   /// Throws std::invalid_argument on a connectivity other than 6, 18, 26 or a bad radius.
@@ -122,7 +113,7 @@ private:
   // classification of its own voxel. Traversability is asked for every edge: no hashing.
   std::vector<std::uint16_t> blockers_;
   std::vector<Occupancy> cell_state_;
-  std::unordered_map<VoxelIndex, Occupancy, VoxelHash> voxels_;
+  std::unordered_map<VoxelIndex, Occupancy, geometry::VoxelIndexHash> voxels_;
   std::unordered_map<Cell, double> g_;
   std::unordered_map<Cell, double> rhs_;
   std::unordered_map<Cell, Key> queued_;               // current key of each queued cell

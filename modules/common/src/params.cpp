@@ -481,6 +481,67 @@ Params parseParams(std::string_view yaml_text, std::string_view origin, const Pa
   return Params(std::move(values), std::string(origin));
 }
 
+ParamOverride parseOverride(std::string_view text)
+{
+  const auto eq = text.find('=');
+  if (eq == std::string_view::npos || eq == 0) {
+    throw ConfigError({"--set " + std::string(text) + ": expected KEY=VALUE"});
+  }
+  return {std::string(text.substr(0, eq)), std::string(text.substr(eq + 1))};
+}
+
+Params parseParams(std::string_view yaml_text, std::string_view origin, const ParamSchema& schema,
+                   const std::vector<ParamOverride>& overrides)
+{
+  if (overrides.empty()) {
+    return parseParams(yaml_text, origin, schema);
+  }
+  YAML::Node root;
+  try {
+    root = YAML::Load(std::string(yaml_text));
+  } catch (const YAML::Exception&) {
+    return parseParams(yaml_text, origin, schema);  // reports the syntax error
+  }
+  if (root.IsNull()) {
+    root = YAML::Node(YAML::NodeType::Map);
+  }
+  if (!root.IsMap()) {
+    return parseParams(yaml_text, origin, schema);
+  }
+  for (const auto& o : overrides) {
+    YAML::Node value;
+    try {
+      value = YAML::Load(o.value);
+    } catch (const YAML::Exception& e) {
+      throw ConfigError({std::string(origin) + ":" + o.key + ": " + o.value + ": --set value is not YAML (" +
+                         e.msg + ")"});
+    }
+    // Walk down the dotted key, creating maps on the way; a scalar in the way is replaced.
+    std::vector<YAML::Node> chain{root};
+    std::size_t start = 0;
+    while (true) {
+      const auto dot = o.key.find('.', start);
+      const std::string part = o.key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+      if (part.empty()) {
+        throw ConfigError({std::string(origin) + ":" + o.key + ": " + o.value + ": --set key has an empty part"});
+      }
+      YAML::Node parent = chain.back();
+      if (dot == std::string::npos) {
+        parent[part] = value;
+        break;
+      }
+      if (!parent[part] || !parent[part].IsMap()) {
+        parent[part] = YAML::Node(YAML::NodeType::Map);
+      }
+      chain.push_back(parent[part]);
+      start = dot + 1;
+    }
+  }
+  YAML::Emitter out;
+  out << root;
+  return parseParams(out.c_str(), origin, schema);
+}
+
 Params loadParams(const std::filesystem::path& file, const ParamSchema& schema)
 {
   return parseParams(readTextFile(file), file.string(), schema);

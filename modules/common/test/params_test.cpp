@@ -69,6 +69,31 @@ TEST(Params, WrongTypeIsRefused)
   EXPECT_EQ(onlyProblem("mass: [1, 2]"), "vehicle.yaml:mass: [1, 2]: expected number");
 }
 
+TEST(Params, OverridesReplaceNestedAndFlatKeysBeforeValidation)
+{
+  // GIVEN a file and command-line overrides of a nested key, a new key and a map key
+  const Params p = parseParams("mass: 1\nrotor: {k_f: 1.0e-6}", "vehicle.yaml", vehicleSchema(),
+                               {parseOverride("rotor.k_f=2.0e-6"), parseOverride("frame=plus"),
+                                parseOverride("inertia=[1, 2, 3]")});
+  // THEN the overrides win and the rest of the file stays
+  EXPECT_DOUBLE_EQ(p.getDouble("rotor.k_f"), 2.0e-6);
+  EXPECT_EQ(p.getString("frame"), "plus");
+  EXPECT_EQ(p.getVector("inertia"), (std::vector<double>{1, 2, 3}));
+  EXPECT_DOUBLE_EQ(p.getDouble("mass"), 1.0);
+}
+
+TEST(Params, BadOverrideIsRefusedLikeABadFileValue)
+{
+  try {
+    parseParams("mass: 1", "vehicle.yaml", vehicleSchema(), {parseOverride("mass=250")});
+    FAIL() << "an out-of-range override was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.problems().front(), "vehicle.yaml:mass: 250: out of range [0.01, 100] kg");
+  }
+  EXPECT_THROW(parseOverride("mass"), ConfigError);
+  EXPECT_THROW(parseOverride("=3"), ConfigError);
+}
+
 TEST(Params, OutOfRangeIsRefusedWithTheRangeAndUnit)
 {
   EXPECT_EQ(onlyProblem("mass: 250"), "vehicle.yaml:mass: 250: out of range [0.01, 100] kg");

@@ -2,6 +2,7 @@
 
 #include <csignal>
 #include <optional>
+#include <vector>
 #include <ctime>
 #include <unistd.h>
 
@@ -9,6 +10,7 @@
 
 #include "quad/common/logging.hpp"
 #include "quad/common/time.hpp"
+#include "quad/common/yaml_input.hpp"
 #include "quad/dds/topics.hpp"
 
 namespace quad::dds {
@@ -193,21 +195,29 @@ int runNodeMain(int argc, char** argv, std::string_view module_name, common::Par
                 const std::function<std::unique_ptr<Node>(const common::Params&)>& make)
 {
   std::optional<std::string> config;
+  std::vector<std::string> sets;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--config" && i + 1 < argc) {
       config = argv[++i];
+    } else if (arg == "--set" && i + 1 < argc) {
+      sets.emplace_back(argv[++i]);
     } else {
       common::setupLogging(module_name);
-      spdlog::critical("{}: unexpected argument '{}'; usage: {} [--config FILE]", module_name, arg,
-                       argv[0]);
+      spdlog::critical("{}: unexpected argument '{}'; usage: {} [--config FILE] [--set KEY=VALUE]...",
+                       module_name, arg, argv[0]);
       return 1;
     }
   }
   common::addLoggingParams(schema);
   common::Params params;
   try {
-    params = config ? common::loadParams(*config, schema) : common::defaultParams(schema);
+    std::vector<common::ParamOverride> overrides;
+    for (const auto& s : sets) {
+      overrides.push_back(common::parseOverride(s));
+    }
+    params = config ? common::parseParams(common::readTextFile(*config), *config, schema, overrides)
+                    : common::parseParams("", "<defaults>", schema, overrides);
     common::setupLogging(module_name, common::logOptionsFrom(params));
   } catch (const common::ConfigError& e) {
     common::setupLogging(module_name);

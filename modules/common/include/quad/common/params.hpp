@@ -111,6 +111,22 @@ Params parseParams(std::string_view yaml_text, std::string_view origin, const Pa
 /// Reads and validates a YAML file. An unreadable file is a ConfigError too.
 Params loadParams(const std::filesystem::path& file, const ParamSchema& schema);
 
+/// One `key=value` given on a command line (`--set sim.mode=lockstep`): the value is YAML
+/// text and replaces what the file says under the dotted key.
+struct ParamOverride {
+  std::string key;
+  std::string value;
+};
+
+/// Parses "key=value"; throws ConfigError naming the text when there is no '=' or no key.
+ParamOverride parseOverride(std::string_view text);
+
+/// Like parseParams, with `overrides` applied on top of the YAML text before validation, so
+/// an override is checked like the file's own values. Relative paths stay relative to the
+/// file named by `origin`.
+Params parseParams(std::string_view yaml_text, std::string_view origin, const ParamSchema& schema,
+                   const std::vector<ParamOverride>& overrides);
+
 /// The schema's defaults; throws ConfigError if a key has no default.
 Params defaultParams(const ParamSchema& schema);
 

@@ -10,13 +10,15 @@
 #include <sys/types.h>
 #include <vector>
 
+#include "quad/process/spawn.hpp"
+
 namespace quad::test {
 
 class ChildProcess {
 public:
   /// Starts `argv[0]` (a path) with `env` added to this process's environment.
   ChildProcess(std::vector<std::string> argv, std::map<std::string, std::string> env = {});
-  ~ChildProcess();  // SIGKILLs the child's process group and reaps the child
+  // The destructor SIGKILLs the child's process group and reaps the child.
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;
 
@@ -24,7 +26,7 @@ public:
   std::optional<int> wait(std::chrono::milliseconds timeout);
   /// Sends `signal` to the child's process group.
   void signal(int signal);
-  pid_t pid() const { return pid_; }
+  pid_t pid() const { return child_.pid(); }
 
   /// Everything the child wrote to stdout and stderr so far (reads what is pending).
   const std::string& output();
@@ -33,10 +35,8 @@ public:
 
 private:
   void readAvailable(int timeout_ms);
-  pid_t pid_ = -1;
-  int out_fd_ = -1;
+  process::Spawned child_;
   std::string output_;
-  std::optional<int> status_;
 };
 
 }  // namespace quad::test

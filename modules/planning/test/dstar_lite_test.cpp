@@ -67,6 +67,46 @@ TEST(DStarLite, CostEqualsDijkstraAfterEveryBatchOfUpdatesWithAMovingStart)
   }
 }
 
+TEST(DStarLite, PathIsFoundWheneverOneExistsWithInflationAndAWanderingStart)
+{
+  // As the planning node drives it: obstacles inflated by a radius, revealed in batches,
+  // and a start that goes where the vehicle is (near the path, not on it), escaping
+  // blocked cells to the nearest free one.
+  for (const std::uint64_t seed : {1U, 2U, 3U, 4U, 5U, 6U}) {
+    std::mt19937_64 rng(seed);
+    DStarLite planner(Lattice(VoxelGrid(0.2), Vector3(-1, -2, 0), Vector3(12, 2, 3)), {26, true, 0.45});
+    const Cell goal = *planner.lattice().cellAt(Vector3(11, 0, 1.5));
+    Vector3 position(0, 0, 1.5);
+    planner.setGoal(goal);
+    std::uniform_real_distribution<double> ox(1.0, 11.0), oy(-2.0, 2.0), oz(0.0, 3.0), jitter(-0.15, 0.15);
+    for (int step = 0; step < 60; ++step) {
+      for (int k = 0; k < 6; ++k) {
+        const auto v = planner.lattice().grid().toIndex(Vector3(ox(rng), oy(rng), oz(rng)));
+        if ((planner.lattice().grid().centre(v) - Vector3(11, 0, 1.5)).norm() > 1.0) {
+          planner.updateVoxel(v, Occupancy::kOccupied);
+        }
+      }
+      auto start = planner.lattice().cellAt(position);
+      ASSERT_TRUE(start);
+      if (!planner.traversable(*start)) {
+        start = planner.nearestTraversable(*start, 1.2).value_or(*start);
+      }
+      planner.setStart(*start);
+      const PlanResult r = planner.plan();
+      const double reference = shortestPathCost(planner, *start, goal);
+      if (reference == kInfinity || !planner.traversable(*start)) {
+        continue;
+      }
+      ASSERT_EQ(r.status, PlanStatus::kOk) << "seed " << seed << " step " << step << " cost " << r.cost;
+      EXPECT_NEAR(r.cost, reference, 1e-9) << "seed " << seed << " step " << step;
+      expectCollisionFree(planner, r);
+      // The vehicle moves a little along the path, off its cells' centres.
+      const std::size_t next = std::min<std::size_t>(r.cells.size() - 1, 2);
+      position = planner.lattice().centre(r.cells[next]) + Vector3(jitter(rng), jitter(rng), jitter(rng));
+    }
+  }
+}
+
 TEST(DStarLite, InflationBlocksCellsWithinTheRadius)
 {
   DStarLite planner(box(10, 10, 3), {26, true, 1.2});

@@ -80,16 +80,40 @@ public:
   std::size_t touched() const { return g_.size(); }
 
 private:
+  /// Keys compare with a tolerance far above rounding and far below any difference of two
+  /// lattice path costs: costs are sums of square roots, so two keys that are equal in exact
+  /// arithmetic (a straight path and its heuristic, say) can differ in the last bit, and a
+  /// strict comparison would then leave a cell of the optimal path unexpanded.
+  static constexpr double kKeyTolerance = 1e-9;  // [m]
   struct Key {
     double k1;
     double k2;
-    bool operator<(const Key& o) const { return k1 < o.k1 || (k1 == o.k1 && k2 < o.k2); }
+    bool operator<(const Key& o) const
+    {
+      if (k1 < o.k1 - kKeyTolerance) {
+        return true;
+      }
+      if (k1 > o.k1 + kKeyTolerance) {
+        return false;
+      }
+      return k2 < o.k2 - kKeyTolerance;
+    }
+    /// Exact: identifies the key an entry was queued with.
     bool operator==(const Key& o) const { return k1 == o.k1 && k2 == o.k2; }
   };
   struct Entry {
     Key key;
     Cell cell;
-    bool operator>(const Entry& o) const { return o.key < key || (key == o.key && cell > o.cell); }
+    bool operator>(const Entry& o) const
+    {
+      if (o.key < key) {
+        return true;
+      }
+      if (key < o.key) {
+        return false;
+      }
+      return cell > o.cell;  // deterministic among equal keys
+    }
   };
 
   double g(Cell c) const;

@@ -70,6 +70,7 @@ MappingNode::MappingNode(MappingNodeConfig config, dds::ParticipantOptions optio
 void MappingNode::integrate(const msg::PointCloud& cloud)
 {
   counters().samples_in++;
+  ++frames_integrated_;
   const std::string frame = cloud.frame_id().to_string();
   const geometry::Quaternion q_WS = dds::toQuaternion(cloud.sensor_q_WS());
   std::string problem;
@@ -95,7 +96,7 @@ void MappingNode::integrate(const msg::PointCloud& cloud)
     ++rejected_;
     counters().errors++;
     spdlog::warn("quad/sim/depth: cloud seq {} rejected: {}", cloud.header().seq(), result.rejection);
-    return;
+    // Still one (empty) update below: consumers count clouds through them.
   }
   // The change set, in as many messages as its bound needs, each with its own number.
   const std::uint64_t first_seq = update_seq_ + 1;
@@ -104,6 +105,7 @@ void MappingNode::integrate(const msg::PointCloud& cloud)
     update.header().stamp_ns(cloud.header().stamp_ns());
     update.update_seq(++update_seq_);
     update.resolution(mapper_.resolution());
+    update.depth_frames(frames_integrated_);
     const std::size_t end = std::min(result.changes.size(), begin + kMaxChangesPerMessage);
     update.changes().reserve(end - begin);
     for (std::size_t i = begin; i < end; ++i) {
@@ -180,10 +182,19 @@ void MappingNode::onWake()
     }
   }
   auto clouds = depth_.takeAll();
+  // A cloud resent by a lockstep plant waiting for us is one we have: known by its stamp.
+  std::erase_if(clouds, [this](const msg::PointCloud& c) {
+    if (c.header().stamp_ns() <= last_cloud_ns_) {
+      return true;
+    }
+    last_cloud_ns_ = c.header().stamp_ns();
+    return false;
+  });
   frames_seen_ += clouds.size();
   if (!lockstep() && clouds.size() > 1) {
     // Behind in real time: the newest cloud carries the freshest view; count the others.
     skipped_ += clouds.size() - 1;
+    frames_integrated_ += clouds.size() - 1;
     spdlog::debug("mapping: skipped {} older clouds", clouds.size() - 1);
     clouds.erase(clouds.begin(), clouds.end() - 1);
   }

@@ -91,7 +91,9 @@ PlanningNode::PlanningNode(PlanningNodeConfig config, dds::ParticipantOptions op
       snapshots_(participant(), dds::topics::kMapSnapshot, waker()),
       state_(participant(), dds::topics::kSimState, waker()),
       goal_(participant(), dds::topics::kGoal, waker()),
-      path_(participant(), dds::topics::kPath)
+      clock_(participant(), dds::topics::kSimClock, waker()),
+      path_(participant(), dds::topics::kPath),
+      lockstep_(participant(), "planning")
 {
   spdlog::info("planning: lattice {} cells at {} m, inflation {} m", planner_.lattice().size(), config_.resolution,
                config_.planner.vehicle_radius);
@@ -99,8 +101,8 @@ PlanningNode::PlanningNode(PlanningNodeConfig config, dds::ParticipantOptions op
 
 void PlanningNode::applySnapshot(const msg::MapSnapshot& snapshot)
 {
-  if (snapshot.update_seq() <= applied_seq_) {
-    return;  // already have everything in it
+  if (!gap_pending_ || snapshot.update_seq() <= applied_seq_) {
+    return;  // nothing missing, or nothing newer than what we have
   }
   mapping::VoxelMap map(config_.resolution);
   if (!map.applySnapshot(snapshot.octree())) {
@@ -125,7 +127,7 @@ void PlanningNode::applySnapshot(const msg::MapSnapshot& snapshot)
     planner_.updateVoxel(c.index, static_cast<Occupancy>(c.state));
   }
   applied_seq_ = snapshot.update_seq();
-  dirty_ = true;
+  gap_pending_ = false;
   spdlog::info("planning: caught up from snapshot {} ({} voxels differed)", snapshot.update_seq(), diff.size());
 }
 
@@ -140,10 +142,16 @@ void PlanningNode::applyUpdate(const msg::MapUpdate& update)
   if (update.update_seq() <= applied_seq_) {
     return;  // in a snapshot already applied
   }
-  if (update.update_seq() != applied_seq_ + 1 && applied_seq_ != 0) {
+  if (update.update_seq() != applied_seq_ + 1) {
     ++gaps_;
-    spdlog::warn("quad/mapping/update: {} follows {}: a gap until the next snapshot", update.update_seq(), applied_seq_);
+    gap_pending_ = true;
+    if (applied_seq_ == 0) {
+      spdlog::info("quad/mapping/update: joined at update {}; the rest comes with the next snapshot", update.update_seq());
+    } else {
+      spdlog::warn("quad/mapping/update: {} follows {}: a gap until the next snapshot", update.update_seq(), applied_seq_);
+    }
   }
+  frames_applied_ = std::max(frames_applied_, update.depth_frames());
   std::vector<mapping::VoxelChange> changes;
   changes.reserve(update.changes().size());
   for (const auto& c : update.changes()) {
@@ -153,7 +161,6 @@ void PlanningNode::applyUpdate(const msg::MapUpdate& update)
   }
   known_.apply(changes);
   applied_seq_ = update.update_seq();
-  dirty_ = true;
 }
 
 void PlanningNode::publish(std::int64_t t_ns, bool changed)
@@ -223,6 +230,12 @@ void PlanningNode::replan(std::int64_t t_ns)
 
 void PlanningNode::onWake()
 {
+  while (auto c = clock_.take()) {
+    setLockstep(c->lockstep());
+    clock_ns_ = std::max(clock_ns_, c->sim_ns());
+    clock_frames_ = std::max(clock_frames_, c->depth_frames());
+  }
+  // Snapshots first: one sent with the updates it contains must not undo newer ones.
   while (auto s = snapshots_.take()) {
     applySnapshot(*s);
   }
@@ -248,17 +261,24 @@ void PlanningNode::onWake()
     }
     goal_id_ = g->goal_id();
     planner_.setGoal(*cell);
-    dirty_ = true;
+    goal_changed_ = true;
     spdlog::info("planning: goal {} at ({}, {}, {})", g->goal_id(), p.x(), p.y(), p.z());
   }
   for (const auto& s : state_.takeAll()) {
     position_ = dds::toVector(s.p_W());
     now_ns_ = s.header().stamp_ns();
   }
-  if (goal_id_ && position_ && (dirty_ || now_ns_ >= next_replan_ns_)) {
+  // In lockstep a replan sees every depth cloud published up to its time, so that runs
+  // repeat; the clock waits for this node's report.
+  const bool map_complete = !lockstep() || frames_applied_ >= clock_frames_;
+  if (goal_id_ && position_ && map_complete && (goal_changed_ || now_ns_ >= next_replan_ns_)) {
     replan(now_ns_);
-    dirty_ = false;
+    goal_changed_ = false;
     next_replan_ns_ = now_ns_ + common::toNanoseconds(config_.replan_period_s);
+  }
+  if (lockstep() && map_complete && clock_ns_ > reported_ns_ && now_ns_ >= clock_ns_) {
+    lockstep_.reportDone(clock_ns_);
+    reported_ns_ = clock_ns_;
   }
 }
 

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 
+#include "quad/dds/lockstep.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
@@ -51,15 +52,22 @@ private:
   dds::Subscriber<msg::MapSnapshot> snapshots_;
   dds::Subscriber<msg::VehicleState> state_;
   dds::Subscriber<msg::Goal> goal_;
+  dds::Subscriber<msg::SimClock> clock_;
   dds::Publisher<msg::Path> path_;
+  dds::LockstepReporter lockstep_;
 
   std::uint64_t applied_seq_ = 0;
+  bool gap_pending_ = false;            // an update was missed: the next snapshot fills it in
+  std::uint64_t frames_applied_ = 0;    // depth clouds the applied updates account for
+  std::int64_t clock_ns_ = 0;           // lockstep: the sim time the clock is at
+  std::uint64_t clock_frames_ = 0;      // lockstep: depth clouds published up to then
+  std::int64_t reported_ns_ = -1;
+  bool goal_changed_ = false;
   std::optional<std::uint32_t> goal_id_;
   std::optional<Vector3> position_;
   std::int64_t now_ns_ = 0;
   std::int64_t next_replan_ns_ = 0;
   std::int64_t next_publish_ns_ = 0;
-  bool dirty_ = false;
   std::uint32_t version_ = 0;
   msg::Path current_;
   std::uint64_t gaps_ = 0;

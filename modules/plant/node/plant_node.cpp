@@ -133,7 +133,8 @@ void PlantNode::publish(const StepOutputs& out)
 {
   // Depth first: the clock that follows counts it.
   if (out.depth) {
-    depth_.write(toMessage(*out.depth, config_.simulation.depth.max_range));
+    last_depth_ = toMessage(*out.depth, config_.simulation.depth.max_range);
+    depth_.write(*last_depth_);
     ++depth_frames_;
     counters().samples_out++;
   }
@@ -201,8 +202,12 @@ void PlantNode::runLockstep()
     if (!command_ready || !others_ready) {
       const std::int64_t now = common::steadyTimeNs();
       if (last_state_ && now - last_state_publish_ns_ >= kRepublishNs) {
-        // A state or clock sample lost, or sent before a participant matched, would stall
-        // the round for good. Resend both; an answer to a repeat is the same answer.
+        // A state, clock or depth sample lost, or sent before a participant matched, would
+        // stall the round for good. Resend them; an answer to a repeat is the same answer
+        // (the mapper knows a cloud it has by its stamp).
+        if (last_depth_) {
+          depth_.write(*last_depth_);
+        }
         state_.write(toMessage(*last_state_));
         publishClock();
         last_state_publish_ns_ = now;

@@ -56,6 +56,7 @@ private:
   std::int64_t next_wait_report_ns_ = 0;
   std::uint64_t dropped_steps_ = 0;        // real time: steps skipped when far behind
   std::uint64_t depth_frames_ = 0;         // depth frames published so far
+  std::optional<msg::PointCloud> last_depth_;  // lockstep: resent with the state while a round waits
   std::optional<StateSample> last_state_;  // last state published
   std::int64_t last_state_publish_ns_ = 0; // steady time of that publication
 };

@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # Sets up a Debian 12 machine for quad and runs one of its two jobs:
-#   tools/setup.sh demo   install, configure, build (release) and fly the demo mission
+#   tools/setup.sh demo [quad launch options]   install, configure, build (release) and fly
+#                                              the demo mission (bringup/demo.yaml)
 #   tools/setup.sh test   install, configure, build (ci preset, -Werror) and run every test
 # As root, missing Debian packages are installed with apt-get; otherwise the exact
 # apt-get line is printed and the script stops.
 set -euo pipefail
 
 job=${1:-}
+shift || true
 case "$job" in
   demo | test) ;;
   *)
@@ -58,5 +60,7 @@ if [[ $job == test ]]; then
 else
   cmake --preset release
   cmake --build --preset release
-  exec "$root/bringup/demo.sh" "$root/build/release"
+  # The four modules fly the demo mission in lockstep; the run's logs and summary land in
+  # log/demo-<time>-<pid>/.
+  exec "$root/build/release/tools/quad/quad" launch "$root/bringup/demo.yaml" "$@"
 fi

@@ -10,6 +10,7 @@ dds::ParticipantOptions participantOptions(const std::string& name,
                                            const ConnectionOptions& connection)
 {
   dds::ParticipantOptions options = dds::optionsFromEnvironment(name);
+  options.observe_all = true;  // a tool looks at the whole graph
   if (connection.domain_id) {
     options.domain_id = *connection.domain_id;
   }

@@ -6,6 +6,7 @@
 
 #include <iostream>
 
+#include "launch_command.hpp"
 #include "so3_command.hpp"
 #include "topic_commands.hpp"
 
@@ -25,6 +26,23 @@ int main(int argc, char** argv)
   CLI::App app{"quad: run, inspect and test the quad flight stack"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "quad 0.1.0");
+
+  quad::tools::LaunchOptions launch_options;
+  auto* launch = app.add_subcommand("launch", "Start a manifest's modules on their hosts, supervise them, fly its mission");
+  launch->add_option("manifest", launch_options.manifest, "Manifest, e.g. bringup/demo.yaml")->required();
+  launch->add_option("--world", launch_options.world, "Fly this world instead of the manifest's");
+  auto* realtime = launch->add_flag("--realtime", launch_options.realtime, "Sim time follows the wall clock");
+  launch->add_flag("--lockstep", launch_options.lockstep, "Sim time waits for every module (reproducible)")
+      ->excludes(realtime);
+  launch->add_option("--domain", launch_options.domain, "DDS domain id (default: the manifest's, else $QUAD_DOMAIN_ID, else 0)")
+      ->check(CLI::Range(0, 232));
+  launch->add_option("--subnet", launch_options.subnet, "First three numbers of the /24 for network-namespace hosts");
+  launch->add_option("--summary", launch_options.summary, "Write the mission's summary as JSON to this file");
+  launch->add_option("--log-dir", launch_options.log_dir, "The run's folder (default: log/<name>-<time>-<pid>)");
+  launch->add_option("--wall-timeout", launch_options.wall_timeout_s, "Stop and fail after this many seconds")
+      ->check(CLI::NonNegativeNumber);
+  launch->add_flag("-q,--quiet", launch_options.quiet, "Modules' output to their log files only");
+  launch->add_flag("--check", launch_options.check, "Validate the manifest and exit");
 
   auto* topic = app.add_subcommand("topic", "Inspect and publish topics of a running stack");
   topic->require_subcommand(1);
@@ -119,6 +137,9 @@ int main(int argc, char** argv)
   }
 
   try {
+    if (launch->parsed()) {
+      return quad::tools::launch(launch_options);
+    }
     if (list->parsed()) {
       return quad::tools::topicList(list_options);
     }

@@ -225,7 +225,8 @@ Participant::Participant(ParticipantOptions options)
     frtps::get_server_client_default_guidPrefix(0, server.guidPrefix);
     server.metatrafficUnicastLocatorList.push_back(
         parseLocator(options_.discovery_server, "discovery server", true));
-    builtin.discovery_config.discoveryProtocol = frtps::DiscoveryProtocol_t::CLIENT;
+    builtin.discovery_config.discoveryProtocol =
+        options_.observe_all ? frtps::DiscoveryProtocol_t::SUPER_CLIENT : frtps::DiscoveryProtocol_t::CLIENT;
     builtin.discovery_config.m_DiscoveryServers.push_back(server);
   }
 

@@ -33,6 +33,9 @@ struct ParticipantOptions {
   Transport transport = Transport::kDefault;
   std::vector<std::string> initial_peers;  ///< "IP" or "IP:PORT" unicast discovery peers
   std::string discovery_server;            ///< "IP:PORT" of a Fast DDS discovery server (id 0)
+  /// With a discovery server: learn every endpoint of the domain (a SUPER_CLIENT), not only
+  /// those matching this participant's own. Tools that watch the whole graph set it.
+  bool observe_all = false;
   std::filesystem::path qos_file;          ///< QoS profiles XML; empty: the installed default
   std::uint32_t vehicle_id = 0;            ///< written into Header.vehicle_id of every sample
 };

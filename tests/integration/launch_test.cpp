@@ -1,0 +1,161 @@
+// quad launch: the demo mission end to end, across network namespaces, and supervision.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include "process.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+using quad::test::ChildProcess;
+namespace fs = std::filesystem;
+
+fs::path scratch(const std::string& name)
+{
+  const fs::path dir = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string readFile(const fs::path& p)
+{
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+fs::path writeManifest(const fs::path& dir, const std::string& text)
+{
+  const fs::path file = dir / "m.yaml";
+  std::ofstream(file) << text;
+  return file;
+}
+
+/// Flies a shipped manifest's mission and checks the summary and the run folder.
+void flyMission(const std::string& manifest, int domain, const std::vector<std::string>& extra)
+{
+  const fs::path dir = scratch("quad_launch_" + std::to_string(domain));
+  std::vector<std::string> argv{QUAD_TOOL, "launch", std::string(QUAD_SOURCE_DIR) + "/bringup/" + manifest,
+                                "--domain", std::to_string(domain), "--quiet", "--wall-timeout", "300",
+                                "--summary", (dir / "summary.json").string(), "--log-dir", (dir / "run").string()};
+  argv.insert(argv.end(), extra.begin(), extra.end());
+  ChildProcess launch(argv);
+  const auto status = launch.wait(330s);
+  ASSERT_TRUE(status) << launch.output();
+  EXPECT_EQ(*status, 0) << launch.output();
+  const std::string summary = readFile(dir / "summary.json");
+  EXPECT_NE(summary.find("\"success\": true"), std::string::npos) << summary << launch.output();
+  EXPECT_NE(summary.find("\"collisions\": 0"), std::string::npos) << summary;
+  EXPECT_NE(launch.output().find("mission: SUCCESS (landed at the goal)"), std::string::npos) << launch.output();
+  for (const char* log : {"launch.log", "plant.log", "control.log", "mapping.log", "planning.log", "summary.json"}) {
+    EXPECT_TRUE(fs::exists(dir / "run" / log)) << log;
+  }
+  // Every module ran on the planner's paths in lockstep, and stopped cleanly.
+  EXPECT_NE(readFile(dir / "run/plant.log").find("lockstep mode"), std::string::npos);
+  EXPECT_NE(readFile(dir / "run/planning.log").find("path 1 ok"), std::string::npos);
+  EXPECT_EQ(launch.output().find("SIGKILL"), std::string::npos) << launch.output();
+  if (!::testing::Test::HasFailure()) {
+    fs::remove_all(dir);  // kept to look into otherwise
+  }
+}
+
+TEST(Launch, DemoMissionReachesTheGoalInLockstepWithoutCollision)
+{
+  flyMission("demo.yaml", 180, {});
+}
+
+TEST(Launch, ThreeHostManifestFliesTheMissionAcrossNetworkNamespaces)
+{
+  if (::geteuid() != 0) {
+    GTEST_SKIP() << "network namespaces need root";
+  }
+  flyMission("three_hosts.yaml", 181, {"--subnet", "10.181.0"});
+}
+
+TEST(Launch, AKilledModuleIsRespawned)
+{
+  const fs::path dir = scratch("quad_launch_respawn");
+  const auto manifest = writeManifest(dir, R"(
+modules:
+  mapping: {respawn: 2, backoff: 0.2}
+)");
+  ChildProcess launch({QUAD_TOOL, "launch", manifest.string(), "--domain", "182", "--log-dir", (dir / "run").string()});
+  ASSERT_TRUE(launch.waitForOutput("started mapping on local (pid ", 20s)) << launch.output();
+  ASSERT_TRUE(launch.waitForOutput("mapping running on domain 182", 20s)) << launch.output();
+  std::smatch m;
+  const std::string out = launch.output();
+  ASSERT_TRUE(std::regex_search(out, m, std::regex(R"(started mapping on local \(pid (\d+)\))")));
+  ASSERT_EQ(::kill(std::stoi(m[1].str()), SIGKILL), 0);
+  EXPECT_TRUE(launch.waitForOutput("mapping exited (killed by SIGKILL): restarting in 0.2 s (1 of 2)", 10s))
+      << launch.output();
+  // Started again: a second line naming another pid.
+  const auto restarted = [&] {
+    const std::string o = launch.output();
+    const auto first = o.find("started mapping on local");
+    return first != std::string::npos && o.find("started mapping on local", first + 1) != std::string::npos;
+  };
+  for (int i = 0; i < 100 && !restarted(); ++i) {
+    launch.waitForOutput("\n\n", 100ms);
+  }
+  EXPECT_TRUE(restarted()) << launch.output();
+  launch.signal(SIGTERM);
+  const auto status = launch.wait(20s);
+  ASSERT_TRUE(status) << launch.output();
+  EXPECT_EQ(*status, 0) << launch.output();
+  EXPECT_NE(launch.output().find("stopped mapping"), std::string::npos) << launch.output();
+  fs::remove_all(dir);
+}
+
+TEST(Launch, AMissingModuleFailsStartUpNamingIt)
+{
+  const fs::path dir = scratch("quad_launch_missing");
+  const auto manifest = writeManifest(dir, R"(
+modules:
+  control: {needs: [quad/planning/path], ready_timeout: 1.0}
+)");
+  ChildProcess launch({QUAD_TOOL, "launch", manifest.string(), "--domain", "183", "--log-dir", (dir / "run").string()});
+  const auto status = launch.wait(30s);
+  ASSERT_TRUE(status) << launch.output();
+  EXPECT_EQ(*status, 1) << launch.output();
+  EXPECT_NE(launch.output().find("control not started: after 1.0 s no writer on quad/planning/path (written by "
+                                 "planning, which this manifest does not start)"),
+            std::string::npos)
+      << launch.output();
+  fs::remove_all(dir);
+}
+
+TEST(Launch, AMalformedManifestIsRefusedWithFileAndKey)
+{
+  const fs::path dir = scratch("quad_launch_malformed");
+  const auto manifest = writeManifest(dir, R"(
+hosts: {here: {type: local}}
+modules:
+  control: {respawns: 2}
+  plant: {host: there}
+  autopilot: {}
+)");
+  ChildProcess launch({QUAD_TOOL, "launch", manifest.string(), "--domain", "184"});
+  const auto status = launch.wait(20s);
+  ASSERT_TRUE(status) << launch.output();
+  EXPECT_EQ(*status, 2) << launch.output();
+  const std::string file = manifest.string();
+  for (const std::string& line : {file + ":modules.control.respawns: 2: unknown key",
+                                 file + ":modules.plant.host: there: unknown host (hosts: here)",
+                                 file + ":modules.autopilot.module: autopilot: module not found"}) {
+    EXPECT_NE(launch.output().find(line), std::string::npos) << line << "\n" << launch.output();
+  }
+  EXPECT_FALSE(fs::exists(dir / "run"));  // nothing started
+  fs::remove_all(dir);
+}
+
+}  // namespace

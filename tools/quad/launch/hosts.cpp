@@ -1,0 +1,223 @@
+#include "hosts.hpp"
+
+#include <signal.h>
+
+#include <cerrno>
+#include <sstream>
+#include <stdexcept>
+
+#include "quad/process/spawn.hpp"
+
+#include <poll.h>
+
+namespace quad::launch {
+
+CommandResult runCommand(const std::vector<std::string>& argv)
+{
+  process::Spawned child(argv);
+  CommandResult result;
+  std::optional<int> status;
+  while (!(status = child.poll())) {
+    pollfd p{child.outputFd(), POLLIN, 0};
+    ::poll(&p, 1, 20);
+    child.readOutput(result.output);
+  }
+  child.readOutput(result.output);
+  result.status = *status;
+  return result;
+}
+
+void runChecked(const std::vector<std::string>& argv)
+{
+  auto result = runCommand(argv);
+  if (result.status != 0) {
+    std::string line;
+    for (const auto& a : argv) {
+      line += (line.empty() ? "" : " ") + a;
+    }
+    while (!result.output.empty() && result.output.back() == '\n') {
+      result.output.pop_back();
+    }
+    throw std::runtime_error("'" + line + "' failed (" + process::describeStatus(result.status) +
+                             "): " + result.output);
+  }
+}
+
+namespace {
+
+/// One word for a POSIX shell, whatever it contains.
+std::string shellQuote(const std::string& word)
+{
+  std::string out = "'";
+  for (const char c : word) {
+    out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  }
+  return out + "'";
+}
+
+}  // namespace
+
+void removeAbandonedNetworks()
+{
+  // Names carry the launcher's pid in hex: quad-<pid>-<host>, qb<pid>, qv<pid>x<n>a.
+  const auto alive = [](const std::string& hex) {
+    try {
+      const auto pid = static_cast<pid_t>(std::stol(hex, nullptr, 16));
+      return ::kill(pid, 0) == 0 || errno != ESRCH;
+    } catch (const std::exception&) {
+      return true;  // not ours to judge
+    }
+  };
+  std::istringstream namespaces(runCommand({"ip", "netns", "list"}).output);
+  for (std::string line; std::getline(namespaces, line);) {
+    const std::string name = line.substr(0, line.find(' '));
+    const auto dash = name.find('-', 5);
+    if (name.starts_with("quad-") && dash != std::string::npos && !alive(name.substr(5, dash - 5))) {
+      runCommand({"ip", "netns", "delete", name});
+    }
+  }
+  std::istringstream links(runCommand({"ip", "-o", "link", "show"}).output);
+  for (std::string line; std::getline(links, line);) {
+    // "12: qb1b25: <...>" or "13: qv1b25x0a@if12: <...>"
+    const auto colon = line.find(": ");
+    if (colon == std::string::npos) {
+      continue;
+    }
+    std::string name = line.substr(colon + 2);
+    name = name.substr(0, std::min(name.find(':'), name.find('@')));
+    if ((name.starts_with("qb") && !alive(name.substr(2))) ||
+        (name.starts_with("qv") && name.find('x') != std::string::npos && !alive(name.substr(2, name.find('x') - 2)))) {
+      runCommand({"ip", "link", "delete", name});
+    }
+  }
+}
+
+HostNetwork::HostNetwork(const Manifest& manifest, std::string run_id) : manifest_(manifest)
+{
+  int next = 2;
+  for (const auto& h : manifest.hosts) {
+    if (h.kind == HostKind::kSsh) {
+      const auto at = h.address.find('@');
+      addresses_[h.name] = at == std::string::npos ? h.address : h.address.substr(at + 1);
+    } else if (h.kind == HostKind::kNetns) {
+      addresses_[h.name] = manifest.subnet + "." + std::to_string(next++);
+    }
+  }
+  const bool namespaces = manifest.usesNamespaces();
+  for (const auto& h : manifest.hosts) {
+    if (h.kind == HostKind::kLocal) {
+      addresses_[h.name] = namespaces ? manifest.subnet + ".1" : "127.0.0.1";
+    }
+  }
+  if (!namespaces) {
+    return;
+  }
+  // What a launcher killed with SIGKILL left behind would hold our subnet.
+  removeAbandonedNetworks();
+  // A subnet some interface already has would route our traffic elsewhere, or collide
+  // with a concurrent run: refuse it.
+  const std::string prefix = " " + manifest.subnet + ".";
+  const std::string in_use = runCommand({"ip", "-o", "-4", "addr", "show"}).output;
+  if (in_use.find("inet" + prefix) != std::string::npos) {
+    throw std::runtime_error(manifest.file.string() + ":subnet: " + manifest.subnet +
+                             ": already used by an interface of this machine (another run?); pick another");
+  }
+  try {
+    bridge_ = "qb" + run_id;
+    runChecked({"ip", "link", "add", bridge_, "type", "bridge"});
+    runChecked({"ip", "addr", "add", manifest.subnet + ".1/24", "dev", bridge_});
+    runChecked({"ip", "link", "set", bridge_, "up"});
+    int index = 0;
+    for (const auto& h : manifest.hosts) {
+      if (h.kind != HostKind::kNetns) {
+        continue;
+      }
+      const std::string ns = "quad-" + run_id + "-" + h.name;
+      const std::string outside = "qv" + run_id + "x" + std::to_string(index) + "a";
+      const std::string inside = "qv" + run_id + "x" + std::to_string(index) + "b";
+      ++index;
+      runChecked({"ip", "netns", "add", ns});
+      namespaces_[h.name] = ns;
+      runChecked({"ip", "link", "add", outside, "type", "veth", "peer", "name", inside});
+      runChecked({"ip", "link", "set", inside, "netns", ns});
+      runChecked({"ip", "link", "set", outside, "master", bridge_, "up"});
+      runChecked({"ip", "-n", ns, "addr", "add", addresses_[h.name] + "/24", "dev", inside});
+      runChecked({"ip", "-n", ns, "link", "set", inside, "up"});
+      runChecked({"ip", "-n", ns, "link", "set", "lo", "up"});
+      // Without a route to them, multicast datagrams (DDS discovery) cannot be sent.
+      runChecked({"ip", "-n", ns, "route", "add", "224.0.0.0/4", "dev", inside});
+    }
+  } catch (...) {
+    teardown();
+    throw;
+  }
+}
+
+HostNetwork::~HostNetwork() { teardown(); }
+
+void HostNetwork::teardown() noexcept
+{
+  for (const auto& [host, ns] : namespaces_) {
+    try {
+      runChecked({"ip", "netns", "delete", ns});  // takes its veth end, and so the pair, with it
+    } catch (const std::exception&) {
+    }
+  }
+  namespaces_.clear();
+  if (!bridge_.empty()) {
+    try {
+      runChecked({"ip", "link", "delete", bridge_});
+    } catch (const std::exception&) {
+    }
+    bridge_.clear();
+  }
+}
+
+std::string HostNetwork::address(const std::string& host) const
+{
+  const auto it = addresses_.find(host);
+  return it == addresses_.end() ? "127.0.0.1" : it->second;
+}
+
+std::string HostNetwork::namespaceOf(const std::string& host) const
+{
+  const auto it = namespaces_.find(host);
+  return it == namespaces_.end() ? "" : it->second;
+}
+
+std::vector<std::string> HostNetwork::command(const Host& host, std::vector<std::string> argv,
+                                              const std::map<std::string, std::string>& env) const
+{
+  switch (host.kind) {
+    case HostKind::kLocal:
+      return argv;
+    case HostKind::kNetns: {
+      std::vector<std::string> out{"ip", "netns", "exec", namespaceOf(host.name)};
+      out.insert(out.end(), argv.begin(), argv.end());
+      return out;
+    }
+    case HostKind::kSsh: {
+      // The remote checkout may sit elsewhere: paths under this one move to host.root.
+      const std::string here = manifest_.file.parent_path().parent_path().string();
+      auto remote = [&](std::string s) {
+        if (!host.root.empty() && s.starts_with(here)) {
+          s = host.root + s.substr(here.size());
+        }
+        return s;
+      };
+      // -tt: a terminal on the far side, so that closing the connection hangs the module up.
+      std::vector<std::string> out{"ssh", "-tt", "-o", "BatchMode=yes", "-p", std::to_string(host.ssh_port),
+                                   host.address, "--", "env"};
+      for (const auto& [k, v] : env) {
+        out.push_back(shellQuote(k + "=" + remote(v)));
+      }
+      for (auto& a : argv) {
+        out.push_back(shellQuote(remote(a)));
+      }
+      return out;
+    }
+  }
+  return argv;
+}
+
+}  // namespace quad::launch

@@ -1,0 +1,60 @@
+#pragma once
+/// @file
+/// The hosts of a run: this machine, Linux network namespaces that the launcher creates
+/// (a bridge in this namespace, a veth link per host on a private /24, torn down at the
+/// end), and machines reached over ssh. Turns a module's command into the one that runs it
+/// on its host.
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "manifest.hpp"
+
+namespace quad::launch {
+
+struct CommandResult {
+  int status = 0;      ///< as process::Spawned::poll gives it
+  std::string output;  ///< standard output and error
+};
+
+/// Runs a command (argv, no shell) to its end.
+CommandResult runCommand(const std::vector<std::string>& argv);
+/// Same; throws std::runtime_error with the command and its output when it fails.
+void runChecked(const std::vector<std::string>& argv);
+
+/// Deletes the namespaces and bridges of launchers that no longer run (killed with SIGKILL,
+/// so their teardown never ran). Their veth links go with them.
+void removeAbandonedNetworks();
+
+class HostNetwork {
+public:
+  /// Creates what the manifest's netns hosts need; `run_id` (the launcher's pid in hex, at
+  /// most 6 digits) keeps names apart between concurrent runs and tells whose they are. Throws std::runtime_error naming the step that
+  /// failed (after undoing the ones that worked), or when the subnet is already in use.
+  HostNetwork(const Manifest& manifest, std::string run_id);
+  ~HostNetwork();  // deletes the namespaces (and with them the veth links) and the bridge
+  HostNetwork(const HostNetwork&) = delete;
+  HostNetwork& operator=(const HostNetwork&) = delete;
+
+  /// The address other hosts reach `host` at: its veth address, its ssh address, or for
+  /// the local machine the bridge address (when there are namespaces) or 127.0.0.1.
+  std::string address(const std::string& host) const;
+  /// The namespace name of a netns host ("" for the others).
+  std::string namespaceOf(const std::string& host) const;
+
+  /// The command that runs `argv` with `env` on `host`. Local and netns hosts get `env`
+  /// through the process environment; ssh hosts get it on the remote command line.
+  std::vector<std::string> command(const Host& host, std::vector<std::string> argv,
+                                   const std::map<std::string, std::string>& env) const;
+
+private:
+  void teardown() noexcept;
+
+  const Manifest& manifest_;
+  std::string bridge_;
+  std::map<std::string, std::string> namespaces_;  // host -> netns name
+  std::map<std::string, std::string> addresses_;
+};
+
+}  // namespace quad::launch

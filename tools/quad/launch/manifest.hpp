@@ -1,0 +1,99 @@
+#pragma once
+/// @file
+/// Launch manifests (bringup/*.yaml): which module runs on which host, with which config,
+/// on which DDS domain and discovery, gated on which topics, restarted how. Read and
+/// validated whole before anything starts; every problem is `file:key: value: reason`.
+
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace quad::launch {
+
+enum class HostKind { kLocal, kNetns, kSsh };
+enum class Discovery { kMulticast, kInitialPeers, kServer };
+
+struct Host {
+  std::string name;
+  HostKind kind = HostKind::kLocal;
+  std::string address;  ///< ssh: user@host or host; netns: assigned at launch (empty here)
+  int ssh_port = 22;
+  std::string root;     ///< ssh: the project's checkout on that machine; empty = same as here
+};
+
+struct Module {
+  std::string name;
+  std::string kind;                          ///< the quad module it runs ("plant", ...); "" for a program
+  std::string host;                          ///< a key of Manifest::hosts
+  std::filesystem::path program;             ///< absolute, resolved
+  std::vector<std::string> args;             ///< after --config/--set, variables expanded
+  std::filesystem::path config;              ///< absolute; empty = the module's defaults
+  std::vector<std::pair<std::string, std::string>> sets;  ///< --set KEY=VALUE, expanded
+  std::map<std::string, std::string> environment;
+  std::vector<std::string> needs;            ///< topics with a live writer before it starts
+  double ready_timeout_s = 20.0;
+  int respawn = 0;                           ///< restarts allowed after a failure
+  double backoff_s = 1.0;                    ///< first restart delay, doubled each time
+  bool ends_run = false;                     ///< its normal exit ends the run
+};
+
+struct Mission {
+  bool enabled = false;
+  double tolerance_m = 0.4;   ///< goal reached within this distance
+  bool land = true;           ///< land once the goal is reached
+  double timeout_s = 180.0;   ///< sim seconds before the mission counts as failed
+  std::filesystem::path vehicle;  ///< its radius turns centre distances into clearances
+};
+
+struct Manifest {
+  std::filesystem::path file;
+  std::string name;
+  std::optional<int> domain;        ///< unset: QUAD_DOMAIN_ID or 0
+  std::string transport = "udp";    ///< QUAD_TRANSPORT of every process
+  Discovery discovery = Discovery::kMulticast;
+  std::string discovery_host;       ///< the server's host (kServer)
+  int discovery_port = 11811;
+  std::string subnet = "10.77.0";   ///< netns hosts: <subnet>.1 the bridge, .2... the hosts
+  std::filesystem::path world;      ///< ${world}; empty when the manifest names none
+  std::string mode = "lockstep";    ///< ${mode}: lockstep | realtime
+  double grace_s = 5.0;             ///< SIGTERM to SIGKILL
+  std::map<std::string, std::string> environment;
+  std::vector<Host> hosts;          ///< in the order written
+  std::vector<Module> modules;      ///< start order
+  Mission mission;
+
+  const Host& host(const std::string& host_name) const;
+  bool usesNamespaces() const;
+};
+
+/// What the command line changes in a manifest before it is checked.
+struct ManifestOverrides {
+  std::optional<std::filesystem::path> world;
+  std::optional<std::string> mode;
+  std::optional<int> domain;
+  std::optional<std::string> subnet;
+};
+
+/// What a manifest is checked against: where modules' programs are
+/// (`<build_dir>/modules/<m>/node/quad_<m>_node`, `<build_dir>/tools/quad/quad`) and which
+/// topic names exist.
+struct ProgramLookup {
+  std::filesystem::path build_dir;
+  std::filesystem::path source_dir;  ///< ${root}
+  std::function<bool(const std::string&)> known_topic;  ///< unset: any name
+};
+
+/// Reads and validates a manifest. Relative paths are relative to the manifest's folder;
+/// `${world}`, `${mode}` and `${root}` are expanded in module args, sets and environment.
+/// Throws common::ConfigError listing every problem.
+Manifest loadManifest(const std::filesystem::path& file, const ManifestOverrides& overrides,
+                      const ProgramLookup& lookup);
+
+/// Same, from text; `origin` names it in messages and its folder anchors relative paths.
+Manifest parseManifest(const std::string& text, const std::filesystem::path& origin,
+                       const ManifestOverrides& overrides, const ProgramLookup& lookup);
+
+}  // namespace quad::launch

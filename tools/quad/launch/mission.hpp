@@ -1,0 +1,88 @@
+#pragma once
+/// @file
+/// Follows a mission from what the stack publishes (vehicle state, controller mode, paths,
+/// collisions) and says when it is over and how it went. No DDS: the launcher feeds it.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "manifest.hpp"
+#include "quad/plant/world.hpp"
+
+namespace quad::launch {
+
+struct MissionSummary {
+  bool success = false;
+  std::string outcome;          ///< "landed at the goal", "timed out 3.2 m from the goal", ...
+  int collisions = 0;
+  double sim_s = 0.0;           ///< sim time when the mission ended
+  double wall_s = 0.0;
+  double path_length_m = 0.0;   ///< flown, from the vehicle states
+  double straight_line_m = 0.0; ///< start to goal
+  int paths = 0;                ///< path versions received (the planner's replans that changed the path)
+  double min_clearance_m = 0.0; ///< closest the vehicle's bounding sphere came to an obstacle
+  int mode_changes = 0;
+  std::vector<std::string> modes;  ///< "t MODE" in order
+  double goal_distance_m = 0.0; ///< at the end
+};
+
+class MissionTracker {
+public:
+  /// `radius`: the vehicle's bounding sphere [m]; 0 measures clearance from its centre.
+  MissionTracker(Mission mission, const plant::World& world, double radius);
+
+  /// A vehicle state at sim time t [s].
+  void onState(double t, const Eigen::Vector3d& p);
+  /// The controller's mode (its name) at sim time t; repeats are ignored.
+  void onMode(double t, const std::string& mode);
+  /// A path of this version was published.
+  void onPath(std::uint32_t version);
+  /// The plant reported a collision.
+  void onCollision(double t);
+
+  /// True once, when the goal was reached and the mission asks to land there: the caller
+  /// sends the land command.
+  bool takeLandRequest();
+  /// Lines worth printing while the mission flies ("t = 12.3 s: MISSION -> HOVER"), once each.
+  std::vector<std::string> takeProgress();
+
+  bool finished() const { return finished_; }
+  double simTime() const { return t_; }
+  MissionSummary summary(double wall_s) const;
+
+private:
+  void finish(bool success, std::string outcome);
+
+  Mission mission_;
+  const plant::World& world_;
+  double radius_;
+  Eigen::Vector3d goal_;
+  double t_ = 0.0;
+  std::optional<Eigen::Vector3d> last_p_;
+  double length_ = 0.0;
+  double min_clearance_;
+  std::string mode_;
+  std::vector<std::string> modes_;
+  std::uint32_t last_version_ = 0;
+  int paths_ = 0;
+  int collisions_ = 0;
+  bool goal_reached_ = false;
+  bool land_requested_ = false;
+  bool land_taken_ = false;
+  bool finished_ = false;
+  bool success_ = false;
+  std::string outcome_;
+  std::vector<std::string> progress_;
+  double next_progress_t_ = 10.0;
+};
+
+/// The summary as one JSON object (the --summary file).
+std::string toJson(const MissionSummary& s);
+/// The summary for people, a few lines.
+std::string toText(const MissionSummary& s);
+
+}  // namespace quad::launch

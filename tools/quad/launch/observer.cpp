@@ -1,0 +1,104 @@
+#include "observer.hpp"
+
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "quad/common/time.hpp"
+#include "quad/dds/geometry_messages.hpp"
+#include "quad/dds/publisher.hpp"
+#include "quad/dds/subscriber.hpp"
+#include "quad/dds/topics.hpp"
+
+namespace quad::launch {
+
+namespace topics = dds::topics;
+
+struct Observer::Endpoints {
+  explicit Endpoints(dds::Participant& p)
+      : goal(p, topics::kGoal),
+        command(p, topics::kVehicleCommand),
+        state(p, topics::kSimState),
+        status(p, topics::kControlStatus),
+        path(p, topics::kPath),
+        events(p, topics::kSimEvents)
+  {
+  }
+  dds::Publisher<msg::Goal> goal;
+  dds::Publisher<msg::VehicleCommand> command;
+  dds::Subscriber<msg::VehicleState> state;
+  dds::Subscriber<msg::ControlStatus> status;
+  dds::Subscriber<msg::Path> path;
+  dds::Subscriber<msg::SimEvent> events;
+};
+
+Observer::Observer(dds::ParticipantOptions options) : participant_(std::move(options)) {}
+
+Observer::~Observer() = default;
+
+std::vector<std::string> Observer::missingWriters(const std::vector<std::string>& wanted) const
+{
+  const auto seen = participant_.remoteEndpoints();
+  std::vector<std::string> missing;
+  for (const auto& topic : wanted) {
+    const bool live = std::any_of(seen.begin(), seen.end(),
+                                  [&](const dds::RemoteEndpoint& e) { return e.writer && e.topic == topic; });
+    if (!live) {
+      missing.push_back(topic);
+    }
+  }
+  return missing;
+}
+
+void Observer::startMission(const Mission& mission, const plant::World& world, double radius)
+{
+  endpoints_ = std::make_unique<Endpoints>(participant_);
+  tracker_ = std::make_unique<MissionTracker>(mission, world, radius);
+  msg::Goal goal;
+  goal.goal_id(1);
+  goal.p_W(dds::toMessage(world.goal()));
+  goal.yaw(std::numeric_limits<double>::quiet_NaN());
+  goal.tolerance(mission.tolerance_m);
+  endpoints_->goal.write(goal);
+}
+
+namespace {
+std::string modeName(msg::ControlMode mode)
+{
+  static constexpr std::array<const char*, 7> kNames{"DISARMED", "IDLE", "TAKEOFF", "MISSION",
+                                                     "HOVER", "LAND", "FAILSAFE_LAND"};
+  const auto i = static_cast<std::size_t>(mode);
+  return i < kNames.size() ? kNames[i] : "MODE_" + std::to_string(i);
+}
+}  // namespace
+
+void Observer::update()
+{
+  if (!tracker_) {
+    return;
+  }
+  for (const auto& s : endpoints_->state.takeAll()) {
+    tracker_->onState(common::toSeconds(s.header().stamp_ns()), dds::toVector(s.p_W()));
+    last_state_ns_ = common::steadyTimeNs();
+  }
+  for (const auto& s : endpoints_->status.takeAll()) {
+    tracker_->onMode(common::toSeconds(s.header().stamp_ns()), modeName(s.mode()));
+  }
+  for (const auto& p : endpoints_->path.takeAll()) {
+    tracker_->onPath(p.version());
+  }
+  for (const auto& e : endpoints_->events.takeAll()) {
+    if (e.kind() == msg::SIM_EVENT_COLLISION) {
+      tracker_->onCollision(common::toSeconds(e.header().stamp_ns()));
+    }
+  }
+  if (tracker_->takeLandRequest()) {
+    msg::VehicleCommand land;
+    land.command_id(1);
+    land.kind(msg::COMMAND_LAND);
+    land.header().stamp_ns(static_cast<std::int64_t>(tracker_->simTime() * 1e9));
+    endpoints_->command.write(land);
+  }
+}
+
+}  // namespace quad::launch

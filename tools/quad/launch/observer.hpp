@@ -1,0 +1,41 @@
+#pragma once
+/// @file
+/// The launcher's own DDS participant: tells whether topics are live (a writer was
+/// discovered), and plays the operator of a mission (gives the goal, commands the landing)
+/// while feeding a MissionTracker with what the stack publishes.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mission.hpp"
+#include "quad/dds/participant.hpp"
+
+namespace quad::launch {
+
+class Observer {
+public:
+  explicit Observer(dds::ParticipantOptions options);
+  ~Observer();
+
+  /// The topics of `topics` with no writer discovered yet.
+  std::vector<std::string> missingWriters(const std::vector<std::string>& topics) const;
+
+  /// Starts following a mission to `world`'s goal: publishes the goal (latched).
+  void startMission(const Mission& mission, const plant::World& world, double radius);
+  /// Takes what arrived, feeds the tracker, sends the land command when it asks.
+  void update();
+  /// Null until startMission.
+  MissionTracker* mission() { return tracker_.get(); }
+  /// Wall time [ns, steady] of the last vehicle state; 0 before the first.
+  std::int64_t lastStateNs() const { return last_state_ns_; }
+
+private:
+  struct Endpoints;
+  dds::Participant participant_;
+  std::unique_ptr<Endpoints> endpoints_;
+  std::unique_ptr<MissionTracker> tracker_;
+  std::int64_t last_state_ns_ = 0;
+};
+
+}  // namespace quad::launch

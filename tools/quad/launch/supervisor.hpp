@@ -1,0 +1,70 @@
+#pragma once
+/// @file
+/// Runs a run's processes: starts them in their own process groups, prefixes every line
+/// they print with their name on the console and keeps it in <log dir>/<name>.log, reports
+/// their exits, and stops them (SIGTERM, then SIGKILL after a grace period).
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "quad/process/spawn.hpp"
+
+namespace quad::launch {
+
+class Supervisor {
+public:
+  /// `console`: where the launcher's lines go, and the modules' output when `echo`.
+  Supervisor(std::filesystem::path log_dir, std::FILE* console, bool echo);
+  ~Supervisor();  // kills what still runs
+
+  /// Starts `argv` as `name` (replacing an exited process of that name).
+  void start(const std::string& name, const std::vector<std::string>& argv,
+             const std::map<std::string, std::string>& env);
+
+  bool running(const std::string& name) const;
+  std::optional<pid_t> pid(const std::string& name) const;
+
+  struct Exit {
+    std::string name;
+    int status = 0;  ///< as process::Spawned::poll gives it
+  };
+  /// Forwards output for up to `timeout_ms` (returns sooner when something exited) and
+  /// returns the processes that exited since the last call.
+  std::vector<Exit> pump(int timeout_ms);
+
+  /// Sends `signal` to a running process's group; false if it is not running.
+  bool signal(const std::string& name, int signal);
+
+  /// SIGTERM, then SIGKILL if it has not exited after `grace_s`; returns its exit status
+  /// (nothing if it was not running).
+  std::optional<int> stop(const std::string& name, double grace_s);
+
+  /// A line of the launcher's own, on the console and in launch.log.
+  void say(const std::string& line);
+
+  const std::filesystem::path& logDir() const { return log_dir_; }
+
+private:
+  struct Child {
+    std::unique_ptr<process::Spawned> process;
+    std::ofstream log;
+    std::string partial;  // output after the last newline
+    bool exited = false;
+  };
+  void forward(const std::string& name, Child& child, bool flush_partial);
+
+  std::filesystem::path log_dir_;
+  std::FILE* console_;
+  bool echo_;
+  std::ofstream launch_log_;
+  std::map<std::string, Child> children_;
+  std::size_t width_ = 8;
+};
+
+}  // namespace quad::launch

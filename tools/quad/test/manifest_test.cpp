@@ -1,0 +1,158 @@
+// Launch manifests: what a valid one gives, and how each kind of mistake is refused.
+#include "launch/manifest.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "quad/common/params.hpp"
+
+namespace quad::launch {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A scratch project: bringup/ for manifests, a build tree with fake module programs.
+class ManifestTest : public ::testing::Test {
+protected:
+  void SetUp() override
+  {
+    root_ = fs::temp_directory_path() / ("quad_manifest_test_" + std::to_string(::getpid()));
+    fs::create_directories(root_ / "bringup");
+    fs::create_directories(root_ / "configs/worlds");
+    for (const char* m : {"plant", "mapping", "planning", "control"}) {
+      const fs::path p = root_ / "build/modules" / m / "node" / (std::string("quad_") + m + "_node");
+      fs::create_directories(p.parent_path());
+      std::ofstream(p) << "#!/bin/sh\n";
+    }
+    std::ofstream(root_ / "configs/plant.yaml") << "sim: {mode: realtime}\n";
+    std::ofstream(root_ / "configs/worlds/w.yaml") << "bounds: {min: [0, 0, 0], max: [1, 1, 1]}\n";
+    lookup_ = {root_ / "build", root_, [](const std::string& t) { return t.starts_with("quad/"); }};
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  Manifest parse(const std::string& yaml, ManifestOverrides overrides = {})
+  {
+    return parseManifest(yaml, root_ / "bringup/m.yaml", overrides, lookup_);
+  }
+
+  /// The problems a manifest is refused with.
+  std::vector<std::string> problems(const std::string& yaml)
+  {
+    try {
+      parse(yaml);
+    } catch (const common::ConfigError& e) {
+      return e.problems();
+    }
+    ADD_FAILURE() << "accepted:\n" << yaml;
+    return {};
+  }
+
+  fs::path root_;
+  ProgramLookup lookup_;
+};
+
+TEST_F(ManifestTest, AValidManifestResolvesProgramsPathsAndVariables)
+{
+  const Manifest m = parse(R"(
+world: ../configs/worlds/w.yaml
+hosts:
+  a: {type: local}
+  b: {type: netns}
+modules:
+  plant:
+    host: b
+    config: ../configs/plant.yaml
+    set: {world: "${world}", sim.mode: "${mode}"}
+    needs: [quad/control/actuators]
+    respawn: 2
+    ends_run: true
+  control: {}
+)");
+  ASSERT_EQ(m.modules.size(), 2U);
+  const Module& plant = m.modules[0];
+  EXPECT_EQ(plant.kind, "plant");
+  EXPECT_EQ(plant.host, "b");
+  EXPECT_EQ(plant.program, root_ / "build/modules/plant/node/quad_plant_node");
+  EXPECT_EQ(plant.config, root_ / "configs/plant.yaml");
+  ASSERT_EQ(plant.sets.size(), 2U);
+  EXPECT_EQ(plant.sets[0].second, (root_ / "configs/worlds/w.yaml").string());
+  EXPECT_EQ(plant.sets[1].second, "lockstep");
+  EXPECT_EQ(plant.respawn, 2);
+  EXPECT_TRUE(plant.ends_run);
+  EXPECT_EQ(m.modules[1].host, "a");  // the first host by default
+  EXPECT_TRUE(m.usesNamespaces());
+  EXPECT_EQ(m.discovery, Discovery::kMulticast);
+}
+
+TEST_F(ManifestTest, CommandLineOverridesWin)
+{
+  ManifestOverrides o;
+  o.mode = "realtime";
+  o.domain = 17;
+  o.subnet = "10.99.1";
+  const Manifest m = parse("domain: 3\nmodules: {control: {}}\n", o);
+  EXPECT_EQ(m.mode, "realtime");
+  EXPECT_EQ(*m.domain, 17);
+  EXPECT_EQ(m.subnet, "10.99.1");
+}
+
+TEST_F(ManifestTest, UnknownKeyIsRefusedWithFileAndKey)
+{
+  const auto p = problems("modules:\n  control: {respawns: 2}\n");
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_EQ(p[0].rfind((root_ / "bringup/m.yaml").string() + ":modules.control.respawns: 2: unknown key", 0), 0U)
+      << p[0];
+}
+
+TEST_F(ManifestTest, UnknownHostIsRefused)
+{
+  const auto p = problems("hosts: {a: {type: local}}\nmodules:\n  control: {host: b}\n");
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find(":modules.control.host: b: unknown host (hosts: a)"), std::string::npos) << p[0];
+}
+
+TEST_F(ManifestTest, ModuleNotFoundIsRefused)
+{
+  auto p = problems("modules:\n  autopilot: {}\n");
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find(":modules.autopilot.module: autopilot: module not found"), std::string::npos) << p[0];
+  fs::remove(root_ / "build/modules/control/node/quad_control_node");
+  p = problems("modules:\n  control: {}\n");
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find("module not built"), std::string::npos) << p[0];
+}
+
+TEST_F(ManifestTest, EveryProblemIsListedAtOnce)
+{
+  const auto p = problems(R"(
+transport: carrier-pigeon
+hosts: {a: {type: netns, address: 1.2.3.4}}
+modules:
+  control: {config: missing.yaml, needs: [not/a/topic], set: {x: "${nope}"}}
+)");
+  EXPECT_EQ(p.size(), 5U);
+  for (const char* key : {":transport: carrier-pigeon", ":hosts.a.address: 1.2.3.4", ":modules.control.config: missing.yaml",
+                          ":modules.control.needs[0]: not/a/topic", ":modules.control.set.x: ${nope}: unknown variable"}) {
+    EXPECT_TRUE(std::any_of(p.begin(), p.end(), [&](const std::string& s) { return s.find(key) != std::string::npos; }))
+        << key;
+  }
+}
+
+TEST_F(ManifestTest, AMissionNeedsAWorld)
+{
+  const auto p = problems("modules: {control: {}}\nmission: {tolerance: 0.5}\n");
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find(":mission: "), std::string::npos) << p[0];
+}
+
+TEST_F(ManifestTest, TheShippedManifestsAreValid)
+{
+  ProgramLookup shipped{QUAD_BUILD_DIR, QUAD_SOURCE_DIR, {}};
+  for (const char* name : {"demo.yaml", "three_hosts.yaml"}) {
+    EXPECT_NO_THROW(loadManifest(fs::path(QUAD_SOURCE_DIR) / "bringup" / name, {}, shipped)) << name;
+  }
+}
+
+}  // namespace
+}  // namespace quad::launch

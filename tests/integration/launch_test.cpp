@@ -11,28 +11,13 @@
 #include <string>
 
 #include "process.hpp"
+#include "scratch.hpp"
 
 namespace {
 
 using namespace std::chrono_literals;
 using quad::test::ChildProcess;
 namespace fs = std::filesystem;
-
-fs::path scratch(const std::string& name)
-{
-  const fs::path dir = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string readFile(const fs::path& p)
-{
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 fs::path writeManifest(const fs::path& dir, const std::string& text)
 {
@@ -44,7 +29,7 @@ fs::path writeManifest(const fs::path& dir, const std::string& text)
 /// Flies a shipped manifest's mission and checks the summary and the run folder.
 void flyMission(const std::string& manifest, int domain, const std::vector<std::string>& extra)
 {
-  const fs::path dir = scratch("quad_launch_" + std::to_string(domain));
+  const fs::path dir = quad::test::scratchDir("quad_launch_" + std::to_string(domain));
   std::vector<std::string> argv{QUAD_TOOL, "launch", std::string(QUAD_SOURCE_DIR) + "/bringup/" + manifest,
                                 "--domain", std::to_string(domain), "--quiet", "--wall-timeout", "300",
                                 "--summary", (dir / "summary.json").string(), "--log-dir", (dir / "run").string()};
@@ -53,7 +38,7 @@ void flyMission(const std::string& manifest, int domain, const std::vector<std::
   const auto status = launch.wait(330s);
   ASSERT_TRUE(status) << launch.output();
   EXPECT_EQ(*status, 0) << launch.output();
-  const std::string summary = readFile(dir / "summary.json");
+  const std::string summary = quad::test::readFile(dir / "summary.json");
   EXPECT_NE(summary.find("\"success\": true"), std::string::npos) << summary << launch.output();
   EXPECT_NE(summary.find("\"collisions\": 0"), std::string::npos) << summary;
   EXPECT_NE(launch.output().find("mission: SUCCESS (landed at the goal)"), std::string::npos) << launch.output();
@@ -61,8 +46,8 @@ void flyMission(const std::string& manifest, int domain, const std::vector<std::
     EXPECT_TRUE(fs::exists(dir / "run" / log)) << log;
   }
   // Every module ran on the planner's paths in lockstep, and stopped cleanly.
-  EXPECT_NE(readFile(dir / "run/plant.log").find("lockstep mode"), std::string::npos);
-  EXPECT_NE(readFile(dir / "run/planning.log").find("path 1 ok"), std::string::npos);
+  EXPECT_NE(quad::test::readFile(dir / "run/plant.log").find("lockstep mode"), std::string::npos);
+  EXPECT_NE(quad::test::readFile(dir / "run/planning.log").find("path 1 ok"), std::string::npos);
   EXPECT_EQ(launch.output().find("SIGKILL"), std::string::npos) << launch.output();
   if (!::testing::Test::HasFailure()) {
     fs::remove_all(dir);  // kept to look into otherwise
@@ -84,7 +69,7 @@ TEST(Launch, ThreeHostManifestFliesTheMissionAcrossNetworkNamespaces)
 
 TEST(Launch, AKilledModuleIsRespawned)
 {
-  const fs::path dir = scratch("quad_launch_respawn");
+  const fs::path dir = quad::test::scratchDir("quad_launch_respawn");
   const auto manifest = writeManifest(dir, R"(
 modules:
   mapping: {respawn: 2, backoff: 0.2}
@@ -118,7 +103,7 @@ modules:
 
 TEST(Launch, AMissingModuleFailsStartUpNamingIt)
 {
-  const fs::path dir = scratch("quad_launch_missing");
+  const fs::path dir = quad::test::scratchDir("quad_launch_missing");
   const auto manifest = writeManifest(dir, R"(
 modules:
   control: {needs: [quad/planning/path], ready_timeout: 1.0}
@@ -136,7 +121,7 @@ modules:
 
 TEST(Launch, AMalformedManifestIsRefusedWithFileAndKey)
 {
-  const fs::path dir = scratch("quad_launch_malformed");
+  const fs::path dir = quad::test::scratchDir("quad_launch_malformed");
   const auto manifest = writeManifest(dir, R"(
 hosts: {here: {type: local}}
 modules:

@@ -1,5 +1,6 @@
 #include "planning_node.hpp"
 
+#include <algorithm>
 #include <spdlog/spdlog.h>
 
 #include "quad/common/time.hpp"
@@ -51,7 +52,9 @@ common::ParamSchema planningSchema()
   common::ParamSchema s;
   s.addString("world", "worlds/demo.yaml", {}, "world file whose bounds the lattice covers")
       .addString("vehicle", "vehicles/x500.yaml", {}, "vehicle file (its radius inflates obstacles)")
-      .addDouble("safety_margin", 0.15, 0.0, 10.0, "m", "added to the vehicle radius")
+      .addDouble("safety_margin", 0.3, 0.0, 10.0, "m", "added to the vehicle radius")
+      .addDouble("altitude.min", -1e4, -1e4, 1e4, "m", "lowest cell centres planned through (clipped to the world)")
+      .addDouble("altitude.max", 1e4, -1e4, 1e4, "m", "highest cell centres planned through (clipped to the world)")
       .addDouble("resolution", 0.2, 0.01, 10.0, "m", "lattice cell: the mapper's map.resolution")
       .addInt("connectivity", 26, 6, 26, "", "6, 18 or 26 neighbours")
       .addBool("unknown_traversable", true, "plan through unknown space")
@@ -68,6 +71,18 @@ PlanningNodeConfig planningConfigFrom(const common::Params& p)
   c.bounds_min = world.bounds().min;
   c.bounds_max = world.bounds().max;
   c.resolution = p.getDouble("resolution");
+  // An altitude band: the lattice spans the cells whose centres lie in it.
+  const double lo = p.getDouble("altitude.min");
+  const double hi = p.getDouble("altitude.max");
+  if (lo > hi) {
+    throw common::ConfigError({common::configProblem(p.origin(), "altitude.min", lo, "above altitude.max")});
+  }
+  c.bounds_min.z() = std::max(c.bounds_min.z(), lo);
+  c.bounds_max.z() = std::min(c.bounds_max.z(), hi);
+  if (c.bounds_min.z() >= c.bounds_max.z()) {
+    throw common::ConfigError({common::configProblem(p.origin(), "altitude.min", lo,
+                                                     "the band misses the world's bounds")});
+  }
   const vehicle::VehicleParams v = vehicle::loadVehicle(common::configPath(p, "vehicle", QUAD_CONFIG_DIR));
   c.planner.vehicle_radius = v.radius + p.getDouble("safety_margin");
   c.planner.connectivity = static_cast<int>(p.getInt("connectivity"));
@@ -179,7 +194,11 @@ void PlanningNode::replan(std::int64_t t_ns)
   if (!goal_id_ || !position_) {
     return;
   }
-  auto start = planner_.lattice().cellAt(*position_);
+  // Below or above the altitude band (taking off, say), plan from the band's nearest layer.
+  Vector3 from = *position_;
+  from.z() = std::clamp(from.z(), config_.bounds_min.z() + 0.5 * config_.resolution,
+                        config_.bounds_max.z() - 0.5 * config_.resolution);
+  auto start = planner_.lattice().cellAt(from);
   if (start && !planner_.traversable(*start)) {
     // Drifted into an inflated margin (or a cell just became blocked): leave it by the
     // nearest free cell rather than report the start blocked.

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "launch/hosts.hpp"
+#include "scratch.hpp"
 #include "launch/shm.hpp"
 #include "launch/supervisor.hpp"
 
@@ -15,22 +16,6 @@ namespace quad::launch {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path scratch(const std::string& name)
-{
-  const fs::path dir = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string readFile(const fs::path& p)
-{
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 /// Pumps until `name` exits or 5 s pass; its status, or -1.
 int waitExit(Supervisor& s, const std::string& name)
@@ -47,12 +32,12 @@ int waitExit(Supervisor& s, const std::string& name)
 
 TEST(Supervisor, OutputIsKeptPerProcessAndExitsAreReported)
 {
-  const fs::path dir = scratch("quad_supervisor_output");
+  const fs::path dir = quad::test::scratchDir("quad_supervisor_output");
   Supervisor s(dir, nullptr, false);
   s.start("talker", {"sh", "-c", "echo one; echo two >&2; printf three; exit 3"}, {});
   EXPECT_EQ(waitExit(s, "talker"), 3);
   EXPECT_FALSE(s.running("talker"));
-  const std::string log = readFile(dir / "talker.log");
+  const std::string log = quad::test::readFile(dir / "talker.log");
   for (const char* line : {"\none\n", "\ntwo\n", "\nthree\n", "ended: exit 3"}) {
     EXPECT_NE(log.find(line), std::string::npos) << line << " in\n" << log;
   }
@@ -61,20 +46,20 @@ TEST(Supervisor, OutputIsKeptPerProcessAndExitsAreReported)
 
 TEST(Supervisor, EnvironmentIsPassed)
 {
-  const fs::path dir = scratch("quad_supervisor_env");
+  const fs::path dir = quad::test::scratchDir("quad_supervisor_env");
   Supervisor s(dir, nullptr, false);
   s.start("env", {"sh", "-c", "echo domain=$QUAD_DOMAIN_ID"}, {{"QUAD_DOMAIN_ID", "77"}});
   EXPECT_EQ(waitExit(s, "env"), 0);
-  EXPECT_NE(readFile(dir / "env.log").find("domain=77"), std::string::npos);
+  EXPECT_NE(quad::test::readFile(dir / "env.log").find("domain=77"), std::string::npos);
   fs::remove_all(dir);
 }
 
 TEST(Supervisor, StopEscalatesToSigkillAfterTheGracePeriod)
 {
-  const fs::path dir = scratch("quad_supervisor_stop");
+  const fs::path dir = quad::test::scratchDir("quad_supervisor_stop");
   Supervisor s(dir, nullptr, false);
   s.start("stubborn", {"sh", "-c", "trap '' TERM; echo ready; while true; do sleep 0.05; done"}, {});
-  for (int i = 0; i < 100 && readFile(dir / "stubborn.log").find("\nready\n") == std::string::npos; ++i) {
+  for (int i = 0; i < 100 && quad::test::readFile(dir / "stubborn.log").find("\nready\n") == std::string::npos; ++i) {
     s.pump(50);
   }
   const auto status = s.stop("stubborn", 0.3);
@@ -89,7 +74,7 @@ TEST(Supervisor, StopEscalatesToSigkillAfterTheGracePeriod)
 
 TEST(SharedMemory, OnlyUnheldOldFastDdsFilesAreStale)
 {
-  const fs::path dir = scratch("quad_shm");
+  const fs::path dir = quad::test::scratchDir("quad_shm");
   for (const char* f : {"fastrtps_aaaa", "fastrtps_aaaa_el", "fastrtps_bbbb", "fastrtps_bbbb_el", "other_file"}) {
     std::ofstream(dir / f) << "x";
   }

@@ -65,6 +65,7 @@ void Supervisor::start(const std::string& name, const std::vector<std::string>& 
   }
   child.process = std::make_unique<process::Spawned>(argv, env);
   child.exited = false;
+  child.eof = false;
   child.partial.clear();
   child.log << "--- " << timestamp() << " started, pid "
             << child.process->pid() << ": " << command << '\n' << std::flush;
@@ -86,7 +87,9 @@ std::optional<pid_t> Supervisor::pid(const std::string& name) const
 
 void Supervisor::forward(const std::string& name, Child& child, bool flush_partial)
 {
-  child.process->readOutput(child.partial);
+  if (!child.eof && !child.process->readOutput(child.partial)) {
+    child.eof = true;
+  }
   std::size_t start = 0;
   while (true) {
     const auto newline = child.partial.find('\n', start);
@@ -119,17 +122,21 @@ void Supervisor::forward(const std::string& name, Child& child, bool flush_parti
 
 std::vector<Supervisor::Exit> Supervisor::pump(int timeout_ms)
 {
+  // Wakes on output or a closed pipe. A closed pipe is polled no more (it would wake us at
+  // once for ever); its process's exit is then caught within 20 ms.
   std::vector<pollfd> fds;
+  bool closing = false;
   for (auto& [name, child] : children_) {
-    if (!child.exited) {
+    if (!child.exited && !child.eof) {
       fds.push_back({child.process->outputFd(), POLLIN, 0});
     }
+    closing = closing || (!child.exited && child.eof);
   }
+  const int wait_ms = closing ? std::min(timeout_ms, 20) : std::min(timeout_ms, 100);
   if (fds.empty()) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(timeout_ms));
+    std::this_thread::sleep_for(std::chrono::milliseconds(wait_ms));
   } else {
-    // Wakes on output or a closed pipe; exits without either are caught on the next call.
-    ::poll(fds.data(), fds.size(), std::min(timeout_ms, 100));
+    ::poll(fds.data(), fds.size(), wait_ms);
   }
   std::vector<Exit> exits;
   for (auto& [name, child] : children_) {
@@ -181,8 +188,12 @@ std::optional<int> Supervisor::stop(const std::string& name, double grace_s)
       child.process->signal(SIGKILL);
       killed = true;
     }
-    pollfd p{child.process->outputFd(), POLLIN, 0};
-    ::poll(&p, 1, 20);
+    if (child.eof) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    } else {
+      pollfd p{child.process->outputFd(), POLLIN, 0};
+      ::poll(&p, 1, 20);
+    }
   }
 }
 

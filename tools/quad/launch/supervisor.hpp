@@ -55,6 +55,7 @@ private:
     std::unique_ptr<process::Spawned> process;
     std::ofstream log;
     std::string partial;  // output after the last newline
+    bool eof = false;     // its output pipe closed (it is exiting, or closed it)
     bool exited = false;
   };
   void forward(const std::string& name, Child& child, bool flush_partial);

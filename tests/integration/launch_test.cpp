@@ -67,38 +67,110 @@ TEST(Launch, ThreeHostManifestFliesTheMissionAcrossNetworkNamespaces)
   flyMission("three_hosts.yaml", 181, {"--subnet", "10.181.0"});
 }
 
-TEST(Launch, AKilledModuleIsRespawned)
+/// The pid a launcher's output gives for the `n`-th start (from 1) of `module`; 0 if none yet.
+int startedPid(const std::string& output, const std::string& module, int n)
+{
+  const std::regex re("started " + module + R"( on local \(pid (\d+)\))");
+  int seen = 0;
+  for (auto it = std::sregex_iterator(output.begin(), output.end(), re); it != std::sregex_iterator(); ++it) {
+    if (++seen == n) {
+      return std::stoi((*it)[1].str());
+    }
+  }
+  return 0;
+}
+
+/// Waits up to 20 s for the `n`-th start of `module`; its pid.
+int waitForStart(ChildProcess& launch, const std::string& module, int n)
+{
+  for (int i = 0; i < 200; ++i) {
+    if (const int pid = startedPid(launch.output(), module, n); pid != 0) {
+      return pid;
+    }
+    launch.waitForOutput("\n\n", 100ms);  // never comes: just waits and reads
+  }
+  return 0;
+}
+
+TEST(Launch, AKilledModuleIsRespawnedUntilItsLimitThenTheRunFails)
 {
   const fs::path dir = quad::test::scratchDir("quad_launch_respawn");
   const auto manifest = writeManifest(dir, R"(
 modules:
-  mapping: {respawn: 2, backoff: 0.2}
+  mapping: {respawn: 1, backoff: 0.2}
 )");
   ChildProcess launch({QUAD_TOOL, "launch", manifest.string(), "--domain", "182", "--log-dir", (dir / "run").string()});
-  ASSERT_TRUE(launch.waitForOutput("started mapping on local (pid ", 20s)) << launch.output();
+  const int first = waitForStart(launch, "mapping", 1);
+  ASSERT_NE(first, 0) << launch.output();
   ASSERT_TRUE(launch.waitForOutput("mapping running on domain 182", 20s)) << launch.output();
-  std::smatch m;
-  const std::string out = launch.output();
-  ASSERT_TRUE(std::regex_search(out, m, std::regex(R"(started mapping on local \(pid (\d+)\))")));
-  ASSERT_EQ(::kill(std::stoi(m[1].str()), SIGKILL), 0);
-  EXPECT_TRUE(launch.waitForOutput("mapping exited (killed by SIGKILL): restarting in 0.2 s (1 of 2)", 10s))
+  ASSERT_EQ(::kill(first, SIGKILL), 0);
+  EXPECT_TRUE(launch.waitForOutput("mapping exited (killed by SIGKILL): restarting in 0.2 s (1 of 1)", 10s))
       << launch.output();
-  // Started again: a second line naming another pid.
-  const auto restarted = [&] {
-    const std::string o = launch.output();
-    const auto first = o.find("started mapping on local");
-    return first != std::string::npos && o.find("started mapping on local", first + 1) != std::string::npos;
-  };
-  for (int i = 0; i < 100 && !restarted(); ++i) {
-    launch.waitForOutput("\n\n", 100ms);
-  }
-  EXPECT_TRUE(restarted()) << launch.output();
-  launch.signal(SIGTERM);
+  const int second = waitForStart(launch, "mapping", 2);
+  ASSERT_NE(second, 0) << launch.output();
+  EXPECT_NE(second, first);
+  // Over the limit: the run fails, naming the module.
+  ASSERT_EQ(::kill(second, SIGKILL), 0);
   const auto status = launch.wait(20s);
   ASSERT_TRUE(status) << launch.output();
-  EXPECT_EQ(*status, 0) << launch.output();
-  EXPECT_NE(launch.output().find("stopped mapping"), std::string::npos) << launch.output();
+  EXPECT_EQ(*status, 1) << launch.output();
+  EXPECT_NE(launch.output().find("launch: FAILED: mapping failed (killed by SIGKILL) after 1 restarts"),
+            std::string::npos)
+      << launch.output();
   fs::remove_all(dir);
+}
+
+TEST(Launch, CtrlCStopsEveryModuleInReverseOrderAndEndsCleanly)
+{
+  const fs::path dir = quad::test::scratchDir("quad_launch_stop");
+  const auto manifest = writeManifest(dir, R"(
+modules:
+  mapping: {}
+  planning: {needs: [quad/mapping/update]}
+)");
+  ChildProcess launch({QUAD_TOOL, "launch", manifest.string(), "--domain", "185", "--log-dir", (dir / "run").string()});
+  ASSERT_TRUE(launch.waitForOutput("planning running on domain 185", 30s)) << launch.output();
+  launch.signal(SIGINT);
+  const auto status = launch.wait(30s);
+  ASSERT_TRUE(status) << launch.output();
+  EXPECT_EQ(*status, 0) << launch.output();
+  const std::string out = launch.output();
+  const auto planning = out.find("stopped planning (exit 0)");
+  const auto mapping = out.find("stopped mapping (exit 0)");
+  ASSERT_NE(planning, std::string::npos) << out;
+  ASSERT_NE(mapping, std::string::npos) << out;
+  EXPECT_LT(planning, mapping) << out;
+  fs::remove_all(dir);
+}
+
+/// A module that needs another's topic starts only if discovery works the manifest's way.
+void startsWithDiscovery(const std::string& discovery, int domain, const std::string& expected_line)
+{
+  const fs::path dir = quad::test::scratchDir("quad_launch_discovery_" + std::to_string(domain));
+  const auto manifest = writeManifest(dir, "discovery: " + discovery + R"(
+modules:
+  mapping: {}
+  planning: {needs: [quad/mapping/update], ready_timeout: 15}
+)");
+  ChildProcess launch({QUAD_TOOL, "launch", manifest.string(), "--domain", std::to_string(domain), "--log-dir",
+                       (dir / "run").string()});
+  ASSERT_TRUE(launch.waitForOutput("planning running on domain " + std::to_string(domain), 30s)) << launch.output();
+  EXPECT_NE(launch.output().find(expected_line), std::string::npos) << launch.output();
+  launch.signal(SIGTERM);
+  const auto status = launch.wait(30s);
+  ASSERT_TRUE(status) << launch.output();
+  EXPECT_EQ(*status, 0) << launch.output();
+  fs::remove_all(dir);
+}
+
+TEST(Launch, ADiscoveryServerTheLauncherStartsConnectsTheModules)
+{
+  startsWithDiscovery("{kind: server, port: 11861}", 186, "started a discovery server on local at 127.0.0.1:11861");
+}
+
+TEST(Launch, InitialPeersConnectTheModules)
+{
+  startsWithDiscovery("{kind: initial_peers}", 187, "started planning on local");
 }
 
 TEST(Launch, AMissingModuleFailsStartUpNamingIt)

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <algorithm>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -49,14 +50,25 @@ void flyMission(const std::string& manifest, int domain, const std::vector<std::
   EXPECT_NE(quad::test::readFile(dir / "run/plant.log").find("lockstep mode"), std::string::npos);
   EXPECT_NE(quad::test::readFile(dir / "run/planning.log").find("path 1 ok"), std::string::npos);
   EXPECT_EQ(launch.output().find("SIGKILL"), std::string::npos) << launch.output();
+  if (std::find(extra.begin(), extra.end(), "--record") != extra.end()) {
+    // The recording holds the run's topics, with no loss on reliable ones.
+    ChildProcess info({QUAD_TOOL, "bag", "info", (dir / "run.mcap").string()});
+    ASSERT_EQ(info.wait(60s), 0) << info.output();
+    for (const char* line : {"quad/planning/path", "quad/control/actuators", "quad/sim/state", "quad/mapping/update"}) {
+      EXPECT_NE(info.output().find(line), std::string::npos) << line << "\n" << info.output();
+    }
+    const std::regex path_line(R"(quad/planning/path .* missing 0 duplicated 0 reordered 0)");
+    EXPECT_TRUE(std::regex_search(info.output(), path_line)) << info.output();
+  }
   if (!::testing::Test::HasFailure()) {
     fs::remove_all(dir);  // kept to look into otherwise
   }
 }
 
-TEST(Launch, DemoMissionReachesTheGoalInLockstepWithoutCollision)
+TEST(Launch, DemoMissionReachesTheGoalInLockstepWithoutCollisionAndIsRecorded)
 {
-  flyMission("demo.yaml", 180, {});
+  const fs::path record = fs::temp_directory_path() / ("quad_launch_180_" + std::to_string(::getpid())) / "run.mcap";
+  flyMission("demo.yaml", 180, {"--record", record.string()});
 }
 
 TEST(Launch, ThreeHostManifestFliesTheMissionAcrossNetworkNamespaces)

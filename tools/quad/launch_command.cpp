@@ -152,9 +152,9 @@ void Run::handleExit(const launch::Supervisor::Exit& e)
   State& st = states_[e.name];
   st.last_status = e.status;
   const std::string what = process::describeStatus(e.status);
-  if (e.name == "discovery") {
+  if (e.name == "discovery" || e.name == "record") {
     failed_ = true;
-    failure_ = "the discovery server ended (" + what + ")";
+    failure_ = (e.name == "record" ? "the recorder" : "the discovery server") + std::string(" ended (") + what + ")";
     say(failure_);
     return;
   }
@@ -328,6 +328,14 @@ int Run::execute()
                     m_.world.filename().string()));
   }
 
+  if (options_.record) {
+    // Started first, so stopped last: it sees every module's last samples.
+    const std::vector<std::string> argv{(buildDir() / "tools/quad/quad").string(), "record", "-q", "-o",
+                                        fs::absolute(*options_.record).string()};
+    supervisor_.start("record", argv, env_);
+    started_order_.push_back("record");
+    say("recording every topic to " + *options_.record);
+  }
   for (const auto& mod : m_.modules) {
     if (!waitForNeeds(mod)) {
       break;

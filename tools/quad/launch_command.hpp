@@ -17,6 +17,7 @@ struct LaunchOptions {
   std::optional<std::string> subnet;   ///< replaces the manifest's netns subnet
   std::optional<std::string> summary;  ///< JSON summary of the mission to this file
   std::optional<std::string> log_dir;  ///< the run's folder; default log/<name>-<time>
+  std::optional<std::string> record;   ///< record every topic of the run to this MCAP file
   double wall_timeout_s = 0.0;         ///< stop and fail after this long; 0 = never
   bool quiet = false;                  ///< modules' output to their logs only
   bool check = false;                  ///< validate the manifest and exit

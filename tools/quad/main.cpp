@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "launch_command.hpp"
+#include "record_command.hpp"
 #include "so3_command.hpp"
 #include "topic_commands.hpp"
 
@@ -38,11 +39,28 @@ int main(int argc, char** argv)
       ->check(CLI::Range(0, 232));
   launch->add_option("--subnet", launch_options.subnet, "First three numbers of the /24 for network-namespace hosts");
   launch->add_option("--summary", launch_options.summary, "Write the mission's summary as JSON to this file");
+  launch->add_option("--record", launch_options.record, "Record every topic of the run to this MCAP file (quad record)");
   launch->add_option("--log-dir", launch_options.log_dir, "The run's folder (default: log/<name>-<time>-<pid>)");
   launch->add_option("--wall-timeout", launch_options.wall_timeout_s, "Stop and fail after this many seconds")
       ->check(CLI::NonNegativeNumber);
   launch->add_flag("-q,--quiet", launch_options.quiet, "Modules' output to their log files only");
   launch->add_flag("--check", launch_options.check, "Validate the manifest and exit");
+
+  quad::tools::RecordOptions record_options;
+  auto* record = app.add_subcommand("record", "Record topic traffic to an MCAP file (Ctrl-C stops)");
+  addConnectionOptions(record, record_options.connection);
+  record->add_option("topics", record_options.topics, "Topics or globs (default: every quad topic)");
+  record->add_option("-o,--output", record_options.output, "File (default: quad-<time>.mcap)");
+  record->add_option("--exclude", record_options.exclude, "Globs of topics not to record");
+  record->add_option("--duration", record_options.duration_s, "Stop after this many seconds")
+      ->check(CLI::NonNegativeNumber);
+  record->add_flag("-q,--quiet", record_options.quiet, "No progress line");
+
+  std::string bag_file;
+  auto* bag = app.add_subcommand("bag", "Inspect recordings");
+  bag->require_subcommand(1);
+  auto* bag_info = bag->add_subcommand("info", "Topics, types, counts, rates, time span and loss of a recording");
+  bag_info->add_option("file", bag_file, "MCAP file")->required();
 
   auto* topic = app.add_subcommand("topic", "Inspect and publish topics of a running stack");
   topic->require_subcommand(1);
@@ -139,6 +157,12 @@ int main(int argc, char** argv)
   try {
     if (launch->parsed()) {
       return quad::tools::launch(launch_options);
+    }
+    if (record->parsed()) {
+      return quad::tools::record(record_options);
+    }
+    if (bag_info->parsed()) {
+      return quad::tools::bagInfo(bag_file);
     }
     if (list->parsed()) {
       return quad::tools::topicList(list_options);

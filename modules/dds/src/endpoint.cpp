@@ -180,11 +180,19 @@ ReaderEndpoint::~ReaderEndpoint()
   participant_.removeLocalEndpoint(std::string(info_.name), false);
 }
 
-bool ReaderEndpoint::takeSample(void* sample)
+bool ReaderEndpoint::takeSample(void* sample, std::uint64_t* writer)
 {
   fdds::SampleInfo info;
   while (reader_->take_next_sample(sample, &info) == ReturnCode_t::RETCODE_OK) {
     if (info.valid_data) {
+      if (writer != nullptr) {
+        // The handle is the writer's 16-byte GUID; fold it into 64 bits (FNV-1a).
+        std::uint64_t h = 1469598103934665603ULL;
+        for (std::size_t i = 0; i < 16; ++i) {
+          h = (h ^ info.publication_handle.value[i]) * 1099511628211ULL;
+        }
+        *writer = h;
+      }
       return true;
     }
   }

@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include "quad/common/payload_header.hpp"
 #include "quad/dds/message_types.hpp"
 
 namespace quad::dds {
@@ -11,17 +12,8 @@ namespace fdds = eprosima::fastdds::dds;
 
 std::optional<std::uint32_t> payloadVehicleId(std::span<const std::uint8_t> payload)
 {
-  // Encapsulation (2 bytes id, 2 bytes options), then Header.vehicle_id at body offset 0.
-  if (payload.size() < 8 || payload[0] != 0 || payload[1] > 1) {
-    return std::nullopt;
-  }
-  const std::uint8_t* b = payload.data() + 4;
-  if (payload[1] == 1) {  // CDR_LE
-    return static_cast<std::uint32_t>(b[0] | (b[1] << 8) | (b[2] << 16) |
-                                      (static_cast<std::uint32_t>(b[3]) << 24));
-  }
-  return static_cast<std::uint32_t>((static_cast<std::uint32_t>(b[0]) << 24) | (b[1] << 16) |
-                                    (b[2] << 8) | b[3]);
+  const auto header = common::payloadHeader(payload, true);
+  return header ? std::optional<std::uint32_t>(header->vehicle_id) : std::nullopt;
 }
 
 RawType::RawType(const std::string& type_name, bool keyed, std::uint32_t max_size)

@@ -71,8 +71,9 @@ public:
   const TopicInfo& info() const { return info_; }
 
 protected:
-  /// Takes the next sample with valid data into `sample`; false when none is left.
-  bool takeSample(void* sample);
+  /// Takes the next sample with valid data into `sample`; false when none is left. `writer`,
+  /// when given, receives an id of the writer that sent it (a hash of its GUID).
+  bool takeSample(void* sample, std::uint64_t* writer = nullptr);
 
 private:
   class Listener;

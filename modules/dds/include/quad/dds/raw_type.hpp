@@ -57,6 +57,8 @@ public:
   RawSubscriber(Participant& participant, const TopicInfo& info, Waker* waker,
                 std::optional<eprosima::fastdds::dds::DataReaderQos> qos = std::nullopt);
   bool take(RawSample& sample) { return takeSample(&sample); }
+  /// Also says which writer sent it (an id stable for the writer's life).
+  bool take(RawSample& sample, std::uint64_t& writer) { return takeSample(&sample, &writer); }
 };
 
 }  // namespace quad::dds

@@ -1,0 +1,37 @@
+#pragma once
+/// @file
+/// Loss accounting from the Header.seq of each writer: every sample a writer published has
+/// the number after its previous one, so gaps are missing samples, a number seen twice is a
+/// duplicate, and a missing number that turns up later was reordered.
+
+#include <cstdint>
+#include <map>
+#include <set>
+
+namespace quad::bag {
+
+struct LossFigures {
+  std::uint64_t received = 0;
+  std::uint64_t missing = 0;     ///< numbers skipped and never seen
+  std::uint64_t duplicated = 0;  ///< numbers seen more than once
+  std::uint64_t reordered = 0;   ///< numbers that came after a later one
+  LossFigures& operator+=(const LossFigures& o);
+};
+
+class SequenceAudit {
+public:
+  /// One sample of `writer` (any id that tells writers apart) with its Header.seq.
+  void add(std::uint64_t writer, std::uint64_t seq);
+  LossFigures figures() const;
+  std::size_t writers() const { return writers_.size(); }
+
+private:
+  struct Writer {
+    std::uint64_t last = 0;          // highest number seen
+    std::set<std::uint64_t> gaps;    // numbers below `last` not seen yet
+    LossFigures f;
+  };
+  std::map<std::uint64_t, Writer> writers_;
+};
+
+}  // namespace quad::bag

@@ -1,0 +1,45 @@
+#include "quad/bag/audit.hpp"
+
+namespace quad::bag {
+
+LossFigures& LossFigures::operator+=(const LossFigures& o)
+{
+  received += o.received;
+  missing += o.missing;
+  duplicated += o.duplicated;
+  reordered += o.reordered;
+  return *this;
+}
+
+void SequenceAudit::add(std::uint64_t writer, std::uint64_t seq)
+{
+  Writer& w = writers_[writer];
+  ++w.f.received;
+  if (w.f.received == 1) {
+    w.last = seq;  // a recorder joining late starts wherever the writer is
+    return;
+  }
+  if (seq > w.last) {
+    for (std::uint64_t s = w.last + 1; s < seq && w.gaps.size() < 1'000'000; ++s) {
+      w.gaps.insert(s);
+    }
+    w.last = seq;
+  } else if (w.gaps.erase(seq) == 1) {
+    ++w.f.reordered;
+  } else {
+    ++w.f.duplicated;
+  }
+}
+
+LossFigures SequenceAudit::figures() const
+{
+  LossFigures total;
+  for (const auto& [id, w] : writers_) {
+    LossFigures f = w.f;
+    f.missing = w.gaps.size();
+    total += f;
+  }
+  return total;
+}
+
+}  // namespace quad::bag

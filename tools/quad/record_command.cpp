@@ -1,0 +1,223 @@
+#include "record_command.hpp"
+
+#include <fnmatch.h>
+#include <signal.h>
+
+#include <atomic>
+#include <cstdio>
+#include <ctime>
+#include <map>
+#include <memory>
+#include <set>
+
+#include <fmt/chrono.h>
+#include <fmt/format.h>
+
+#include "connection.hpp"
+#include "quad/bag/audit.hpp"
+#include "quad/bag/mcap.hpp"
+#include "quad/common/payload_header.hpp"
+#include "quad/common/time.hpp"
+#include "quad/dds/node.hpp"
+#include "quad/dds/raw_type.hpp"
+#include "quad/dds/topics.hpp"
+#include "quad/dds/waker.hpp"
+#include "quad/introspection/idl.hpp"
+
+namespace quad::tools {
+
+namespace {
+
+std::atomic<int> g_stop{0};
+
+bool matchesAny(const std::string& topic, const std::vector<std::string>& globs)
+{
+  for (const auto& g : globs) {
+    if (fnmatch(g.c_str(), topic.c_str(), 0) == 0) {
+      return true;
+    }
+  }
+  return false;
+}
+
+/// One recorded topic.
+struct Recorded {
+  std::unique_ptr<dds::RawSubscriber> subscriber;
+  std::uint16_t channel = 0;
+  bag::SequenceAudit audit;
+};
+
+std::string figuresText(const bag::LossFigures& f)
+{
+  return fmt::format("received {} missing {} duplicated {} reordered {}", f.received, f.missing, f.duplicated,
+                     f.reordered);
+}
+
+}  // namespace
+
+int record(const RecordOptions& options)
+{
+  dds::SignalWatcher signals;  // before any thread exists
+  signals.onSignal([](int s) { g_stop.store(s); });
+
+  const std::string output = options.output.empty()
+                                 ? fmt::format("quad-{:%Y%m%d-%H%M%S}.mcap", fmt::localtime(std::time(nullptr)))
+                                 : options.output;
+  bag::McapWriter writer(output);
+  dds::Participant participant(participantOptions("quad_record", options.connection));
+  dds::Waker waker;
+  const auto& schema = introspection::quadSchema();
+  std::map<std::string, std::uint16_t> schemas;  // type -> schema id
+  std::map<std::string, Recorded> recorded;      // topic -> its reader and channel
+  std::set<std::string> refused;
+  writer.addMetadata("quad.recording", {{"domain", std::to_string(participant.options().domain_id)},
+                                        {"started_ns", std::to_string(common::wallTimeNs())},
+                                        {"recorder", "quad record"}});
+  std::fprintf(stderr, "record: domain %d to %s\n", participant.options().domain_id, output.c_str());
+
+  const std::int64_t start = common::steadyTimeNs();
+  std::int64_t next_discovery = 0;
+  std::int64_t next_progress = start + common::kNanosecondsPerSecond;
+  std::uint64_t bytes = 0;
+  int code = 0;
+  try {
+    while (g_stop.load() == 0) {
+      const std::int64_t now = common::steadyTimeNs();
+      if (options.duration_s > 0 && now - start >= common::toNanoseconds(options.duration_s)) {
+        break;
+      }
+      if (now >= next_discovery) {
+        // Subscribe to every selected topic a writer appeared on, with the QoS of its
+        // contract (the writers' own, so reliable writers are recorded reliably).
+        for (const auto& e : participant.remoteEndpoints()) {
+          if (!e.writer || recorded.contains(e.topic) || refused.contains(e.topic)) {
+            continue;
+          }
+          if ((!options.topics.empty() && !matchesAny(e.topic, options.topics)) || matchesAny(e.topic, options.exclude)) {
+            continue;
+          }
+          const auto contract = dds::topics::find(e.topic);
+          if (!contract || contract->type_name != e.type_name) {
+            refused.insert(e.topic);
+            std::fprintf(stderr, "record: not recording %s (type %s): %s\n", e.topic.c_str(), e.type_name.c_str(),
+                         contract ? "its type differs from the contract's" : "no quad topic contract names it");
+            continue;
+          }
+          const std::string type(contract->type_name);
+          if (!schemas.contains(type)) {
+            schemas[type] = writer.addSchema(type, "omgidl", schema.flattenedIdl(type));
+          }
+          Recorded& r = recorded[e.topic];
+          r.subscriber = std::make_unique<dds::RawSubscriber>(participant, *contract, &waker);
+          r.channel = writer.addChannel(schemas[type], e.topic, "cdr",
+                                        {{"qos_profile", std::string(contract->qos_profile)},
+                                         {"reliable", e.reliable ? "true" : "false"},
+                                         {"transient_local", e.transient_local ? "true" : "false"},
+                                         {"rate_hz", fmt::format("{}", contract->rate_hz)}});
+        }
+        next_discovery = now + 200'000'000;
+      }
+      for (auto& [topic, r] : recorded) {
+        dds::RawSample sample;
+        std::uint64_t writer_id = 0;
+        while (r.subscriber->take(sample, writer_id)) {
+          const auto log_time = static_cast<std::uint64_t>(common::wallTimeNs());
+          const auto header = common::payloadHeader(sample.payload);
+          const std::uint64_t publish = header && header->publish_ns > 0 ? static_cast<std::uint64_t>(header->publish_ns)
+                                                                          : log_time;
+          if (header) {
+            r.audit.add(writer_id, header->seq);
+          }
+          writer.write(r.channel, header ? static_cast<std::uint32_t>(header->seq) : 0, log_time, publish,
+                       sample.payload.data(), sample.payload.size());
+          bytes += sample.payload.size();
+        }
+      }
+      if (!options.quiet && now >= next_progress) {
+        const double seconds = common::toSeconds(now - start);
+        std::fprintf(stderr, "\rrecord: %zu topics, %llu messages, %.1f MB, %.0f msg/s   ", recorded.size(),
+                     static_cast<unsigned long long>(writer.messages()), static_cast<double>(bytes) / 1e6,
+                     static_cast<double>(writer.messages()) / std::max(seconds, 1e-9));
+        next_progress = now + common::kNanosecondsPerSecond;
+      }
+      waker.waitUntil(std::min(next_discovery, next_progress));
+    }
+  } catch (const bag::BagError& e) {
+    std::fprintf(stderr, "\nrecord: %s: stopping\n", e.what());
+    code = 1;
+  }
+  // Loss figures of the recording, for quad bag info.
+  std::map<std::string, std::string> loss;
+  for (const auto& [topic, r] : recorded) {
+    loss[topic] = figuresText(r.audit.figures()) + fmt::format(" writers {}", r.audit.writers());
+  }
+  try {
+    writer.addMetadata("quad.loss", loss);
+    writer.close();
+  } catch (const bag::BagError& e) {
+    std::fprintf(stderr, "\nrecord: %s\n", e.what());
+    return 1;
+  }
+  std::fprintf(stderr, "\nrecord: %llu messages on %zu topics in %s\n",
+               static_cast<unsigned long long>(writer.messages()), recorded.size(), output.c_str());
+  return code;
+}
+
+int bagInfo(const std::string& file)
+{
+  bag::McapContents c;
+  try {
+    c = bag::readMcap(file, true);
+  } catch (const bag::BagError& e) {
+    std::fprintf(stderr, "bag info: %s\n", e.what());
+    return 1;
+  }
+  std::map<std::uint16_t, const bag::Channel*> channels;
+  for (const auto& ch : c.channels) {
+    channels[ch.id] = &ch;
+  }
+  std::map<std::uint16_t, const bag::Schema*> schemas;
+  for (const auto& s : c.schemas) {
+    schemas[s.id] = &s;
+  }
+  struct Row {
+    std::uint64_t count = 0;
+    std::uint64_t first = 0, last = 0;
+  };
+  std::map<std::uint16_t, Row> rows;
+  std::uint64_t first = 0, last = 0;
+  for (const auto& m : c.messages) {
+    Row& r = rows[m.channel_id];
+    r.first = r.count == 0 ? m.log_time : std::min(r.first, m.log_time);
+    r.last = std::max(r.last, m.log_time);
+    ++r.count;
+    first = first == 0 ? m.log_time : std::min(first, m.log_time);
+    last = std::max(last, m.log_time);
+  }
+  std::map<std::string, std::string> loss;
+  for (const auto& md : c.metadata) {
+    if (md.name == "quad.loss") {
+      loss = md.values;
+    }
+  }
+  const double span = static_cast<double>(last - first) * 1e-9;
+  std::printf("file:      %s%s\n", file.c_str(), c.complete ? "" : " (INCOMPLETE: quad bag recover can rewrite it)");
+  if (!c.complete) {
+    std::printf("problem:   %s\n", c.problem.c_str());
+  }
+  std::printf("messages:  %zu in %u chunks, %zu channels, %.3f s\n", c.messages.size(), c.chunks, c.channels.size(), span);
+  std::printf("%-26s %-28s %9s %9s  %s\n", "TOPIC", "TYPE", "MESSAGES", "RATE", "LOSS (from Header.seq per writer)");
+  for (const auto& [id, ch] : channels) {
+    const Row r = rows[id];
+    const double s = static_cast<double>(r.last - r.first) * 1e-9;
+    const std::string rate = r.count > 1 && s > 0 ? fmt::format("{:.1f} Hz", static_cast<double>(r.count - 1) / s) : "-";
+    const auto schema_it = schemas.find(ch->schema_id);
+    const std::string type = schema_it == schemas.end() ? "?" : schema_it->second->name;
+    const auto l = loss.find(ch->topic);
+    std::printf("%-26s %-28s %9llu %9s  %s\n", ch->topic.c_str(), type.c_str(), static_cast<unsigned long long>(r.count),
+                rate.c_str(), l == loss.end() ? "(not recorded)" : l->second.c_str());
+  }
+  return c.complete ? 0 : 1;
+}
+
+}  // namespace quad::tools

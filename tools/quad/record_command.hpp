@@ -1,0 +1,28 @@
+#pragma once
+/// @file
+/// `quad record` and `quad bag info`: topic traffic to MCAP files, and what a file holds.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "topic_commands.hpp"
+
+namespace quad::tools {
+
+struct RecordOptions {
+  ConnectionOptions connection;
+  std::string output;                 ///< empty: quad-<time>.mcap
+  std::vector<std::string> topics;    ///< names or globs; empty: every quad topic
+  std::vector<std::string> exclude;   ///< globs
+  double duration_s = 0.0;            ///< 0: until Ctrl-C
+  bool quiet = false;                 ///< no progress line
+};
+
+/// Records until Ctrl-C, SIGTERM or the duration; returns the exit status.
+int record(const RecordOptions& options);
+
+/// Prints topics, types, counts, rates, time span and loss figures of a recording.
+int bagInfo(const std::string& file);
+
+}  // namespace quad::tools

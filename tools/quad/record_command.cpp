@@ -108,7 +108,28 @@ int record(const RecordOptions& options)
             schemas[type] = writer.addSchema(type, "omgidl", schema.flattenedIdl(type));
           }
           Recorded& r = recorded[e.topic];
-          r.subscriber = std::make_unique<dds::RawSubscriber>(participant, *contract, &waker);
+          // The contract's QoS, with a deep history: a "newest only" topic keeps one sample per
+          // instance, and a recorder that falls a few samples behind must not lose them.
+          auto qos = participant.readerQos(contract->qos_profile);
+          if (qos.history().kind == eprosima::fastdds::dds::KEEP_LAST_HISTORY_QOS && qos.history().depth < 4096) {
+            qos.history().depth = 4096;
+            auto& limits = qos.resource_limits();
+            if (limits.max_samples_per_instance > 0 && limits.max_samples_per_instance < 4096) {
+              limits.max_samples_per_instance = 4096;
+            }
+            const std::int32_t needed = limits.max_samples_per_instance * std::max(1, limits.max_instances);
+            if (limits.max_samples > 0 && limits.max_samples < needed) {
+              limits.max_samples = needed;
+            }
+          }
+          try {
+            r.subscriber = std::make_unique<dds::RawSubscriber>(participant, *contract, &waker, qos);
+          } catch (const std::exception& ex) {
+            recorded.erase(e.topic);
+            refused.insert(e.topic);
+            std::fprintf(stderr, "record: not recording %s: %s\n", e.topic.c_str(), ex.what());
+            continue;
+          }
           r.channel = writer.addChannel(schemas[type], e.topic, "cdr",
                                         {{"qos_profile", std::string(contract->qos_profile)},
                                          {"reliable", e.reliable ? "true" : "false"},

@@ -67,6 +67,27 @@ std::string record(Op op, const std::string& content)
   return out + content;
 }
 
+std::string schemaRecord(const Schema& s)
+{
+  std::string c;
+  le<std::uint16_t>(c, s.id);
+  str(c, s.name);
+  str(c, s.encoding);
+  str(c, s.data);
+  return record(kSchema, c);
+}
+
+std::string channelRecord(const Channel& ch)
+{
+  std::string c;
+  le<std::uint16_t>(c, ch.id);
+  le<std::uint16_t>(c, ch.schema_id);
+  str(c, ch.topic);
+  str(c, ch.message_encoding);
+  strMap(c, ch.metadata);
+  return record(kChannel, c);
+}
+
 }  // namespace
 
 std::uint32_t crc32(const void* data, std::size_t size, std::uint32_t crc)
@@ -122,12 +143,7 @@ void McapWriter::put(const std::string& bytes)
 std::uint16_t McapWriter::addSchema(const std::string& name, const std::string& encoding, const std::string& data)
 {
   Schema s{static_cast<std::uint16_t>(schemas_.size() + 1), name, encoding, data};  // 0 means "no schema"
-  std::string content;
-  le<std::uint16_t>(content, s.id);
-  str(content, s.name);
-  str(content, s.encoding);
-  str(content, s.data);
-  put(record(kSchema, content));
+  put(schemaRecord(s));
   schemas_.push_back(std::move(s));
   return schemas_.back().id;
 }
@@ -137,13 +153,7 @@ std::uint16_t McapWriter::addChannel(std::uint16_t schema_id, const std::string&
                                      const std::map<std::string, std::string>& metadata)
 {
   Channel c{static_cast<std::uint16_t>(channels_.size()), schema_id, topic, message_encoding, metadata};
-  std::string content;
-  le<std::uint16_t>(content, c.id);
-  le<std::uint16_t>(content, c.schema_id);
-  str(content, c.topic);
-  str(content, c.message_encoding);
-  strMap(content, c.metadata);
-  put(record(kChannel, content));
+  put(channelRecord(c));
   channels_.push_back(std::move(c));
   return channels_.back().id;
 }
@@ -264,23 +274,12 @@ void McapWriter::close()
   };
   std::string schemas;
   for (const auto& s : schemas_) {
-    std::string c;
-    le<std::uint16_t>(c, s.id);
-    str(c, s.name);
-    str(c, s.encoding);
-    str(c, s.data);
-    schemas += record(kSchema, c);
+    schemas += schemaRecord(s);
   }
   group(kSchema, schemas);
   std::string channels;
   for (const auto& ch : channels_) {
-    std::string c;
-    le<std::uint16_t>(c, ch.id);
-    le<std::uint16_t>(c, ch.schema_id);
-    str(c, ch.topic);
-    str(c, ch.message_encoding);
-    strMap(c, ch.metadata);
-    channels += record(kChannel, c);
+    channels += channelRecord(ch);
   }
   group(kChannel, channels);
   std::string stats;

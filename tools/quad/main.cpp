@@ -55,12 +55,18 @@ int main(int argc, char** argv)
   record->add_option("--duration", record_options.duration_s, "Stop after this many seconds")
       ->check(CLI::NonNegativeNumber);
   record->add_flag("-q,--quiet", record_options.quiet, "No progress line");
+  record->add_option("--chunk-size", record_options.chunk_size, "Bytes of messages per chunk (a killed recorder keeps every complete chunk)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 30));
 
   std::string bag_file;
   auto* bag = app.add_subcommand("bag", "Inspect recordings");
   bag->require_subcommand(1);
   auto* bag_info = bag->add_subcommand("info", "Topics, types, counts, rates, time span and loss of a recording");
   bag_info->add_option("file", bag_file, "MCAP file")->required();
+  std::string recover_output;
+  auto* bag_recover = bag->add_subcommand("recover", "Rewrite a recording cut short (killed recorder) whole");
+  bag_recover->add_option("file", bag_file, "MCAP file")->required();
+  bag_recover->add_option("-o,--output", recover_output, "Output (default: FILE.recovered.mcap)");
 
   auto* topic = app.add_subcommand("topic", "Inspect and publish topics of a running stack");
   topic->require_subcommand(1);
@@ -163,6 +169,9 @@ int main(int argc, char** argv)
     }
     if (bag_info->parsed()) {
       return quad::tools::bagInfo(bag_file);
+    }
+    if (bag_recover->parsed()) {
+      return quad::tools::bagRecover(bag_file, recover_output);
     }
     if (list->parsed()) {
       return quad::tools::topicList(list_options);

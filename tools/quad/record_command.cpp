@@ -63,7 +63,7 @@ int record(const RecordOptions& options)
   const std::string output = options.output.empty()
                                  ? fmt::format("quad-{:%Y%m%d-%H%M%S}.mcap", fmt::localtime(std::time(nullptr)))
                                  : options.output;
-  bag::McapWriter writer(output);
+  bag::McapWriter writer(output, options.chunk_size);
   dds::Participant participant(participantOptions("quad_record", options.connection));
   dds::Waker waker;
   const auto& schema = introspection::quadSchema();
@@ -239,6 +239,22 @@ int bagInfo(const std::string& file)
                 rate.c_str(), l == loss.end() ? "(not recorded)" : l->second.c_str());
   }
   return c.complete ? 0 : 1;
+}
+
+int bagRecover(const std::string& file, std::string output)
+{
+  if (output.empty()) {
+    output = (file.ends_with(".mcap") ? file.substr(0, file.size() - 5) : file) + ".recovered.mcap";
+  }
+  try {
+    const auto c = bag::recoverMcap(file, output);
+    std::printf("%s: %zu messages on %zu channels%s\n", output.c_str(), c.messages.size(), c.channels.size(),
+                c.problem.empty() ? " (the file was whole)" : (" (reading stopped: " + c.problem + ")").c_str());
+  } catch (const bag::BagError& e) {
+    std::fprintf(stderr, "bag recover: %s\n", e.what());
+    return 1;
+  }
+  return 0;
 }
 
 }  // namespace quad::tools

@@ -561,4 +561,28 @@ McapContents readMcap(const std::filesystem::path& path, bool tolerant)
   return out;
 }
 
+McapContents recoverMcap(const std::filesystem::path& damaged, const std::filesystem::path& output)
+{
+  McapContents c = readMcap(damaged, true);
+  McapWriter w(output);
+  std::map<std::uint16_t, std::uint16_t> schema_ids{{0, 0}};  // ids are given anew, in order
+  for (const auto& s : c.schemas) {
+    schema_ids[s.id] = w.addSchema(s.name, s.encoding, s.data);
+  }
+  std::map<std::uint16_t, std::uint16_t> channel_ids;
+  for (const auto& ch : c.channels) {
+    const auto sid = schema_ids.find(ch.schema_id);
+    channel_ids[ch.id] = w.addChannel(sid == schema_ids.end() ? 0 : sid->second, ch.topic, ch.message_encoding,
+                                      ch.metadata);
+  }
+  for (const auto& m : c.messages) {
+    w.write(channel_ids.at(m.channel_id), m.sequence, m.log_time, m.publish_time, m.data.data(), m.data.size());
+  }
+  for (const auto& md : c.metadata) {
+    w.addMetadata(md.name, md.values);
+  }
+  w.close();
+  return c;
+}
+
 }  // namespace quad::bag

@@ -148,6 +148,27 @@ TEST(Mcap, ATruncatedFileIsAnErrorAndTolerantReadingKeepsTheCompleteChunks)
   fs::remove_all(dir);
 }
 
+TEST(Mcap, RecoverRewritesACutFileWholeWithEveryCompleteChunk)
+{
+  const fs::path dir = quad::test::scratchDir("quad_mcap_recover");
+  const fs::path file = writeSample(dir);
+  auto b = bytesOf(file);
+  b.resize(b.size() * 2 / 3);
+  writeBytes(file, b);
+  const auto read = recoverMcap(file, dir / "recovered.mcap");
+  EXPECT_FALSE(read.problem.empty());
+  const auto whole = readMcap(dir / "recovered.mcap");  // strict: it is a whole file now
+  EXPECT_TRUE(whole.complete);
+  ASSERT_EQ(whole.messages.size(), read.messages.size());
+  EXPECT_GT(whole.messages.size(), 500U);
+  for (std::size_t i = 0; i < whole.messages.size(); ++i) {
+    EXPECT_EQ(whole.messages[i].sequence, i);
+    EXPECT_EQ(whole.messages[i].data, read.messages[i].data);
+  }
+  EXPECT_EQ(whole.channels.size(), 2U);
+  fs::remove_all(dir);
+}
+
 TEST(Mcap, WrongMagicAndMissingFilesAreClearErrors)
 {
   const fs::path dir = quad::test::scratchDir("quad_mcap_magic");

@@ -115,4 +115,11 @@ struct McapContents {
 /// there and returns what came before, with `problem` set (what `quad bag recover` needs).
 McapContents readMcap(const std::filesystem::path& path, bool tolerant = false);
 
+/// Rewrites what can be read of `damaged` (every complete chunk; a writer killed with
+/// SIGKILL leaves no summary or footer) as a whole file at `output`: same schemas, channels
+/// and metadata, messages in their order, a new index, summary and footer. Returns the
+/// contents read (`problem` says what stopped the reading, empty if the file was whole).
+/// Throws BagError when `damaged` is not MCAP at all or `output` cannot be written.
+McapContents recoverMcap(const std::filesystem::path& damaged, const std::filesystem::path& output);
+
 }  // namespace quad::bag

@@ -227,4 +227,42 @@ modules:
   fs::remove_all(dir);
 }
 
+TEST(Launch, AnSshHostRunsItsModuleWithTheRunsEnvironmentAndStopsIt)
+{
+  if (::geteuid() != 0 || !fs::exists("/usr/sbin/sshd")) {
+    GTEST_SKIP() << "needs root and openssh-server";
+  }
+  // A private sshd on 127.0.0.1:2299 that lets this key in, and nothing else.
+  const fs::path dir = quad::test::scratchDir("quad_launch_ssh");
+  const std::string d = dir.string();
+  for (const char* key : {"id", "host"}) {
+    ChildProcess keygen({"/usr/bin/ssh-keygen", "-q", "-t", "ed25519", "-N", "", "-f", d + "/" + key});
+    ASSERT_EQ(keygen.wait(20s), 0) << keygen.output();
+  }
+  fs::copy_file(dir / "id.pub", dir / "authorized_keys");
+  fs::create_directories("/run/sshd");  // sshd's privilege separation folder
+  std::ofstream(dir / "sshd_config") << "Port 2299\nListenAddress 127.0.0.1\nHostKey " << d
+                                     << "/host\nAuthorizedKeysFile " << d << "/authorized_keys\nPidFile " << d
+                                     << "/sshd.pid\nStrictModes no\nUsePAM no\nPermitRootLogin prohibit-password\n";
+  ChildProcess sshd({"/usr/sbin/sshd", "-D", "-e", "-f", d + "/sshd_config"});
+  ASSERT_TRUE(sshd.waitForOutput("Server listening on 127.0.0.1 port 2299", 10s)) << sshd.output();
+  const auto manifest = writeManifest(dir, "hosts:\n  here: {type: local}\n  far: {type: ssh, address: root@127.0.0.1, "
+                                           "port: 2299, options: [-i, " + d + "/id, -o, StrictHostKeyChecking=no, -o, "
+                                           "UserKnownHostsFile=/dev/null]}\n"
+                                           "modules:\n  mapping: {host: far}\n"
+                                           "  planning: {needs: [quad/mapping/update], ready_timeout: 20}\n");
+  ChildProcess launch({QUAD_TOOL, "launch", manifest.string(), "--domain", "188", "--log-dir", (dir / "run").string()});
+  // The mapper, started over ssh, got the run's domain and is seen by the launcher.
+  ASSERT_TRUE(launch.waitForOutput("planning running on domain 188", 40s)) << launch.output();
+  EXPECT_NE(quad::test::readFile(dir / "run/mapping.log").find("mapping running on domain 188"), std::string::npos)
+      << launch.output();
+  launch.signal(SIGTERM);
+  const auto status = launch.wait(30s);
+  ASSERT_TRUE(status) << launch.output();
+  EXPECT_EQ(*status, 0) << launch.output();
+  EXPECT_NE(launch.output().find("stopped mapping"), std::string::npos) << launch.output();
+  sshd.signal(SIGTERM);
+  fs::remove_all(dir);
+}
+
 }  // namespace

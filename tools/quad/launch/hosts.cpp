@@ -206,8 +206,9 @@ std::vector<std::string> HostNetwork::command(const Host& host, std::vector<std:
         return s;
       };
       // -tt: a terminal on the far side, so that closing the connection hangs the module up.
-      std::vector<std::string> out{"ssh", "-tt", "-o", "BatchMode=yes", "-p", std::to_string(host.ssh_port),
-                                   host.address, "--", "env"};
+      std::vector<std::string> out{"ssh", "-tt", "-o", "BatchMode=yes", "-p", std::to_string(host.ssh_port)};
+      out.insert(out.end(), host.ssh_options.begin(), host.ssh_options.end());
+      out.insert(out.end(), {host.address, "--", "env"});
       for (const auto& [k, v] : env) {
         out.push_back(shellQuote(k + "=" + remote(v)));
       }

@@ -167,7 +167,7 @@ bool validName(const std::string& name)
 void readHosts(YAML::Node node, Reader& r, Manifest& m)
 {
   if (!node) {
-    m.hosts.push_back(Host{"local", HostKind::kLocal, "", 22, ""});
+    m.hosts.push_back(Host{"local", HostKind::kLocal, "", 22, "", {}});
     return;
   }
   if (!node.IsMap() || node.size() == 0) {
@@ -186,7 +186,7 @@ void readHosts(YAML::Node node, Reader& r, Manifest& m)
       r.problem(key, spec, "expected a map with 'type'");
       continue;
     }
-    r.onlyKeys(spec, key + ".", {"type", "address", "port", "root"});
+    r.onlyKeys(spec, key + ".", {"type", "address", "port", "root", "options"});
     const auto type = r.choice(spec["type"], key + ".type", "local", {"local", "netns", "ssh"});
     if (type == "netns") {
       h.kind = HostKind::kNetns;
@@ -195,9 +195,10 @@ void readHosts(YAML::Node node, Reader& r, Manifest& m)
       h.address = r.text(spec["address"], key + ".address", std::nullopt).value_or("");
       h.ssh_port = static_cast<int>(r.number(spec["port"], key + ".port", 22, 1, 65535).value_or(22));
       h.root = r.text(spec["root"], key + ".root", std::string()).value_or("");
+      h.ssh_options = r.strings(spec["options"], key + ".options");
     }
     if (h.kind != HostKind::kSsh) {
-      for (const char* k : {"address", "port", "root"}) {
+      for (const char* k : {"address", "port", "root", "options"}) {
         if (spec[k]) {
           r.problem(key + "." + k, spec[k], "only an ssh host takes this key");
         }

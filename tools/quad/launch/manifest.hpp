@@ -22,6 +22,7 @@ struct Host {
   std::string address;  ///< ssh: user@host or host; netns: assigned at launch (empty here)
   int ssh_port = 22;
   std::string root;     ///< ssh: the project's checkout on that machine; empty = same as here
+  std::vector<std::string> ssh_options;  ///< ssh: more ssh arguments (-i KEY, -o ...)
 };
 
 struct Module {

@@ -101,12 +101,12 @@ TEST(HostNetwork, SshCommandsCarryTheEnvironmentQuotedAndMoveTheCheckout)
 {
   Manifest m;
   m.file = "/src/quad/bringup/m.yaml";
-  m.hosts = {Host{"far", HostKind::kSsh, "pilot@10.1.2.3", 2222, "/opt/quad"}};
+  m.hosts = {Host{"far", HostKind::kSsh, "pilot@10.1.2.3", 2222, "/opt/quad", {"-i", "/k"}}};
   HostNetwork net(m, "1");
   EXPECT_EQ(net.address("far"), "10.1.2.3");
   const auto argv = net.command(m.hosts[0], {"/src/quad/build/x", "--set", "name=it's"}, {{"QUAD_DOMAIN_ID", "5"}});
   const std::vector<std::string> expected{
-      "ssh", "-tt", "-o", "BatchMode=yes", "-p", "2222", "pilot@10.1.2.3", "--", "env", "'QUAD_DOMAIN_ID=5'",
+      "ssh", "-tt", "-o", "BatchMode=yes", "-p", "2222", "-i", "/k", "pilot@10.1.2.3", "--", "env", "'QUAD_DOMAIN_ID=5'",
       "'/opt/quad/build/x'", "'--set'", "'name=it'\\''s'"};
   EXPECT_EQ(argv, expected);
 }

@@ -1,5 +1,8 @@
 #include "connection.hpp"
 
+#include <fnmatch.h>
+
+#include <algorithm>
 #include <stdexcept>
 
 #include "quad/dds/topics.hpp"
@@ -15,6 +18,12 @@ dds::ParticipantOptions participantOptions(const std::string& name,
     options.domain_id = *connection.domain_id;
   }
   return options;
+}
+
+bool matchesAnyGlob(const std::string& topic, const std::vector<std::string>& globs)
+{
+  return std::any_of(globs.begin(), globs.end(),
+                     [&](const std::string& g) { return fnmatch(g.c_str(), topic.c_str(), 0) == 0; });
 }
 
 dds::TopicInfo requireTopic(std::string_view name)

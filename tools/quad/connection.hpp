@@ -4,6 +4,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "quad/dds/participant.hpp"
 #include "quad/dds/topic.hpp"
@@ -14,6 +15,9 @@ namespace quad::tools {
 /// Participant options from the environment, with the command line's overrides.
 dds::ParticipantOptions participantOptions(const std::string& name,
                                            const ConnectionOptions& connection);
+
+/// Whether `topic` matches one of the shell globs (`quad/sim/*`).
+bool matchesAnyGlob(const std::string& topic, const std::vector<std::string>& globs);
 
 /// The contract of `name`; throws std::invalid_argument listing near names when there is none.
 dds::TopicInfo requireTopic(std::string_view name);

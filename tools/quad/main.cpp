@@ -58,6 +58,22 @@ int main(int argc, char** argv)
   record->add_option("--chunk-size", record_options.chunk_size, "Bytes of messages per chunk (a killed recorder keeps every complete chunk)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 30));
 
+  quad::tools::ReplayOptions replay_options;
+  auto* replay = app.add_subcommand("replay", "Republish a recording with its original timing");
+  addConnectionOptions(replay, replay_options.connection);
+  replay->add_option("file", replay_options.file, "MCAP file")->required();
+  replay->add_option("topics", replay_options.topics, "Topics or globs (default: every recorded quad topic)");
+  replay->add_option("--exclude", replay_options.exclude, "Globs of topics not to replay");
+  replay->add_option("--inputs-of", replay_options.inputs_of,
+                     "Module in the loop: replay only what this module does not write (plant, mapping, planning, control)")
+      ->check(CLI::IsMember({"plant", "mapping", "planning", "control"}));
+  replay->add_option("-r,--rate", replay_options.rate, "Speed factor")->check(CLI::PositiveNumber);
+  replay->add_option("--from", replay_options.from_s, "Start this many seconds in")->check(CLI::NonNegativeNumber);
+  replay->add_option("--to", replay_options.to_s, "Stop this many seconds in")->check(CLI::NonNegativeNumber);
+  replay->add_flag("--loop", replay_options.loop, "Start over at the end, until Ctrl-C");
+  replay->add_option("--wait-match", replay_options.wait_match_s, "Seconds to wait for readers first")
+      ->check(CLI::NonNegativeNumber);
+
   std::string bag_file;
   auto* bag = app.add_subcommand("bag", "Inspect recordings");
   bag->require_subcommand(1);
@@ -166,6 +182,9 @@ int main(int argc, char** argv)
     }
     if (record->parsed()) {
       return quad::tools::record(record_options);
+    }
+    if (replay->parsed()) {
+      return quad::tools::replay(replay_options);
     }
     if (bag_info->parsed()) {
       return quad::tools::bagInfo(bag_file);

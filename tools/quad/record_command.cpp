@@ -30,16 +30,6 @@ namespace {
 
 std::atomic<int> g_stop{0};
 
-bool matchesAny(const std::string& topic, const std::vector<std::string>& globs)
-{
-  for (const auto& g : globs) {
-    if (fnmatch(g.c_str(), topic.c_str(), 0) == 0) {
-      return true;
-    }
-  }
-  return false;
-}
-
 /// One recorded topic.
 struct Recorded {
   std::unique_ptr<dds::RawSubscriber> subscriber;
@@ -93,7 +83,7 @@ int record(const RecordOptions& options)
           if (!e.writer || recorded.contains(e.topic) || refused.contains(e.topic)) {
             continue;
           }
-          if ((!options.topics.empty() && !matchesAny(e.topic, options.topics)) || matchesAny(e.topic, options.exclude)) {
+          if ((!options.topics.empty() && !matchesAnyGlob(e.topic, options.topics)) || matchesAnyGlob(e.topic, options.exclude)) {
             continue;
           }
           const auto contract = dds::topics::find(e.topic);

@@ -20,6 +20,22 @@ struct RecordOptions {
   std::size_t chunk_size = 1 << 20;   ///< bytes of messages per chunk
 };
 
+struct ReplayOptions {
+  ConnectionOptions connection;
+  std::string file;
+  std::vector<std::string> topics;   ///< names or globs; empty: every recorded quad topic
+  std::vector<std::string> exclude;
+  std::string inputs_of;             ///< a module: publish only what it does not write itself
+  double rate = 1.0;                 ///< speed factor of the original timing
+  double from_s = 0.0;               ///< seconds after the first message
+  double to_s = 0.0;                 ///< 0: to the end
+  bool loop = false;
+  double wait_match_s = 3.0;         ///< wait this long for readers before the first sample
+};
+
+/// Republishes a recording's samples as they were (payloads untouched) with their timing.
+int replay(const ReplayOptions& options);
+
 /// Records until Ctrl-C, SIGTERM or the duration; returns the exit status.
 int record(const RecordOptions& options);
 

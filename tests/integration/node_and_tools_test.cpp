@@ -3,6 +3,7 @@
 #include <signal.h>
 
 #include <chrono>
+#include <regex>
 #include <string>
 
 #include "process.hpp"
@@ -145,6 +146,31 @@ TEST(NodeAndTools, So3AnswersAndRefusesWithExitCodeTwo)
     ChildProcess refused(argv);
     EXPECT_EQ(refused.wait(10s), 2) << refused.output();
   }
+}
+
+}  // namespace
+
+namespace {
+
+TEST(NodeAndTools, TopicHzMeasuresTheHeartbeatAgainstItsContract)
+{
+  ChildProcess node({QUAD_TEST_NODE}, {{"QUAD_DOMAIN_ID", "194"}, {"QUAD_TRANSPORT", "udp"}});
+  ASSERT_TRUE(node.waitForOutput("running on domain 194", 10s)) << node.output();
+  ChildProcess hz({QUAD_TOOL, "topic", "hz", "quad/system/heartbeat", "--duration", "4.2", "--window", "2"},
+                  {{"QUAD_DOMAIN_ID", "194"}, {"QUAD_TRANSPORT", "udp"}});
+  ASSERT_EQ(hz.wait(20s), 0) << hz.output();
+  // The heartbeat's contract is 2 Hz: a 2 s window holds 4 samples, give or take one.
+  EXPECT_NE(hz.output().find("(contract: 2 Hz)"), std::string::npos) << hz.output();
+  const std::regex line(R"(quad/system/heartbeat: (\d+\.\d) Hz \(contract: 2 Hz\), intervals)");
+  std::smatch m;
+  const std::string out = hz.output();
+  ASSERT_TRUE(std::regex_search(out, m, line)) << out;
+  EXPECT_NEAR(std::stod(m[1].str()), 2.0, 0.6) << out;
+  ChildProcess info({QUAD_TOOL, "topic", "info", "quad/system/heartbeat", "--wait", "1.5"},
+                    {{"QUAD_DOMAIN_ID", "194"}, {"QUAD_TRANSPORT", "udp"}});
+  ASSERT_EQ(info.wait(20s), 0) << info.output();
+  EXPECT_NE(info.output().find("test_node            on 127.0.0.1"), std::string::npos) << info.output();
+  EXPECT_NE(info.output().find("written by:  every module"), std::string::npos) << info.output();
 }
 
 }  // namespace

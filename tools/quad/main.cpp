@@ -96,6 +96,20 @@ int main(int argc, char** argv)
                  "Print quad's declared topics (name, type, QoS, rate, owner) instead");
 
   quad::tools::TopicEchoOptions echo_options;
+  quad::tools::TopicInfoOptions info_options;
+  auto* info = topic->add_subcommand("info", "A topic's contract, and its writers and readers with their hosts");
+  addConnectionOptions(info, info_options.connection);
+  info->add_option("topic", info_options.topic, "Topic name, e.g. quad/sim/state")->required();
+  info->add_option("--wait", info_options.wait_s, "Seconds to listen to discovery")->check(CLI::PositiveNumber);
+
+  quad::tools::TopicHzOptions hz_options;
+  auto* hz = topic->add_subcommand("hz", "A topic's measured rate against its contract's");
+  addConnectionOptions(hz, hz_options.connection);
+  hz->add_option("topic", hz_options.topic, "Topic name, e.g. quad/sim/state")->required();
+  hz->add_option("--duration", hz_options.duration_s, "Stop after this many seconds (0: Ctrl-C)")
+      ->check(CLI::NonNegativeNumber);
+  hz->add_option("--window", hz_options.window_s, "Seconds per line")->check(CLI::PositiveNumber);
+
   auto* echo = topic->add_subcommand("echo", "Print the samples of a topic, decoded from its IDL");
   addConnectionOptions(echo, echo_options.connection);
   echo->add_option("topic", echo_options.topic, "Topic name, e.g. quad/sim/state")->required();
@@ -197,6 +211,12 @@ int main(int argc, char** argv)
     }
     if (echo->parsed()) {
       return quad::tools::topicEcho(echo_options);
+    }
+    if (info->parsed()) {
+      return quad::tools::topicInfo(info_options);
+    }
+    if (hz->parsed()) {
+      return quad::tools::topicHz(hz_options);
     }
     if (pub->parsed()) {
       return quad::tools::topicPub(pub_options);

@@ -37,7 +37,24 @@ struct TopicPubOptions {
   double wait_match_s = 5.0;
 };
 
+struct TopicInfoOptions {
+  ConnectionOptions connection;
+  std::string topic;
+  double wait_s = 2.0;      ///< how long to listen to discovery
+};
+
+struct TopicHzOptions {
+  ConnectionOptions connection;
+  std::string topic;
+  double duration_s = 0.0;  ///< 0: until Ctrl-C
+  double window_s = 1.0;    ///< a line per window
+};
+
 int topicList(const TopicListOptions& options);
+/// The contract of a topic, and the writers and readers seen, with their participants and hosts.
+int topicInfo(const TopicInfoOptions& options);
+/// The measured rate of a topic against its contract's.
+int topicHz(const TopicHzOptions& options);
 int topicEcho(const TopicEchoOptions& options);
 int topicPub(const TopicPubOptions& options);
 

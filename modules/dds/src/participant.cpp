@@ -89,6 +89,13 @@ std::string guidText(const frtps::GUID_t& guid)
   return os.str();
 }
 
+std::string prefixText(const frtps::GuidPrefix_t& prefix)
+{
+  std::ostringstream os;
+  os << prefix;
+  return os.str();
+}
+
 }  // namespace
 
 Transport parseTransport(std::string_view text)
@@ -162,6 +169,27 @@ public:
                      d.m_qos.m_durability.kind != fdds::VOLATILE_DURABILITY_QOS};
     owner_.onRemoteEndpoint(std::move(e),
                             info.status != frtps::WriterDiscoveryInfo::REMOVED_WRITER);
+  }
+
+  void on_participant_discovery(fdds::DomainParticipant*, frtps::ParticipantDiscoveryInfo&& info) override
+  {
+    const auto& d = info.info;
+    std::string host;
+    std::set<std::string> seen;
+    for (const auto* list : {&d.default_locators.unicast, &d.metatraffic_locators.unicast}) {
+      for (const auto& l : *list) {
+        const std::string ip = frtps::IPLocator::ip_to_string(l);
+        if (l.kind == LOCATOR_KIND_UDPv4 && seen.insert(ip).second) {
+          host += (host.empty() ? "" : ", ") + ip;
+        }
+      }
+    }
+    if (host.empty() && !d.default_locators.unicast.empty()) {
+      host = "this machine (shared memory)";
+    }
+    const bool alive = info.status == frtps::ParticipantDiscoveryInfo::DISCOVERED_PARTICIPANT ||
+                       info.status == frtps::ParticipantDiscoveryInfo::CHANGED_QOS_PARTICIPANT;
+    owner_.onRemoteParticipant(prefixText(d.m_guid.guidPrefix), {d.m_participantName.to_string(), host}, alive);
   }
 
   void on_subscriber_discovery(fdds::DomainParticipant*, frtps::ReaderDiscoveryInfo&& info) override
@@ -351,8 +379,23 @@ std::vector<RemoteEndpoint> Participant::remoteEndpoints() const
   out.reserve(remote_.size());
   for (const auto& [guid, endpoint] : remote_) {
     out.push_back(endpoint);
+    // A GUID is "<prefix>|<entity>": the prefix names the participant.
+    if (const auto p = participants_.find(guid.substr(0, guid.find('|'))); p != participants_.end()) {
+      out.back().participant = p->second.name;
+      out.back().host = p->second.host;
+    }
   }
   return out;
+}
+
+void Participant::onRemoteParticipant(const std::string& prefix, RemoteParticipant participant, bool alive)
+{
+  std::lock_guard lock(endpoints_mutex_);
+  if (alive) {
+    participants_[prefix] = std::move(participant);
+  } else {
+    participants_.erase(prefix);
+  }
 }
 
 void Participant::onRemoteEndpoint(RemoteEndpoint endpoint, bool alive)

@@ -62,6 +62,8 @@ struct RemoteEndpoint {
   bool writer = false;
   bool reliable = false;
   bool transient_local = false;
+  std::string participant;  ///< the name of the participant it belongs to, when discovered
+  std::string host;         ///< that participant's unicast addresses ("10.77.0.2, 127.0.0.1")
 };
 
 /// Owns the DomainParticipant, its Publisher and Subscriber, registered types and topics.
@@ -100,6 +102,11 @@ public:
 private:
   class Listener;
   void onRemoteEndpoint(RemoteEndpoint endpoint, bool alive);
+  struct RemoteParticipant {
+    std::string name;
+    std::string host;
+  };
+  void onRemoteParticipant(const std::string& prefix, RemoteParticipant participant, bool alive);
   void checkTypes(const RemoteEndpoint& remote);
 
   struct LocalEndpoint {
@@ -120,6 +127,7 @@ private:
   mutable std::mutex endpoints_mutex_;
   std::map<std::string, LocalEndpoint, std::less<>> local_;
   std::map<std::string, RemoteEndpoint> remote_;  // by GUID
+  std::map<std::string, RemoteParticipant> participants_;  // by GUID prefix
 };
 
 }  // namespace quad::dds

@@ -1,0 +1,68 @@
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "connection.hpp"
+#include "quad/common/time.hpp"
+#include "quad/dds/node.hpp"
+#include "quad/dds/raw_type.hpp"
+#include "quad/dds/waker.hpp"
+#include "topic_commands.hpp"
+
+namespace quad::tools {
+
+int topicHz(const TopicHzOptions& options)
+{
+  const dds::TopicInfo info = requireTopic(options.topic);
+  dds::SignalWatcher signals;
+  dds::Participant participant(participantOptions("quad_topic_hz", options.connection));
+  dds::Waker waker;
+  dds::RawSubscriber subscriber(participant, info, &waker);
+  const std::string expected = info.rate_hz > 0 ? std::to_string(static_cast<int>(info.rate_hz)) + " Hz" : "event";
+
+  const std::int64_t start = common::steadyTimeNs();
+  const std::int64_t window = common::toNanoseconds(options.window_s);
+  std::int64_t window_end = start + window;
+  std::int64_t last = 0;
+  std::uint64_t count = 0, total = 0;
+  double min_dt = std::numeric_limits<double>::infinity(), max_dt = 0.0;
+  while (signals.received() == 0) {
+    const std::int64_t now = common::steadyTimeNs();
+    if (options.duration_s > 0 && now - start >= common::toNanoseconds(options.duration_s)) {
+      break;
+    }
+    dds::RawSample sample;
+    while (subscriber.take(sample)) {
+      const std::int64_t t = common::steadyTimeNs();
+      if (last != 0) {
+        const double dt = common::toSeconds(t - last);
+        min_dt = std::min(min_dt, dt);
+        max_dt = std::max(max_dt, dt);
+      }
+      last = t;
+      ++count;
+      ++total;
+    }
+    if (now >= window_end) {
+      const double rate = static_cast<double>(count) / options.window_s;
+      std::printf("%s: %.1f Hz (contract: %s)", std::string(info.name).c_str(), rate, expected.c_str());
+      if (count > 1) {
+        std::printf(", intervals %.2f to %.2f ms", min_dt * 1e3, max_dt * 1e3);
+      }
+      std::printf("\n");
+      std::fflush(stdout);
+      count = 0;
+      min_dt = std::numeric_limits<double>::infinity();
+      max_dt = 0.0;
+      window_end += window;
+    }
+    waker.waitUntil(window_end);
+  }
+  const double seconds = common::toSeconds(common::steadyTimeNs() - start);
+  std::printf("%s: %llu samples in %.1f s, %.1f Hz on average (contract: %s)\n", std::string(info.name).c_str(),
+              static_cast<unsigned long long>(total), seconds, static_cast<double>(total) / seconds, expected.c_str());
+  return 0;
+}
+
+}  // namespace quad::tools

@@ -98,6 +98,35 @@ TEST(Record, RecordReplayRecordGivesIdenticalPayloadsAtTheRateAsked)
   fs::remove_all(dir);
 }
 
+TEST(Record, SplitFilesTogetherHoldEveryMessageOnce)
+{
+  const fs::path dir = quad::test::scratchDir("quad_record_split");
+  ChildProcess rec({QUAD_TOOL, "record", "-q", "-o", (dir / "s.mcap").string(), "--split-duration", "1", "--duration",
+                    "7"},
+                   env(195));
+  ASSERT_TRUE(rec.waitForOutput("record: domain 195", 10s)) << rec.output();
+  ChildProcess pub({QUAD_TOOL, "topic", "pub", "quad/system/command", "{command_id: 1, kind: COMMAND_HOLD}", "--count",
+                    "40", "--rate", "10"},
+                   env(195));
+  ASSERT_EQ(pub.wait(30s), 0) << pub.output();
+  ASSERT_EQ(rec.wait(30s), 0) << rec.output();
+  std::vector<std::uint32_t> seqs;
+  int parts = 0;
+  for (int part = 0; fs::exists(dir / ("s_00" + std::to_string(part) + ".mcap")); ++part) {
+    const auto c = quad::bag::readMcap(dir / ("s_00" + std::to_string(part) + ".mcap"));  // each part is whole
+    ++parts;
+    for (const auto& m : c.messages) {
+      seqs.push_back(m.sequence);
+    }
+  }
+  EXPECT_GE(parts, 3) << rec.output();
+  ASSERT_EQ(seqs.size(), 40U);
+  for (std::uint32_t i = 0; i < 40; ++i) {
+    EXPECT_EQ(seqs[i], i + 1);
+  }
+  fs::remove_all(dir);
+}
+
 TEST(Record, ABadFileGetsAOneLineErrorNotACrash)
 {
   const fs::path dir = quad::test::scratchDir("quad_record_bad");

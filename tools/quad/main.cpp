@@ -55,6 +55,13 @@ int main(int argc, char** argv)
   record->add_option("--duration", record_options.duration_s, "Stop after this many seconds")
       ->check(CLI::NonNegativeNumber);
   record->add_flag("-q,--quiet", record_options.quiet, "No progress line");
+  record->add_option("--compression", record_options.compression, "Chunk compression: zstd (default) or none")
+      ->transform([](std::string v) { return v == "none" ? std::string() : v; })
+      ->check(CLI::IsMember({"zstd", ""}));
+  record->add_option("--split-size", record_options.split_size_mb, "Start a new file (NAME_001.mcap, ...) past this many MB")
+      ->check(CLI::NonNegativeNumber);
+  record->add_option("--split-duration", record_options.split_duration_s, "Start a new file after this many seconds")
+      ->check(CLI::NonNegativeNumber);
   record->add_option("--chunk-size", record_options.chunk_size, "Bytes of messages per chunk (a killed recorder keeps every complete chunk)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 30));
 

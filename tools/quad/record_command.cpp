@@ -43,6 +43,97 @@ std::string figuresText(const bag::LossFigures& f)
                      f.reordered);
 }
 
+/// The recording's file, or files when it is split by size or duration: each part is a
+/// whole MCAP file with every schema and channel (same ids in every part).
+class RecordingFiles {
+public:
+  RecordingFiles(const RecordOptions& options, std::map<std::string, std::string> recording)
+      : options_(options), recording_(std::move(recording))
+  {
+    base_ = options.output.empty() ? fmt::format("quad-{:%Y%m%d-%H%M%S}", fmt::localtime(std::time(nullptr)))
+                                   : options.output;
+    if (base_.ends_with(".mcap")) {
+      base_.resize(base_.size() - 5);
+    }
+    open();
+  }
+
+  const std::string& current() const { return name_; }
+  int parts() const { return part_ + 1; }
+  std::uint64_t messages() const { return messages_; }
+
+  std::uint16_t addSchema(const std::string& type, const std::string& idl)
+  {
+    schemas_.emplace_back(type, idl);
+    return writer_->addSchema(type, "omgidl", idl);
+  }
+
+  std::uint16_t addChannel(std::uint16_t schema, const std::string& topic, const std::map<std::string, std::string>& md)
+  {
+    channels_.push_back({schema, topic, md});
+    return writer_->addChannel(schema, topic, "cdr", md);
+  }
+
+  void write(std::uint16_t channel, std::uint32_t seq, std::uint64_t log_time, std::uint64_t publish,
+             const std::vector<std::uint8_t>& payload)
+  {
+    const bool by_size = options_.split_size_mb > 0 &&
+                         static_cast<double>(writer_->bytesWritten()) >= options_.split_size_mb * 1e6;
+    const bool by_time = options_.split_duration_s > 0 && file_start_ != 0 &&
+                         static_cast<double>(log_time - file_start_) * 1e-9 >= options_.split_duration_s;
+    if (by_size || by_time) {
+      writer_->close();
+      ++part_;
+      open();
+      for (const auto& [type, idl] : schemas_) {
+        writer_->addSchema(type, "omgidl", idl);
+      }
+      for (const auto& c : channels_) {
+        writer_->addChannel(c.schema, c.topic, "cdr", c.metadata);
+      }
+    }
+    if (file_start_ == 0) {
+      file_start_ = log_time;
+    }
+    writer_->write(channel, seq, log_time, publish, payload.data(), payload.size());
+    ++messages_;
+  }
+
+  void finish(const std::map<std::string, std::string>& loss)
+  {
+    writer_->addMetadata("quad.loss", loss);
+    writer_->close();
+  }
+
+private:
+  void open()
+  {
+    name_ = split() ? fmt::format("{}_{:03d}.mcap", base_, part_) : base_ + ".mcap";
+    writer_ = std::make_unique<bag::McapWriter>(name_, options_.chunk_size, options_.compression);
+    auto md = recording_;
+    md["part"] = std::to_string(part_);
+    writer_->addMetadata("quad.recording", md);
+    file_start_ = 0;
+  }
+  bool split() const { return options_.split_size_mb > 0 || options_.split_duration_s > 0; }
+
+  struct ChannelDef {
+    std::uint16_t schema;
+    std::string topic;
+    std::map<std::string, std::string> metadata;
+  };
+  const RecordOptions& options_;
+  std::map<std::string, std::string> recording_;
+  std::string base_;
+  std::string name_;
+  int part_ = 0;
+  std::unique_ptr<bag::McapWriter> writer_;
+  std::vector<std::pair<std::string, std::string>> schemas_;
+  std::vector<ChannelDef> channels_;
+  std::uint64_t file_start_ = 0;
+  std::uint64_t messages_ = 0;
+};
+
 }  // namespace
 
 int record(const RecordOptions& options)
@@ -50,20 +141,23 @@ int record(const RecordOptions& options)
   dds::SignalWatcher signals;  // before any thread exists
   signals.onSignal([](int s) { g_stop.store(s); });
 
-  const std::string output = options.output.empty()
-                                 ? fmt::format("quad-{:%Y%m%d-%H%M%S}.mcap", fmt::localtime(std::time(nullptr)))
-                                 : options.output;
-  bag::McapWriter writer(output, options.chunk_size);
   dds::Participant participant(participantOptions("quad_record", options.connection));
+  std::unique_ptr<RecordingFiles> files;
+  try {
+    files = std::make_unique<RecordingFiles>(options, std::map<std::string, std::string>{
+        {"domain", std::to_string(participant.options().domain_id)},
+        {"started_ns", std::to_string(common::wallTimeNs())},
+        {"recorder", "quad record"}});
+  } catch (const bag::BagError& e) {
+    std::fprintf(stderr, "record: %s\n", e.what());
+    return 1;
+  }
   dds::Waker waker;
   const auto& schema = introspection::quadSchema();
   std::map<std::string, std::uint16_t> schemas;  // type -> schema id
   std::map<std::string, Recorded> recorded;      // topic -> its reader and channel
   std::set<std::string> refused;
-  writer.addMetadata("quad.recording", {{"domain", std::to_string(participant.options().domain_id)},
-                                        {"started_ns", std::to_string(common::wallTimeNs())},
-                                        {"recorder", "quad record"}});
-  std::fprintf(stderr, "record: domain %d to %s\n", participant.options().domain_id, output.c_str());
+  std::fprintf(stderr, "record: domain %d to %s\n", participant.options().domain_id, files->current().c_str());
 
   const std::int64_t start = common::steadyTimeNs();
   std::int64_t next_discovery = 0;
@@ -95,7 +189,7 @@ int record(const RecordOptions& options)
           }
           const std::string type(contract->type_name);
           if (!schemas.contains(type)) {
-            schemas[type] = writer.addSchema(type, "omgidl", schema.flattenedIdl(type));
+            schemas[type] = files->addSchema(type, schema.flattenedIdl(type));
           }
           Recorded& r = recorded[e.topic];
           // The contract's QoS, with a deep history: a "newest only" topic keeps one sample per
@@ -120,7 +214,7 @@ int record(const RecordOptions& options)
             std::fprintf(stderr, "record: not recording %s: %s\n", e.topic.c_str(), ex.what());
             continue;
           }
-          r.channel = writer.addChannel(schemas[type], e.topic, "cdr",
+          r.channel = files->addChannel(schemas[type], e.topic,
                                         {{"qos_profile", std::string(contract->qos_profile)},
                                          {"reliable", e.reliable ? "true" : "false"},
                                          {"transient_local", e.transient_local ? "true" : "false"},
@@ -139,16 +233,16 @@ int record(const RecordOptions& options)
           if (header) {
             r.audit.add(writer_id, header->seq);
           }
-          writer.write(r.channel, header ? static_cast<std::uint32_t>(header->seq) : 0, log_time, publish,
-                       sample.payload.data(), sample.payload.size());
+          files->write(r.channel, header ? static_cast<std::uint32_t>(header->seq) : 0, log_time, publish,
+                       sample.payload);
           bytes += sample.payload.size();
         }
       }
       if (!options.quiet && now >= next_progress) {
         const double seconds = common::toSeconds(now - start);
         std::fprintf(stderr, "\rrecord: %zu topics, %llu messages, %.1f MB, %.0f msg/s   ", recorded.size(),
-                     static_cast<unsigned long long>(writer.messages()), static_cast<double>(bytes) / 1e6,
-                     static_cast<double>(writer.messages()) / std::max(seconds, 1e-9));
+                     static_cast<unsigned long long>(files->messages()), static_cast<double>(bytes) / 1e6,
+                     static_cast<double>(files->messages()) / std::max(seconds, 1e-9));
         next_progress = now + common::kNanosecondsPerSecond;
       }
       waker.waitUntil(std::min(next_discovery, next_progress));
@@ -163,14 +257,14 @@ int record(const RecordOptions& options)
     loss[topic] = figuresText(r.audit.figures()) + fmt::format(" writers {}", r.audit.writers());
   }
   try {
-    writer.addMetadata("quad.loss", loss);
-    writer.close();
+    files->finish(loss);
   } catch (const bag::BagError& e) {
     std::fprintf(stderr, "\nrecord: %s\n", e.what());
     return 1;
   }
-  std::fprintf(stderr, "\nrecord: %llu messages on %zu topics in %s\n",
-               static_cast<unsigned long long>(writer.messages()), recorded.size(), output.c_str());
+  std::fprintf(stderr, "\nrecord: %llu messages on %zu topics in %s%s\n",
+               static_cast<unsigned long long>(files->messages()), recorded.size(), files->current().c_str(),
+               files->parts() > 1 ? fmt::format(" (the last of {} parts)", files->parts()).c_str() : "");
   return code;
 }
 

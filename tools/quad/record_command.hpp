@@ -18,6 +18,9 @@ struct RecordOptions {
   double duration_s = 0.0;            ///< 0: until Ctrl-C
   bool quiet = false;                 ///< no progress line
   std::size_t chunk_size = 1 << 20;   ///< bytes of messages per chunk
+  std::string compression = "zstd";   ///< of chunks: "zstd" or "" (none)
+  double split_size_mb = 0.0;         ///< start a new file past this size; 0: never
+  double split_duration_s = 0.0;      ///< start a new file after this long; 0: never
 };
 
 struct ReplayOptions {

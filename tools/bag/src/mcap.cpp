@@ -7,6 +7,8 @@
 #include <fstream>
 #include <iterator>
 
+#include <zstd.h>
+
 namespace quad::bag {
 
 namespace {
@@ -104,9 +106,12 @@ std::uint32_t crc32(const void* data, std::size_t size, std::uint32_t crc)
 // ---------------------------------------------------------------------------------------
 // Writer
 
-McapWriter::McapWriter(const std::filesystem::path& path, std::size_t chunk_size)
-    : path_(path), chunk_size_(chunk_size)
+McapWriter::McapWriter(const std::filesystem::path& path, std::size_t chunk_size, std::string compression)
+    : path_(path), chunk_size_(chunk_size), compression_(std::move(compression))
 {
+  if (!compression_.empty() && compression_ != "zstd") {
+    throw BagError(path.string() + ": compression '" + compression_ + "': expected none or zstd");
+  }
   file_ = std::fopen(path.c_str(), "wb");
   if (file_ == nullptr) {
     throw BagError(path.string() + ": cannot create: " + std::strerror(errno));
@@ -195,9 +200,20 @@ void McapWriter::flushChunk()
   le<std::uint64_t>(content, chunk_end_);
   le<std::uint64_t>(content, chunk_.size());
   le<std::uint32_t>(content, crc32(chunk_.data(), chunk_.size()));
-  str(content, "");  // no compression
-  le<std::uint64_t>(content, chunk_.size());
-  content += chunk_;
+  str(content, compression_);
+  std::string stored;
+  if (compression_ == "zstd") {
+    stored.resize(ZSTD_compressBound(chunk_.size()));
+    const std::size_t n = ZSTD_compress(stored.data(), stored.size(), chunk_.data(), chunk_.size(), 1);
+    if (ZSTD_isError(n) != 0U) {
+      throw BagError(path_.string() + ": zstd: " + ZSTD_getErrorName(n));
+    }
+    stored.resize(n);
+  } else {
+    stored = chunk_;
+  }
+  le<std::uint64_t>(content, stored.size());
+  content += stored;
   put(record(kChunk, content));
   const std::uint64_t chunk_length = offset_ - chunk_offset;
   // One message index per channel, right after the chunk.
@@ -223,8 +239,8 @@ void McapWriter::flushChunk()
   le<std::uint64_t>(ci, chunk_length);
   str(ci, offsets);
   le<std::uint64_t>(ci, offset_ - index_start);
-  str(ci, "");
-  le<std::uint64_t>(ci, chunk_.size());  // compressed size: stored as is
+  str(ci, compression_);
+  le<std::uint64_t>(ci, stored.size());
   le<std::uint64_t>(ci, chunk_.size());
   chunk_indexes_ += record(kChunkIndex, ci);
   ++chunk_count_;
@@ -470,14 +486,26 @@ void parseRecords(const std::uint8_t* begin, std::size_t size, std::uint64_t bas
           const auto crc = c.le<std::uint32_t>();
           const auto compression = c.str();
           const auto records_size = c.le<std::uint64_t>();
-          if (!compression.empty()) {
+          const auto* stored = c.take(static_cast<std::size_t>(records_size));
+          std::string inflated;
+          const std::uint8_t* records = stored;
+          if (compression == "zstd") {
+            if (uncompressed_size > (std::uint64_t{1} << 32)) {
+              throw BagError("chunk claims " + std::to_string(uncompressed_size) + " bytes uncompressed");
+            }
+            inflated.resize(static_cast<std::size_t>(uncompressed_size));
+            const std::size_t n = ZSTD_decompress(inflated.data(), inflated.size(), stored,
+                                                  static_cast<std::size_t>(records_size));
+            if (ZSTD_isError(n) != 0U || n != inflated.size()) {
+              throw BagError("chunk does not decompress (zstd)");
+            }
+            records = reinterpret_cast<const std::uint8_t*>(inflated.data());
+          } else if (!compression.empty()) {
             throw BagError("chunk compressed with '" + compression + "', which this reader does not support");
-          }
-          if (records_size != uncompressed_size) {
+          } else if (records_size != uncompressed_size) {
             throw BagError("chunk sizes disagree");
           }
-          const auto* records = c.take(static_cast<std::size_t>(records_size));
-          if (crc != 0 && crc32(records, static_cast<std::size_t>(records_size)) != crc) {
+          if (crc != 0 && crc32(records, static_cast<std::size_t>(uncompressed_size)) != crc) {
             throw BagError("chunk CRC mismatch (corrupt chunk)");
           }
           bool inner_footer = false;
@@ -485,7 +513,7 @@ void parseRecords(const std::uint8_t* begin, std::size_t size, std::uint64_t bas
           McapContents inner;
           inner.channels = out.channels;
           inner.schemas = out.schemas;
-          parseRecords(records, static_cast<std::size_t>(records_size), 0, true, inner, inner_footer, inner_end);
+          parseRecords(records, static_cast<std::size_t>(uncompressed_size), 0, true, inner, inner_footer, inner_end);
           for (auto& m : inner.messages) {
             out.messages.push_back(std::move(m));
           }

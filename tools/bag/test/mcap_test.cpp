@@ -24,10 +24,10 @@ void writeBytes(const fs::path& p, const std::vector<std::uint8_t>& b)
 }
 
 /// Two channels, 1000 messages of varied sizes, small chunks so that there are many.
-fs::path writeSample(const fs::path& dir)
+fs::path writeSample(const fs::path& dir, const std::string& compression = "")
 {
-  const fs::path file = dir / "sample.mcap";
-  McapWriter w(file, 4096);
+  const fs::path file = dir / ("sample" + compression + ".mcap");
+  McapWriter w(file, 4096, compression);
   const auto schema = w.addSchema("quad::msg::Thing", "omgidl", "module quad { module msg { struct Thing { long x; }; }; };");
   const auto a = w.addChannel(schema, "quad/a", "cdr", {{"qos", "state"}});
   const auto b = w.addChannel(schema, "quad/b", "cdr", {});
@@ -72,6 +72,21 @@ TEST(Mcap, WhatIsWrittenIsReadBackInOrder)
   }
   ASSERT_EQ(contents.metadata.size(), 1U);
   EXPECT_EQ(contents.metadata[0].values.at("manifest"), "demo.yaml");
+  fs::remove_all(dir);
+}
+
+TEST(Mcap, ZstdChunksReadBackTheSameAndAreSmaller)
+{
+  const fs::path dir = quad::test::scratchDir("quad_mcap_zstd");
+  const auto plain = readMcap(writeSample(dir));
+  const fs::path packed_file = writeSample(dir, "zstd");
+  const auto packed = readMcap(packed_file);
+  ASSERT_EQ(packed.messages.size(), plain.messages.size());
+  for (std::size_t i = 0; i < plain.messages.size(); ++i) {
+    EXPECT_EQ(packed.messages[i].data, plain.messages[i].data);
+  }
+  EXPECT_LT(fs::file_size(packed_file), fs::file_size(dir / "sample.mcap") / 2);  // repetitive payloads
+  EXPECT_THROW(McapWriter(dir / "x.mcap", 4096, "brotli"), BagError);
   fs::remove_all(dir);
 }
 

@@ -56,7 +56,9 @@ public:
   /// Creates `path`; throws BagError naming it when it cannot. Messages are grouped in
   /// chunks of about `chunk_size` bytes; each complete chunk is flushed to the file, so a
   /// writer killed mid-run leaves every chunk before the one it was filling.
-  explicit McapWriter(const std::filesystem::path& path, std::size_t chunk_size = 1 << 20);
+  /// `compression`: "" (none) or "zstd" (each chunk's records, at level 1).
+  explicit McapWriter(const std::filesystem::path& path, std::size_t chunk_size = 1 << 20,
+                      std::string compression = "");
   ~McapWriter();  // closes (summary and footer) if close() was not called; never throws
   McapWriter(const McapWriter&) = delete;
   McapWriter& operator=(const McapWriter&) = delete;
@@ -82,6 +84,7 @@ private:
   std::filesystem::path path_;
   std::FILE* file_ = nullptr;
   std::size_t chunk_size_;
+  std::string compression_;
   std::uint64_t offset_ = 0;
   std::string chunk_;  // records of the open chunk
   std::uint64_t chunk_start_ = 0, chunk_end_ = 0;

@@ -29,7 +29,11 @@ packages=(
   libeigen3-dev liboctomap-dev libmrpt-poses-dev libmrpt-math-dev
   libspdlog-dev libfmt-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev liblz4-dev libzstd-dev
+  nodejs
 )
+# npm for the test that reads recordings with Foxglove's own MCAP reader; a Node.js from
+# elsewhere (NodeSource) brings its own npm and conflicts with Debian's.
+command -v npm > /dev/null || packages+=(npm)
 
 missing=()
 for p in "${packages[@]}"; do

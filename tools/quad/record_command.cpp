@@ -159,6 +159,52 @@ int record(const RecordOptions& options)
   std::set<std::string> refused;
   std::fprintf(stderr, "record: domain %d to %s\n", participant.options().domain_id, files->current().c_str());
 
+  // Subscribes with the QoS of the topic's contract (the writers' own, so reliable writers
+  // are recorded reliably) and a deep history: a "newest only" topic keeps one sample per
+  // instance, and a recorder that falls a few samples behind must not lose them.
+  const auto subscribe = [&](const dds::TopicInfo& contract) {
+    const std::string topic(contract.name);
+    const std::string type(contract.type_name);
+    auto qos = participant.readerQos(contract.qos_profile);
+    if (qos.history().kind == eprosima::fastdds::dds::KEEP_LAST_HISTORY_QOS && qos.history().depth < 4096) {
+      qos.history().depth = 4096;
+      auto& limits = qos.resource_limits();
+      if (limits.max_samples_per_instance > 0 && limits.max_samples_per_instance < 4096) {
+        limits.max_samples_per_instance = 4096;
+      }
+      const std::int32_t needed = limits.max_samples_per_instance * std::max(1, limits.max_instances);
+      if (limits.max_samples > 0 && limits.max_samples < needed) {
+        limits.max_samples = needed;
+      }
+    }
+    std::unique_ptr<dds::RawSubscriber> subscriber;
+    try {
+      subscriber = std::make_unique<dds::RawSubscriber>(participant, contract, &waker, qos);
+    } catch (const std::exception& ex) {
+      refused.insert(topic);
+      std::fprintf(stderr, "record: not recording %s: %s\n", topic.c_str(), ex.what());
+      return;
+    }
+    if (!schemas.contains(type)) {
+      schemas[type] = files->addSchema(type, schema.flattenedIdl(type));
+    }
+    Recorded& r = recorded[topic];
+    r.subscriber = std::move(subscriber);
+    r.channel = files->addChannel(
+        schemas[type], topic,
+        {{"qos_profile", std::string(contract.qos_profile)},
+         {"reliable", qos.reliability().kind == eprosima::fastdds::dds::RELIABLE_RELIABILITY_QOS ? "true" : "false"},
+         {"transient_local", qos.durability().kind != eprosima::fastdds::dds::VOLATILE_DURABILITY_QOS ? "true" : "false"},
+         {"rate_hz", fmt::format("{}", contract.rate_hz)}});
+  };
+  // Topics named outright are subscribed to at once, so that no first sample is missed.
+  for (const auto& t : options.topics) {
+    const auto contract = dds::topics::find(t);
+    if (contract && t.find_first_of("*?[") == std::string::npos && !matchesAnyGlob(t, options.exclude)) {
+      subscribe(*contract);
+    }
+  }
+
   const std::int64_t start = common::steadyTimeNs();
   std::int64_t next_discovery = 0;
   std::int64_t next_progress = start + common::kNanosecondsPerSecond;
@@ -187,38 +233,7 @@ int record(const RecordOptions& options)
                          contract ? "its type differs from the contract's" : "no quad topic contract names it");
             continue;
           }
-          const std::string type(contract->type_name);
-          if (!schemas.contains(type)) {
-            schemas[type] = files->addSchema(type, schema.flattenedIdl(type));
-          }
-          Recorded& r = recorded[e.topic];
-          // The contract's QoS, with a deep history: a "newest only" topic keeps one sample per
-          // instance, and a recorder that falls a few samples behind must not lose them.
-          auto qos = participant.readerQos(contract->qos_profile);
-          if (qos.history().kind == eprosima::fastdds::dds::KEEP_LAST_HISTORY_QOS && qos.history().depth < 4096) {
-            qos.history().depth = 4096;
-            auto& limits = qos.resource_limits();
-            if (limits.max_samples_per_instance > 0 && limits.max_samples_per_instance < 4096) {
-              limits.max_samples_per_instance = 4096;
-            }
-            const std::int32_t needed = limits.max_samples_per_instance * std::max(1, limits.max_instances);
-            if (limits.max_samples > 0 && limits.max_samples < needed) {
-              limits.max_samples = needed;
-            }
-          }
-          try {
-            r.subscriber = std::make_unique<dds::RawSubscriber>(participant, *contract, &waker, qos);
-          } catch (const std::exception& ex) {
-            recorded.erase(e.topic);
-            refused.insert(e.topic);
-            std::fprintf(stderr, "record: not recording %s: %s\n", e.topic.c_str(), ex.what());
-            continue;
-          }
-          r.channel = files->addChannel(schemas[type], e.topic,
-                                        {{"qos_profile", std::string(contract->qos_profile)},
-                                         {"reliable", e.reliable ? "true" : "false"},
-                                         {"transient_local", e.transient_local ? "true" : "false"},
-                                         {"rate_hz", fmt::format("{}", contract->rate_hz)}});
+          subscribe(*contract);
         }
         next_discovery = now + 200'000'000;
       }

@@ -31,9 +31,13 @@ public:
   {
     auto& header = sample.header();
     header.vehicle_id(vehicle_id_);
-    header.seq(++seq_);
+    header.seq(seq_ + 1);  // a number is used only by a sample the middleware took
     header.publish_ns(common::wallTimeNs());
-    return writeSample(&sample);
+    const bool written = writeSample(&sample);
+    if (written) {
+      ++seq_;
+    }
+    return written;
   }
 
   /// For a sample built in place: `publisher.write(toMessage(x))`.

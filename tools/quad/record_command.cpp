@@ -253,12 +253,14 @@ int record(const RecordOptions& options)
           bytes += sample.payload.size();
         }
       }
-      if (!options.quiet && now >= next_progress) {
-        const double seconds = common::toSeconds(now - start);
-        std::fprintf(stderr, "\rrecord: %zu topics, %llu messages, %.1f MB, %.0f msg/s   ", recorded.size(),
-                     static_cast<unsigned long long>(files->messages()), static_cast<double>(bytes) / 1e6,
-                     static_cast<double>(files->messages()) / std::max(seconds, 1e-9));
-        next_progress = now + common::kNanosecondsPerSecond;
+      if (now >= next_progress) {
+        if (!options.quiet) {
+          const double seconds = common::toSeconds(now - start);
+          std::fprintf(stderr, "\rrecord: %zu topics, %llu messages, %.1f MB, %.0f msg/s   ", recorded.size(),
+                       static_cast<unsigned long long>(files->messages()), static_cast<double>(bytes) / 1e6,
+                       static_cast<double>(files->messages()) / std::max(seconds, 1e-9));
+        }
+        next_progress = now + common::kNanosecondsPerSecond;  // also quiet: it bounds the wait below
       }
       waker.waitUntil(std::min(next_discovery, next_progress));
     }

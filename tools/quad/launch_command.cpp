@@ -10,7 +10,6 @@
 #include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 
 #include <fmt/chrono.h>
 #include <fmt/format.h>
@@ -267,9 +266,6 @@ void Run::stopAll()
       say(fmt::format("stopped {} ({})", *it, process::describeStatus(*status)));
     }
   }
-  for (const auto& e : supervisor_.pump(0)) {
-    (void)e;
-  }
   supervisor_.stop("discovery", m_.grace_s);
 }
 
@@ -300,21 +296,13 @@ int Run::execute()
     say(fmt::format("started a discovery server on {} at {}", host.name, env_["QUAD_DISCOVERY_SERVER"]));
   }
 
-  // The launcher's participant, set up like the modules'.
-  dds::ParticipantOptions po;
-  po.name = "quad_launch";
-  po.domain_id = domain_;
-  po.transport = dds::parseTransport(m_.transport);
+  // The launcher's participant, set up like the modules': from the same environment, read by
+  // the same parser.
+  for (const auto& [key, value] : env_) {
+    ::setenv(key.c_str(), value.c_str(), 1);
+  }
+  dds::ParticipantOptions po = dds::optionsFromEnvironment("quad_launch");
   po.observe_all = true;
-  if (env_.contains("QUAD_INITIAL_PEERS")) {
-    std::stringstream peers(env_["QUAD_INITIAL_PEERS"]);
-    for (std::string p; std::getline(peers, p, ',');) {
-      po.initial_peers.push_back(p);
-    }
-  }
-  if (env_.contains("QUAD_DISCOVERY_SERVER")) {
-    po.discovery_server = env_["QUAD_DISCOVERY_SERVER"];
-  }
   observer_ = std::make_unique<launch::Observer>(po);
 
   std::optional<plant::World> world;

@@ -7,7 +7,7 @@
 #include <iostream>
 
 #include "launch_command.hpp"
-#include "record_command.hpp"
+#include "bag_commands.hpp"
 #include "so3_command.hpp"
 #include "topic_commands.hpp"
 

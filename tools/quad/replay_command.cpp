@@ -11,7 +11,7 @@
 #include "quad/dds/node.hpp"
 #include "quad/dds/raw_type.hpp"
 #include "quad/dds/topics.hpp"
-#include "record_command.hpp"
+#include "bag_commands.hpp"
 
 namespace quad::tools {
 

@@ -5,6 +5,7 @@
 #include <map>
 #include <random>
 
+#include "quad/common/yaml_input.hpp"
 #include "quad/mapping/mapper.hpp"
 #include "quad/plant/sensors.hpp"
 #include "quad/plant/world_file.hpp"
@@ -13,13 +14,8 @@ namespace {
 
 using namespace quad;
 
-const char* kForest = R"(
-bounds: {min: [-5, -30, 0], max: [105, 30, 20]}
-start: [0, 0, 2]
-goal: [100, 0, 2]
-generators:
-  - {type: forest, seed: 11, min: [0, -28], max: [100, 28], density: 0.18, radius: [0.2, 0.6], height: [5, 15]}
-)";
+/// The benchmark world: configs/worlds/forest.yaml.
+const std::string kForest = quad::common::readTextFile(QUAD_CONFIG_DIR "/worlds/forest.yaml");
 
 struct Scans {
   std::vector<mapping::Scan> scans;

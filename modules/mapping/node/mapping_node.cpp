@@ -70,7 +70,7 @@ MappingNode::MappingNode(MappingNodeConfig config, dds::ParticipantOptions optio
 void MappingNode::integrate(const msg::PointCloud& cloud)
 {
   counters().samples_in++;
-  ++frames_integrated_;
+  ++frames_taken_;
   const std::string frame = cloud.frame_id().to_string();
   const geometry::Quaternion q_WS = dds::toQuaternion(cloud.sensor_q_WS());
   std::string problem;
@@ -105,7 +105,7 @@ void MappingNode::integrate(const msg::PointCloud& cloud)
     update.header().stamp_ns(cloud.header().stamp_ns());
     update.update_seq(++update_seq_);
     update.resolution(mapper_.resolution());
-    update.depth_frames(frames_integrated_);
+    update.depth_frames(frames_taken_);
     const std::size_t end = std::min(result.changes.size(), begin + kMaxChangesPerMessage);
     update.changes().reserve(end - begin);
     for (std::size_t i = begin; i < end; ++i) {
@@ -151,7 +151,7 @@ void MappingNode::integrate(const msg::PointCloud& cloud)
 void MappingNode::reportLockstep()
 {
   // Done with time t once every depth frame published up to t is integrated.
-  if (lockstep() && clock_ns_ > reported_ns_ && frames_seen_ >= clock_frames_) {
+  if (lockstep() && clock_ns_ > reported_ns_ && frames_taken_ >= clock_frames_) {
     lockstep_.reportDone(clock_ns_);
     reported_ns_ = clock_ns_;
   }
@@ -190,11 +190,10 @@ void MappingNode::onWake()
     last_cloud_ns_ = c.header().stamp_ns();
     return false;
   });
-  frames_seen_ += clouds.size();
   if (!lockstep() && clouds.size() > 1) {
     // Behind in real time: the newest cloud carries the freshest view; count the others.
     skipped_ += clouds.size() - 1;
-    frames_integrated_ += clouds.size() - 1;
+    frames_taken_ += clouds.size() - 1;
     spdlog::debug("mapping: skipped {} older clouds", clouds.size() - 1);
     clouds.erase(clouds.begin(), clouds.end() - 1);
   }

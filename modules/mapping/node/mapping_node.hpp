@@ -52,9 +52,8 @@ private:
 
   std::int64_t clock_ns_ = -1;             // newest clock time
   std::uint64_t clock_frames_ = 0;         // depth frames the plant had published by then
-  std::uint64_t frames_seen_ = 0;          // depth frames taken (integrated, refused or skipped)
   std::int64_t last_cloud_ns_ = -1;        // stamp of the newest cloud taken
-  std::uint64_t frames_integrated_ = 0;    // of those, dealt with so far (the updates say it)
+  std::uint64_t frames_taken_ = 0;         // depth frames dealt with (integrated, refused or skipped)
   std::int64_t reported_ns_ = -1;
   std::uint64_t update_seq_ = 0;
   std::int64_t next_snapshot_ns_ = 0;

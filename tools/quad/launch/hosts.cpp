@@ -57,6 +57,10 @@ std::string shellQuote(const std::string& word)
 
 }  // namespace
 
+namespace {
+
+/// Deletes the namespaces, bridges and links of launchers that no longer run (killed with
+/// SIGKILL, so their teardown never ran).
 void removeAbandonedNetworks()
 {
   // Names carry the launcher's pid in hex: quad-<pid>-<host>, qb<pid>, qv<pid>x<n>a.
@@ -91,6 +95,8 @@ void removeAbandonedNetworks()
     }
   }
 }
+
+}  // namespace
 
 HostNetwork::HostNetwork(const Manifest& manifest, std::string run_id) : manifest_(manifest)
 {

@@ -23,10 +23,6 @@ CommandResult runCommand(const std::vector<std::string>& argv);
 /// Same; throws std::runtime_error with the command and its output when it fails.
 void runChecked(const std::vector<std::string>& argv);
 
-/// Deletes the namespaces and bridges of launchers that no longer run (killed with SIGKILL,
-/// so their teardown never ran). Their veth links go with them.
-void removeAbandonedNetworks();
-
 class HostNetwork {
 public:
   /// Creates what the manifest's netns hosts need; `run_id` (the launcher's pid in hex, at

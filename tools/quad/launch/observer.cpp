@@ -1,6 +1,5 @@
 #include "observer.hpp"
 
-#include <array>
 #include <cmath>
 #include <limits>
 
@@ -9,6 +8,7 @@
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
+#include "quad/introspection/idl.hpp"
 
 namespace quad::launch {
 
@@ -63,12 +63,16 @@ void Observer::startMission(const Mission& mission, const plant::World& world, d
 }
 
 namespace {
+/// "MISSION" for CONTROL_MISSION: the enumerator's name from the IDL, without its prefix.
 std::string modeName(msg::ControlMode mode)
 {
-  static constexpr std::array<const char*, 7> kNames{"DISARMED", "IDLE", "TAKEOFF", "MISSION",
-                                                     "HOVER", "LAND", "FAILSAFE_LAND"};
+  static const introspection::EnumDef* modes = introspection::quadSchema().findEnum("quad::msg::ControlMode");
   const auto i = static_cast<std::size_t>(mode);
-  return i < kNames.size() ? kNames[i] : "MODE_" + std::to_string(i);
+  if (modes == nullptr || i >= modes->enumerators.size()) {
+    return "MODE_" + std::to_string(i);
+  }
+  const std::string& name = modes->enumerators[i];
+  return name.starts_with("CONTROL_") ? name.substr(8) : name;
 }
 }  // namespace
 

@@ -30,15 +30,6 @@ Supervisor::Supervisor(std::filesystem::path log_dir, std::FILE* console, bool e
   launch_log_.open(log_dir_ / "launch.log", std::ios::app);
 }
 
-Supervisor::~Supervisor()
-{
-  for (auto& [name, child] : children_) {
-    if (!child.exited) {
-      child.process->signal(SIGKILL);
-    }
-  }
-}
-
 void Supervisor::say(const std::string& line)
 {
   if (console_ != nullptr) {

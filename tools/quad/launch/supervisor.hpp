@@ -21,7 +21,7 @@ class Supervisor {
 public:
   /// `console`: where the launcher's lines go, and the modules' output when `echo`.
   Supervisor(std::filesystem::path log_dir, std::FILE* console, bool echo);
-  ~Supervisor();  // kills what still runs
+  // Destroying it kills what still runs (each process::Spawned does).
 
   /// Starts `argv` as `name` (replacing an exited process of that name).
   void start(const std::string& name, const std::vector<std::string>& argv,

@@ -1,6 +1,8 @@
 #pragma once
 /// @file
-/// `quad record` and `quad bag info`: topic traffic to MCAP files, and what a file holds.
+/// `quad record`, `quad replay` and `quad bag ...`: topic traffic to MCAP files and back, and
+/// what a file holds. One file per command: record_command.cpp, replay_command.cpp,
+/// bag_command.cpp.
 
 #include <optional>
 #include <string>

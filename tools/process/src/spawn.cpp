@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -43,6 +44,7 @@ Spawned::Spawned(std::vector<std::string> argv, const std::map<std::string, std:
   }
   envp.push_back(nullptr);
 
+  const pid_t parent = getpid();
   pid_ = fork();
   if (pid_ < 0) {
     close(fds[0]);
@@ -51,6 +53,11 @@ Spawned::Spawned(std::vector<std::string> argv, const std::map<std::string, std:
   }
   if (pid_ == 0) {
     setpgid(0, 0);  // its own process group: whatever it starts is stopped with it
+    // Stopped with its parent, even one killed outright: no orphan keeps running.
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent) {
+      _exit(127);  // the parent died before the line above
+    }
     dup2(fds[1], STDOUT_FILENO);
     dup2(fds[1], STDERR_FILENO);
     // Signals the parent blocks or ignores must not stay so in the child.

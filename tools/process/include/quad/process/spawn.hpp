@@ -1,7 +1,8 @@
 #pragma once
 /// @file
 /// A program started in its own process group, with its standard output and error on one
-/// pipe: what the launcher supervises and what multi-process tests drive.
+/// pipe: what the launcher supervises and what multi-process tests drive. It gets SIGTERM
+/// when its parent dies, however that happens.
 
 #include <map>
 #include <optional>

@@ -2,10 +2,13 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <fastdds/dds/publisher/DataWriterListener.hpp>
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
+
+#include "quad/common/time.hpp"
 
 namespace quad::dds {
 
@@ -16,6 +19,16 @@ std::string incompatibleText(const char* side, fdds::QosPolicyId_t policy, std::
 {
   return std::string(side) + " QoS policy " + qosPolicyName(static_cast<std::uint32_t>(policy)) +
          " is incompatible with a remote endpoint (" + std::to_string(total) + " so far)";
+}
+
+/// A writer's instance handle is its 16-byte GUID; fold it into 64 bits (FNV-1a).
+std::uint64_t writerId(const fdds::InstanceHandle_t& handle)
+{
+  std::uint64_t h = 1469598103934665603ULL;
+  for (std::size_t i = 0; i < 16; ++i) {
+    h = (h ^ handle.value[i]) * 1099511628211ULL;
+  }
+  return h;
 }
 }  // namespace
 
@@ -89,6 +102,13 @@ bool WriterEndpoint::writeSample(void* sample)
   return false;
 }
 
+void WriterEndpoint::assertLiveliness()
+{
+  if (writer_->get_qos().liveliness().kind == fdds::MANUAL_BY_TOPIC_LIVELINESS_QOS) {
+    writer_->assert_liveliness();
+  }
+}
+
 bool WriterEndpoint::waitForAcknowledgments(std::chrono::milliseconds timeout)
 {
   const auto ms = timeout.count();
@@ -122,6 +142,12 @@ public:
   }
   void on_liveliness_changed(fdds::DataReader*, const fdds::LivelinessChangedStatus& s) override
   {
+    // alive +1: (again) alive; not alive +1: lost its lease; alive -1 alone: went away.
+    if (s.alive_count_change != 0 || s.not_alive_count_change != 0) {
+      const bool alive = s.alive_count_change > 0;
+      std::lock_guard<std::mutex> lock(owner_.liveliness_mutex_);
+      owner_.liveliness_changes_.push_back({writerId(s.last_publication_handle), alive, common::steadyTimeNs()});
+    }
     if (s.not_alive_count_change > 0) {
       push(EventKind::kLivelinessLost,
            "a writer lost liveliness; " + std::to_string(s.alive_count) + " alive");
@@ -180,18 +206,34 @@ ReaderEndpoint::~ReaderEndpoint()
   participant_.removeLocalEndpoint(std::string(info_.name), false);
 }
 
+std::vector<ReaderEndpoint::WriterLiveliness> ReaderEndpoint::takeLivelinessChanges()
+{
+  std::lock_guard<std::mutex> lock(liveliness_mutex_);
+  return std::exchange(liveliness_changes_, {});
+}
+
+bool ReaderEndpoint::ownVehicle(std::uint32_t vehicle_id)
+{
+  const std::uint32_t own = participant_.options().vehicle_id;
+  if (vehicle_id == own) {
+    return true;
+  }
+  const std::uint64_t n = ++foreign_;
+  if ((n & (n - 1)) == 0) {
+    participant_.events().push({EventKind::kForeignSample, std::string(info_.name),
+                                "sample for vehicle " + std::to_string(vehicle_id) + " ignored (this is vehicle " +
+                                    std::to_string(own) + "; " + std::to_string(n) + " so far)"});
+  }
+  return false;
+}
+
 bool ReaderEndpoint::takeSample(void* sample, std::uint64_t* writer)
 {
   fdds::SampleInfo info;
   while (reader_->take_next_sample(sample, &info) == ReturnCode_t::RETCODE_OK) {
     if (info.valid_data) {
       if (writer != nullptr) {
-        // The handle is the writer's 16-byte GUID; fold it into 64 bits (FNV-1a).
-        std::uint64_t h = 1469598103934665603ULL;
-        for (std::size_t i = 0; i < 16; ++i) {
-          h = (h ^ info.publication_handle.value[i]) * 1099511628211ULL;
-        }
-        *writer = h;
+        *writer = writerId(info.publication_handle);
       }
       return true;
     }

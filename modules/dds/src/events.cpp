@@ -29,6 +29,8 @@ std::string_view toString(EventKind kind)
       return "sample lost";
     case EventKind::kSampleRejected:
       return "sample rejected";
+    case EventKind::kForeignSample:
+      return "sample of another vehicle";
     case EventKind::kWriteFailed:
       return "write failed";
   }

@@ -17,6 +17,8 @@ namespace quad::dds {
 
 namespace {
 constexpr std::int64_t kHeartbeatPeriodNs = 500'000'000;  // 2 Hz, the contract's rate
+// A quarter of the heartbeat writer's liveliness lease (configs/dds/quad_qos.xml, 0.5 s).
+constexpr auto kLivelinessAssertPeriod = std::chrono::milliseconds(125);
 constexpr std::int64_t kIdleWakeNs = 100'000'000;         // re-check stop at least this often
 
 sigset_t stopSignals()
@@ -77,9 +79,24 @@ Node::Node(std::string module_name, ParticipantOptions options)
       heartbeat_(participant_, topics::kHeartbeat)
 {
   participant_.events().setNotifier([this] { waker_.notify(); });
+  liveliness_thread_ = std::thread([this] {
+    std::unique_lock<std::mutex> lock(liveliness_mutex_);
+    while (!liveliness_cv_.wait_for(lock, kLivelinessAssertPeriod, [this] { return liveliness_quit_; })) {
+      heartbeat_.assertLiveliness();
+    }
+  });
 }
 
-Node::~Node() { participant_.events().setNotifier({}); }
+Node::~Node()
+{
+  {
+    std::lock_guard<std::mutex> lock(liveliness_mutex_);
+    liveliness_quit_ = true;
+  }
+  liveliness_cv_.notify_all();
+  liveliness_thread_.join();
+  participant_.events().setNotifier({});
+}
 
 void Node::stop()
 {
@@ -117,6 +134,7 @@ void Node::onEvent(const EndpointEvent& event)
                        event.kind == EventKind::kTypeMismatch ||
                        event.kind == EventKind::kWriteFailed ||
                        event.kind == EventKind::kLivelinessLost ||
+                       event.kind == EventKind::kForeignSample ||
                        event.kind == EventKind::kDeadlineMissed;
   if (problem) {
     spdlog::warn("{}: {}: {}", event.topic, toString(event.kind), event.detail);

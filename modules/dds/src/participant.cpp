@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <typeinfo>
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/domain/DomainParticipantListener.hpp>
@@ -285,6 +286,14 @@ Participant::~Participant()
 fdds::Topic* Participant::topic(const TopicInfo& info, const fdds::TypeSupport& type)
 {
   std::lock_guard lock(endpoints_mutex_);
+  const fdds::TypeSupport known = participant_->find_type(type.get_type_name());
+  // One name, two serialisations (a typed endpoint's and a raw one's) would make Fast DDS
+  // serialise one kind of sample with the other's code.
+  if (!known.empty() && typeid(*known.get()) != typeid(*type.get())) {
+    throw std::logic_error("type " + type.get_type_name() + " of " + std::string(info.name) +
+                           " is registered on this participant with another type support (typed and raw "
+                           "endpoints of one type need participants of their own)");
+  }
   if (auto it = topics_.find(info.name); it != topics_.end()) {
     if (it->second->get_type_name() != type.get_type_name()) {
       throw std::logic_error("topic " + std::string(info.name) + " already created with type " +
@@ -292,7 +301,7 @@ fdds::Topic* Participant::topic(const TopicInfo& info, const fdds::TypeSupport& 
     }
     return it->second;
   }
-  if (participant_->find_type(type.get_type_name()).empty()) {
+  if (known.empty()) {
     fdds::TypeSupport copy = type;
     if (copy.register_type(participant_) != ReturnCode_t::RETCODE_OK) {
       throw std::runtime_error("cannot register type " + type.get_type_name());

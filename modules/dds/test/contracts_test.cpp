@@ -10,6 +10,7 @@
 
 #include "quad/dds/participant.hpp"
 #include "quad/dds/raw_type.hpp"
+#include "quad/dds/subscriber.hpp"
 #include "quad/introspection/idl.hpp"
 
 namespace quad::dds {
@@ -134,6 +135,17 @@ TEST(Contracts, WritersAndReadersOfOneClassAreCompatible)
     EXPECT_EQ(w.reliability().kind, r.reliability().kind) << t.name;
     EXPECT_EQ(w.durability().kind, r.durability().kind) << t.name;
   }
+}
+
+TEST(Contracts, TypedAndRawEndpointsOfOneTypeOnOneParticipantAreRefused)
+{
+  // Fast DDS would serialise the raw samples with the generated type's code, or the reverse.
+  Participant p = testParticipant(158);
+  Subscriber<msg::Path> typed(p, topics::kPath);
+  EXPECT_THROW(RawPublisher(p, topics::kPath.info), std::logic_error);
+  Participant q = testParticipant(158);
+  RawPublisher raw(q, topics::kPath.info);
+  EXPECT_THROW(Subscriber<msg::Path>(q, topics::kPath), std::logic_error);
 }
 
 }  // namespace

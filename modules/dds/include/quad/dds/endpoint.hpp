@@ -6,7 +6,9 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <optional>
+#include <vector>
 
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
@@ -37,6 +39,9 @@ public:
   std::uint64_t written() const { return written_.load(); }
   std::uint64_t failed() const { return failed_.load(); }
   const TopicInfo& info() const { return info_; }
+
+  /// Asserts the writer's liveliness (for MANUAL_BY_TOPIC writers; a no-op for others).
+  void assertLiveliness();
 
   /// Waits until every matched reliable reader acknowledged what was written; false on timeout.
   bool waitForAcknowledgments(std::chrono::milliseconds timeout);
@@ -70,10 +75,26 @@ public:
   std::uint64_t deadlinesMissed() const { return deadlines_missed_.load(); }
   const TopicInfo& info() const { return info_; }
 
+  /// A matched writer became alive, lost its liveliness (its process died, stopped or was
+  /// cut off for longer than the contract's lease), or went away.
+  struct WriterLiveliness {
+    std::uint64_t writer = 0;  ///< the id takeSample gives for its samples
+    bool alive = false;
+    std::int64_t steady_ns = 0;  ///< when this reader learned it
+  };
+  /// The changes since the last call, oldest first.
+  std::vector<WriterLiveliness> takeLivelinessChanges();
+
+  /// Samples dropped because they were for another vehicle.
+  std::uint64_t foreignSamples() const { return foreign_.load(); }
+
 protected:
   /// Takes the next sample with valid data into `sample`; false when none is left. `writer`,
   /// when given, receives an id of the writer that sent it (a hash of its GUID).
   bool takeSample(void* sample, std::uint64_t* writer = nullptr);
+  /// True for a sample of this participant's vehicle; else counts it and reports it (the 1st,
+  /// 2nd, 4th, 8th... time) as an event.
+  bool ownVehicle(std::uint32_t vehicle_id);
 
 private:
   class Listener;
@@ -83,6 +104,9 @@ private:
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
   std::atomic<int> matched_{0};
   std::atomic<std::uint64_t> deadlines_missed_{0};
+  std::mutex liveliness_mutex_;
+  std::vector<WriterLiveliness> liveliness_changes_;
+  std::atomic<std::uint64_t> foreign_{0};
 };
 
 }  // namespace quad::dds

@@ -26,6 +26,7 @@ enum class EventKind {
   kTypeMismatch,       ///< an endpoint on our topic has another type name or key kind
   kSampleLost,         ///< the middleware lost samples (best effort gaps, history overflow)
   kSampleRejected,     ///< a sample was rejected for resource limits
+  kForeignSample,      ///< a sample for another vehicle (Header.vehicle_id) was ignored
   kWriteFailed,        ///< write() returned an error (e.g. a full KEEP_ALL history)
 };
 

@@ -5,6 +5,7 @@
 /// run() loops on a Waker with a tick period until stop() — from a signal or another thread.
 
 #include <atomic>
+#include <condition_variable>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -97,6 +98,12 @@ private:
   NodeCounters counters_;
   Publisher<msg::Heartbeat> heartbeat_;
   std::atomic<bool> stop_{false};
+  // Asserts the heartbeat writer's liveliness (MANUAL_BY_TOPIC) from a thread of its own, so
+  // that a node busy in a long computation stays alive and a killed or stopped one does not.
+  std::mutex liveliness_mutex_;
+  std::condition_variable liveliness_cv_;
+  bool liveliness_quit_ = false;
+  std::thread liveliness_thread_;
   std::int64_t tick_period_ns_ = 0;
   bool lockstep_ = false;
   std::int64_t last_deadline_log_ns_ = 0;

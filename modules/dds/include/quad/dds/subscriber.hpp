@@ -23,22 +23,26 @@ public:
   {
   }
 
-  /// The next unread sample, if any.
-  std::optional<Message> take()
+  /// The next unread sample of this participant's vehicle, if any; `writer`, when given,
+  /// receives its writer's id (the one takeLivelinessChanges names). Samples of another
+  /// vehicle (Header.vehicle_id) are dropped and counted (foreignSamples()).
+  std::optional<Message> take(std::uint64_t* writer = nullptr)
   {
     Message sample;
-    if (takeSample(&sample)) {
-      return sample;
+    while (takeSample(&sample, writer)) {
+      if (ownVehicle(sample.header().vehicle_id())) {
+        return sample;
+      }
     }
     return std::nullopt;
   }
 
-  /// Every unread sample, oldest first.
+  /// Every unread sample of this participant's vehicle, oldest first.
   std::vector<Message> takeAll()
   {
     std::vector<Message> out;
-    for (Message sample; takeSample(&sample);) {
-      out.push_back(sample);
+    while (auto sample = take()) {
+      out.push_back(std::move(*sample));
     }
     return out;
   }

@@ -67,6 +67,9 @@ inline constexpr auto kVehicleCommand = makeTopic<VehicleCommand>(
 inline constexpr auto kFault = makeTopic<FaultCommand>(
     "quad/system/fault", "command", 0.0, Owner::kFaultTool,
     "Faults for modules to apply");
+inline constexpr auto kFaultEvents = makeTopic<SimEvent>(
+    "quad/system/fault_events", "events", 0.0, Owner::kFaultTool,
+    "Faults the fault tool applied itself (processes, links, inputs), when they took effect");
 // clang-format on
 
 /// Every contract, for tools that iterate over topics.
@@ -74,7 +77,7 @@ inline constexpr std::array kAll{
     kSimClock.info, kSimState.info,  kSimImu.info,        kSimDepth.info,
     kSimEvents.info, kLockstep.info, kMapUpdate.info,     kMapSnapshot.info, kMapStats.info,
     kGoal.info,      kPath.info,     kActuators.info,     kControlStatus.info,
-    kControlReference.info, kHeartbeat.info, kVehicleCommand.info, kFault.info};
+    kControlReference.info, kHeartbeat.info, kVehicleCommand.info, kFault.info, kFaultEvents.info};
 
 /// The contract of a topic name, if quad declares one.
 std::optional<TopicInfo> find(std::string_view name);

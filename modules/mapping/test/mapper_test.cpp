@@ -6,38 +6,13 @@
 #include <filesystem>
 #include <random>
 
-#include "quad/plant/sensors.hpp"
+#include "scans.hpp"
 
 namespace quad::mapping {
 namespace {
 
-/// A world with one box (x 5..7, y −1..1, z 0..3) in an open field.
-plant::World boxWorld()
-{
-  return plant::World(plant::Bounds{Vector3(-20, -20, 0), Vector3(40, 20, 20)}, Vector3::Zero(), Vector3(30, 0, 2),
-                      {plant::Obstacle::makeBox({Vector3(6, 0, 1.5), Vector3(2, 2, 3), 0.0})});
-}
-
-/// What the plant's camera sees from `p` facing yaw, as a world-frame scan.
-Scan scanFrom(const plant::World& world, const Vector3& p, double yaw, std::mt19937_64& rng)
-{
-  plant::DepthCameraConfig config;
-  config.width = 64;
-  config.height = 48;
-  config.max_range = 15.0;
-  config.noise_std = 0.0;
-  config.position_B = Vector3::Zero();
-  const plant::DepthCamera camera(config);
-  const geometry::Pose3 body{p, geometry::fromAxisAngle(Vector3::UnitZ(), yaw)};
-  const plant::DepthScan depth = camera.capture(world, body, rng);
-  Scan scan;
-  scan.origin_W = depth.sensor_W.p;
-  scan.max_range = config.max_range;
-  for (const auto& point : depth.points_S) {
-    scan.points_W.push_back(depth.sensor_W.transform(point.cast<double>()));
-  }
-  return scan;
-}
+using test::boxWorld;
+using test::scanFrom;
 
 VoxelIndex voxelAt(const Mapper& m, const Vector3& p) { return geometry::VoxelGrid(m.resolution()).toIndex(p); }
 
@@ -79,13 +54,7 @@ TEST(Mapper, ChangeSetsReplayedInOrderReproduceTheMapExactly)
     replica.apply(result.changes);
     ASSERT_EQ(replica.contents().size(), mapper.classification().size()) << "after scan " << k;
   }
-  const auto expected = mapper.classification();
-  const auto actual = replica.contents();
-  ASSERT_EQ(actual.size(), expected.size());
-  for (std::size_t i = 0; i < expected.size(); ++i) {
-    ASSERT_EQ(actual[i].index, expected[i].index) << i;
-    ASSERT_EQ(actual[i].state, expected[i].state) << i;
-  }
+  test::expectSameClassification(mapper.classification(), replica.contents());
 }
 
 TEST(Mapper, ALateJoinerCatchesUpFromASnapshotAndLaterChanges)
@@ -104,13 +73,7 @@ TEST(Mapper, ALateJoinerCatchesUpFromASnapshotAndLaterChanges)
       late.apply(result.changes);
     }
   }
-  const auto a = from_start.contents();
-  const auto b = late.contents();
-  ASSERT_EQ(a.size(), b.size());
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    ASSERT_EQ(a[i].index, b[i].index);
-    ASSERT_EQ(a[i].state, b[i].state);
-  }
+  test::expectSameClassification(from_start.contents(), late.contents());
 }
 
 TEST(Mapper, SavedBtFilesLoadInOctomapWithTheSameClassification)

@@ -101,7 +101,7 @@ PlanningNode::PlanningNode(PlanningNodeConfig config, dds::ParticipantOptions op
     : Node("planning", std::move(options)),
       config_(std::move(config)),
       planner_(Lattice(geometry::VoxelGrid(config_.resolution), config_.bounds_min, config_.bounds_max), config_.planner),
-      known_(config_.resolution),
+      follower_(config_.resolution),
       updates_(participant(), dds::topics::kMapUpdate, waker()),
       snapshots_(participant(), dds::topics::kMapSnapshot, waker()),
       state_(participant(), dds::topics::kSimState, waker()),
@@ -116,34 +116,20 @@ PlanningNode::PlanningNode(PlanningNodeConfig config, dds::ParticipantOptions op
 
 void PlanningNode::applySnapshot(const msg::MapSnapshot& snapshot)
 {
-  if (!gap_pending_ || snapshot.update_seq() <= applied_seq_) {
-    return;  // nothing missing, or nothing newer than what we have
-  }
-  mapping::VoxelMap map(config_.resolution);
-  if (!map.applySnapshot(snapshot.octree())) {
+  bool bad = false;
+  const auto diff = follower_.snapshot(snapshot.update_seq(), snapshot.octree(), &bad);
+  if (bad) {
     counters().errors++;
     spdlog::warn("quad/mapping/octomap: snapshot {} is not a map at {} m; ignored", snapshot.update_seq(), config_.resolution);
+  }
+  if (!diff) {
     return;
   }
-  // Whatever differs from what we knew: voxels the snapshot knows, and ours it does not.
-  std::vector<mapping::VoxelChange> diff;
-  for (const auto& c : map.contents()) {
-    if (known_.classify(c.index) != c.state) {
-      diff.push_back(c);
-    }
-  }
-  for (const auto& c : known_.contents()) {
-    if (map.classify(c.index) == mapping::VoxelState::kUnknown) {
-      diff.push_back({c.index, mapping::VoxelState::kUnknown});
-    }
-  }
-  known_.apply(diff);
-  for (const auto& c : diff) {
+  for (const auto& c : *diff) {
     planner_.updateVoxel(c.index, static_cast<Occupancy>(c.state));
   }
-  applied_seq_ = snapshot.update_seq();
-  gap_pending_ = false;
-  spdlog::info("planning: caught up from snapshot {} ({} voxels differed)", snapshot.update_seq(), diff.size());
+  spdlog::info("planning: caught up from snapshot {} and {} later updates ({} voxels differed)", snapshot.update_seq(),
+               follower_.replayed(), diff->size());
 }
 
 void PlanningNode::applyUpdate(const msg::MapUpdate& update)
@@ -154,28 +140,24 @@ void PlanningNode::applyUpdate(const msg::MapUpdate& update)
                  config_.resolution);
     return;
   }
-  if (update.update_seq() <= applied_seq_) {
-    return;  // in a snapshot already applied
-  }
-  if (update.update_seq() != applied_seq_ + 1) {
-    ++gaps_;
-    gap_pending_ = true;
-    if (applied_seq_ == 0) {
+  const std::uint64_t before = follower_.appliedSeq();
+  if (update.update_seq() > before + 1) {
+    if (before == 0) {
       spdlog::info("quad/mapping/update: joined at update {}; the rest comes with the next snapshot", update.update_seq());
     } else {
-      spdlog::warn("quad/mapping/update: {} follows {}: a gap until the next snapshot", update.update_seq(), applied_seq_);
+      spdlog::warn("quad/mapping/update: {} follows {}: a gap until the next snapshot", update.update_seq(), before);
     }
   }
-  frames_applied_ = std::max(frames_applied_, update.depth_frames());
   std::vector<mapping::VoxelChange> changes;
   changes.reserve(update.changes().size());
   for (const auto& c : update.changes()) {
-    const VoxelIndex v(c.ix(), c.iy(), c.iz());
-    changes.push_back({v, static_cast<mapping::VoxelState>(fromMessage(c.state()))});
-    planner_.updateVoxel(v, fromMessage(c.state()));
+    changes.push_back({VoxelIndex(c.ix(), c.iy(), c.iz()), static_cast<mapping::VoxelState>(fromMessage(c.state()))});
   }
-  known_.apply(changes);
-  applied_seq_ = update.update_seq();
+  for (const auto& c : follower_.update(update.update_seq(), std::move(changes))) {
+    planner_.updateVoxel(c.index, static_cast<Occupancy>(c.state));
+  }
+  // Covered by a snapshot or applied now, what it accounts for is in the map.
+  frames_applied_ = std::max(frames_applied_, update.depth_frames());
 }
 
 void PlanningNode::publish(std::int64_t t_ns, bool changed)
@@ -253,6 +235,7 @@ void PlanningNode::onWake()
     setLockstep(c->lockstep());
     clock_ns_ = std::max(clock_ns_, c->sim_ns());
     clock_frames_ = std::max(clock_frames_, c->depth_frames());
+    clock_state_sent_ = c->state_sent();
   }
   // Snapshots first: one sent with the updates it contains must not undo newer ones.
   while (auto s = snapshots_.take()) {
@@ -268,14 +251,16 @@ void PlanningNode::onWake()
     const auto cell = p.allFinite() ? planner_.lattice().cellAt(p) : std::nullopt;
     if (!cell) {
       counters().errors++;
-      spdlog::error("quad/planning/goal: goal {} at ({}, {}, {}) is outside the planning bounds; refused", g->goal_id(),
-                    p.x(), p.y(), p.z());
-      goal_id_ = g->goal_id();
+      spdlog::error("quad/planning/goal: goal {} at ({}, {}, {}) is outside the planning bounds; refused{}",
+                    g->goal_id(), p.x(), p.y(), p.z(),
+                    goal_id_ ? fmt::format(" (still flying to goal {})", *goal_id_) : "");
+      if (goal_id_) {
+        continue;  // a refused goal does not replace the one being flown
+      }
       current_.status(msg::PLAN_OUT_OF_BOUNDS);
       current_.goal_id(g->goal_id());
       current_.waypoints_W().clear();
       publish(now_ns_, true);
-      goal_id_.reset();
       continue;
     }
     goal_id_ = g->goal_id();
@@ -289,13 +274,17 @@ void PlanningNode::onWake()
   }
   // In lockstep a replan sees every depth cloud published up to its time, so that runs
   // repeat; the clock waits for this node's report.
-  const bool map_complete = !lockstep() || frames_applied_ >= clock_frames_;
-  if (goal_id_ && position_ && map_complete && (goal_changed_ || now_ns_ >= next_replan_ns_)) {
+  const bool caught_up = !lockstep() || frames_applied_ >= clock_frames_;
+  // A planner that joined late or missed an update plans nothing until a snapshot fills the
+  // gap: a path through what it does not know the mapper saw could hit it. Without paths the
+  // controller holds position.
+  const bool map_whole = !follower_.gapOpen() && !(follower_.appliedSeq() == 0 && clock_frames_ > 0);
+  if (goal_id_ && position_ && caught_up && map_whole && (goal_changed_ || now_ns_ >= next_replan_ns_)) {
     replan(now_ns_);
     goal_changed_ = false;
     next_replan_ns_ = now_ns_ + common::toNanoseconds(config_.replan_period_s);
   }
-  if (lockstep() && map_complete && clock_ns_ > reported_ns_ && now_ns_ >= clock_ns_) {
+  if (lockstep() && caught_up && clock_ns_ > reported_ns_ && (now_ns_ >= clock_ns_ || !clock_state_sent_)) {
     lockstep_.reportDone(clock_ns_);
     reported_ns_ = clock_ns_;
   }

@@ -12,7 +12,7 @@
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
-#include "quad/mapping/mapper.hpp"
+#include "quad/mapping/map_follower.hpp"
 #include "quad/planning/dstar_lite.hpp"
 
 namespace quad::planning {
@@ -47,7 +47,7 @@ private:
 
   PlanningNodeConfig config_;
   DStarLite planner_;
-  mapping::VoxelMap known_;
+  mapping::MapFollower follower_;  // the mapper's classification, from updates and snapshots
   dds::Subscriber<msg::MapUpdate> updates_;
   dds::Subscriber<msg::MapSnapshot> snapshots_;
   dds::Subscriber<msg::VehicleState> state_;
@@ -56,11 +56,10 @@ private:
   dds::Publisher<msg::Path> path_;
   dds::LockstepReporter lockstep_;
 
-  std::uint64_t applied_seq_ = 0;
-  bool gap_pending_ = false;            // an update was missed: the next snapshot fills it in
   std::uint64_t frames_applied_ = 0;    // depth clouds the applied updates account for
   std::int64_t clock_ns_ = 0;           // lockstep: the sim time the clock is at
   std::uint64_t clock_frames_ = 0;      // lockstep: depth clouds published up to then
+  bool clock_state_sent_ = true;        // lockstep: a state of the clock's time was published
   std::int64_t reported_ns_ = -1;
   bool goal_changed_ = false;
   std::optional<std::uint32_t> goal_id_;
@@ -70,7 +69,6 @@ private:
   std::int64_t next_publish_ns_ = 0;
   std::uint32_t version_ = 0;
   msg::Path current_;
-  std::uint64_t gaps_ = 0;
 };
 
 }  // namespace quad::planning

@@ -1,0 +1,58 @@
+#pragma once
+/// @file
+/// The consumer's side of the mapper's numbered change sets and snapshots (the planner's):
+/// applies updates in order, notices a gap (a late join, a missed update), and fills it with
+/// the first snapshot that covers it, brought up to date with the updates received after it
+/// (a snapshot travels slower than the update of its own number). What it holds then equals
+/// the mapper's classification.
+
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "quad/mapping/mapper.hpp"
+
+namespace quad::mapping {
+
+class MapFollower {
+public:
+  /// `max_kept`: updates kept while a gap is open (the oldest go first; a snapshot must then
+  /// be at least as new as the newest one dropped).
+  explicit MapFollower(double resolution, std::size_t max_kept = 256);
+
+  /// Update `seq` with its changes; returns the changes to apply downstream (none when the
+  /// update was already covered by a snapshot).
+  std::vector<VoxelChange> update(std::uint64_t seq, std::vector<VoxelChange> changes);
+
+  /// A snapshot taken at update `seq`, as OctoMap bytes. When it fills the open gap (or
+  /// nothing was received yet) returns the changes that bring what is held to it; nothing
+  /// otherwise. Bytes that are not a map of this resolution: `bad` is set, nothing returned.
+  std::optional<std::vector<VoxelChange>> snapshot(std::uint64_t seq, const std::vector<std::uint8_t>& bytes,
+                                                   bool* bad = nullptr);
+
+  /// True while an update is missing that no snapshot filled yet.
+  bool gapOpen() const { return gap_open_; }
+  /// The newest update held (0: none yet).
+  std::uint64_t appliedSeq() const { return applied_seq_; }
+  /// Gaps seen so far.
+  std::uint64_t gaps() const { return gaps_; }
+  /// Updates a snapshot's catch-up re-applied on top of it, last time.
+  std::size_t replayed() const { return replayed_; }
+  const VoxelMap& held() const { return held_; }
+
+private:
+  double resolution_;
+  std::size_t max_kept_;
+  VoxelMap held_;
+  std::uint64_t applied_seq_ = 0;
+  bool gap_open_ = false;
+  std::uint64_t gap_end_ = 0;  // the last update missed: snapshots from it on fill the gap
+  std::deque<std::pair<std::uint64_t, std::vector<VoxelChange>>> since_gap_;
+  std::uint64_t gaps_ = 0;
+  std::size_t replayed_ = 0;
+};
+
+}  // namespace quad::mapping

@@ -1,0 +1,123 @@
+// The consumer's side of change sets and snapshots: whatever it missed and in whatever order
+// snapshots arrive, once a gap is filled it holds exactly the mapper's classification.
+#include "quad/mapping/map_follower.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "scans.hpp"
+
+namespace quad::mapping {
+namespace {
+
+/// A mapper flying past the box, with each scan's change set and the snapshot after it.
+struct Flight {
+  Mapper mapper{MapperConfig{}};
+  std::vector<std::vector<VoxelChange>> changes;        // [k]: update k + 1
+  std::vector<std::vector<std::uint8_t>> snapshots;     // [k]: after update k + 1
+  std::vector<std::vector<VoxelChange>> classification; // [k]: after update k + 1
+
+  explicit Flight(int scans)
+  {
+    const plant::World world = test::boxWorld();
+    std::mt19937_64 rng(5);
+    for (int k = 0; k < scans; ++k) {
+      const auto r = mapper.integrate(test::scanFrom(world, Vector3(-1.0 + 0.4 * k, 0.2 * k - 2.0, 1.5), 0.1 * k, rng));
+      changes.push_back(r.changes);
+      snapshots.push_back(mapper.snapshot());
+      classification.push_back(mapper.classification());
+    }
+  }
+};
+
+void expectSame(const std::vector<VoxelChange>& expected, const VoxelMap& held)
+{
+  test::expectSameClassification(expected, held.contents());
+}
+
+TEST(MapFollower, InOrderUpdatesNeedNoSnapshot)
+{
+  const Flight f(12);
+  MapFollower follower(f.mapper.resolution());
+  for (std::size_t k = 0; k < f.changes.size(); ++k) {
+    follower.update(k + 1, f.changes[k]);
+    EXPECT_FALSE(follower.gapOpen());
+  }
+  EXPECT_FALSE(follower.snapshot(12, f.snapshots[11]).has_value());  // nothing to fill
+  expectSame(f.classification.back(), follower.held());
+}
+
+TEST(MapFollower, ALateJoinerWhoseSnapshotComesAfterLaterUpdatesCatchesUpExactly)
+{
+  const Flight f(20);
+  MapFollower follower(f.mapper.resolution());
+  // Joins at update 9; snapshot 8 is late: it arrives after updates 9..12.
+  for (std::uint64_t seq = 9; seq <= 12; ++seq) {
+    follower.update(seq, f.changes[seq - 1]);
+  }
+  EXPECT_TRUE(follower.gapOpen());
+  EXPECT_FALSE(follower.snapshot(7, f.snapshots[6]).has_value());  // older than the hole
+  EXPECT_TRUE(follower.gapOpen());
+  const auto diff = follower.snapshot(8, f.snapshots[7]);
+  ASSERT_TRUE(diff.has_value());
+  EXPECT_EQ(follower.replayed(), 4U);
+  EXPECT_FALSE(follower.gapOpen());
+  expectSame(f.classification[11], follower.held());
+  for (std::uint64_t seq = 13; seq <= 20; ++seq) {
+    follower.update(seq, f.changes[seq - 1]);
+  }
+  expectSame(f.classification.back(), follower.held());
+}
+
+TEST(MapFollower, AMissedUpdateIsFilledByANewerSnapshotAndTheDiffReachesAnOutsideCopy)
+{
+  const Flight f(16);
+  MapFollower follower(f.mapper.resolution());
+  VoxelMap downstream(f.mapper.resolution());  // the planner's grid, fed only what the follower returns
+  for (std::uint64_t seq = 1; seq <= 16; ++seq) {
+    if (seq == 6) {
+      continue;  // lost
+    }
+    downstream.apply(follower.update(seq, f.changes[seq - 1]));
+    if (seq == 7) {
+      EXPECT_TRUE(follower.gapOpen());
+      EXPECT_EQ(follower.gaps(), 1U);
+    }
+    if (seq == 10) {
+      const auto diff = follower.snapshot(9, f.snapshots[8]);  // covers update 6
+      ASSERT_TRUE(diff.has_value());
+      downstream.apply(*diff);
+      EXPECT_FALSE(follower.gapOpen());
+    }
+  }
+  expectSame(f.classification.back(), follower.held());
+  expectSame(f.classification.back(), downstream);
+}
+
+TEST(MapFollower, KeepingFewUpdatesOnlyNewerSnapshotsFillTheGap)
+{
+  const Flight f(12);
+  MapFollower follower(f.mapper.resolution(), 2);
+  for (std::uint64_t seq = 5; seq <= 10; ++seq) {  // joined at 5; only 9 and 10 are kept
+    follower.update(seq, f.changes[seq - 1]);
+  }
+  EXPECT_FALSE(follower.snapshot(7, f.snapshots[6]).has_value());  // 8 was dropped: it cannot be rebuilt
+  const auto diff = follower.snapshot(8, f.snapshots[7]);
+  ASSERT_TRUE(diff.has_value());
+  expectSame(f.classification[9], follower.held());
+}
+
+TEST(MapFollower, BadSnapshotBytesAreReportedAndChangeNothing)
+{
+  const Flight f(3);
+  MapFollower follower(f.mapper.resolution());
+  follower.update(2, f.changes[1]);
+  bool bad = false;
+  EXPECT_FALSE(follower.snapshot(2, {1, 2, 3, 4}, &bad).has_value());
+  EXPECT_TRUE(bad);
+  EXPECT_TRUE(follower.gapOpen());
+}
+
+}  // namespace
+}  // namespace quad::mapping

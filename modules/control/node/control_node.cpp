@@ -10,6 +10,9 @@ namespace quad::control {
 
 namespace {
 constexpr std::int64_t kTickNs = 20'000'000;  // watch for a silent plant at 50 Hz
+// A state stamped this far past the sim clock is refused (the clock and the state come from
+// the plant on separate topics, so a true state may be a step or two ahead of the clock seen).
+constexpr std::int64_t kFutureToleranceNs = 500'000'000;
 }
 
 ControlNode::ControlNode(ControlNodeConfig config, dds::ParticipantOptions options)
@@ -34,6 +37,7 @@ void ControlNode::takeInputs()
   while (auto c = clock_.take()) {
     setLockstep(c->lockstep());
     clock_seen_ = true;
+    clock_ns_ = std::max(clock_ns_, c->sim_ns());
   }
   while (auto c = command_.take()) {
     counters().samples_in++;
@@ -124,6 +128,14 @@ void ControlNode::onWake()
   for (const auto& s : state_.takeAll()) {
     counters().samples_in++;
     const double t = common::toSeconds(s.header().stamp_ns());
+    if (clock_seen_ && s.header().stamp_ns() > clock_ns_ + kFutureToleranceNs) {
+      // Accepted, it would make every true state after it look out of order.
+      counters().errors++;
+      fc_.countRejected();
+      spdlog::warn("quad/sim/state: sample seq {} rejected: stamped {:.3f} s, ahead of the sim clock ({:.3f} s)",
+                   s.header().seq(), t, common::toSeconds(clock_ns_));
+      continue;
+    }
     if (!fc_.onState(fromMessage(s), s.landed(), t)) {
       counters().errors++;
       spdlog::warn("quad/sim/state: sample seq {} rejected: invalid or out of order", s.header().seq());
@@ -132,6 +144,21 @@ void ControlNode::onWake()
     latest_t_ = t;
     latest_wall_ns_ = common::steadyTimeNs();
     control(t, s.header().stamp_ns());
+  }
+  controlOnClock();
+}
+
+void ControlNode::controlOnClock()
+{
+  // In lockstep the states stop coming only when a fault drops them (the plant then does not
+  // wait for us): the controller must still reach its failsafe, on the clock's time.
+  if (!lockstep() || latest_t_ < 0.0) {
+    return;
+  }
+  const double t = common::toSeconds(clock_ns_);
+  if (t - latest_t_ > config_.flight.state_timeout && clock_ns_ > last_clock_control_ns_) {
+    last_clock_control_ns_ = clock_ns_;
+    control(t, clock_ns_);
   }
 }
 

@@ -141,4 +141,39 @@ std::optional<Fault> faultFrom(const msg::FaultCommand& c, std::int64_t now_ns, 
   }
 }
 
+msg::FaultCommand toCommand(const Fault& f)
+{
+  msg::FaultCommand c;
+  c.fault_id(f.id);
+  c.module_name("plant");
+  c.index(-1);
+  c.duration_s(common::toSeconds(f.duration_ns));
+  switch (f.kind) {
+    case Fault::Kind::kMotor:
+      c.kind(msg::FAULT_MOTOR_FAILURE);
+      c.index(f.rotor);
+      c.magnitude(f.magnitude);
+      break;
+    case Fault::Kind::kSensorDropout:
+      c.kind(msg::FAULT_SENSOR_DROPOUT);
+      break;
+    case Fault::Kind::kSensorStuck:
+      c.kind(msg::FAULT_SENSOR_STUCK);
+      break;
+    case Fault::Kind::kSensorNoise:
+      c.kind(msg::FAULT_SENSOR_NOISE);
+      c.magnitude(f.magnitude);
+      break;
+    case Fault::Kind::kWindGust:
+      c.kind(msg::FAULT_WIND_GUST);
+      c.vector_W(toMessage(f.wind_W));
+      break;
+  }
+  if (f.kind == Fault::Kind::kSensorDropout || f.kind == Fault::Kind::kSensorStuck ||
+      f.kind == Fault::Kind::kSensorNoise) {
+    c.target(std::string(toString(f.sensor)));
+  }
+  return c;
+}
+
 }  // namespace quad::plant

@@ -24,4 +24,8 @@ msg::SimEvent toMessage(const SimEventRecord& e);
 /// for something the plant does not apply, `why_not` says why and nothing is returned.
 std::optional<Fault> faultFrom(const msg::FaultCommand& command, std::int64_t now_ns, std::string& why_not);
 
+/// The command that asks the plant node for `fault` (faultFrom's inverse, start aside: the
+/// plant applies a command when it arrives).
+msg::FaultCommand toCommand(const Fault& fault);
+
 }  // namespace quad::plant

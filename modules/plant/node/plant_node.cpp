@@ -126,6 +126,7 @@ void PlantNode::publishClock()
   clock.real_time_factor(config_.real_time_factor);
   clock.lockstep(config_.mode == PlantNodeConfig::Mode::kLockstep);
   clock.depth_frames(depth_frames_);
+  clock.state_sent(last_state_ && last_state_->t_ns == sim_->timeNs());
   clock_.write(clock);
 }
 
@@ -142,8 +143,11 @@ void PlantNode::publish(const StepOutputs& out)
     last_state_ = out.state;
     last_state_publish_ns_ = common::steadyTimeNs();
     state_.write(toMessage(*out.state));
-    publishClock();  // the clock at the state's rate: its contract's 250 Hz
-    counters().samples_out += 2;
+    counters().samples_out++;
+  }
+  if (out.state_due) {
+    publishClock();  // at the state's rate (its contract's 250 Hz), even when a fault drops the state
+    counters().samples_out++;
   }
   if (out.imu) {
     imu_.write(toMessage(*out.imu));
@@ -197,18 +201,23 @@ void PlantNode::runLockstep()
     // A round may run once the controller answered the state of its start and every
     // participant finished its work up to then.
     const std::int64_t round_start = round_end_ns_ - config_.lockstep_period_ns;
-    const bool command_ready = !config_.lockstep_wait_for_command || latest_command_stamp_ns_ >= round_start;
+    // The controller answers states: a round whose state a fault dropped has nothing to answer.
+    const bool state_sent = last_state_ && last_state_->t_ns >= round_start;
+    const bool command_ready =
+        !config_.lockstep_wait_for_command || !state_sent || latest_command_stamp_ns_ >= round_start;
     const bool others_ready = !barrier_ || barrier_->poll(round_start);
     if (!command_ready || !others_ready) {
       const std::int64_t now = common::steadyTimeNs();
-      if (last_state_ && now - last_state_publish_ns_ >= kRepublishNs) {
+      if (now - last_state_publish_ns_ >= kRepublishNs) {
         // A state, clock or depth sample lost, or sent before a participant matched, would
         // stall the round for good. Resend them; an answer to a repeat is the same answer
         // (the mapper knows a cloud it has by its stamp).
         if (last_depth_) {
           depth_.write(*last_depth_);
         }
-        state_.write(toMessage(*last_state_));
+        if (state_sent) {
+          state_.write(toMessage(*last_state_));
+        }
         publishClock();
         last_state_publish_ns_ = now;
       }

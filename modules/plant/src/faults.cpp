@@ -76,6 +76,75 @@ std::string Fault::describe() const
   return out;
 }
 
+std::optional<Fault> parseFault(common::YamlReader& r, YAML::Node f, const std::string& key,
+                                const std::set<std::string>& extra_keys)
+{
+  if (!f.IsMap()) {
+    r.problem(key, f, "expected a map");
+    return std::nullopt;
+  }
+  const auto number = [&](const char* name, std::optional<double> fallback, double lo, double hi) {
+    return r.number(f[name], key + "." + name, fallback, lo, hi);
+  };
+  Fault fault;
+  const std::string kind = f["kind"].IsScalar() ? f["kind"].Scalar() : "";
+  std::set<std::string> allowed = extra_keys;
+  allowed.insert({"kind", "duration"});
+  const auto duration = number("duration", 0.0, 0.0, 1e7);
+  bool ok = duration.has_value();
+  if (kind == "motor") {
+    allowed.insert({"rotor", "efficiency"});
+    fault.kind = Fault::Kind::kMotor;
+    const auto rotor = number("rotor", std::nullopt, 0.0, 3.0);
+    const auto eff = number("efficiency", std::nullopt, 0.0, 1.0);
+    ok = ok && rotor && eff;
+    if (rotor && eff) {
+      fault.rotor = static_cast<int>(*rotor);
+      fault.magnitude = *eff;
+    }
+  } else if (kind == "sensor_dropout" || kind == "sensor_stuck" || kind == "sensor_noise") {
+    allowed.insert("sensor");
+    fault.kind = kind == "sensor_dropout" ? Fault::Kind::kSensorDropout
+                 : kind == "sensor_stuck" ? Fault::Kind::kSensorStuck
+                                          : Fault::Kind::kSensorNoise;
+    const auto sensor = f["sensor"].IsScalar() ? parseSensor(f["sensor"].Scalar()) : std::nullopt;
+    if (!sensor) {
+      r.problem(key + ".sensor", f["sensor"], "expected depth, imu or state");
+      ok = false;
+    } else {
+      fault.sensor = *sensor;
+    }
+    if (kind == "sensor_noise") {
+      allowed.insert("std_dev");
+      const auto s = number("std_dev", std::nullopt, 0.0, 1e3);
+      ok = ok && s;
+      fault.magnitude = s.value_or(0.0);
+    }
+  } else if (kind == "wind_gust") {
+    allowed.insert("wind");
+    fault.kind = Fault::Kind::kWindGust;
+    const auto w = r.numbers(f["wind"], key + ".wind", 3, -1e3, 1e3);
+    ok = ok && w;
+    if (w) {
+      fault.wind_W = {(*w)[0], (*w)[1], (*w)[2]};
+    }
+  } else {
+    r.problem(key + ".kind", f["kind"], "expected motor, sensor_dropout, sensor_stuck, sensor_noise or wind_gust");
+    return std::nullopt;
+  }
+  for (const auto& entry : f) {
+    if (!allowed.contains(entry.first.Scalar())) {
+      r.problem(key + "." + entry.first.Scalar(), entry.second, "unknown key for kind " + kind);
+      ok = false;
+    }
+  }
+  if (!ok) {
+    return std::nullopt;
+  }
+  fault.duration_ns = common::toNanoseconds(*duration);
+  return fault;
+}
+
 std::vector<Fault> parseFaultSchedule(std::string_view yaml_text, std::string_view origin)
 {
   common::YamlReader r(origin);
@@ -92,77 +161,22 @@ std::vector<Fault> parseFaultSchedule(std::string_view yaml_text, std::string_vi
   for (std::size_t i = 0; i < root.size(); ++i) {
     YAML::Node f = root[i];
     const std::string key = "[" + std::to_string(i) + "]";
+    auto fault = parseFault(r, f, key, {"id", "at"});
     if (!f.IsMap()) {
-      r.problem(key, f, "expected a map");
       continue;
     }
-    const auto number = [&](const char* name, std::optional<double> fallback, double lo, double hi) {
-      return r.number(f[name], key + "." + name, fallback, lo, hi);
-    };
-    Fault fault;
-    const std::string kind = f["kind"].IsScalar() ? f["kind"].Scalar() : "";
-    std::set<std::string> allowed = {"id", "kind", "at", "duration"};
-    const auto id = number("id", std::nullopt, 1.0, 4294967295.0);
-    const auto at = number("at", std::nullopt, 0.0, 1e7);
-    const auto duration = number("duration", 0.0, 0.0, 1e7);
-    bool ok = id && at && duration;
-    if (kind == "motor") {
-      allowed.insert({"rotor", "efficiency"});
-      fault.kind = Fault::Kind::kMotor;
-      const auto rotor = number("rotor", std::nullopt, 0.0, 3.0);
-      const auto eff = number("efficiency", std::nullopt, 0.0, 1.0);
-      ok = ok && rotor && eff;
-      if (rotor && eff) {
-        fault.rotor = static_cast<int>(*rotor);
-        fault.magnitude = *eff;
-      }
-    } else if (kind == "sensor_dropout" || kind == "sensor_stuck" || kind == "sensor_noise") {
-      allowed.insert("sensor");
-      fault.kind = kind == "sensor_dropout" ? Fault::Kind::kSensorDropout
-                   : kind == "sensor_stuck" ? Fault::Kind::kSensorStuck
-                                            : Fault::Kind::kSensorNoise;
-      const auto sensor = f["sensor"].IsScalar() ? parseSensor(f["sensor"].Scalar()) : std::nullopt;
-      if (!sensor) {
-        r.problem(key + ".sensor", f["sensor"], "expected depth, imu or state");
-        ok = false;
-      } else {
-        fault.sensor = *sensor;
-      }
-      if (kind == "sensor_noise") {
-        allowed.insert("std_dev");
-        const auto s = number("std_dev", std::nullopt, 0.0, 1e3);
-        ok = ok && s;
-        fault.magnitude = s.value_or(0.0);
-      }
-    } else if (kind == "wind_gust") {
-      allowed.insert("wind");
-      fault.kind = Fault::Kind::kWindGust;
-      const auto w = r.numbers(f["wind"], key + ".wind", 3, -1e3, 1e3);
-      ok = ok && w;
-      if (w) {
-        fault.wind_W = {(*w)[0], (*w)[1], (*w)[2]};
-      }
-    } else {
-      r.problem(key + ".kind", f["kind"], "expected motor, sensor_dropout, sensor_stuck, sensor_noise or wind_gust");
+    const auto id = r.number(f["id"], key + ".id", std::nullopt, 1.0, 4294967295.0);
+    const auto at = r.number(f["at"], key + ".at", std::nullopt, 0.0, 1e7);
+    if (!fault || !id || !at) {
       continue;
     }
-    for (const auto& entry : f) {
-      if (!allowed.contains(entry.first.Scalar())) {
-        r.problem(key + "." + entry.first.Scalar(), entry.second, "unknown key for kind " + kind);
-        ok = false;
-      }
-    }
-    if (!ok) {
-      continue;
-    }
-    fault.id = static_cast<std::uint32_t>(*id);
-    if (!ids.insert(fault.id).second) {
+    fault->id = static_cast<std::uint32_t>(*id);
+    if (!ids.insert(fault->id).second) {
       r.problem(key + ".id", f["id"], "used twice");
       continue;
     }
-    fault.start_ns = common::toNanoseconds(*at);
-    fault.duration_ns = common::toNanoseconds(*duration);
-    out.push_back(fault);
+    fault->start_ns = common::toNanoseconds(*at);
+    out.push_back(*fault);
   }
   r.throwIfAny();
   return out;

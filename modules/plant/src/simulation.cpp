@@ -154,7 +154,8 @@ StepOutputs Simulation::step()
   contacts_ = now;
 
   const Environment after = environment();
-  if (due(t_ns_, next_state_ns_, config_.state_rate_hz) && !sensorFault(Sensor::kState, Fault::Kind::kSensorDropout)) {
+  out.state_due = due(t_ns_, next_state_ns_, config_.state_rate_hz);
+  if (out.state_due && !sensorFault(Sensor::kState, Fault::Kind::kSensorDropout)) {
     if (!sensorFault(Sensor::kState, Fault::Kind::kSensorStuck) || !last_state_) {
       last_state_ = StateSample{t_ns_, state_, dynamics_.acceleration(state_, after)};
       if (const double extra = sensorNoise(Sensor::kState); extra > 0.0) {
@@ -168,6 +169,7 @@ StepOutputs Simulation::step()
         }
       }
     }
+    last_state_->t_ns = t_ns_;  // stuck: the content freezes, the samples keep coming
     out.state = last_state_;
   }
   if (due(t_ns_, next_imu_ns_, config_.imu.rate_hz) && !sensorFault(Sensor::kImu, Fault::Kind::kSensorDropout)) {
@@ -175,6 +177,7 @@ StepOutputs Simulation::step()
       last_imu_ = ImuReading{t_ns_, measureImu(config_.imu, state_.q_WB, dynamics_.acceleration(state_, after),
                                                state_.w_B, after.gravity_W, rng_, sensorNoise(Sensor::kImu))};
     }
+    last_imu_->t_ns = t_ns_;
     out.imu = last_imu_;
   }
   if (due(t_ns_, next_depth_ns_, config_.depth.rate_hz) &&
@@ -183,6 +186,7 @@ StepOutputs Simulation::step()
       last_depth_ = DepthReading{t_ns_, camera_.capture(world_, geometry::Pose3{state_.p_W, state_.q_WB}, rng_,
                                                         sensorNoise(Sensor::kDepth))};
     }
+    last_depth_->t_ns = t_ns_;
     out.depth = last_depth_;
   }
   return out;

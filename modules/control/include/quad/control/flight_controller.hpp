@@ -63,6 +63,8 @@ public:
   FlightOutput update(double t);
 
   std::uint64_t rejectedInputs() const { return rejected_; }
+  /// An input the node refused before it reached the controller (published in the status).
+  void countRejected() { ++rejected_; }
   Mode mode() const { return modes_.mode(); }
   std::optional<std::uint32_t> pathVersion() const { return path_version_; }
   double lastStateTime() const { return state_t_; }

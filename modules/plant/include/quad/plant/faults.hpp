@@ -7,10 +7,14 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include <yaml-cpp/yaml.h>
+
+#include "quad/common/yaml_input.hpp"
 #include "quad/geometry/so3.hpp"
 
 namespace quad::plant {
@@ -36,6 +40,13 @@ struct Fault {
 };
 
 std::string_view toString(Fault::Kind k);
+
+/// One fault from a YAML map: `kind` and that kind's keys (rotor, efficiency; sensor;
+/// std_dev; wind) and `duration` [s] (0 or absent: until cleared), as a schedule entry has
+/// them; `extra_keys` are keys the caller reads itself. Problems go to `reader` under `key`.
+/// The id and start are the caller's to set.
+std::optional<Fault> parseFault(common::YamlReader& reader, YAML::Node node, const std::string& key,
+                                const std::set<std::string>& extra_keys);
 
 /// A schedule file: a YAML list of faults, e.g.
 /// `- {id: 1, kind: motor, rotor: 2, efficiency: 0.5, at: 10.0, duration: 5.0}`

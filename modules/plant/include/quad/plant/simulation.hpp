@@ -55,6 +55,7 @@ struct DepthReading {
 };
 
 struct StepOutputs {
+  bool state_due = false;  ///< a state sample was due this step (whether or not a fault dropped it)
   std::optional<StateSample> state;
   std::optional<ImuReading> imu;
   std::optional<DepthReading> depth;

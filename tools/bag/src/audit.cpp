@@ -1,5 +1,7 @@
 #include "quad/bag/audit.hpp"
 
+#include <sstream>
+
 namespace quad::bag {
 
 LossFigures& LossFigures::operator+=(const LossFigures& o)
@@ -40,6 +42,28 @@ LossFigures SequenceAudit::figures() const
     total += f;
   }
   return total;
+}
+
+std::string toText(const LossFigures& f, std::size_t writers)
+{
+  return "received " + std::to_string(f.received) + " missing " + std::to_string(f.missing) + " duplicated " +
+         std::to_string(f.duplicated) + " reordered " + std::to_string(f.reordered) + " writers " +
+         std::to_string(writers);
+}
+
+std::optional<LossFigures> parseLossFigures(std::string_view text)
+{
+  std::istringstream in{std::string(text)};
+  LossFigures f;
+  const std::pair<const char*, std::uint64_t*> fields[] = {
+      {"received", &f.received}, {"missing", &f.missing}, {"duplicated", &f.duplicated}, {"reordered", &f.reordered}};
+  for (const auto& [name, value] : fields) {
+    std::string word;
+    if (!(in >> word >> *value) || word != name) {
+      return std::nullopt;
+    }
+  }
+  return f;
 }
 
 }  // namespace quad::bag

@@ -34,5 +34,20 @@ TEST(SequenceAudit, AnUnbrokenRunHasNoLoss)
   EXPECT_EQ(f.missing + f.duplicated + f.reordered, 0U);
 }
 
+TEST(LossFigures, TextRoundTripsAndOtherTextIsRefused)
+{
+  const LossFigures f{.received = 120, .missing = 3, .duplicated = 1, .reordered = 2};
+  const std::string text = toText(f, 2);
+  EXPECT_EQ(text, "received 120 missing 3 duplicated 1 reordered 2 writers 2");
+  const auto back = parseLossFigures(text);
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->received, 120U);
+  EXPECT_EQ(back->missing, 3U);
+  EXPECT_EQ(back->duplicated, 1U);
+  EXPECT_EQ(back->reordered, 2U);
+  EXPECT_FALSE(parseLossFigures("(not recorded)").has_value());
+  EXPECT_FALSE(parseLossFigures("received 1 lost 2").has_value());
+}
+
 }  // namespace
 }  // namespace quad::bag

@@ -6,7 +6,10 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <set>
+#include <string>
+#include <string_view>
 
 namespace quad::bag {
 
@@ -17,6 +20,12 @@ struct LossFigures {
   std::uint64_t reordered = 0;   ///< numbers that came after a later one
   LossFigures& operator+=(const LossFigures& o);
 };
+
+/// "received 120 missing 0 duplicated 0 reordered 0 writers 1": a recording's quad.loss
+/// metadata value for one topic.
+std::string toText(const LossFigures& f, std::size_t writers);
+/// The figures of such a text; nothing when it is not one.
+std::optional<LossFigures> parseLossFigures(std::string_view text);
 
 class SequenceAudit {
 public:

@@ -36,12 +36,6 @@ struct Recorded {
   bag::SequenceAudit audit;
 };
 
-std::string figuresText(const bag::LossFigures& f)
-{
-  return fmt::format("received {} missing {} duplicated {} reordered {}", f.received, f.missing, f.duplicated,
-                     f.reordered);
-}
-
 /// The recording's file, or files when it is split by size or duration: each part is a
 /// whole MCAP file with every schema and channel (same ids in every part).
 class RecordingFiles {
@@ -270,7 +264,7 @@ int record(const RecordOptions& options)
   // Loss figures of the recording, for quad bag info.
   std::map<std::string, std::string> loss;
   for (const auto& [topic, r] : recorded) {
-    loss[topic] = figuresText(r.audit.figures()) + fmt::format(" writers {}", r.audit.writers());
+    loss[topic] = bag::toText(r.audit.figures(), r.audit.writers());
   }
   try {
     files->finish(loss);

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <yaml-cpp/yaml.h>
@@ -74,6 +75,13 @@ Json scalar(const YAML::Node& node)
   if (auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), d);
       ec == std::errc{} && p == s.data() + s.size() && std::isfinite(d)) {
     return d;
+  }
+  // YAML's spellings of the non-finite numbers (what bad-input tests publish).
+  if (s == ".nan" || s == ".NaN" || s == ".NAN") {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  if (s == ".inf" || s == ".Inf" || s == ".INF" || s == "+.inf" || s == "-.inf" || s == "-.Inf" || s == "-.INF") {
+    return s[0] == '-' ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
   }
   return s;
 }

@@ -14,7 +14,8 @@ namespace quad::tools {
 std::string toYaml(const nlohmann::ordered_json& value);
 
 /// Parses YAML text ("{kind: COMMAND_HOLD, altitude: 2}") into JSON. Plain scalars become
-/// booleans, integers or numbers where they read as one; quoted scalars stay strings.
+/// booleans, integers or numbers where they read as one (.nan, .inf and -.inf included);
+/// quoted scalars stay strings.
 /// Throws std::invalid_argument with the YAML error's line and column.
 nlohmann::ordered_json yamlToJson(std::string_view text);
 

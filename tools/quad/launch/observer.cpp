@@ -14,6 +14,12 @@ namespace quad::launch {
 
 namespace topics = dds::topics;
 
+namespace {
+// The clock and the states come from the plant on separate topics: a true state may be a
+// step or two ahead of the newest clock taken.
+constexpr std::int64_t kClockToleranceNs = 500'000'000;
+}  // namespace
+
 struct Observer::Endpoints {
   explicit Endpoints(dds::Participant& p)
       : goal(p, topics::kGoal),
@@ -21,7 +27,8 @@ struct Observer::Endpoints {
         state(p, topics::kSimState),
         status(p, topics::kControlStatus),
         path(p, topics::kPath),
-        events(p, topics::kSimEvents)
+        events(p, topics::kSimEvents),
+        clock(p, topics::kSimClock)
   {
   }
   dds::Publisher<msg::Goal> goal;
@@ -30,6 +37,7 @@ struct Observer::Endpoints {
   dds::Subscriber<msg::ControlStatus> status;
   dds::Subscriber<msg::Path> path;
   dds::Subscriber<msg::SimEvent> events;
+  dds::Subscriber<msg::SimClock> clock;
 };
 
 Observer::Observer(dds::ParticipantOptions options) : participant_(std::move(options)) {}
@@ -63,30 +71,57 @@ void Observer::startMission(const Mission& mission, const plant::World& world, d
 }
 
 namespace {
-/// "MISSION" for CONTROL_MISSION: the enumerator's name from the IDL, without its prefix.
-std::string modeName(msg::ControlMode mode)
+const introspection::EnumDef* controlModes()
 {
   static const introspection::EnumDef* modes = introspection::quadSchema().findEnum("quad::msg::ControlMode");
-  const auto i = static_cast<std::size_t>(mode);
-  if (modes == nullptr || i >= modes->enumerators.size()) {
-    return "MODE_" + std::to_string(i);
-  }
-  const std::string& name = modes->enumerators[i];
+  return modes;
+}
+std::string withoutPrefix(const std::string& name)
+{
   return name.starts_with("CONTROL_") ? name.substr(8) : name;
 }
 }  // namespace
+
+std::string controlModeName(int mode)
+{
+  const auto* modes = controlModes();
+  const auto i = static_cast<std::size_t>(mode);
+  if (modes == nullptr || mode < 0 || i >= modes->enumerators.size()) {
+    return "MODE_" + std::to_string(mode);
+  }
+  return withoutPrefix(modes->enumerators[i]);
+}
+
+std::vector<std::string> controlModeNames()
+{
+  std::vector<std::string> out;
+  if (const auto* modes = controlModes()) {
+    for (const auto& e : modes->enumerators) {
+      out.push_back(withoutPrefix(e));
+    }
+  }
+  return out;
+}
 
 void Observer::update()
 {
   if (!tracker_) {
     return;
   }
+  while (const auto c = endpoints_->clock.take()) {
+    clock_ns_ = std::max(clock_ns_, c->sim_ns());
+  }
   for (const auto& s : endpoints_->state.takeAll()) {
+    // Only states the sim clock vouches for: one stamped ahead of it (a bad input) would end
+    // the mission by its timeout.
+    if (s.header().stamp_ns() > clock_ns_ + kClockToleranceNs || !dds::toVector(s.p_W()).allFinite()) {
+      continue;
+    }
     tracker_->onState(common::toSeconds(s.header().stamp_ns()), dds::toVector(s.p_W()));
     last_state_ns_ = common::steadyTimeNs();
   }
   for (const auto& s : endpoints_->status.takeAll()) {
-    tracker_->onMode(common::toSeconds(s.header().stamp_ns()), modeName(s.mode()));
+    tracker_->onMode(common::toSeconds(s.header().stamp_ns()), controlModeName(static_cast<int>(s.mode())));
   }
   for (const auto& p : endpoints_->path.takeAll()) {
     tracker_->onPath(p.version());

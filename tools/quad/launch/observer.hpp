@@ -13,6 +13,11 @@
 
 namespace quad::launch {
 
+/// "HOVER" for CONTROL_HOVER: a ControlMode's name from the IDL, without its prefix.
+std::string controlModeName(int mode);
+/// Every ControlMode's name, in that form.
+std::vector<std::string> controlModeNames();
+
 class Observer {
 public:
   explicit Observer(dds::ParticipantOptions options);
@@ -29,6 +34,8 @@ public:
   MissionTracker* mission() { return tracker_.get(); }
   /// Wall time [ns, steady] of the last vehicle state; 0 before the first.
   std::int64_t lastStateNs() const { return last_state_ns_; }
+  /// For tools that act on the run through the launcher's participant (quad fault).
+  dds::Participant& participant() { return participant_; }
 
 private:
   struct Endpoints;
@@ -36,6 +43,7 @@ private:
   std::unique_ptr<Endpoints> endpoints_;
   std::unique_ptr<MissionTracker> tracker_;
   std::int64_t last_state_ns_ = 0;
+  std::int64_t clock_ns_ = 0;  // the newest sim time the plant's clock told
 };
 
 }  // namespace quad::launch

@@ -70,7 +70,7 @@ MappingNode::MappingNode(MappingNodeConfig config, dds::ParticipantOptions optio
 void MappingNode::integrate(const msg::PointCloud& cloud)
 {
   counters().samples_in++;
-  ++frames_taken_;
+  frames_taken_ = cloud.frame() != 0 ? std::max(frames_taken_, cloud.frame()) : frames_taken_ + 1;
   const std::string frame = cloud.frame_id().to_string();
   const geometry::Quaternion q_WS = dds::toQuaternion(cloud.sensor_q_WS());
   std::string problem;
@@ -182,18 +182,13 @@ void MappingNode::onWake()
     }
   }
   auto clouds = depth_.takeAll();
-  // A cloud resent by a lockstep plant waiting for us is one we have: known by its stamp.
-  std::erase_if(clouds, [this](const msg::PointCloud& c) {
-    if (c.header().stamp_ns() <= last_cloud_ns_) {
-      return true;
-    }
-    last_cloud_ns_ = c.header().stamp_ns();
-    return false;
-  });
+  // A cloud resent by a lockstep plant waiting for us is one we have: known by its frame.
+  std::erase_if(clouds, [this](const msg::PointCloud& c) { return c.frame() != 0 && c.frame() <= frames_taken_; });
   if (!lockstep() && clouds.size() > 1) {
-    // Behind in real time: the newest cloud carries the freshest view; count the others.
+    // Behind in real time: the newest cloud carries the freshest view; count the others
+    // (integrate() then accounts for every frame up to the newest's number, those the
+    // reader's history dropped while we were behind included).
     skipped_ += clouds.size() - 1;
-    frames_taken_ += clouds.size() - 1;
     spdlog::debug("mapping: skipped {} older clouds", clouds.size() - 1);
     clouds.erase(clouds.begin(), clouds.end() - 1);
   }

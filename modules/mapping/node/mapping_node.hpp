@@ -52,7 +52,6 @@ private:
 
   std::int64_t clock_ns_ = -1;             // newest clock time
   std::uint64_t clock_frames_ = 0;         // depth frames the plant had published by then
-  std::int64_t last_cloud_ns_ = -1;        // stamp of the newest cloud taken
   std::uint64_t frames_taken_ = 0;         // depth frames dealt with (integrated, refused or skipped)
   std::int64_t reported_ns_ = -1;
   std::uint64_t update_seq_ = 0;

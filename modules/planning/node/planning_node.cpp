@@ -60,7 +60,9 @@ common::ParamSchema planningSchema()
       .addBool("unknown_traversable", true, "plan through unknown space")
       .addDouble("replan_period", 0.2, 0.01, 60.0, "s", "sim time between replans")
       .addDouble("republish_period", 0.5, 0.01, 60.0, "s", "sim time between repeats of an unchanged path")
-      .addInt("max_expansions", 200000, 1, 100000000, "", "replan budget per cycle");
+      .addInt("max_expansions", 200000, 1, 100000000, "", "replan budget per cycle")
+      .addInt("map_frames_behind", 5, 1, 1000, "",
+              "depth frames the map may lag the camera before paths stop (a stalled mapper)");
   return s;
 }
 
@@ -94,6 +96,7 @@ PlanningNodeConfig planningConfigFrom(const common::Params& p)
   c.replan_period_s = p.getDouble("replan_period");
   c.republish_period_s = p.getDouble("republish_period");
   c.max_expansions = static_cast<std::uint64_t>(p.getInt("max_expansions"));
+  c.map_frames_behind = static_cast<std::uint64_t>(p.getInt("map_frames_behind"));
   return c;
 }
 
@@ -278,7 +281,19 @@ void PlanningNode::onWake()
   // A planner that joined late or missed an update plans nothing until a snapshot fills the
   // gap: a path through what it does not know the mapper saw could hit it. Without paths the
   // controller holds position.
-  const bool map_whole = !follower_.gapOpen() && !(follower_.appliedSeq() == 0 && clock_frames_ > 0);
+  // A mapper that stopped (killed, stopped, starved) leaves the map behind what the camera
+  // saw: flying it would meet what only the camera knows.
+  const bool map_whole = !follower_.gapOpen() && !(follower_.appliedSeq() == 0 && clock_frames_ > 0) &&
+                         clock_frames_ <= frames_applied_ + config_.map_frames_behind;
+  if (map_whole != map_whole_) {
+    map_whole_ = map_whole;
+    if (map_whole) {
+      spdlog::info("planning: the map is whole again; planning");
+    } else {
+      spdlog::warn("planning: the map lags the camera ({} of {} depth frames{}): no paths until it catches up",
+                   frames_applied_, clock_frames_, follower_.gapOpen() ? ", a gap in the updates" : "");
+    }
+  }
   if (goal_id_ && position_ && caught_up && map_whole && (goal_changed_ || now_ns_ >= next_replan_ns_)) {
     replan(now_ns_);
     goal_changed_ = false;

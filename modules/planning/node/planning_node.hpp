@@ -25,6 +25,7 @@ struct PlanningNodeConfig {
   double replan_period_s = 0.2;      ///< [s] of sim time between replans
   double republish_period_s = 0.5;   ///< [s] of sim time between repeats of an unchanged path
   std::uint64_t max_expansions = 200000;
+  std::uint64_t map_frames_behind = 5;  ///< depth frames the map may lag the camera before paths stop
 };
 
 common::ParamSchema planningSchema();
@@ -59,7 +60,8 @@ private:
   std::uint64_t frames_applied_ = 0;    // depth clouds the applied updates account for
   std::int64_t clock_ns_ = 0;           // lockstep: the sim time the clock is at
   std::uint64_t clock_frames_ = 0;      // lockstep: depth clouds published up to then
-  bool clock_state_sent_ = true;        // lockstep: a state of the clock's time was published
+  bool clock_state_sent_ = true;
+  bool map_whole_ = true;               // last said in the log        // lockstep: a state of the clock's time was published
   std::int64_t reported_ns_ = -1;
   bool goal_changed_ = false;
   std::optional<std::uint32_t> goal_id_;

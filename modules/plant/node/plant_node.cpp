@@ -135,8 +135,8 @@ void PlantNode::publish(const StepOutputs& out)
   // Depth first: the clock that follows counts it.
   if (out.depth) {
     last_depth_ = toMessage(*out.depth, config_.simulation.depth.max_range);
+    last_depth_->frame(++depth_frames_);
     depth_.write(*last_depth_);
-    ++depth_frames_;
     counters().samples_out++;
   }
   if (out.state) {

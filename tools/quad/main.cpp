@@ -6,6 +6,7 @@
 
 #include <iostream>
 
+#include "fault_command.hpp"
 #include "launch_command.hpp"
 #include "bag_commands.hpp"
 #include "so3_command.hpp"
@@ -45,6 +46,17 @@ int main(int argc, char** argv)
       ->check(CLI::NonNegativeNumber);
   launch->add_flag("-q,--quiet", launch_options.quiet, "Modules' output to their log files only");
   launch->add_flag("--check", launch_options.check, "Validate the manifest and exit");
+
+  quad::tools::FaultOptions fault_options;
+  auto* fault = app.add_subcommand("fault", "Run a fault-injection scenario: launch, break the stack on its timeline, check the reactions");
+  fault->add_option("scenario", fault_options.scenario, "Scenario, e.g. tests/scenarios/kill_planning.yaml")->required();
+  fault->add_option("--domain", fault_options.domain, "DDS domain id (default: the manifest's, else $QUAD_DOMAIN_ID, else 0)")
+      ->check(CLI::Range(0, 232));
+  fault->add_option("--log-dir", fault_options.log_dir, "The run's folder (default: log/fault-<name>-<time>-<pid>)");
+  fault->add_option("--wall-timeout", fault_options.wall_timeout_s, "Stop and fail after this many seconds")
+      ->check(CLI::NonNegativeNumber);
+  fault->add_flag("-q,--quiet", fault_options.quiet, "Modules' output to their log files only");
+  fault->add_flag("--check", fault_options.check, "Validate the scenario and its manifest and exit");
 
   quad::tools::RecordOptions record_options;
   auto* record = app.add_subcommand("record", "Record topic traffic to an MCAP file (Ctrl-C stops)");
@@ -200,6 +212,9 @@ int main(int argc, char** argv)
   try {
     if (launch->parsed()) {
       return quad::tools::launch(launch_options);
+    }
+    if (fault->parsed()) {
+      return quad::tools::fault(fault_options);
     }
     if (record->parsed()) {
       return quad::tools::record(record_options);

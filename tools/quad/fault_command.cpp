@@ -1,0 +1,492 @@
+#include "fault_command.hpp"
+
+#include <signal.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "connection.hpp"
+#include "fault/judge.hpp"
+#include "fault/scenario.hpp"
+#include "launch_run.hpp"
+#include "conversions.hpp"  // the plant node's: plant::toCommand
+#include "quad/bag/audit.hpp"
+#include "quad/bag/mcap.hpp"
+#include "quad/common/params.hpp"
+#include "quad/common/time.hpp"
+#include "quad/dds/geometry_messages.hpp"
+#include "quad/dds/node.hpp"
+#include "quad/dds/publisher.hpp"
+#include "quad/dds/raw_type.hpp"
+#include "quad/dds/subscriber.hpp"
+#include "quad/dds/topics.hpp"
+
+namespace quad::tools {
+
+namespace fs = std::filesystem;
+namespace topics = dds::topics;
+using fault::Action;
+using fault::Judge;
+using fault::Scenario;
+
+namespace {
+
+constexpr double kPlantAckTimeoutS = 5.0;  // wall seconds for the plant to acknowledge a fault
+constexpr int kDeepHistory = 1000;         // samples a reader keeps between the run's ticks
+
+/// The reader QoS of `qos_class` with a history deep enough that no sample is replaced
+/// before the next tick takes it.
+eprosima::fastdds::dds::DataReaderQos deepReader(dds::Participant& p, std::string_view qos_class)
+{
+  auto qos = p.readerQos(qos_class);
+  qos.history().kind = eprosima::fastdds::dds::KEEP_LAST_HISTORY_QOS;
+  qos.history().depth = kDeepHistory;
+  return qos;
+}
+
+/// Applies a scenario's steps to a LaunchRun and feeds the Judge with what the stack does.
+class FaultDriver : public RunExtension {
+public:
+  FaultDriver(const Scenario& scenario, fs::path recording)
+      : scenario_(scenario), judge_(scenario), recording_(std::move(recording))
+  {
+  }
+
+  void tick(LaunchRun& run) override
+  {
+    if (!endpoints_) {
+      setUp(run);
+    }
+    const std::int64_t now = common::steadyTimeNs();
+    takeSamples(run, now);
+    for (const std::size_t step : judge_.due(t_)) {
+      apply(run, step, now);
+    }
+    publishDue(now);
+    checkPlantAcks(now);
+    judge_.clock(t_, now);
+  }
+
+  bool done() const override { return scenario_.end_s && t_ >= *scenario_.end_s && judge_.settled(); }
+
+  int finish(LaunchRun& run, int /*code*/) override
+  {
+    // The endpoints live on the run's participant: gone before it is.
+    jobs_.clear();
+    injector_.reset();
+    endpoints_.reset();
+    fault::RunFacts facts;
+    if (const auto& s = run.summary()) {
+      facts.mission_known = true;
+      facts.mission_success = s->success;
+      facts.mission_outcome = s->outcome;
+      facts.collisions = s->collisions;
+    }
+    facts.run_failure = run.failure();
+    facts.actuator_commands = actuator_commands_;
+    facts.nonfinite_actuator_commands = nonfinite_actuators_;
+    readRecording(facts, run.observer().participant());
+    const auto rows = judge_.finish(facts);
+    const std::string table = fault::toTable(scenario_.name, rows);
+    std::printf("\n%s", table.c_str());
+    std::ofstream(run.logDir() / "fault_report.txt") << table;
+    std::fflush(stdout);
+    return fault::passed(rows) ? 0 : 1;
+  }
+
+private:
+  struct Endpoints {
+    explicit Endpoints(dds::Participant& p)
+        : command(p, topics::kFault),
+          events(p, topics::kFaultEvents),
+          state(p, topics::kSimState),
+          clock(p, topics::kSimClock),
+          status(p, topics::kControlStatus, nullptr, deepReader(p, topics::kControlStatus.info.qos_profile)),
+          actuators(p, topics::kActuators, nullptr, deepReader(p, topics::kActuators.info.qos_profile)),
+          heartbeat(p, topics::kHeartbeat, nullptr, deepReader(p, topics::kHeartbeat.info.qos_profile)),
+          sim_events(p, topics::kSimEvents, nullptr, deepReader(p, topics::kSimEvents.info.qos_profile))
+    {
+    }
+    dds::Publisher<msg::FaultCommand> command;
+    dds::Publisher<msg::SimEvent> events;
+    dds::Subscriber<msg::VehicleState> state;
+    dds::Subscriber<msg::SimClock> clock;
+    dds::Subscriber<msg::ControlStatus> status;
+    dds::Subscriber<msg::ActuatorCommand> actuators;
+    dds::Subscriber<msg::Heartbeat> heartbeat;
+    dds::Subscriber<msg::SimEvent> sim_events;
+  };
+  struct PublishJob {
+    dds::TopicInfo info;
+    nlohmann::ordered_json values;
+    std::unique_ptr<dds::RawPublisher> writer;
+    bool active = false;
+    int sent = 0;
+    std::int64_t next_ns = 0;
+  };
+  struct ModuleSeen {
+    int pid = 0;
+    std::uint64_t errors = 0;
+  };
+
+  void setUp(LaunchRun& run)
+  {
+    endpoints_ = std::make_unique<Endpoints>(run.observer().participant());
+    // Bad inputs go out raw, from a participant of their own (one participant cannot hold
+    // typed and raw endpoints of a type). Their writers exist from the start, so readers
+    // have matched them when the step comes (a volatile reader drops what an unmatched
+    // writer sent).
+    for (std::size_t i = 0; i < scenario_.steps.size(); ++i) {
+      const Action& a = scenario_.steps[i].action;
+      if (a.kind != Action::Kind::kPublish) {
+        continue;
+      }
+      if (!injector_) {
+        injector_ = std::make_unique<dds::Participant>(dds::optionsFromEnvironment("quad_fault"));
+      }
+      PublishJob job{requireTopic(a.topic), sampleValues(requireTopic(a.topic), a.values), nullptr};
+      job.writer = std::make_unique<dds::RawPublisher>(*injector_, job.info);
+      jobs_.emplace(i, std::move(job));
+    }
+    for (const auto& m : run.manifest().modules) {
+      kinds_.emplace(m.name, m.kind);
+    }
+  }
+
+  /// The manifest's module a heartbeat comes from: the only one of its kind, else by pid.
+  std::string moduleOf(LaunchRun& run, const msg::Heartbeat& hb) const
+  {
+    std::string found;
+    int candidates = 0;
+    for (const auto& [name, kind] : kinds_) {
+      if (kind == hb.module_name().to_string()) {
+        ++candidates;
+        found = name;
+      }
+    }
+    if (candidates <= 1) {
+      return found;
+    }
+    for (const auto& [name, kind] : kinds_) {
+      if (kind == hb.module_name().to_string() && run.pid(name) == hb.pid()) {
+        return name;
+      }
+    }
+    return "";
+  }
+
+  void takeSamples(LaunchRun& run, std::int64_t now)
+  {
+    // Sim time is the plant's clock: a state could be a bad input stamped anywhere.
+    while (const auto c = endpoints_->clock.take()) {
+      t_ = std::max(t_, common::toSeconds(c->sim_ns()));
+    }
+    for (const auto& s : endpoints_->state.takeAll()) {
+      if (std::abs(common::toSeconds(s.header().stamp_ns()) - t_) < 0.5) {
+        p_W_ = s.p_W();
+      }
+    }
+    for (const auto& s : endpoints_->status.takeAll()) {
+      judge_.mode(common::toSeconds(s.header().stamp_ns()), launch::controlModeName(static_cast<int>(s.mode())));
+    }
+    for (const auto& a : endpoints_->actuators.takeAll()) {
+      ++actuator_commands_;
+      for (const double w : a.rotor_speed()) {
+        if (!std::isfinite(w)) {
+          ++nonfinite_actuators_;
+          break;
+        }
+      }
+    }
+    std::uint64_t writer = 0;
+    while (const auto hb = endpoints_->heartbeat.take(&writer)) {
+      const std::string name = moduleOf(run, *hb);
+      if (name.empty()) {
+        continue;
+      }
+      writers_[writer] = name;
+      auto [it, first] = seen_.try_emplace(name, ModuleSeen{hb->pid(), hb->errors()});
+      if (!first && it->second.pid != hb->pid()) {
+        judge_.back(name, now);
+        it->second = {hb->pid(), hb->errors()};
+      } else if (hb->errors() > it->second.errors) {
+        judge_.rejected(name, now);
+        it->second.errors = hb->errors();
+      }
+    }
+    for (const auto& change : endpoints_->heartbeat.takeLivelinessChanges()) {
+      const auto it = writers_.find(change.writer);
+      if (!change.alive && it != writers_.end()) {
+        judge_.lost(it->second, change.steady_ns);
+      }
+    }
+    for (const auto& e : endpoints_->sim_events.takeAll()) {
+      const auto it = plant_acks_.find(static_cast<std::uint32_t>(e.subject_id()));
+      if (it == plant_acks_.end()) {
+        continue;
+      }
+      if (e.kind() == msg::SIM_EVENT_FAULT_APPLIED) {
+        judge_.applied(it->second.step, common::toSeconds(e.header().stamp_ns()), now, "acknowledged by the plant");
+        plant_acks_.erase(it);
+      } else if (e.kind() == msg::SIM_EVENT_FAULT_REJECTED) {
+        judge_.refused(it->second.step, e.detail().to_string());
+        plant_acks_.erase(it);
+      }
+    }
+  }
+
+  void apply(LaunchRun& run, std::size_t step, std::int64_t now)
+  {
+    const Action& a = scenario_.steps[step].action;
+    run.say(fmt::format("fault step {} at t = {:.2f} s: {}", step + 1, t_, a.describe()));
+    const auto signal = [&](int sig, bool exit_expected, const char* what) {
+      const auto pid = run.pid(a.module);
+      if (!run.signalModule(a.module, sig, exit_expected)) {
+        refuse(step, a.module + " is not running");
+        return;
+      }
+      acknowledge(step, now, fmt::format("{} to pid {}", what, *pid));
+    };
+    switch (a.kind) {
+      case Action::Kind::kKill:
+        signal(SIGKILL, true, "SIGKILL");
+        break;
+      case Action::Kind::kPause:
+        signal(SIGSTOP, false, "SIGSTOP");
+        break;
+      case Action::Kind::kResume:
+        signal(SIGCONT, false, "SIGCONT");
+        break;
+      case Action::Kind::kRestart:
+        run.restartModule(a.module);
+        acknowledge(step, common::steadyTimeNs(), fmt::format("started again as pid {}", *run.pid(a.module)));
+        break;
+      case Action::Kind::kPlant: {
+        msg::FaultCommand c = plant::toCommand(a.plant);
+        c.header().stamp_ns(common::toNanoseconds(t_));
+        if (!endpoints_->command.write(c)) {
+          refuse(step, "the fault command could not be written");
+          break;
+        }
+        plant_acks_[a.plant.id] = {step, now + common::toNanoseconds(kPlantAckTimeoutS)};
+        break;
+      }
+      case Action::Kind::kPublish: {
+        PublishJob& job = jobs_.at(step);
+        job.active = true;
+        job.next_ns = now;
+        break;
+      }
+    }
+  }
+
+  void publishDue(std::int64_t now)
+  {
+    for (auto& [step, job] : jobs_) {
+      const Action& a = scenario_.steps[step].action;
+      while (job.active && job.sent < a.count && job.next_ns <= now) {
+        ++job.sent;
+        dds::RawSample raw = encodeSample(job.info, job.values, common::toNanoseconds(t_),
+                                          static_cast<std::uint64_t>(job.sent), injector_->options().vehicle_id);
+        if (!job.writer->write(raw)) {
+          refuse(step, fmt::format("sample {} could not be written", job.sent));
+          job.active = false;
+          break;
+        }
+        if (job.sent == 1) {
+          acknowledge(step, now, fmt::format("sample 1 of {} written, {} reader(s)", a.count, job.writer->matchedReaders()));
+        }
+        job.next_ns += common::toNanoseconds(1.0 / a.rate_hz);
+      }
+    }
+  }
+
+  void checkPlantAcks(std::int64_t now)
+  {
+    for (auto it = plant_acks_.begin(); it != plant_acks_.end();) {
+      if (now > it->second.deadline_ns) {
+        refuse(it->second.step, fmt::format("no acknowledgement from the plant within {:.0f} s", kPlantAckTimeoutS));
+        it = plant_acks_.erase(it);
+      } else {
+        ++it;
+      }
+    }
+  }
+
+  /// The fault took effect: tell the judge, and the recording (quad/system/fault_events).
+  void acknowledge(std::size_t step, std::int64_t wall_ns, const std::string& detail)
+  {
+    judge_.applied(step, t_, wall_ns, detail);
+    event(step, msg::SIM_EVENT_FAULT_APPLIED, detail);
+  }
+
+  void refuse(std::size_t step, const std::string& why)
+  {
+    judge_.refused(step, why);
+    event(step, msg::SIM_EVENT_FAULT_REJECTED, why);
+  }
+
+  void event(std::size_t step, msg::SimEventKind kind, const std::string& detail)
+  {
+    msg::SimEvent e;
+    e.header().stamp_ns(common::toNanoseconds(t_));
+    e.kind(kind);
+    e.p_W(p_W_);
+    e.subject_id(static_cast<std::int64_t>(step + 1));
+    e.detail(fmt::format("step {}: {}: {}", step + 1, scenario_.steps[step].action.describe(), detail).substr(0, 256));
+    endpoints_->events.write(e);
+  }
+
+  /// Loss figures of the reliable topics, from the recorder's own audit in the file. A
+  /// topic whose writers keep only their newest sample (KEEP_LAST 1: the clock, latched
+  /// state, actuator commands) promises that sample, not every one: it is not judged.
+  void readRecording(fault::RunFacts& facts, dds::Participant& participant) const
+  {
+    if (!scenario_.outcome.zero_loss) {
+      return;
+    }
+    try {
+      const bag::McapContents c = bag::readMcap(recording_, true);
+      std::map<std::string, std::string> loss;
+      for (const auto& md : c.metadata) {
+        if (md.name == "quad.loss") {
+          loss = md.values;
+        }
+      }
+      if (loss.empty()) {
+        facts.recording_problem = recording_.string() + ": no loss figures (the recorder did not finish)";
+        return;
+      }
+      for (const auto& ch : c.channels) {
+        const auto reliable = ch.metadata.find("reliable");
+        if (reliable == ch.metadata.end() || reliable->second != "true") {
+          continue;
+        }
+        const auto contract = topics::find(ch.topic);
+        if (contract) {
+          const auto history = participant.writerQos(contract->qos_profile).history();
+          if (history.kind == eprosima::fastdds::dds::KEEP_LAST_HISTORY_QOS && history.depth == 1) {
+            ++facts.latest_only_topics;
+            continue;
+          }
+        }
+        const auto text = loss.find(ch.topic);
+        const auto figures = text == loss.end() ? std::nullopt : bag::parseLossFigures(text->second);
+        if (!figures) {
+          facts.recording_problem = recording_.string() + ": no loss figures for " + ch.topic;
+          return;
+        }
+        facts.reliable_loss[ch.topic] = figures->missing + figures->duplicated + figures->reordered;
+      }
+    } catch (const std::exception& e) {
+      facts.recording_problem = e.what();
+    }
+  }
+
+  struct PlantAck {
+    std::size_t step;
+    std::int64_t deadline_ns;
+  };
+
+  const Scenario& scenario_;
+  Judge judge_;
+  fs::path recording_;
+  std::unique_ptr<Endpoints> endpoints_;
+  std::unique_ptr<dds::Participant> injector_;
+  std::map<std::size_t, PublishJob> jobs_;
+  std::map<std::string, std::string> kinds_;     // manifest module name -> kind
+  std::map<std::uint64_t, std::string> writers_; // heartbeat writer -> module
+  std::map<std::string, ModuleSeen> seen_;
+  std::map<std::uint32_t, PlantAck> plant_acks_;
+  double t_ = 0.0;
+  msg::Vector3 p_W_;
+  std::uint64_t actuator_commands_ = 0;
+  std::uint64_t nonfinite_actuators_ = 0;
+};
+
+fault::ScenarioLookup scenarioLookup()
+{
+  fault::ScenarioLookup lookup;
+  lookup.modes = launch::controlModeNames();
+  lookup.check_sample = [](const std::string& topic, const std::string& values) -> std::string {
+    try {
+      sampleValues(requireTopic(topic), values);
+      return "";
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+  };
+  return lookup;
+}
+
+}  // namespace
+
+int fault(const FaultOptions& options)
+{
+  dds::SignalWatcher signals;  // before any thread exists
+  signals.onSignal([](int s) { LaunchRun::received_signal.store(s); });
+
+  Scenario scenario;
+  try {
+    scenario = fault::loadScenario(options.scenario, scenarioLookup());
+  } catch (const common::ConfigError& e) {
+    for (const auto& p : e.problems()) {
+      std::fprintf(stderr, "%s\n", p.c_str());
+    }
+    std::fprintf(stderr, "fault: refusing to run an invalid scenario\n");
+    return 2;
+  }
+  LaunchOptions lo;
+  lo.manifest = scenario.manifest.string();
+  if (scenario.world) {
+    lo.world = scenario.world->string();
+  }
+  lo.realtime = scenario.mode == "realtime";
+  lo.lockstep = scenario.mode == "lockstep";
+  lo.domain = options.domain;
+  lo.wall_timeout_s = options.wall_timeout_s;
+  lo.quiet = options.quiet;
+  const auto manifest = loadRunManifest(lo);
+  if (!manifest) {
+    std::fprintf(stderr, "fault: %s: refusing to run with an invalid manifest\n", scenario.file.string().c_str());
+    return 2;
+  }
+  std::vector<std::string> names;
+  std::vector<std::string> kinds;
+  for (const auto& m : manifest->modules) {
+    names.push_back(m.name);
+    kinds.push_back(m.kind);
+  }
+  auto problems = fault::checkAgainstModules(scenario, names, kinds);
+  if (!manifest->mission.enabled && !scenario.end_s) {
+    problems.push_back(common::configProblem(scenario.file.string(), "end_at", std::string("(missing)"),
+                                             manifest->file.filename().string() +
+                                                 " flies no mission, so the scenario must say when it ends"));
+  }
+  if (!problems.empty()) {
+    for (const auto& p : problems) {
+      std::fprintf(stderr, "%s\n", p.c_str());
+    }
+    std::fprintf(stderr, "fault: refusing to run an invalid scenario\n");
+    return 2;
+  }
+  if (options.check) {
+    std::printf("%s: ok (%zu steps, manifest %s)\n", scenario.file.string().c_str(), scenario.steps.size(),
+                manifest->file.string().c_str());
+    return 0;
+  }
+  const fs::path dir =
+      options.log_dir ? fs::path(*options.log_dir) : fs::path("log") / runFolderName("fault-" + scenario.name);
+  lo.log_dir = dir.string();
+  const fs::path recording = dir / "recording.mcap";
+  lo.record = recording.string();
+  FaultDriver driver(scenario, recording);
+  return runManifest(*manifest, lo, &driver);
+}
+
+}  // namespace quad::tools

@@ -10,9 +10,6 @@ namespace quad::control {
 
 namespace {
 constexpr std::int64_t kTickNs = 20'000'000;  // watch for a silent plant at 50 Hz
-// A state stamped this far past the sim clock is refused (the clock and the state come from
-// the plant on separate topics, so a true state may be a step or two ahead of the clock seen).
-constexpr std::int64_t kFutureToleranceNs = 500'000'000;
 }
 
 ControlNode::ControlNode(ControlNodeConfig config, dds::ParticipantOptions options)
@@ -128,7 +125,7 @@ void ControlNode::onWake()
   for (const auto& s : state_.takeAll()) {
     counters().samples_in++;
     const double t = common::toSeconds(s.header().stamp_ns());
-    if (clock_seen_ && s.header().stamp_ns() > clock_ns_ + kFutureToleranceNs) {
+    if (clock_seen_ && s.header().stamp_ns() > clock_ns_ + dds::topics::kStateAheadOfClockNs) {
       // Accepted, it would make every true state after it look out of order.
       counters().errors++;
       fc_.countRejected();

@@ -272,7 +272,18 @@ void PlanningNode::onWake()
     spdlog::info("planning: goal {} at ({}, {}, {})", g->goal_id(), p.x(), p.y(), p.z());
   }
   for (const auto& s : state_.takeAll()) {
-    position_ = dds::toVector(s.p_W());
+    // The sim time and the start of every replan: a state stamped past the clock, older than
+    // the last, or not finite is a bad input (a time an hour ahead stopped every replan).
+    const Vector3 p = dds::toVector(s.p_W());
+    if (!p.allFinite() || s.header().stamp_ns() < now_ns_ ||
+        (clock_ns_ > 0 && s.header().stamp_ns() > clock_ns_ + dds::topics::kStateAheadOfClockNs)) {
+      counters().errors++;
+      spdlog::warn("quad/sim/state: sample seq {} rejected: position not finite, or stamp {:.3f} s out of order or "
+                   "past the sim clock ({:.3f} s)",
+                   s.header().seq(), common::toSeconds(s.header().stamp_ns()), common::toSeconds(clock_ns_));
+      continue;
+    }
+    position_ = p;
     now_ns_ = s.header().stamp_ns();
   }
   // In lockstep a replan sees every depth cloud published up to its time, so that runs

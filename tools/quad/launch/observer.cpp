@@ -14,12 +14,6 @@ namespace quad::launch {
 
 namespace topics = dds::topics;
 
-namespace {
-// The clock and the states come from the plant on separate topics: a true state may be a
-// step or two ahead of the newest clock taken.
-constexpr std::int64_t kClockToleranceNs = 500'000'000;
-}  // namespace
-
 struct Observer::Endpoints {
   explicit Endpoints(dds::Participant& p)
       : goal(p, topics::kGoal),
@@ -112,11 +106,13 @@ void Observer::update()
     clock_ns_ = std::max(clock_ns_, c->sim_ns());
   }
   for (const auto& s : endpoints_->state.takeAll()) {
-    // Only states the sim clock vouches for: one stamped ahead of it (a bad input) would end
-    // the mission by its timeout.
-    if (s.header().stamp_ns() > clock_ns_ + kClockToleranceNs || !dds::toVector(s.p_W()).allFinite()) {
+    // Only states the sim clock vouches for, in order: one stamped ahead of it (a bad input)
+    // would end the mission by its timeout, an old one would teleport the vehicle.
+    if (s.header().stamp_ns() > clock_ns_ + topics::kStateAheadOfClockNs || s.header().stamp_ns() < state_ns_ ||
+        !dds::toVector(s.p_W()).allFinite()) {
       continue;
     }
+    state_ns_ = s.header().stamp_ns();
     tracker_->onState(common::toSeconds(s.header().stamp_ns()), dds::toVector(s.p_W()));
     last_state_ns_ = common::steadyTimeNs();
   }

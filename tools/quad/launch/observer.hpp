@@ -44,6 +44,7 @@ private:
   std::unique_ptr<MissionTracker> tracker_;
   std::int64_t last_state_ns_ = 0;
   std::int64_t clock_ns_ = 0;  // the newest sim time the plant's clock told
+  std::int64_t state_ns_ = 0;  // stamp of the newest state taken
 };
 
 }  // namespace quad::launch

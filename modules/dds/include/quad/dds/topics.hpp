@@ -72,6 +72,11 @@ inline constexpr auto kFaultEvents = makeTopic<SimEvent>(
     "Faults the fault tool applied itself (processes, links, inputs), when they took effect");
 // clang-format on
 
+/// How far a true vehicle state may be stamped past the newest sim clock a reader took: the
+/// plant sends both each step on separate topics. A state further ahead is a bad input (taken,
+/// it would make every true state after it look out of order).
+inline constexpr std::int64_t kStateAheadOfClockNs = 500'000'000;
+
 /// Every contract, for tools that iterate over topics.
 inline constexpr std::array kAll{
     kSimClock.info, kSimState.info,  kSimImu.info,        kSimDepth.info,

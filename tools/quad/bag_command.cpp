@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "bag_commands.hpp"
+#include "quad/bag/audit.hpp"
 #include "quad/bag/mcap.hpp"
 
 namespace quad::tools {
@@ -39,12 +40,7 @@ int bagInfo(const std::string& file)
     first = first == 0 ? m.log_time : std::min(first, m.log_time);
     last = std::max(last, m.log_time);
   }
-  std::map<std::string, std::string> loss;
-  for (const auto& md : c.metadata) {
-    if (md.name == "quad.loss") {
-      loss = md.values;
-    }
-  }
+  const auto loss = bag::metadataValues(c, bag::kLossMetadata);
   const double span = static_cast<double>(last - first) * 1e-9;
   std::printf("file:      %s%s\n", file.c_str(), c.complete ? "" : " (INCOMPLETE: quad bag recover can rewrite it)");
   if (!c.complete) {

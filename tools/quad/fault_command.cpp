@@ -104,8 +104,6 @@ private:
     explicit Endpoints(dds::Participant& p)
         : command(p, topics::kFault),
           events(p, topics::kFaultEvents),
-          state(p, topics::kSimState),
-          clock(p, topics::kSimClock),
           status(p, topics::kControlStatus, nullptr, deepReader(p, topics::kControlStatus.info.qos_profile)),
           actuators(p, topics::kActuators, nullptr, deepReader(p, topics::kActuators.info.qos_profile)),
           heartbeat(p, topics::kHeartbeat, nullptr, deepReader(p, topics::kHeartbeat.info.qos_profile)),
@@ -114,8 +112,6 @@ private:
     }
     dds::Publisher<msg::FaultCommand> command;
     dds::Publisher<msg::SimEvent> events;
-    dds::Subscriber<msg::VehicleState> state;
-    dds::Subscriber<msg::SimClock> clock;
     dds::Subscriber<msg::ControlStatus> status;
     dds::Subscriber<msg::ActuatorCommand> actuators;
     dds::Subscriber<msg::Heartbeat> heartbeat;
@@ -182,15 +178,10 @@ private:
 
   void takeSamples(LaunchRun& run, std::int64_t now)
   {
-    // Sim time is the plant's clock: a state could be a bad input stamped anywhere.
-    while (const auto c = endpoints_->clock.take()) {
-      t_ = std::max(t_, common::toSeconds(c->sim_ns()));
-    }
-    for (const auto& s : endpoints_->state.takeAll()) {
-      if (std::abs(common::toSeconds(s.header().stamp_ns()) - t_) < 0.5) {
-        p_W_ = s.p_W();
-      }
-    }
+    // Sim time is the plant's clock, as the launcher's observer follows it (a state could
+    // be a bad input stamped anywhere).
+    t_ = common::toSeconds(run.observer().simTimeNs());
+    p_W_ = dds::toMessage(run.observer().position());
     for (const auto& s : endpoints_->status.takeAll()) {
       judge_.mode(common::toSeconds(s.header().stamp_ns()), launch::controlModeName(static_cast<int>(s.mode())));
     }
@@ -352,12 +343,7 @@ private:
     }
     try {
       const bag::McapContents c = bag::readMcap(recording_, true);
-      std::map<std::string, std::string> loss;
-      for (const auto& md : c.metadata) {
-        if (md.name == "quad.loss") {
-          loss = md.values;
-        }
-      }
+      const auto loss = bag::metadataValues(c, bag::kLossMetadata);
       if (loss.empty()) {
         facts.recording_problem = recording_.string() + ": no loss figures (the recorder did not finish)";
         return;

@@ -94,7 +94,7 @@ public:
 
   void finish(const std::map<std::string, std::string>& loss)
   {
-    writer_->addMetadata("quad.loss", loss);
+    writer_->addMetadata(std::string(bag::kLossMetadata), loss);
     writer_->close();
   }
 

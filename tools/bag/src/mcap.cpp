@@ -557,6 +557,17 @@ void parseRecords(const std::uint8_t* begin, std::size_t size, std::uint64_t bas
 
 }  // namespace
 
+std::map<std::string, std::string> metadataValues(const McapContents& contents, std::string_view name)
+{
+  std::map<std::string, std::string> values;
+  for (const auto& md : contents.metadata) {
+    if (md.name == name) {
+      values = md.values;
+    }
+  }
+  return values;
+}
+
 McapContents readMcap(const std::filesystem::path& path, bool tolerant)
 {
   std::ifstream in(path, std::ios::binary);

@@ -96,31 +96,28 @@ void Judge::mode(double t, const std::string& mode)
   }
 }
 
-void Judge::lost(const std::string& module, std::int64_t wall_ns)
+void Judge::meetAfter(Expectation::Kind kind, const std::string& module, std::int64_t wall_ns)
 {
   for (std::size_t i = 0; i < steps_.size(); ++i) {
     if (steps_[i].applied && wall_ns >= steps_[i].wall_ns) {
-      meet(i, Expectation::Kind::kNoticed, module, common::toSeconds(wall_ns - steps_[i].wall_ns));
+      meet(i, kind, module, common::toSeconds(wall_ns - steps_[i].wall_ns));
     }
   }
+}
+
+void Judge::lost(const std::string& module, std::int64_t wall_ns)
+{
+  meetAfter(Expectation::Kind::kNoticed, module, wall_ns);
 }
 
 void Judge::back(const std::string& module, std::int64_t wall_ns)
 {
-  for (std::size_t i = 0; i < steps_.size(); ++i) {
-    if (steps_[i].applied && wall_ns >= steps_[i].wall_ns) {
-      meet(i, Expectation::Kind::kBack, module, common::toSeconds(wall_ns - steps_[i].wall_ns));
-    }
-  }
+  meetAfter(Expectation::Kind::kBack, module, wall_ns);
 }
 
 void Judge::rejected(const std::string& module, std::int64_t wall_ns)
 {
-  for (std::size_t i = 0; i < steps_.size(); ++i) {
-    if (steps_[i].applied && wall_ns >= steps_[i].wall_ns) {
-      meet(i, Expectation::Kind::kRejected, module, common::toSeconds(wall_ns - steps_[i].wall_ns));
-    }
-  }
+  meetAfter(Expectation::Kind::kRejected, module, wall_ns);
 }
 
 bool Judge::settled() const

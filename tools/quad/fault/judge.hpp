@@ -86,6 +86,8 @@ private:
     std::vector<Pending> pending;
   };
   void meet(std::size_t step, Expectation::Kind kind, const std::string& subject, double measured_s);
+  /// A module's event at wall time `wall_ns`, measured from every step applied before it.
+  void meetAfter(Expectation::Kind kind, const std::string& module, std::int64_t wall_ns);
 
   const Scenario& scenario_;
   std::vector<StepState> steps_;

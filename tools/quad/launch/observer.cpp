@@ -14,27 +14,34 @@ namespace quad::launch {
 
 namespace topics = dds::topics;
 
+/// The sim time and the vehicle's state, followed from the start.
+struct Observer::Sim {
+  explicit Sim(dds::Participant& p) : state(p, topics::kSimState), clock(p, topics::kSimClock) {}
+  dds::Subscriber<msg::VehicleState> state;
+  dds::Subscriber<msg::SimClock> clock;
+};
+
+/// What flying a mission needs besides.
 struct Observer::Endpoints {
   explicit Endpoints(dds::Participant& p)
       : goal(p, topics::kGoal),
         command(p, topics::kVehicleCommand),
-        state(p, topics::kSimState),
         status(p, topics::kControlStatus),
         path(p, topics::kPath),
-        events(p, topics::kSimEvents),
-        clock(p, topics::kSimClock)
+        events(p, topics::kSimEvents)
   {
   }
   dds::Publisher<msg::Goal> goal;
   dds::Publisher<msg::VehicleCommand> command;
-  dds::Subscriber<msg::VehicleState> state;
   dds::Subscriber<msg::ControlStatus> status;
   dds::Subscriber<msg::Path> path;
   dds::Subscriber<msg::SimEvent> events;
-  dds::Subscriber<msg::SimClock> clock;
 };
 
-Observer::Observer(dds::ParticipantOptions options) : participant_(std::move(options)) {}
+Observer::Observer(dds::ParticipantOptions options)
+    : participant_(std::move(options)), sim_(std::make_unique<Sim>(participant_))
+{
+}
 
 Observer::~Observer() = default;
 
@@ -99,22 +106,26 @@ std::vector<std::string> controlModeNames()
 
 void Observer::update()
 {
-  if (!tracker_) {
-    return;
-  }
-  while (const auto c = endpoints_->clock.take()) {
+  while (const auto c = sim_->clock.take()) {
     clock_ns_ = std::max(clock_ns_, c->sim_ns());
   }
-  for (const auto& s : endpoints_->state.takeAll()) {
+  for (const auto& s : sim_->state.takeAll()) {
     // Only states the sim clock vouches for, in order: one stamped ahead of it (a bad input)
     // would end the mission by its timeout, an old one would teleport the vehicle.
+    const Eigen::Vector3d p = dds::toVector(s.p_W());
     if (s.header().stamp_ns() > clock_ns_ + topics::kStateAheadOfClockNs || s.header().stamp_ns() < state_ns_ ||
-        !dds::toVector(s.p_W()).allFinite()) {
+        !p.allFinite()) {
       continue;
     }
     state_ns_ = s.header().stamp_ns();
-    tracker_->onState(common::toSeconds(s.header().stamp_ns()), dds::toVector(s.p_W()));
+    position_ = p;
     last_state_ns_ = common::steadyTimeNs();
+    if (tracker_) {
+      tracker_->onState(common::toSeconds(s.header().stamp_ns()), p);
+    }
+  }
+  if (!tracker_) {
+    return;
   }
   for (const auto& s : endpoints_->status.takeAll()) {
     tracker_->onMode(common::toSeconds(s.header().stamp_ns()), controlModeName(static_cast<int>(s.mode())));

@@ -21,6 +21,9 @@ struct LossFigures {
   LossFigures& operator+=(const LossFigures& o);
 };
 
+/// The metadata record of a recording that holds its loss figures, a value per topic.
+inline constexpr std::string_view kLossMetadata = "quad.loss";
+
 /// "received 120 missing 0 duplicated 0 reordered 0 writers 1": a recording's quad.loss
 /// metadata value for one topic.
 std::string toText(const LossFigures& f, std::size_t writers);

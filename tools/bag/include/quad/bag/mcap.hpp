@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace quad::bag {
@@ -112,6 +113,9 @@ struct McapContents {
   std::string problem;     ///< why reading stopped early (tolerant mode), else empty
   std::uint64_t good_bytes = 0;  ///< bytes up to the end of the last complete record read
 };
+
+/// The values of the last metadata record called `name` (empty when there is none).
+std::map<std::string, std::string> metadataValues(const McapContents& contents, std::string_view name);
 
 /// Reads a whole file, checking the magic, every record's bounds and every chunk's CRC.
 /// Strict: throws BagError "<file>: at byte N: <what>" at the first problem. Tolerant: stops

@@ -169,13 +169,13 @@ public:
   }
   void on_sample_lost(fdds::DataReader*, const fdds::SampleLostStatus& s) override
   {
-    push(EventKind::kSampleLost, std::to_string(s.total_count) + " sample(s) lost so far");
+    push(EventKind::kSampleLost, std::to_string(s.total_count) + " sample(s) lost so far", s.total_count_change);
   }
 
 private:
-  void push(EventKind kind, std::string detail)
+  void push(EventKind kind, std::string detail, std::int64_t count = 0)
   {
-    owner_.participant_.events().push({kind, std::string(owner_.info_.name), std::move(detail)});
+    owner_.participant_.events().push({kind, std::string(owner_.info_.name), std::move(detail), count});
   }
   ReaderEndpoint& owner_;
   Waker* waker_;

@@ -6,11 +6,13 @@
 #include <ctime>
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "quad/common/logging.hpp"
 #include "quad/common/time.hpp"
 #include "quad/common/yaml_input.hpp"
+#include "quad/dds/fault_messages.hpp"
 #include "quad/dds/topics.hpp"
 
 namespace quad::dds {
@@ -79,6 +81,11 @@ Node::Node(std::string module_name, ParticipantOptions options)
       heartbeat_(participant_, topics::kHeartbeat)
 {
   participant_.events().setNotifier([this] { waker_.notify(); });
+  if (participant_.datagramFaults() != nullptr) {
+    fault_commands_ = std::make_unique<Subscriber<msg::FaultCommand>>(participant_, topics::kFault, &waker_);
+    fault_events_ = std::make_unique<Publisher<msg::SimEvent>>(participant_, topics::kFaultEvents);
+    spdlog::info("datagram fault layer in front of UDP (shared memory and data-sharing off)");
+  }
   liveliness_thread_ = std::thread([this] {
     std::unique_lock<std::mutex> lock(liveliness_mutex_);
     while (!liveliness_cv_.wait_for(lock, kLivelinessAssertPeriod, [this] { return liveliness_quit_; })) {
@@ -98,6 +105,67 @@ Node::~Node()
   participant_.events().setNotifier({});
 }
 
+void Node::countLoss(const EndpointEvent& event)
+{
+  if (event.kind != EventKind::kSampleLost || event.count <= 0) {
+    return;
+  }
+  const auto contract = topics::find(event.topic);
+  if (contract && participant_.promisesEverySample(contract->qos_profile)) {
+    counters_.samples_lost += static_cast<std::uint64_t>(event.count);
+  }
+}
+
+bool Node::isDatagramFaultId(std::uint32_t id) const
+{
+  const auto* faults = participant_.datagramFaults();
+  return faults != nullptr && faults->knows(id);
+}
+
+void Node::faultEvent(const msg::FaultCommand& command, msg::SimEventKind kind, const std::string& detail)
+{
+  msg::SimEvent e;
+  e.header().stamp_ns(command.header().stamp_ns());  // the command's sim time: nodes do not keep one
+  e.kind(kind);
+  e.subject_id(command.fault_id());
+  e.detail((module_name_ + ": " + detail).substr(0, 256));
+  fault_events_->write(e);
+}
+
+void Node::takeDatagramFaults()
+{
+  DatagramFaults& layer = *participant_.datagramFaults();
+  while (const auto command = fault_commands_->take()) {
+    if (command->module_name().to_string() != module_name_) {
+      continue;
+    }
+    if (command->kind() == msg::FAULT_CLEAR) {
+      if (const auto tally = layer.clear(command->fault_id())) {
+        const std::string what = fmt::format("datagram fault {} cleared: it acted on {} of {} datagrams",
+                                             command->fault_id(), tally->acted, tally->affected);
+        spdlog::warn("{}", what);
+        faultEvent(*command, msg::SIM_EVENT_FAULT_CLEARED, what);
+      }
+      continue;  // not the layer's: the module's own (the plant's) to clear
+    }
+    if (!isDatagramFault(command->kind())) {
+      continue;
+    }
+    std::string why_not;
+    const auto fault = datagramFaultFrom(*command, why_not);
+    if (fault && !layer.apply(*fault)) {
+      why_not = "fault id " + std::to_string(fault->id) + " already in use";
+    }
+    if (!why_not.empty()) {
+      spdlog::warn("quad/system/fault: fault {} rejected: {}", command->fault_id(), why_not);
+      faultEvent(*command, msg::SIM_EVENT_FAULT_REJECTED, "fault " + std::to_string(command->fault_id()) + " rejected: " + why_not);
+      continue;
+    }
+    spdlog::warn("datagram fault {} applied: {}", fault->id, fault->describe());
+    faultEvent(*command, msg::SIM_EVENT_FAULT_APPLIED, fault->describe());
+  }
+}
+
 void Node::stop()
 {
   stop_ = true;
@@ -115,6 +183,7 @@ void Node::publishHeartbeat(msg::ModuleState state)
   hb.samples_in(counters_.samples_in.load());
   hb.samples_out(counters_.samples_out.load());
   hb.errors(counters_.errors.load());
+  hb.samples_lost(counters_.samples_lost.load());
   heartbeat_.write(hb);
 }
 
@@ -159,7 +228,11 @@ void Node::run()
       break;
     }
     for (const auto& event : participant_.events().drain()) {
+      countLoss(event);
       onEvent(event);
+    }
+    if (woken && fault_commands_) {
+      takeDatagramFaults();
     }
     if (woken) {
       onWake();
@@ -179,6 +252,12 @@ void Node::run()
     }
   }
   publishHeartbeat(msg::MODULE_STOPPING);
+  if (const auto* layer = participant_.datagramFaults()) {
+    for (const auto& [id, tally] : layer->tallies()) {
+      spdlog::warn("datagram fault {} still active at exit: it acted on {} of {} datagrams", id, tally.acted,
+                   tally.affected);
+    }
+  }
   onStop();
 }
 

@@ -16,6 +16,8 @@
 #include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
 #include <fastrtps/utils/IPLocator.h>
 
+#include "fault_transport.hpp"
+
 namespace quad::dds {
 
 namespace fdds = eprosima::fastdds::dds;
@@ -24,6 +26,18 @@ namespace frtps = eprosima::fastrtps::rtps;
 namespace {
 
 constexpr int kMaxDomainId = 232;  // RTPS port mapping limit with the default port parameters
+constexpr std::uint32_t kMinUdpMessage = 1200;   // room for an RTPS header and a fragment
+constexpr std::uint32_t kMaxUdpMessage = 65500;  // Fast DDS's own limit
+
+/// UDPv4 for quad: with the datagram size `max_message` when it is set.
+std::shared_ptr<eprosima::fastdds::rtps::UDPv4TransportDescriptor> udpDescriptor(std::uint32_t max_message)
+{
+  auto d = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
+  if (max_message != 0) {
+    d->maxMessageSize = max_message;
+  }
+  return d;
+}
 
 const char* env(const char* name)
 {
@@ -152,6 +166,12 @@ ParticipantOptions optionsFromEnvironment(std::string name)
   if (const char* v = env("QUAD_VEHICLE_ID")) {
     options.vehicle_id = parseInt<std::uint32_t>(v, "QUAD_VEHICLE_ID", 0, 1'000'000);
   }
+  if (const char* v = env("QUAD_UDP_MAX_MESSAGE")) {
+    options.udp_max_message = parseInt<std::uint32_t>(v, "QUAD_UDP_MAX_MESSAGE", kMinUdpMessage, kMaxUdpMessage);
+  }
+  if (const char* v = env("QUAD_FAULT_LAYER")) {
+    options.fault_layer = parseInt<int>(v, "QUAD_FAULT_LAYER", 0, 1) == 1;
+  }
   options.qos_file = defaultQosFile();
   return options;
 }
@@ -190,6 +210,11 @@ public:
     }
     const bool alive = info.status == frtps::ParticipantDiscoveryInfo::DISCOVERED_PARTICIPANT ||
                        info.status == frtps::ParticipantDiscoveryInfo::CHANGED_QOS_PARTICIPANT;
+    if (auto* faults = owner_.datagramFaults(); faults != nullptr && alive) {
+      DatagramFaults::GuidPrefix prefix;
+      std::copy_n(d.m_guid.guidPrefix.value, prefix.size(), prefix.begin());
+      faults->learnSender(prefix, d.m_participantName.to_string());
+    }
     owner_.onRemoteParticipant(prefixText(d.m_guid.guidPrefix), {d.m_participantName.to_string(), host}, alive);
   }
 
@@ -230,19 +255,33 @@ Participant::Participant(ParticipantOptions options)
   }
   qos.name(options_.name);
 
-  switch (options_.transport) {
-    case Transport::kDefault:
-      break;
-    case Transport::kUdp:
-      qos.transport().use_builtin_transports = false;
-      qos.transport().user_transports.push_back(
-          std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>());
-      break;
-    case Transport::kSharedMemory:
-      qos.transport().use_builtin_transports = false;
-      qos.transport().user_transports.push_back(
-          std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
-      break;
+  if (options_.udp_max_message != 0 && options_.transport != Transport::kUdp && !options_.fault_layer) {
+    throw std::invalid_argument("participant '" + options_.name + "': a UDP datagram size of " +
+                                std::to_string(options_.udp_max_message) + " bytes needs the udp transport");
+  }
+  if (options_.fault_layer) {
+    if (options_.transport == Transport::kSharedMemory) {
+      throw std::invalid_argument("participant '" + options_.name +
+                                  "': a fault layer needs UDP, and the transport is shared memory");
+    }
+    options_.transport = Transport::kUdp;  // data-sharing off too (profileQos)
+    datagram_faults_ = std::make_shared<DatagramFaults>();
+    qos.transport().use_builtin_transports = false;
+    qos.transport().user_transports.push_back(faultyUdpTransport(datagram_faults_, udpDescriptor(options_.udp_max_message)));
+  } else {
+    switch (options_.transport) {
+      case Transport::kDefault:
+        break;
+      case Transport::kUdp:
+        qos.transport().use_builtin_transports = false;
+        qos.transport().user_transports.push_back(udpDescriptor(options_.udp_max_message));
+        break;
+      case Transport::kSharedMemory:
+        qos.transport().use_builtin_transports = false;
+        qos.transport().user_transports.push_back(
+            std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
+        break;
+    }
   }
 
   auto& builtin = qos.wire_protocol().builtin;
@@ -340,6 +379,12 @@ fdds::DataWriterQos Participant::writerQos(std::string_view qos_class) const
 {
   return profileQos<fdds::DataWriterQos>(publisher_, &fdds::Publisher::get_datawriter_qos_from_profile,
                                          qos_class, "writer", options_);
+}
+
+bool Participant::promisesEverySample(std::string_view qos_class) const
+{
+  const auto qos = writerQos(qos_class);
+  return qos.reliability().kind == fdds::RELIABLE_RELIABILITY_QOS && qos.history().kind == fdds::KEEP_ALL_HISTORY_QOS;
 }
 
 fdds::DataReaderQos Participant::readerQos(std::string_view qos_class) const

@@ -15,7 +15,7 @@ protected:
   static void clear()
   {
     for (const char* v : {"QUAD_DOMAIN_ID", "QUAD_TRANSPORT", "QUAD_INITIAL_PEERS",
-                          "QUAD_DISCOVERY_SERVER", "QUAD_VEHICLE_ID"}) {
+                          "QUAD_DISCOVERY_SERVER", "QUAD_VEHICLE_ID", "QUAD_FAULT_LAYER", "QUAD_UDP_MAX_MESSAGE"}) {
       unsetenv(v);
     }
   }
@@ -46,7 +46,11 @@ TEST_F(EnvironmentOptions, ValidValuesAreTaken)
   setenv("QUAD_INITIAL_PEERS", "10.0.0.1,10.0.0.2:7412", 1);
   setenv("QUAD_DISCOVERY_SERVER", "10.0.0.9:11811", 1);
   setenv("QUAD_VEHICLE_ID", "2", 1);
+  setenv("QUAD_FAULT_LAYER", "1", 1);
+  setenv("QUAD_UDP_MAX_MESSAGE", "1400", 1);
   const auto o = optionsFromEnvironment("test");
+  EXPECT_TRUE(o.fault_layer);
+  EXPECT_EQ(o.udp_max_message, 1400U);
   EXPECT_EQ(o.domain_id, 42);
   EXPECT_EQ(o.transport, Transport::kUdp);
   EXPECT_EQ(o.initial_peers, (std::vector<std::string>{"10.0.0.1", "10.0.0.2:7412"}));
@@ -58,6 +62,13 @@ TEST_F(EnvironmentOptions, BadValuesNameTheVariableAndTheValue)
 {
   setenv("QUAD_DOMAIN_ID", "abc", 1);
   EXPECT_EQ(errorOf(), "QUAD_DOMAIN_ID: abc: expected an integer in [0, 232]");
+  clear();
+  setenv("QUAD_FAULT_LAYER", "yes", 1);
+  EXPECT_EQ(errorOf(), "QUAD_FAULT_LAYER: yes: expected an integer in [0, 1]");
+  clear();
+  setenv("QUAD_UDP_MAX_MESSAGE", "100", 1);
+  EXPECT_EQ(errorOf(), "QUAD_UDP_MAX_MESSAGE: 100: expected an integer in [1200, 65500]");
+  clear();
   setenv("QUAD_DOMAIN_ID", "233", 1);
   EXPECT_EQ(errorOf(), "QUAD_DOMAIN_ID: 233: expected an integer in [0, 232]");
   clear();
@@ -80,6 +91,17 @@ TEST_F(EnvironmentOptions, MissingQosFileIsRefusedNamingIt)
     FAIL();
   } catch (const std::runtime_error& e) {
     EXPECT_STREQ(e.what(), "QoS profiles file /nope/qos.xml does not exist");
+  }
+}
+
+TEST(ParticipantOptions, ADatagramSizeNeedsTheUdpTransport)
+{
+  ParticipantOptions o{.name = "options_test", .domain_id = 150, .udp_max_message = 1400};
+  try {
+    Participant p(o);
+    ADD_FAILURE() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "participant 'options_test': a UDP datagram size of 1400 bytes needs the udp transport");
   }
 }
 

@@ -136,7 +136,7 @@ std::optional<Fault> faultFrom(const msg::FaultCommand& c, std::int64_t now_ns, 
       return f;
     }
     default:
-      why_not = "this kind is not applied by the plant (datagram faults belong to a module's transport)";
+      why_not = "this kind is not applied by the plant (datagram faults need its fault layer: QUAD_FAULT_LAYER=1)";
       return std::nullopt;
   }
 }

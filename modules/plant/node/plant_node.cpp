@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "conversions.hpp"
+#include "quad/dds/fault_messages.hpp"
 #include "quad/dds/geometry_messages.hpp"
 #include "quad/common/time.hpp"
 #include "quad/plant/world_file.hpp"
@@ -98,8 +99,10 @@ void PlantNode::takeInputs()
   }
   while (auto fault = faults_.take()) {
     counters().samples_in++;
-    if (fault->module_name().to_string() != "plant") {
-      continue;  // for another module
+    const bool layer = participant().datagramFaults() != nullptr;
+    if (fault->module_name().to_string() != "plant" || (layer && dds::isDatagramFault(fault->kind())) ||
+        (fault->kind() == msg::FAULT_CLEAR && isDatagramFaultId(fault->fault_id()))) {
+      continue;  // for another module, or for the node's datagram fault layer
     }
     if (fault->kind() == msg::FAULT_CLEAR) {
       if (!sim_->clearFault(fault->fault_id())) {

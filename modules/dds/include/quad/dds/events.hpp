@@ -36,6 +36,7 @@ struct EndpointEvent {
   EventKind kind;
   std::string topic;
   std::string detail;  ///< human-readable reason, names the policy or types involved
+  std::int64_t count = 0;  ///< kSampleLost: samples newly lost
 };
 
 /// A thread-safe queue of endpoint events, filled by listeners and drained by the node.

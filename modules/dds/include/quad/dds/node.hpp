@@ -14,11 +14,14 @@
 #include <string_view>
 #include <thread>
 
+#include <quad/msg/FaultCommand.h>
 #include <quad/msg/Heartbeat.h>
+#include <quad/msg/SimEvent.h>
 
 #include "quad/common/params.hpp"
 #include "quad/dds/participant.hpp"
 #include "quad/dds/publisher.hpp"
+#include "quad/dds/subscriber.hpp"
 #include "quad/dds/waker.hpp"
 
 namespace quad::dds {
@@ -51,6 +54,7 @@ struct NodeCounters {
   std::atomic<std::uint64_t> samples_in{0};
   std::atomic<std::uint64_t> samples_out{0};
   std::atomic<std::uint64_t> errors{0};
+  std::atomic<std::uint64_t> samples_lost{0};  ///< on topics that promise every sample
 };
 
 class Node {
@@ -70,6 +74,10 @@ public:
 
   Participant& participant() { return participant_; }
   const std::string& moduleName() const { return module_name_; }
+
+  /// A datagram fault of this node's fault layer has (had) this id: a FAULT_CLEAR with it is
+  /// the layer's, not the module's own.
+  bool isDatagramFaultId(std::uint32_t id) const;
 
 protected:
   /// The Waker to give every Subscriber of this node.
@@ -91,12 +99,21 @@ protected:
 
 private:
   void publishHeartbeat(msg::ModuleState state);
+  /// Applies and clears the datagram faults quad/system/fault addresses to this module, and
+  /// acknowledges each on quad/system/fault_events.
+  void takeDatagramFaults();
+  /// Adds a reader's lost samples to the heartbeat's count, on topics that promise every one.
+  void countLoss(const EndpointEvent& event);
+  void faultEvent(const msg::FaultCommand& command, msg::SimEventKind kind, const std::string& detail);
 
   std::string module_name_;
   Participant participant_;
   Waker waker_;
   NodeCounters counters_;
   Publisher<msg::Heartbeat> heartbeat_;
+  // With a fault layer only (ParticipantOptions::fault_layer).
+  std::unique_ptr<Subscriber<msg::FaultCommand>> fault_commands_;
+  std::unique_ptr<Publisher<msg::SimEvent>> fault_events_;
   std::atomic<bool> stop_{false};
   // Asserts the heartbeat writer's liveliness (MANUAL_BY_TOPIC) from a thread of its own, so
   // that a node busy in a long computation stays alive and a killed or stopped one does not.

@@ -16,6 +16,7 @@
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
+#include "quad/dds/datagram_faults.hpp"
 #include "quad/dds/events.hpp"
 #include "quad/dds/topic.hpp"
 
@@ -38,12 +39,21 @@ struct ParticipantOptions {
   bool observe_all = false;
   std::filesystem::path qos_file;          ///< QoS profiles XML; empty: the installed default
   std::uint32_t vehicle_id = 0;            ///< written into Header.vehicle_id of every sample
+  /// Received datagrams pass a fault layer (datagram_faults.hpp) in front of UDP, so that
+  /// fault injection can break this participant's links. Implies UDP only, data-sharing off:
+  /// shared memory would go around the layer.
+  bool fault_layer = false;
+  /// UDP only: the largest datagram Fast DDS sends, in bytes; larger samples go as RTPS
+  /// fragments, each repaired on its own. 0: Fast DDS's default (65500), which over a real
+  /// link is ~45 IP fragments, all lost when one is.
+  std::uint32_t udp_max_message = 0;
 };
 
 /// The options a quad process takes from its environment, so that every module and tool of a
 /// run share one domain and discovery setup:
 /// QUAD_DOMAIN_ID, QUAD_TRANSPORT (default|udp|shm), QUAD_INITIAL_PEERS (comma separated),
-/// QUAD_DISCOVERY_SERVER, QUAD_QOS_FILE, QUAD_VEHICLE_ID. A bad value throws
+/// QUAD_DISCOVERY_SERVER, QUAD_QOS_FILE, QUAD_VEHICLE_ID, QUAD_FAULT_LAYER (0|1),
+/// QUAD_UDP_MAX_MESSAGE (bytes). A bad value throws
 /// std::invalid_argument naming the variable and the value.
 ParticipantOptions optionsFromEnvironment(std::string name);
 
@@ -78,6 +88,9 @@ public:
 
   const ParticipantOptions& options() const { return options_; }
   EventQueue& events() { return events_; }
+  /// The faults on received datagrams; null without ParticipantOptions::fault_layer.
+  DatagramFaults* datagramFaults() { return datagram_faults_.get(); }
+  const DatagramFaults* datagramFaults() const { return datagram_faults_.get(); }
 
   /// Registers the type (once) and returns the topic (created once per name).
   eprosima::fastdds::dds::Topic* topic(const TopicInfo& info,
@@ -90,6 +103,10 @@ public:
   /// QoS of the named profile in the QoS file; throws naming the profile if it is missing.
   eprosima::fastdds::dds::DataWriterQos writerQos(std::string_view qos_class) const;
   eprosima::fastdds::dds::DataReaderQos readerQos(std::string_view qos_class) const;
+  /// Writers of this QoS class promise every sample to every reader: reliable, KEEP_ALL
+  /// (map changes). KEEP_LAST N promises the newest N only: a reader that falls N behind
+  /// (a paused process) loses the older ones by contract.
+  bool promisesEverySample(std::string_view qos_class) const;
 
   /// Records a local endpoint so discovery can check remote ones against it.
   void addLocalEndpoint(const std::string& topic, const std::string& type_name, bool keyed,
@@ -118,6 +135,7 @@ private:
 
   ParticipantOptions options_;
   EventQueue events_;
+  std::shared_ptr<DatagramFaults> datagram_faults_;
   std::unique_ptr<Listener> listener_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;

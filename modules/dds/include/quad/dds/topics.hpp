@@ -69,7 +69,8 @@ inline constexpr auto kFault = makeTopic<FaultCommand>(
     "Faults for modules to apply");
 inline constexpr auto kFaultEvents = makeTopic<SimEvent>(
     "quad/system/fault_events", "events", 0.0, Owner::kFaultTool,
-    "Faults the fault tool applied itself (processes, links, inputs), when they took effect");
+    "Faults applied outside the plant, when they took effect: by the fault tool (processes, "
+    "inputs) or a module's datagram fault layer");
 // clang-format on
 
 /// How far a true vehicle state may be stamped past the newest sim clock a reader took: the

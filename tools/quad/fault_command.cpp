@@ -9,6 +9,7 @@
 #include <memory>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "connection.hpp"
 #include "fault/judge.hpp"
@@ -19,6 +20,7 @@
 #include "quad/bag/mcap.hpp"
 #include "quad/common/params.hpp"
 #include "quad/common/time.hpp"
+#include "quad/dds/fault_messages.hpp"
 #include "quad/dds/geometry_messages.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
@@ -36,7 +38,7 @@ using fault::Scenario;
 
 namespace {
 
-constexpr double kPlantAckTimeoutS = 5.0;  // wall seconds for the plant to acknowledge a fault
+constexpr double kAckTimeoutS = 5.0;  // wall seconds for a module to acknowledge a fault
 constexpr int kDeepHistory = 1000;         // samples a reader keeps between the run's ticks
 
 /// The reader QoS of `qos_class` with a history deep enough that no sample is replaced
@@ -68,11 +70,35 @@ public:
       apply(run, step, now);
     }
     publishDue(now);
-    checkPlantAcks(now);
+    clearDue(run);
+    checkAcks(now);
     judge_.clock(t_, now);
   }
 
   bool done() const override { return scenario_.end_s && t_ >= *scenario_.end_s && judge_.settled(); }
+
+  /// Datagram faults still active are cleared while their modules run, so that what each
+  /// did reaches the report.
+  void ending(LaunchRun& run) override
+  {
+    if (!endpoints_) {
+      return;
+    }
+    for (const auto& c : clears_) {
+      clear(run, c.step);
+    }
+    clears_.clear();
+    for (std::size_t step = 0; step < scenario_.steps.size(); ++step) {
+      const Action& a = scenario_.steps[step].action;
+      if (a.lasts() && !a.duration_s && judge_.isApplied(step)) {
+        clear(run, step);
+      }
+    }
+    const std::int64_t deadline = common::steadyTimeNs() + common::toNanoseconds(kAckTimeoutS);
+    while (!allCleared() && common::steadyTimeNs() < deadline && run.service(20)) {
+      takeSamples(run, common::steadyTimeNs());
+    }
+  }
 
   int finish(LaunchRun& run, int /*code*/) override
   {
@@ -90,6 +116,9 @@ public:
     facts.run_failure = run.failure();
     facts.actuator_commands = actuator_commands_;
     facts.nonfinite_actuator_commands = nonfinite_actuators_;
+    for (const auto& [name, seen] : seen_) {
+      facts.module_loss[name] = seen.lost_earlier + seen.lost;
+    }
     readRecording(facts, run.observer().participant());
     const auto rows = judge_.finish(facts);
     const std::string table = fault::toTable(scenario_.name, rows);
@@ -107,7 +136,8 @@ private:
           status(p, topics::kControlStatus, nullptr, deepReader(p, topics::kControlStatus.info.qos_profile)),
           actuators(p, topics::kActuators, nullptr, deepReader(p, topics::kActuators.info.qos_profile)),
           heartbeat(p, topics::kHeartbeat, nullptr, deepReader(p, topics::kHeartbeat.info.qos_profile)),
-          sim_events(p, topics::kSimEvents, nullptr, deepReader(p, topics::kSimEvents.info.qos_profile))
+          sim_events(p, topics::kSimEvents, nullptr, deepReader(p, topics::kSimEvents.info.qos_profile)),
+          fault_events(p, topics::kFaultEvents, nullptr, deepReader(p, topics::kFaultEvents.info.qos_profile))
     {
     }
     dds::Publisher<msg::FaultCommand> command;
@@ -116,6 +146,7 @@ private:
     dds::Subscriber<msg::ActuatorCommand> actuators;
     dds::Subscriber<msg::Heartbeat> heartbeat;
     dds::Subscriber<msg::SimEvent> sim_events;
+    dds::Subscriber<msg::SimEvent> fault_events;  // our own, and the modules' fault layers'
   };
   struct PublishJob {
     dds::TopicInfo info;
@@ -128,6 +159,8 @@ private:
   struct ModuleSeen {
     int pid = 0;
     std::uint64_t errors = 0;
+    std::uint64_t lost = 0;          // this process's
+    std::uint64_t lost_earlier = 0;  // the module's earlier processes'
   };
 
   void setUp(LaunchRun& run)
@@ -204,11 +237,12 @@ private:
       auto [it, first] = seen_.try_emplace(name, ModuleSeen{hb->pid(), hb->errors()});
       if (!first && it->second.pid != hb->pid()) {
         judge_.back(name, now);
-        it->second = {hb->pid(), hb->errors()};
+        it->second = {hb->pid(), hb->errors(), 0, it->second.lost_earlier + it->second.lost};
       } else if (hb->errors() > it->second.errors) {
         judge_.rejected(name, now);
         it->second.errors = hb->errors();
       }
+      it->second.lost = hb->samples_lost();
     }
     for (const auto& change : endpoints_->heartbeat.takeLivelinessChanges()) {
       const auto it = writers_.find(change.writer);
@@ -217,17 +251,49 @@ private:
       }
     }
     for (const auto& e : endpoints_->sim_events.takeAll()) {
-      const auto it = plant_acks_.find(static_cast<std::uint32_t>(e.subject_id()));
-      if (it == plant_acks_.end()) {
-        continue;
+      // The plant stamps its acknowledgement with the sim time the fault took effect.
+      takeAck(e, common::toSeconds(e.header().stamp_ns()), now);
+    }
+    for (const auto& e : endpoints_->fault_events.takeAll()) {
+      if (e.kind() == msg::SIM_EVENT_FAULT_CLEARED && e.subject_id() >= fault::kDatagramIdBase) {
+        const auto step = static_cast<std::size_t>(e.subject_id() / fault::kDatagramIdBase) - 1;
+        if (step < scenario_.steps.size()) {
+          noteCleared(step, e.detail().to_string());
+        }
       }
-      if (e.kind() == msg::SIM_EVENT_FAULT_APPLIED) {
-        judge_.applied(it->second.step, common::toSeconds(e.header().stamp_ns()), now, "acknowledged by the plant");
-        plant_acks_.erase(it);
-      } else if (e.kind() == msg::SIM_EVENT_FAULT_REJECTED) {
-        judge_.refused(it->second.step, e.detail().to_string());
-        plant_acks_.erase(it);
+      // A fault layer has no clock of its own: it took effect by the time we hear of it.
+      takeAck(e, t_, now);
+    }
+  }
+
+  /// Each of a step's faults that lasts acknowledges its end once.
+  static std::size_t clearsOf(const Action& a) { return a.kind == Action::Kind::kDds ? a.datagrams.size() : 1; }
+
+  void noteCleared(std::size_t step, const std::string& detail)
+  {
+    cleared_[step].push_back(detail);
+    if (cleared_[step].size() == clearsOf(scenario_.steps[step].action)) {
+      judge_.cleared(step, t_, fmt::format("{}", fmt::join(cleared_[step], "; ")));
+    }
+  }
+
+  /// An acknowledgement of a fault we asked a module for (others are ignored).
+  void takeAck(const msg::SimEvent& e, double t, std::int64_t now)
+  {
+    const auto it = acks_.find(static_cast<std::uint32_t>(e.subject_id()));
+    if (it == acks_.end()) {
+      return;
+    }
+    const std::size_t step = it->second.step;
+    if (e.kind() == msg::SIM_EVENT_FAULT_APPLIED) {
+      acks_.erase(it);
+      const bool all = std::none_of(acks_.begin(), acks_.end(), [&](const auto& a) { return a.second.step == step; });
+      if (all) {
+        judge_.applied(step, t, now, "acknowledged by " + scenario_.steps[step].action.module);
       }
+    } else if (e.kind() == msg::SIM_EVENT_FAULT_REJECTED) {
+      judge_.refused(step, e.detail().to_string());
+      std::erase_if(acks_, [&](const auto& a) { return a.second.step == step; });
     }
   }
 
@@ -264,9 +330,36 @@ private:
           refuse(step, "the fault command could not be written");
           break;
         }
-        plant_acks_[a.plant.id] = {step, now + common::toNanoseconds(kPlantAckTimeoutS)};
+        acks_[a.plant.id] = {step, now + common::toNanoseconds(kAckTimeoutS)};
         break;
       }
+      case Action::Kind::kDds:
+        for (const auto& d : a.datagrams) {
+          msg::FaultCommand c = dds::toCommand(d, kinds_.at(a.module));
+          c.header().stamp_ns(common::toNanoseconds(t_));
+          if (!endpoints_->command.write(c)) {
+            refuse(step, "the fault command could not be written");
+            std::erase_if(acks_, [&](const auto& ack) { return ack.second.step == step; });
+            return;
+          }
+          acks_[d.id] = {step, now + common::toNanoseconds(kAckTimeoutS)};
+        }
+        if (a.duration_s) {
+          clears_.push_back({scenario_.steps[step].at_s + *a.duration_s, step});
+        }
+        break;
+      case Action::Kind::kLink:
+        try {
+          run.network().applyLinkFault(a.link);
+        } catch (const std::runtime_error& e) {
+          refuse(step, e.what());
+          break;
+        }
+        acknowledge(step, common::steadyTimeNs(), "applied in " + run.network().namespaceOf(a.link.host));
+        if (a.duration_s) {
+          clears_.push_back({scenario_.steps[step].at_s + *a.duration_s, step});
+        }
+        break;
       case Action::Kind::kPublish: {
         PublishJob& job = jobs_.at(step);
         job.active = true;
@@ -297,16 +390,74 @@ private:
     }
   }
 
-  void checkPlantAcks(std::int64_t now)
+  void checkAcks(std::int64_t now)
   {
-    for (auto it = plant_acks_.begin(); it != plant_acks_.end();) {
+    for (auto it = acks_.begin(); it != acks_.end();) {
       if (now > it->second.deadline_ns) {
-        refuse(it->second.step, fmt::format("no acknowledgement from the plant within {:.0f} s", kPlantAckTimeoutS));
-        it = plant_acks_.erase(it);
+        const std::size_t step = it->second.step;
+        refuse(step, fmt::format("no acknowledgement from {} within {:.0f} s", scenario_.steps[step].action.module,
+                                 kAckTimeoutS));
+        std::erase_if(acks_, [&](const auto& a) { return a.second.step == step; });
+        it = acks_.begin();
       } else {
         ++it;
       }
     }
+  }
+
+  /// Ends the faults whose duration is over.
+  void clearDue(LaunchRun& run)
+  {
+    for (auto it = clears_.begin(); it != clears_.end();) {
+      if (t_ < it->t_s) {
+        ++it;
+        continue;
+      }
+      clear(run, it->step);
+      it = clears_.erase(it);
+    }
+  }
+
+  /// Heals a link at once; asks a module's fault layer to clear datagram faults (it
+  /// acknowledges each).
+  void clear(LaunchRun& run, std::size_t step)
+  {
+    const Action& a = scenario_.steps[step].action;
+    if (a.kind == Action::Kind::kLink) {
+      try {
+        run.network().healLinkFault(a.link);
+      } catch (const std::runtime_error& e) {
+        run.say(fmt::format("fault step {}: cannot heal: {}", step + 1, e.what()));
+        return;
+      }
+      noteCleared(step, "healed");
+      event(step, msg::SIM_EVENT_FAULT_CLEARED, "healed");
+      return;
+    }
+    for (const auto& d : a.datagrams) {
+      msg::FaultCommand c;
+      c.header().stamp_ns(common::toNanoseconds(t_));
+      c.kind(msg::FAULT_CLEAR);
+      c.fault_id(d.id);
+      c.module_name(kinds_.at(a.module));
+      endpoints_->command.write(c);
+    }
+  }
+
+  /// Every applied datagram fault's clearing was acknowledged.
+  bool allCleared() const
+  {
+    for (std::size_t step = 0; step < scenario_.steps.size(); ++step) {
+      const Action& a = scenario_.steps[step].action;
+      if (!a.lasts() || !judge_.isApplied(step)) {
+        continue;
+      }
+      const auto it = cleared_.find(step);
+      if (it == cleared_.end() || it->second.size() < clearsOf(a)) {
+        return false;
+      }
+    }
+    return true;
   }
 
   /// The fault took effect: tell the judge, and the recording (quad/system/fault_events).
@@ -374,9 +525,13 @@ private:
     }
   }
 
-  struct PlantAck {
+  struct Ack {
     std::size_t step;
     std::int64_t deadline_ns;
+  };
+  struct Clear {
+    double t_s;
+    std::size_t step;
   };
 
   const Scenario& scenario_;
@@ -388,7 +543,9 @@ private:
   std::map<std::string, std::string> kinds_;     // manifest module name -> kind
   std::map<std::uint64_t, std::string> writers_; // heartbeat writer -> module
   std::map<std::string, ModuleSeen> seen_;
-  std::map<std::uint32_t, PlantAck> plant_acks_;
+  std::map<std::uint32_t, Ack> acks_;  // by fault id
+  std::vector<Clear> clears_;
+  std::map<std::size_t, std::vector<std::string>> cleared_;  // acknowledgements by step
   double t_ = 0.0;
   msg::Vector3 p_W_;
   std::uint64_t actuator_commands_ = 0;
@@ -437,7 +594,7 @@ int fault(const FaultOptions& options)
   lo.domain = options.domain;
   lo.wall_timeout_s = options.wall_timeout_s;
   lo.quiet = options.quiet;
-  const auto manifest = loadRunManifest(lo);
+  auto manifest = loadRunManifest(lo);
   if (!manifest) {
     std::fprintf(stderr, "fault: %s: refusing to run with an invalid manifest\n", scenario.file.string().c_str());
     return 2;
@@ -448,7 +605,29 @@ int fault(const FaultOptions& options)
     names.push_back(m.name);
     kinds.push_back(m.kind);
   }
-  auto problems = fault::checkAgainstModules(scenario, names, kinds);
+  std::map<std::string, bool> hosts;
+  for (const auto& h : manifest->hosts) {
+    hosts[h.name] = h.kind == launch::HostKind::kNetns;
+  }
+  auto problems = fault::checkAgainstModules(scenario, names, kinds, hosts);
+  // A module whose links a step breaks gets the datagram fault layer (UDP only).
+  for (const auto& step : scenario.steps) {
+    if (step.action.kind != Action::Kind::kDds) {
+      continue;
+    }
+    if (manifest->transport == "shm") {
+      problems.push_back(common::configProblem(scenario.file.string(), "steps", step.action.describe(),
+                                               manifest->file.filename().string() +
+                                                   " runs on shared memory only, which the datagram fault layer "
+                                                   "cannot sit in front of"));
+      break;
+    }
+    for (auto& m : manifest->modules) {
+      if (m.name == step.action.module) {
+        m.environment["QUAD_FAULT_LAYER"] = "1";
+      }
+    }
+  }
   if (!manifest->mission.enabled && !scenario.end_s) {
     problems.push_back(common::configProblem(scenario.file.string(), "end_at", std::string("(missing)"),
                                              manifest->file.filename().string() +

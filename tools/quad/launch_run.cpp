@@ -349,6 +349,9 @@ int LaunchRun::execute(RunExtension* extension)
   if (interrupted()) {
     say(fmt::format("{}: stopping", received_signal.load() == SIGINT ? "interrupted" : "terminated"));
   }
+  if (extension != nullptr && all_started) {
+    extension->ending(*this);
+  }
   stopAll();
   if (const auto cleaned = launch::cleanStaleSharedMemory("/dev/shm", std::chrono::seconds(1)); cleaned.files > 0) {
     say(fmt::format("removed {} Fast DDS shared-memory files left by stopped processes", cleaned.files));

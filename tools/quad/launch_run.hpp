@@ -35,6 +35,9 @@ public:
   virtual void tick(LaunchRun& run) = 0;
   /// True to end the run (stopping its modules as Ctrl-C would, without failing it).
   virtual bool done() const { return false; }
+  /// The run is about to stop its modules, which still run: the last moment to ask them for
+  /// anything (call run.service() to wait for answers).
+  virtual void ending(LaunchRun& /*run*/) {}
   /// After the modules stopped: the exit code the extension's verdict makes of `code`.
   virtual int finish(LaunchRun& run, int code) = 0;
 };
@@ -49,6 +52,8 @@ public:
   int execute(RunExtension* extension = nullptr);
 
   // What an extension may do and see.
+  /// Pumps output, handles exits and pending restarts; false once the run must end.
+  bool service(int timeout_ms);
   const launch::Manifest& manifest() const { return m_; }
   launch::Observer& observer() { return *observer_; }
   const launch::HostNetwork& network() const { return *net_; }
@@ -81,8 +86,6 @@ private:
     std::optional<int> last_status;
   };
 
-  /// Pumps output, handles exits and pending restarts; false once the run must end.
-  bool service(int timeout_ms);
   void startModule(const launch::Module& mod);
   void handleExit(const launch::Supervisor::Exit& e);
   std::string whoWrites(const std::string& topic) const;

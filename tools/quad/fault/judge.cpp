@@ -50,6 +50,13 @@ void Judge::refused(std::size_t step, const std::string& why)
   }
 }
 
+void Judge::cleared(std::size_t step, double t, const std::string& detail)
+{
+  StepState& s = steps_.at(step);
+  s.cleared_t = t;
+  s.cleared_detail = detail;
+}
+
 void Judge::meet(std::size_t step, Expectation::Kind kind, const std::string& subject, double measured_s)
 {
   for (auto& p : steps_[step].pending) {
@@ -128,6 +135,27 @@ bool Judge::settled() const
   });
 }
 
+namespace {
+/// "0 on 8 topics" when nothing was lost anywhere (and something was judged), else the
+/// lossy ones: "quad/planning/path 2, ...".
+std::pair<bool, std::string> lossFigures(const std::map<std::string, std::uint64_t>& loss, const char* on,
+                                         const char* what)
+{
+  std::uint64_t total = 0;
+  std::string lossy;
+  for (const auto& [name, n] : loss) {
+    total += n;
+    if (n > 0) {
+      lossy += fmt::format("{}{} {}", lossy.empty() ? "" : ", ", name, n);
+    }
+  }
+  if (total > 0) {
+    return {false, lossy};
+  }
+  return {!loss.empty(), fmt::format("0 {} {} {}", on, loss.size(), what)};
+}
+}  // namespace
+
 std::vector<Judge::Row> Judge::finish(const RunFacts& facts)
 {
   std::vector<Row> rows;
@@ -148,6 +176,21 @@ std::vector<Judge::Row> Judge::finish(const RunFacts& facts)
     }
     head.pass = s.applied;
     rows.push_back(head);
+    if (step.action.lasts() && s.applied) {
+      // A fault that lasts ends when its time is up, and at the latest when the run ends.
+      Row r;
+      r.expectation = "cleared";
+      const std::optional<double> due =
+          step.action.duration_s ? std::optional<double>(step.at_s + *step.action.duration_s) : std::nullopt;
+      r.bound = due ? fmt::format("at {:.1f} s", *due) : "at the end";
+      if (s.cleared_t) {
+        r.measured = fmt::format("at {:.2f} s: {}", *s.cleared_t, s.cleared_detail);
+        r.pass = true;
+      } else {
+        r.measured = "not acknowledged";
+      }
+      rows.push_back(r);
+    }
     for (const auto& p : s.pending) {
       Row r;
       r.expectation = p.expect.describe();
@@ -182,21 +225,14 @@ std::vector<Judge::Row> Judge::finish(const RunFacts& facts)
     if (!facts.recording_problem.empty()) {
       end("no loss on reliable topics", "0", facts.recording_problem, false);
     } else {
-      std::uint64_t total = 0;
-      std::string lossy;
-      for (const auto& [topic, n] : facts.reliable_loss) {
-        total += n;
-        if (n > 0) {
-          lossy += fmt::format("{}{} {}", lossy.empty() ? "" : ", ", topic, n);
-        }
-      }
-      end("no loss on reliable topics", "0",
-          total == 0 ? fmt::format("0 on {} topics", facts.reliable_loss.size()) : lossy,
-          total == 0 && !facts.reliable_loss.empty());
+      const auto [lossless, measured] = lossFigures(facts.reliable_loss, "on", "topics");
+      end("no loss on reliable topics", "0", measured, lossless);
       if (facts.latest_only_topics > 0) {
         rows.back().measured += fmt::format(" ({} keeping only their newest sample not judged)", facts.latest_only_topics);
       }
     }
+    const auto [lossless, measured] = lossFigures(facts.module_loss, "in", "modules");
+    end("no loss in the modules' readers", "0", measured, lossless);
   }
   return rows;
 }

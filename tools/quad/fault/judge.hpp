@@ -30,6 +30,9 @@ struct RunFacts {
   /// Reliable topics whose writers keep only their newest sample (not judged).
   std::size_t latest_only_topics = 0;
   std::string recording_problem;   ///< why the recording could not be read; empty if it could
+  /// Samples the modules' own readers lost on topics that promise every sample (their
+  /// heartbeats' count, summed over each module's processes), by manifest module.
+  std::map<std::string, std::uint64_t> module_loss;
 };
 
 class Judge {
@@ -43,6 +46,9 @@ public:
   void applied(std::size_t step, double t, std::int64_t wall_ns, const std::string& detail);
   /// The step's fault could not be applied.
   void refused(std::size_t step, const std::string& why);
+  bool isApplied(std::size_t step) const { return steps_.at(step).applied; }
+  /// The step's fault (one that lasts: datagram faults) ended at sim time `t` (acknowledged).
+  void cleared(std::size_t step, double t, const std::string& detail);
 
   /// Time passed: expectations whose bound is over fail.
   void clock(double t, std::int64_t wall_ns);
@@ -83,6 +89,8 @@ private:
     double t = 0.0;
     std::int64_t wall_ns = 0;
     std::string detail;
+    std::optional<double> cleared_t;
+    std::string cleared_detail;
     std::vector<Pending> pending;
   };
   void meet(std::size_t step, Expectation::Kind kind, const std::string& subject, double measured_s);

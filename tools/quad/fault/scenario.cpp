@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <set>
 
+#include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
 #include "quad/common/params.hpp"
@@ -47,6 +48,12 @@ std::string joined(const std::vector<std::string>& names)
   }
   return out;
 }
+
+constexpr const char* kFaultNames = "kill, pause, resume, restart, plant, publish, dds, link";
+
+constexpr dds::DatagramFaultKind kDatagramKinds[] = {
+    dds::DatagramFaultKind::kLoss, dds::DatagramFaultKind::kDelay, dds::DatagramFaultKind::kDuplicate,
+    dds::DatagramFaultKind::kReorder, dds::DatagramFaultKind::kCorrupt};
 
 bool isName(const YAML::Node& node)
 {
@@ -95,6 +102,8 @@ public:
     YAML::Node steps = root["steps"];
     if (!steps.IsSequence() || steps.size() == 0) {
       r_.problem("steps", steps, "expected a list of steps, each with at: and a fault");
+    } else if (steps.size() > kMaxSteps) {
+      r_.problem("steps", steps, fmt::format("{} steps: at most {}", steps.size(), kMaxSteps));
     } else {
       for (std::size_t i = 0; i < steps.size(); ++i) {
         if (auto step = this->step(steps[i], "steps[" + std::to_string(i) + "]", static_cast<std::uint32_t>(i + 1))) {
@@ -160,7 +169,7 @@ private:
     }
     if (actions.size() != 1) {
       r_.problem(key, node,
-                 actions.empty() ? "no fault: expected one of kill, pause, resume, restart, plant, publish"
+                 actions.empty() ? "no fault: expected one of " + std::string(kFaultNames)
                                  : "one fault per step, found " + joined(actions));
       return std::nullopt;
     }
@@ -215,8 +224,144 @@ private:
     if (name == "publish") {
       return publish(node, key);
     }
-    r_.problem(key, node, "unknown fault: expected one of kill, pause, resume, restart, plant, publish");
+    if (name == "dds") {
+      return datagrams(node, key, number);
+    }
+    if (name == "link") {
+      return link(node, key);
+    }
+    r_.problem(key, node, "unknown fault: expected one of " + std::string(kFaultNames));
     return std::nullopt;
+  }
+
+  /// dds: {module, from, loss, delay, duplicate, reorder, corrupt, seed, duration}
+  std::optional<Action> datagrams(YAML::Node node, const std::string& key, std::uint32_t number)
+  {
+    if (!node.IsMap()) {
+      r_.problem(key, node, "expected a map with module and at least one of " + joined(datagramKeys()));
+      return std::nullopt;
+    }
+    std::set<std::string> allowed = {"module", "from", "seed", "duration"};
+    for (const auto& k : datagramKeys()) {
+      allowed.insert(k);
+    }
+    r_.onlyKeys(node, key + ".", allowed);
+    Action a;
+    a.kind = Action::Kind::kDds;
+    bool ok = true;
+    if (!isName(node["module"])) {
+      r_.problem(key + ".module", node["module"], "expected the name of a module of the manifest");
+      ok = false;
+    } else {
+      a.module = node["module"].Scalar();
+    }
+    std::string from;
+    if (node["from"].IsDefined()) {
+      if (!isName(node["from"])) {
+        r_.problem(key + ".from", node["from"], "expected the name of the sending participant");
+        ok = false;
+      } else {
+        from = node["from"].Scalar();
+      }
+    }
+    const auto seed = r_.number(node["seed"], key + ".seed", 1.0, 0.0, 4294967295.0);
+    if (node["duration"].IsDefined()) {
+      a.duration_s = r_.number(node["duration"], key + ".duration", std::nullopt, 0.001, kMaxTime);
+      ok = ok && a.duration_s;
+    }
+    std::uint32_t k = 0;
+    for (const auto kind : kDatagramKinds) {
+      ++k;
+      const std::string name = dds::toString(kind);
+      if (!node[name].IsDefined()) {
+        continue;
+      }
+      const auto magnitude = r_.number(node[name], key + "." + name, std::nullopt, -kMaxTime, kMaxTime);
+      if (!magnitude || !seed) {
+        ok = false;
+        continue;
+      }
+      dds::DatagramFault f{kDatagramIdBase * number + k, kind, *magnitude, from,
+                           static_cast<std::uint64_t>(*seed)};
+      if (const std::string why = f.invalidReason(); !why.empty()) {
+        r_.problem(key + "." + name, node[name], why);
+        ok = false;
+        continue;
+      }
+      a.datagrams.push_back(f);
+    }
+    if (ok && a.datagrams.empty()) {
+      r_.problem(key, node, "no datagram fault: expected at least one of " + joined(datagramKeys()));
+      ok = false;
+    }
+    return ok ? std::optional<Action>(a) : std::nullopt;
+  }
+
+  /// link: {host, loss | partition | down, duration}
+  std::optional<Action> link(YAML::Node node, const std::string& key)
+  {
+    const char* expected = "expected a map with host and one of loss: P, partition: HOST, down: true";
+    if (!node.IsMap()) {
+      r_.problem(key, node, expected);
+      return std::nullopt;
+    }
+    r_.onlyKeys(node, key + ".", {"host", "loss", "partition", "down", "duration"});
+    Action a;
+    a.kind = Action::Kind::kLink;
+    bool ok = true;
+    if (!isName(node["host"])) {
+      r_.problem(key + ".host", node["host"], "expected the name of a network-namespace host of the manifest");
+      ok = false;
+    } else {
+      a.link.host = node["host"].Scalar();
+    }
+    if (node["duration"].IsDefined()) {
+      a.duration_s = r_.number(node["duration"], key + ".duration", std::nullopt, 0.001, kMaxTime);
+      ok = ok && a.duration_s;
+    }
+    const int kinds = (node["loss"].IsDefined() ? 1 : 0) + (node["partition"].IsDefined() ? 1 : 0) +
+                      (node["down"].IsDefined() ? 1 : 0);
+    if (kinds != 1) {
+      r_.problem(key, node, std::string(kinds == 0 ? "no link fault: " : "one link fault per step: ") + expected);
+      return std::nullopt;
+    }
+    if (node["loss"].IsDefined()) {
+      a.link.kind = launch::LinkFault::Kind::kLoss;
+      const auto p = r_.number(node["loss"], key + ".loss", std::nullopt, 0.0, 1.0);
+      if (p && *p <= 0.0) {
+        r_.problem(key + ".loss", node["loss"], "expected a probability in (0, 1]");
+      }
+      ok = ok && p && *p > 0.0;
+      a.link.probability = p.value_or(0.0);
+    } else if (node["partition"].IsDefined()) {
+      a.link.kind = launch::LinkFault::Kind::kPartition;
+      if (!isName(node["partition"])) {
+        r_.problem(key + ".partition", node["partition"], "expected the name of another host of the manifest");
+        ok = false;
+      } else {
+        a.link.peer = node["partition"].Scalar();
+      }
+    } else {
+      a.link.kind = launch::LinkFault::Kind::kDown;
+      if (!flag(node["down"], key + ".down", false)) {
+        r_.problem(key + ".down", node["down"], "expected true (a link is up unless a step takes it down)");
+        ok = false;
+      }
+    }
+    if (ok && a.link.kind == launch::LinkFault::Kind::kPartition && a.link.peer == a.link.host) {
+      r_.problem(key + ".partition", node["partition"], "a host cannot be cut off from itself");
+      ok = false;
+    }
+    return ok ? std::optional<Action>(a) : std::nullopt;
+  }
+
+  static std::vector<std::string> datagramKeys()
+  {
+    std::vector<std::string> keys;
+    for (const auto kind : kDatagramKinds) {
+      keys.push_back(dds::toString(kind));
+    }
+    return keys;
   }
 
   std::optional<Action> publish(YAML::Node node, const std::string& key)
@@ -369,6 +514,18 @@ std::string Action::describe() const
       return "plant " + plant.describe();
     case Kind::kPublish:
       return "publish " + std::to_string(count) + " on " + topic;
+    case Kind::kDds: {
+      const std::string& from = datagrams.front().from;
+      std::string out = "dds " + module + " <- " + (from.empty() ? "every sender" : from) + ":";
+      for (const auto& d : datagrams) {
+        out += fmt::format("{} {} {:g}{}", &d == &datagrams.front() ? "" : ",", dds::toString(d.kind), d.magnitude,
+                           d.kind == dds::DatagramFaultKind::kDelay ? " s" : "");
+      }
+      out += fmt::format(" (seed {})", datagrams.front().seed);
+      return duration_s ? out + fmt::format(" for {:g} s", *duration_s) : out;
+    }
+    case Kind::kLink:
+      return "link " + link.describe() + (duration_s ? fmt::format(" for {:g} s", *duration_s) : "");
   }
   return "?";
 }
@@ -390,7 +547,8 @@ Scenario loadScenario(const fs::path& file, const ScenarioLookup& lookup)
 }
 
 std::vector<std::string> checkAgainstModules(const Scenario& s, const std::vector<std::string>& modules,
-                                             const std::vector<std::string>& kinds)
+                                             const std::vector<std::string>& kinds,
+                                             const std::map<std::string, bool>& hosts)
 {
   std::vector<std::string> problems;
   const auto has = [&](const std::string& m) { return std::find(modules.begin(), modules.end(), m) != modules.end(); };
@@ -405,6 +563,30 @@ std::vector<std::string> checkAgainstModules(const Scenario& s, const std::vecto
     if (a.kind == Action::Kind::kPlant) {
       if (std::find(kinds.begin(), kinds.end(), "plant") == kinds.end()) {
         problem(key + ".plant", a.plant.describe(), s.manifest.filename().string() + " starts no plant to apply it");
+      }
+    } else if (a.kind == Action::Kind::kLink) {
+      const auto host = hosts.find(a.link.host);
+      if (host == hosts.end() || !host->second) {
+        std::string netns;
+        for (const auto& [name, is_netns] : hosts) {
+          netns += is_netns ? (netns.empty() ? "" : ", ") + name : "";
+        }
+        problem(key + ".link.host", a.link.host,
+                "not a network-namespace host of " + s.manifest.filename().string() +
+                    (netns.empty() ? " (it has none: link faults need hosts of type netns)" : " (" + netns + ")"));
+      }
+      if (a.link.kind == launch::LinkFault::Kind::kPartition && hosts.count(a.link.peer) == 0) {
+        problem(key + ".link.partition", a.link.peer, "not a host of " + s.manifest.filename().string());
+      }
+    } else if (a.kind == Action::Kind::kDds) {
+      if (!has(a.module)) {
+        problem(key + ".dds.module", a.module, known);
+      }
+      const std::string& from = a.datagrams.front().from;
+      if (!from.empty() && std::find(kinds.begin(), kinds.end(), from) == kinds.end()) {
+        problem(key + ".dds.from", from,
+                "no module of " + s.manifest.filename().string() + " sends as '" + from +
+                    "' (a module's participant is named after its kind: " + joined(kinds) + ")");
       }
     } else if (a.kind != Action::Kind::kPublish && !has(a.module)) {
       problem(key + "." + nameOf(kProcessActions, a.kind), a.module, known);

@@ -7,11 +7,14 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "quad/dds/datagram_faults.hpp"
+#include "launch/link_faults.hpp"
 #include "quad/plant/faults.hpp"
 
 namespace quad::fault {
@@ -25,6 +28,8 @@ struct Action {
     kRestart,  ///< stop (SIGTERM, then SIGKILL) and start again
     kPlant,    ///< a plant fault, applied by the plant node (quad/system/fault)
     kPublish,  ///< samples published on a topic (bad inputs)
+    kDds,      ///< datagram faults in a module's DDS fault layer (quad/system/fault)
+    kLink,     ///< a fault on a network-namespace host's link (iptables, ip link)
   };
   Kind kind = Kind::kKill;
   std::string module;              ///< process actions
@@ -33,10 +38,23 @@ struct Action {
   std::string values;              ///< kPublish: the sample's fields in YAML, as `quad topic pub` takes them
   int count = 1;                   ///< kPublish: how many samples
   double rate_hz = 10.0;           ///< kPublish: at this rate
+  /// kDds: the faults on what `module` receives, ids `kDatagramIdBase * step + 1..5`.
+  std::vector<dds::DatagramFault> datagrams;
+  launch::LinkFault link;            ///< kLink
+  /// kDds, kLink: cleared (healed) this long after; absent: when the run ends.
+  std::optional<double> duration_s;
+
+  /// A fault that lasts until it is cleared, and whose clearing the report shows.
+  bool lasts() const { return kind == Kind::kDds || kind == Kind::kLink; }
 
   /// "kill planning", "plant: fault 3 motor: rotor 2 at 0.5 efficiency", ...
   std::string describe() const;
 };
+
+/// Datagram fault ids are `kDatagramIdBase * step + k`: apart from step numbers, which
+/// name the fault tool's own events and plant faults.
+inline constexpr std::uint32_t kDatagramIdBase = 1000;
+inline constexpr std::size_t kMaxSteps = 999;
 
 /// What must follow a step, and how soon.
 struct Expectation {
@@ -94,9 +112,12 @@ struct ScenarioLookup {
 Scenario parseScenario(std::string_view yaml_text, const std::filesystem::path& file, const ScenarioLookup& lookup);
 Scenario loadScenario(const std::filesystem::path& file, const ScenarioLookup& lookup);
 
-/// Problems of a scenario against the manifest it launches (modules it names that the
-/// manifest lacks; a plant fault without a plant), as `file:key: value: reason`.
+/// Problems of a scenario against the manifest it launches (modules or hosts it names that
+/// the manifest lacks; a plant fault without a plant; a link fault on a host that is not a
+/// network namespace), as `file:key: value: reason`. `hosts`: each host, and whether it is
+/// a network namespace.
 std::vector<std::string> checkAgainstModules(const Scenario& scenario, const std::vector<std::string>& modules,
-                                             const std::vector<std::string>& kinds);
+                                             const std::vector<std::string>& kinds,
+                                             const std::map<std::string, bool>& hosts = {});
 
 }  // namespace quad::fault

@@ -3,6 +3,7 @@
 #include <signal.h>
 
 #include <cerrno>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -151,7 +152,8 @@ HostNetwork::HostNetwork(const Manifest& manifest, std::string run_id) : manifes
       runChecked({"ip", "-n", ns, "link", "set", inside, "up"});
       runChecked({"ip", "-n", ns, "link", "set", "lo", "up"});
       // Without a route to them, multicast datagrams (DDS discovery) cannot be sent.
-      runChecked({"ip", "-n", ns, "route", "add", "224.0.0.0/4", "dev", inside});
+      runChecked({"ip", "-n", ns, "route", "add", kMulticastRoute, "dev", inside});
+      links_[h.name] = inside;
     }
   } catch (...) {
     teardown();
@@ -183,6 +185,40 @@ std::string HostNetwork::address(const std::string& host) const
 {
   const auto it = addresses_.find(host);
   return it == addresses_.end() ? "127.0.0.1" : it->second;
+}
+
+LinkCommands HostNetwork::commandsFor(const LinkFault& fault) const
+{
+  const auto link = links_.find(fault.host);
+  if (link == links_.end()) {
+    throw std::runtime_error("host " + fault.host + " is not a network namespace of this run");
+  }
+  const std::string peer = fault.kind == LinkFault::Kind::kPartition ? address(fault.peer) : "";
+  return linkCommands(fault, namespaces_.at(fault.host), link->second, peer);
+}
+
+void HostNetwork::applyLinkFault(const LinkFault& fault) const
+{
+  for (const auto& argv : commandsFor(fault).apply) {
+    runChecked(argv);
+  }
+}
+
+void HostNetwork::healLinkFault(const LinkFault& fault) const
+{
+  std::optional<std::runtime_error> first;
+  for (const auto& argv : commandsFor(fault).heal) {
+    try {
+      runChecked(argv);
+    } catch (const std::runtime_error& e) {
+      if (!first) {
+        first = e;
+      }
+    }
+  }
+  if (first) {
+    throw *first;
+  }
 }
 
 std::string HostNetwork::namespaceOf(const std::string& host) const

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "link_faults.hpp"
 #include "manifest.hpp"
 
 namespace quad::launch {
@@ -44,12 +45,20 @@ public:
   std::vector<std::string> command(const Host& host, std::vector<std::string> argv,
                                    const std::map<std::string, std::string>& env) const;
 
+  /// Applies a fault to a netns host's link (iptables rules on it, or the link down);
+  /// throws std::runtime_error naming the host or the command that failed.
+  void applyLinkFault(const LinkFault& fault) const;
+  /// Undoes it; every command runs, and the first that failed is thrown.
+  void healLinkFault(const LinkFault& fault) const;
+
 private:
   void teardown() noexcept;
+  LinkCommands commandsFor(const LinkFault& fault) const;
 
   const Manifest& manifest_;
   std::string bridge_;
   std::map<std::string, std::string> namespaces_;  // host -> netns name
+  std::map<std::string, std::string> links_;       // host -> its veth end in its namespace
   std::map<std::string, std::string> addresses_;
 };
 

@@ -142,6 +142,97 @@ outcome: {mission: success}
   EXPECT_TRUE(mentions(p, "outcome.mission: success: a run ended by end_at has no mission outcome"));
 }
 
+TEST_F(ScenarioFiles, DatagramFaultsAreReadWithIdsApartFromStepNumbers)
+{
+  const Scenario s = parse(R"(
+manifest: manifest.yaml
+steps:
+  - {at: 1, kill: mapping}
+  - at: 2
+    dds: {module: control, from: planning, loss: 0.2, delay: 0.02, corrupt: 0.01, seed: 9, duration: 60}
+  - {at: 3, dds: {module: planning, duplicate: 0.5}}
+)");
+  ASSERT_EQ(s.steps.size(), 3U);
+  const Action& a = s.steps[1].action;
+  EXPECT_EQ(a.kind, Action::Kind::kDds);
+  EXPECT_EQ(a.module, "control");
+  ASSERT_EQ(a.datagrams.size(), 3U);
+  EXPECT_EQ(a.datagrams[0].id, 2001U);
+  EXPECT_EQ(a.datagrams[0].kind, dds::DatagramFaultKind::kLoss);
+  EXPECT_EQ(a.datagrams[1].id, 2002U);
+  EXPECT_DOUBLE_EQ(a.datagrams[1].magnitude, 0.02);
+  EXPECT_EQ(a.datagrams[2].id, 2005U);
+  for (const auto& d : a.datagrams) {
+    EXPECT_EQ(d.from, "planning");
+    EXPECT_EQ(d.seed, 9U);
+  }
+  EXPECT_EQ(a.duration_s, 60.0);
+  EXPECT_EQ(a.describe(), "dds control <- planning: loss 0.2, delay 0.02 s, corrupt 0.01 (seed 9) for 60 s");
+  const Action& b = s.steps[2].action;
+  EXPECT_EQ(b.describe(), "dds planning <- every sender: duplicate 0.5 (seed 1)");
+  EXPECT_FALSE(b.duration_s);
+}
+
+TEST_F(ScenarioFiles, BadDatagramFaultsAreNamedByKeyAndValue)
+{
+  const auto p = problems(R"(
+manifest: manifest.yaml
+steps:
+  - {at: 1, dds: {module: control, loss: 1.5}}
+  - {at: 2, dds: {module: control, delay: 12}}
+  - {at: 3, dds: {module: control, jitter: 0.1, loss: 0.1}}
+  - {at: 4, dds: {module: control, from: planning}}
+  - {at: 5, dds: {loss: 0.1}}
+)");
+  EXPECT_TRUE(mentions(p, "steps[0].dds.loss: 1.5: loss 1.5: expected a probability in [0, 1]"))
+      << ::testing::PrintToString(p);
+  EXPECT_TRUE(mentions(p, "steps[1].dds.delay: 12: delay 12: expected seconds in [0, 10]"));
+  EXPECT_TRUE(mentions(p, "steps[2].dds.jitter"));
+  EXPECT_TRUE(mentions(p, "steps[3].dds: "));
+  EXPECT_TRUE(mentions(p, "no datagram fault: expected at least one of loss, delay, duplicate, reorder, corrupt"));
+  EXPECT_TRUE(mentions(p, "steps[4].dds.module"));
+}
+
+TEST_F(ScenarioFiles, LinkFaultsAreReadAndCheckedAgainstTheManifestsHosts)
+{
+  const Scenario s = parse(R"(
+manifest: manifest.yaml
+steps:
+  - {at: 1, link: {host: flight, loss: 0.2, duration: 10}}
+  - {at: 2, link: {host: flight, partition: brain, duration: 3}}
+  - {at: 3, link: {host: sim, down: true, duration: 1}}
+)");
+  ASSERT_EQ(s.steps.size(), 3U);
+  EXPECT_EQ(s.steps[0].action.kind, Action::Kind::kLink);
+  EXPECT_TRUE(s.steps[0].action.lasts());
+  EXPECT_EQ(s.steps[0].action.describe(), "link loss 0.2 on flight's link for 10 s");
+  EXPECT_EQ(s.steps[1].action.describe(), "link partition flight | brain for 3 s");
+  EXPECT_EQ(s.steps[2].action.link.kind, launch::LinkFault::Kind::kDown);
+  const std::map<std::string, bool> hosts = {{"sim", true}, {"brain", true}, {"flight", true}, {"local", false}};
+  EXPECT_TRUE(checkAgainstModules(s, {"plant"}, {"plant"}, hosts).empty());
+  const auto p = checkAgainstModules(s, {"plant"}, {"plant"}, {{"local", false}, {"flight", true}});
+  EXPECT_TRUE(mentions(p, "steps[1].link.partition: brain: not a host of manifest.yaml")) << ::testing::PrintToString(p);
+  EXPECT_TRUE(mentions(p, "steps[2].link.host: sim: not a network-namespace host of manifest.yaml (flight)"));
+  const auto q = checkAgainstModules(s, {"plant"}, {"plant"}, {{"local", false}});
+  EXPECT_TRUE(mentions(q, "(it has none: link faults need hosts of type netns)")) << ::testing::PrintToString(q);
+
+  const auto bad = problems(R"(
+manifest: manifest.yaml
+steps:
+  - {at: 1, link: {host: flight, loss: 0}}
+  - {at: 2, link: {host: flight, loss: 0.1, down: true}}
+  - {at: 3, link: {host: flight, partition: flight}}
+  - {at: 4, link: {host: flight, down: false}}
+  - {at: 5, link: {host: flight}}
+)");
+  EXPECT_TRUE(mentions(bad, "steps[0].link.loss: 0: expected a probability in (0, 1]")) << ::testing::PrintToString(bad);
+  EXPECT_TRUE(mentions(bad, "steps[1].link: "));
+  EXPECT_TRUE(mentions(bad, "one link fault per step"));
+  EXPECT_TRUE(mentions(bad, "steps[2].link.partition: flight: a host cannot be cut off from itself"));
+  EXPECT_TRUE(mentions(bad, "steps[3].link.down: false: expected true"));
+  EXPECT_TRUE(mentions(bad, "no link fault"));
+}
+
 TEST_F(ScenarioFiles, ModulesAreCheckedAgainstTheManifest)
 {
   const Scenario s = parse(R"(
@@ -156,6 +247,17 @@ steps:
   EXPECT_TRUE(mentions(p, "steps[0].expect[0].back: planner"));
   EXPECT_TRUE(mentions(p, "starts no plant to apply it"));
   EXPECT_TRUE(checkAgainstModules(s, {"planner", "plant"}, {"planning", "plant"}).empty());
+
+  // A datagram fault's sender is a participant, named after its module's kind.
+  const Scenario d = parse(R"(
+manifest: manifest.yaml
+steps:
+  - {at: 1, dds: {module: planner, from: planner, loss: 0.1}}
+)");
+  const auto q = checkAgainstModules(d, {"planner", "mapper"}, {"planning", "mapping"});
+  EXPECT_TRUE(mentions(q, "steps[0].dds.from: planner: no module of manifest.yaml sends as 'planner'"))
+      << ::testing::PrintToString(q);
+  EXPECT_EQ(q.size(), 1U);
 }
 
 constexpr std::int64_t kMs = 1'000'000;
@@ -271,11 +373,56 @@ TEST(Judge, RecordingLossAndAnUnreadableRecordingFail)
   s.outcome.zero_loss = true;
   RunFacts f = goodRun();
   f.reliable_loss = {{"quad/mapping/update", 0}, {"quad/planning/path", 2}};
+  f.module_loss = {{"planning", 0}, {"control", 0}};
   EXPECT_FALSE(passed(Judge(s).finish(f)));
   f.reliable_loss["quad/planning/path"] = 0;
   EXPECT_TRUE(passed(Judge(s).finish(f)));
+  // What the modules' own readers lost counts as much as what the recorder lost.
+  f.module_loss["control"] = 4;
+  const auto rows = Judge(s).finish(f);
+  EXPECT_FALSE(passed(rows));
+  EXPECT_NE(toTable("k", rows).find("control 4"), std::string::npos) << toTable("k", rows);
+  f.module_loss["control"] = 0;
   f.recording_problem = "log/x.mcap: no loss figures";
   EXPECT_FALSE(passed(Judge(s).finish(f)));
+}
+
+Scenario linkScenario(std::optional<double> duration)
+{
+  Scenario s;
+  s.name = "l";
+  Step st;
+  st.at_s = 2.0;
+  st.action.kind = Action::Kind::kDds;
+  st.action.module = "planning";
+  st.action.datagrams = {{1001, dds::DatagramFaultKind::kLoss, 0.2, "mapping", 7}};
+  st.action.duration_s = duration;
+  s.steps.push_back(st);
+  s.outcome.zero_loss = false;
+  return s;
+}
+
+TEST(Judge, ADatagramFaultMustBeAcknowledgedAsClearedWithWhatItDid)
+{
+  const Scenario s = linkScenario(60.0);
+  Judge j(s);
+  ASSERT_EQ(j.due(2.0).size(), 1U);
+  j.applied(0, 2.0, 0, "acknowledged by planning");
+  EXPECT_TRUE(j.isApplied(0));
+  auto rows = j.finish(goodRun());
+  EXPECT_FALSE(passed(rows));
+  EXPECT_NE(toTable("l", rows).find("not acknowledged"), std::string::npos) << toTable("l", rows);
+  j.cleared(0, 62.0, "planning: datagram fault 1001 cleared: it acted on 20 of 100 datagrams");
+  rows = j.finish(goodRun());
+  EXPECT_TRUE(passed(rows)) << toTable("l", rows);
+  EXPECT_NE(toTable("l", rows).find("at 62.00 s: planning: datagram fault 1001 cleared"), std::string::npos);
+  // Without a duration it lasts until the run ends.
+  const Scenario open = linkScenario(std::nullopt);
+  Judge k(open);
+  k.due(2.0);
+  k.applied(0, 2.0, 0, "acknowledged by planning");
+  k.cleared(0, 30.0, "x");
+  EXPECT_NE(toTable("l", k.finish(goodRun())).find("at the end"), std::string::npos);
 }
 
 }  // namespace

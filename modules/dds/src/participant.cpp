@@ -15,6 +15,7 @@
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 #include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
 #include <fastrtps/utils/IPLocator.h>
+#include <fastrtps/xmlparser/XMLProfileManager.h>
 
 #include "fault_transport.hpp"
 
@@ -265,6 +266,10 @@ Participant::Participant(ParticipantOptions options)
                                   "': a fault layer needs UDP, and the transport is shared memory");
     }
     options_.transport = Transport::kUdp;  // data-sharing off too (profileQos)
+    // Endpoints of one process would otherwise talk through memory, around any transport.
+    auto settings = eprosima::fastrtps::xmlparser::XMLProfileManager::library_settings();
+    settings.intraprocess_delivery = eprosima::fastrtps::INTRAPROCESS_OFF;
+    eprosima::fastrtps::xmlparser::XMLProfileManager::library_settings(settings);
     datagram_faults_ = std::make_shared<DatagramFaults>();
     qos.transport().use_builtin_transports = false;
     qos.transport().user_transports.push_back(faultyUdpTransport(datagram_faults_, udpDescriptor(options_.udp_max_message)));

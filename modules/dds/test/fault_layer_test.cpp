@@ -88,7 +88,10 @@ TEST(FaultLayer, AReliableTopicComesThroughThirtyPercentLossWholeAndInOrder)
   DatagramFaults::Counts counts;
   const auto got = sendThrough(kLossDomain, {{1, DatagramFaultKind::kLoss, 0.3, "talker", 5}}, &counts);
   EXPECT_EQ(got, oneToN());
-  EXPECT_GT(counts.dropped, counts.seen / 10);  // the layer did drop: the topic repaired it
+  // Every sample crossed the layer (nothing went around it through memory), and it dropped
+  // about 30 % of the datagrams: the topic repaired that.
+  EXPECT_GE(counts.seen, static_cast<std::uint64_t>(kSamples));
+  EXPECT_GT(counts.dropped, counts.seen / 5);
 }
 
 TEST(FaultLayer, DuplicatedReorderedAndDelayedDatagramsDeliverEachSampleOnceInOrder)
@@ -100,6 +103,7 @@ TEST(FaultLayer, DuplicatedReorderedAndDelayedDatagramsDeliverEachSampleOnceInOr
                                 {3, DatagramFaultKind::kDelay, 0.005, "talker", 7}},
                                &counts);
   EXPECT_EQ(got, oneToN());
+  EXPECT_GE(counts.seen, static_cast<std::uint64_t>(kSamples));
   EXPECT_GT(counts.duplicated, 0U);
   EXPECT_GT(counts.reordered, 0U);
   EXPECT_GT(counts.delayed, counts.reordered);

@@ -40,8 +40,8 @@ struct ParticipantOptions {
   std::filesystem::path qos_file;          ///< QoS profiles XML; empty: the installed default
   std::uint32_t vehicle_id = 0;            ///< written into Header.vehicle_id of every sample
   /// Received datagrams pass a fault layer (datagram_faults.hpp) in front of UDP, so that
-  /// fault injection can break this participant's links. Implies UDP only, data-sharing off:
-  /// shared memory would go around the layer.
+  /// fault injection can break this participant's links. Implies UDP only, data-sharing off
+  /// and, for the whole process, intraprocess delivery off: each would go around the layer.
   bool fault_layer = false;
   /// UDP only: the largest datagram Fast DDS sends, in bytes; larger samples go as RTPS
   /// fragments, each repaired on its own. 0: Fast DDS's default (65500), which over a real

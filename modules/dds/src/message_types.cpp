@@ -1,6 +1,36 @@
 #include "quad/dds/message_types.hpp"
 
+#include <mutex>
+#include <span>
+
+#include "quad/introspection/cdr.hpp"
+#include "quad/introspection/idl.hpp"
+
 namespace quad::dds {
+
+namespace {
+std::mutex rejected_mutex;
+RejectedPayloads rejected;
+}  // namespace
+
+bool payloadKeepsToIdl(std::string_view type_name, const eprosima::fastrtps::rtps::SerializedPayload_t& payload)
+{
+  const std::string why = introspection::checkBounds(introspection::quadSchema(), type_name,
+                                                     std::span<const std::uint8_t>(payload.data, payload.length));
+  if (why.empty()) {
+    return true;
+  }
+  std::lock_guard lock(rejected_mutex);
+  ++rejected.count;
+  rejected.last = std::string(type_name) + ": " + why;
+  return false;
+}
+
+RejectedPayloads rejectedPayloads()
+{
+  std::lock_guard lock(rejected_mutex);
+  return rejected;
+}
 
 void vehicleKeyHash(std::uint32_t vehicle_id, eprosima::fastrtps::rtps::InstanceHandle_t& handle)
 {

@@ -13,6 +13,7 @@
 #include "quad/common/time.hpp"
 #include "quad/common/yaml_input.hpp"
 #include "quad/dds/fault_messages.hpp"
+#include "quad/dds/message_types.hpp"
 #include "quad/dds/topics.hpp"
 
 namespace quad::dds {
@@ -113,6 +114,16 @@ void Node::countLoss(const EndpointEvent& event)
   const auto contract = topics::find(event.topic);
   if (contract && participant_.promisesEverySample(contract->qos_profile)) {
     counters_.samples_lost += static_cast<std::uint64_t>(event.count);
+  }
+}
+
+void Node::countRejectedPayloads()
+{
+  const RejectedPayloads r = rejectedPayloads();
+  if (r.count > rejected_payloads_) {
+    counters_.errors += r.count - rejected_payloads_;
+    spdlog::warn("{} received payload(s) refused; the last: {}", r.count - rejected_payloads_, r.last);
+    rejected_payloads_ = r.count;
   }
 }
 
@@ -231,6 +242,7 @@ void Node::run()
       countLoss(event);
       onEvent(event);
     }
+    countRejectedPayloads();
     if (woken && fault_commands_) {
       takeDatagramFaults();
     }

@@ -16,7 +16,10 @@ constexpr std::size_t kEncapsulationSize = 4;
 class Writer {
 public:
   /// Starts the payload with its encapsulation header: CDR_LE, no options.
-  explicit Writer(const Schema& schema) : schema_(schema), body_{0x00, 0x01, 0x00, 0x00} {}
+  Writer(const Schema& schema, const EncodeOptions& options)
+      : schema_(schema), options_(options), body_{0x00, 0x01, 0x00, 0x00}
+  {
+  }
 
   void writeStruct(const StructDef& def, const Json* value, const std::string& path)
   {
@@ -169,7 +172,7 @@ private:
           fail(path, "expected a string, got " + v->dump());
         }
         const std::string s = v == nullptr ? "" : v->get<std::string>();
-        if (t.bound != 0 && s.size() > t.bound) {
+        if (options_.enforce_bounds && t.bound != 0 && s.size() > t.bound) {
           fail(path, "string of " + std::to_string(s.size()) + " characters exceeds its bound " +
                          std::to_string(t.bound));
         }
@@ -184,7 +187,7 @@ private:
           fail(path, "expected a list, got " + v->dump());
         }
         const std::size_t n = v == nullptr ? 0 : v->size();
-        if (t.bound != 0 && n > t.bound) {
+        if (options_.enforce_bounds && t.bound != 0 && n > t.bound) {
           fail(path, "list of " + std::to_string(n) + " exceeds its bound " + std::to_string(t.bound));
         }
         put(static_cast<std::uint32_t>(n));
@@ -256,6 +259,7 @@ private:
   }
 
   const Schema& schema_;
+  const EncodeOptions& options_;
   std::vector<std::uint8_t> body_;
 };
 
@@ -264,13 +268,13 @@ static_assert(std::endian::native == std::endian::little, "encodeCdr writes CDR_
 }  // namespace
 
 std::vector<std::uint8_t> encodeCdr(const Schema& schema, std::string_view type_name,
-                                    const nlohmann::ordered_json& value)
+                                    const nlohmann::ordered_json& value, const EncodeOptions& options)
 {
   const StructDef* def = schema.findStruct(type_name);
   if (def == nullptr) {
     throw EncodeError("no IDL struct named '" + std::string(type_name) + "'");
   }
-  Writer writer(schema);
+  Writer writer(schema, options);
   writer.writeStruct(*def, &value, "");
   return writer.take();
 }

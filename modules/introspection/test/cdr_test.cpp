@@ -232,5 +232,78 @@ TEST(CdrEncode, BadValuesNameTheFieldPath)
             "module_name: string of 34 characters exceeds its bound 32");
 }
 
+nlohmann::ordered_json pathOf(std::size_t waypoints)
+{
+  nlohmann::ordered_json p = {{"header", {{"seq", 1}}}, {"waypoints_W", nlohmann::ordered_json::array()}};
+  for (std::size_t i = 0; i < waypoints; ++i) {
+    p["waypoints_W"].push_back({{"x", static_cast<double>(i)}, {"y", 0.0}, {"z", 2.0}});
+  }
+  return p;
+}
+
+TEST(CdrBounds, SamplesThatKeepToTheirIdlPassAndOversizedOnesAreNamed)
+{
+  // Within its bound (4096 waypoints), a path passes; the generated code would read the
+  // oversized one whole, so the check is what refuses it.
+  EXPECT_EQ(checkBounds(quadSchema(), "quad::msg::Path", encodeCdr(quadSchema(), "quad::msg::Path", pathOf(4096))), "");
+  EXPECT_THROW(encodeCdr(quadSchema(), "quad::msg::Path", pathOf(4097)), EncodeError);
+  const auto oversized = encodeCdr(quadSchema(), "quad::msg::Path", pathOf(5000), {.enforce_bounds = false});
+  const std::string why = checkBounds(quadSchema(), "quad::msg::Path", oversized);
+  EXPECT_EQ(why.rfind("waypoints_W: sequence length 5000 exceeds its bound 4096 at byte ", 0), 0U) << why;
+  // Whatever decodeCdr refuses, checkBounds refuses too.
+  EXPECT_THROW(decodeCdr(quadSchema(), "quad::msg::Path", oversized), DecodeError);
+}
+
+TEST(CdrBounds, TruncatedPayloadsLongStringsAndBadEnumsAreRefused)
+{
+  msg::Heartbeat hb;
+  hb.module_name("planning");
+  hb.pid(3);
+  auto bytes = serialize(hb);
+  EXPECT_EQ(checkBounds(quadSchema(), "quad::msg::Heartbeat", bytes), "");
+  auto cut = bytes;
+  cut.resize(cut.size() - 6);
+  EXPECT_NE(checkBounds(quadSchema(), "quad::msg::Heartbeat", cut).find("truncated"), std::string::npos);
+  const auto long_name = encodeCdr(quadSchema(), "quad::msg::Heartbeat",
+                                   {{"module_name", std::string(40, 'm')}}, {.enforce_bounds = false});
+  EXPECT_NE(checkBounds(quadSchema(), "quad::msg::Heartbeat", long_name)
+                .find("module_name: string length 40 exceeds its bound 32"),
+            std::string::npos);
+  // Two statuses that differ in their mode only show where the mode's bytes are.
+  const nlohmann::ordered_json first = {{"mode", "CONTROL_DISARMED"}};
+  const nlohmann::ordered_json last = {{"mode", "CONTROL_FAILSAFE_LAND"}};
+  auto a = encodeCdr(quadSchema(), "quad::msg::ControlStatus", first);
+  auto b = encodeCdr(quadSchema(), "quad::msg::ControlStatus", last);
+  ASSERT_EQ(a.size(), b.size());
+  std::size_t at = 0;
+  while (at < a.size() && a[at] == b[at]) {
+    ++at;
+  }
+  ASSERT_LT(at, a.size());
+  b[at] = 99;
+  EXPECT_NE(checkBounds(quadSchema(), "quad::msg::ControlStatus", b).find("enum value 99 is not an enumerator"),
+            std::string::npos);
+  EXPECT_EQ(checkBounds(quadSchema(), "quad::msg::Nothing", a), "no IDL struct named 'quad::msg::Nothing'");
+}
+
+TEST(CdrBounds, ElementsOfOneSizeAreSkippedAndOthersWalked)
+{
+  // Map changes (3 longs and an enum each) are walked; points (3 floats) skipped: both must
+  // end exactly where the payload does for a sample that keeps to its IDL.
+  nlohmann::ordered_json update = {{"changes", nlohmann::ordered_json::array()}};
+  for (int i = 0; i < 100; ++i) {
+    update["changes"].push_back({{"ix", i}, {"iy", -i}, {"iz", 3}, {"state", "VOXEL_OCCUPIED"}});
+  }
+  EXPECT_EQ(checkBounds(quadSchema(), "quad::msg::MapUpdate", encodeCdr(quadSchema(), "quad::msg::MapUpdate", update)), "");
+  nlohmann::ordered_json cloud = {{"points", nlohmann::ordered_json::array()}};
+  for (int i = 0; i < 1000; ++i) {
+    cloud["points"].push_back({{"x", 1.0}, {"y", 2.0}, {"z", 3.0}});
+  }
+  auto bytes = encodeCdr(quadSchema(), "quad::msg::PointCloud", cloud);
+  EXPECT_EQ(checkBounds(quadSchema(), "quad::msg::PointCloud", bytes), "");
+  bytes.resize(bytes.size() - 12);  // one point short of what the length announces
+  EXPECT_NE(checkBounds(quadSchema(), "quad::msg::PointCloud", bytes).find("truncated"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace quad::introspection

@@ -8,6 +8,7 @@
 /// the key members, zero-padded to 16 bytes, per DDS-XTypes 7.6.8).
 
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 #include <fastdds/dds/topic/TopicDataType.hpp>
@@ -35,10 +36,28 @@ namespace quad::dds {
 /// Writes the key hash of a vehicle id into a DDS instance handle.
 void vehicleKeyHash(std::uint32_t vehicle_id, eprosima::fastrtps::rtps::InstanceHandle_t& handle);
 
-/// The generated TopicDataType with the key computed from header.vehicle_id.
+/// Whether a received payload of `type_name` keeps to its IDL (introspection::checkBounds):
+/// the generated code reads a sequence of any length into a bounded one. A payload that
+/// does not is counted and its fault kept for rejectedPayloads().
+bool payloadKeepsToIdl(std::string_view type_name, const eprosima::fastrtps::rtps::SerializedPayload_t& payload);
+
+/// Payloads this process refused since it started, and what was wrong with the last one.
+struct RejectedPayloads {
+  std::uint64_t count = 0;
+  std::string last;  ///< "quad::msg::Path: waypoints_W: sequence length 5000 exceeds its bound 4096 at byte 52"
+};
+RejectedPayloads rejectedPayloads();
+
+/// The generated TopicDataType with the key computed from header.vehicle_id, refusing
+/// payloads that break their IDL's bounds.
 template <class Generated, class Message>
 class VehicleKeyedType : public Generated {
 public:
+  bool deserialize(eprosima::fastrtps::rtps::SerializedPayload_t* payload, void* data) override
+  {
+    return payloadKeepsToIdl(this->getName(), *payload) && Generated::deserialize(payload, data);
+  }
+
   bool getKey(void* data, eprosima::fastrtps::rtps::InstanceHandle_t* handle,
               bool /*force_md5*/) override
   {

@@ -104,6 +104,8 @@ private:
   void takeDatagramFaults();
   /// Adds a reader's lost samples to the heartbeat's count, on topics that promise every one.
   void countLoss(const EndpointEvent& event);
+  /// Payloads refused for breaking their IDL (message_types.hpp) count as rejected inputs.
+  void countRejectedPayloads();
   void faultEvent(const msg::FaultCommand& command, msg::SimEventKind kind, const std::string& detail);
 
   std::string module_name_;
@@ -124,6 +126,7 @@ private:
   std::int64_t tick_period_ns_ = 0;
   bool lockstep_ = false;
   std::int64_t last_deadline_log_ns_ = 0;
+  std::uint64_t rejected_payloads_ = 0;
 };
 
 /// The body of every node's main(): installs signal handling, builds the node with `make`,

@@ -35,6 +35,13 @@ nlohmann::ordered_json decodeCdr(const Schema& schema, std::string_view type_nam
                                  std::span<const std::uint8_t> payload,
                                  const DecodeOptions& options = {});
 
+/// What is wrong with `payload` as `type_name` against its IDL: a string or sequence longer
+/// than its bound or than the payload, an enum value that is no enumerator, a truncated
+/// member ("waypoints_W: sequence length 5000 exceeds its bound 4096 at byte 40"); "" when
+/// nothing is. Much cheaper than decodeCdr: it builds nothing, and skips runs of elements
+/// made of primitives of one size (points, vectors, voxel indices) without reading them.
+std::string checkBounds(const Schema& schema, std::string_view type_name, std::span<const std::uint8_t> payload);
+
 class EncodeError : public std::runtime_error {
 public:
   using std::runtime_error::runtime_error;
@@ -43,9 +50,15 @@ public:
 /// Serializes `value` (an object shaped like decodeCdr's output) as `type_name` in plain
 /// little-endian CDR, encapsulation header included. Members left out are zero, false, empty
 /// or the first enumerator. An unknown member, a wrong JSON type, an integer out of its
-/// type's range, a string or sequence over its bound, an unknown enumerator or an array of
-/// the wrong length is an EncodeError naming the field path.
+/// type's range, a string or sequence over its bound (unless EncodeOptions say otherwise), an
+/// unknown enumerator or an array of the wrong length is an EncodeError naming the field path.
+struct EncodeOptions {
+  /// false: strings and sequences longer than their bound are written as given (a payload
+  /// that breaks its IDL, for fault injection); true: they are an EncodeError.
+  bool enforce_bounds = true;
+};
+
 std::vector<std::uint8_t> encodeCdr(const Schema& schema, std::string_view type_name,
-                                    const nlohmann::ordered_json& value);
+                                    const nlohmann::ordered_json& value, const EncodeOptions& options = {});
 
 }  // namespace quad::introspection

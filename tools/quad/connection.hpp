@@ -31,8 +31,9 @@ dds::TopicInfo requireTopic(std::string_view name);
 /// they do not make a sample.
 nlohmann::ordered_json sampleValues(const dds::TopicInfo& info, const std::string& values);
 
-/// `sample` as CDR, its Header filled where the values leave it unset.
+/// `sample` as CDR, its Header filled where the values leave it unset. `enforce_bounds`
+/// false writes strings and sequences past their IDL bounds as given (fault injection).
 dds::RawSample encodeSample(const dds::TopicInfo& info, nlohmann::ordered_json sample, std::int64_t stamp_ns,
-                            std::uint64_t seq, std::uint32_t vehicle_id);
+                            std::uint64_t seq, std::uint32_t vehicle_id, bool enforce_bounds = true);
 
 }  // namespace quad::tools

@@ -51,6 +51,20 @@ eprosima::fastdds::dds::DataReaderQos deepReader(dds::Participant& p, std::strin
   return qos;
 }
 
+/// `values` with each list field of `lengths` repeated to its length.
+nlohmann::ordered_json stretched(nlohmann::ordered_json values, const std::map<std::string, std::size_t>& lengths)
+{
+  for (const auto& [field, n] : lengths) {
+    auto& list = values[field];
+    const nlohmann::ordered_json pattern = list;
+    list = nlohmann::ordered_json::array();
+    for (std::size_t i = 0; i < n; ++i) {
+      list.push_back(pattern[i % pattern.size()]);
+    }
+  }
+  return values;
+}
+
 /// Applies a scenario's steps to a LaunchRun and feeds the Judge with what the stack does.
 class FaultDriver : public RunExtension {
 public:
@@ -178,7 +192,8 @@ private:
       if (!injector_) {
         injector_ = std::make_unique<dds::Participant>(dds::optionsFromEnvironment("quad_fault"));
       }
-      PublishJob job{requireTopic(a.topic), sampleValues(requireTopic(a.topic), a.values), nullptr};
+      PublishJob job{requireTopic(a.topic), stretched(sampleValues(requireTopic(a.topic), a.values), a.lengths),
+                     nullptr};
       job.writer = std::make_unique<dds::RawPublisher>(*injector_, job.info);
       jobs_.emplace(i, std::move(job));
     }
@@ -376,7 +391,8 @@ private:
       while (job.active && job.sent < a.count && job.next_ns <= now) {
         ++job.sent;
         dds::RawSample raw = encodeSample(job.info, job.values, common::toNanoseconds(t_),
-                                          static_cast<std::uint64_t>(job.sent), injector_->options().vehicle_id);
+                                          static_cast<std::uint64_t>(job.sent), injector_->options().vehicle_id,
+                                          a.lengths.empty());
         if (!job.writer->write(raw)) {
           refuse(step, fmt::format("sample {} could not be written", job.sent));
           job.active = false;

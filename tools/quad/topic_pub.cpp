@@ -38,7 +38,7 @@ nlohmann::ordered_json sampleValues(const dds::TopicInfo& info, const std::strin
 }
 
 dds::RawSample encodeSample(const dds::TopicInfo& info, nlohmann::ordered_json sample, std::int64_t stamp_ns,
-                            std::uint64_t seq, std::uint32_t vehicle_id)
+                            std::uint64_t seq, std::uint32_t vehicle_id, bool enforce_bounds)
 {
   // The header is the publisher's to fill, as Publisher<T> does for the modules, except what
   // the values set on purpose.
@@ -52,7 +52,8 @@ dds::RawSample encodeSample(const dds::TopicInfo& info, nlohmann::ordered_json s
   fill("publish_ns", common::wallTimeNs());
   fill("seq", seq);
   fill("vehicle_id", vehicle_id);
-  return dds::RawSample{introspection::encodeCdr(introspection::quadSchema(), info.type_name, sample)};
+  return dds::RawSample{
+      introspection::encodeCdr(introspection::quadSchema(), info.type_name, sample, {.enforce_bounds = enforce_bounds})};
 }
 
 int topicPub(const TopicPubOptions& options)

@@ -16,6 +16,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr double kMaxTime = 1e6;  // [s] any time or bound beyond this is a typo
+constexpr double kMaxListLength = 1e6;  // elements a stretched list may reach
 
 const std::vector<std::pair<std::string, Action::Kind>> kProcessActions = {
     {"kill", Action::Kind::kKill},
@@ -370,9 +371,24 @@ private:
       r_.problem(key, node, "expected a map with topic, values, count and rate");
       return std::nullopt;
     }
-    r_.onlyKeys(node, key + ".", {"topic", "values", "count", "rate"});
+    r_.onlyKeys(node, key + ".", {"topic", "values", "count", "rate", "lengths"});
     Action a;
     a.kind = Action::Kind::kPublish;
+    if (node["lengths"].IsDefined() && !node["lengths"].IsMap()) {
+      r_.problem(key + ".lengths", node["lengths"], "expected a map of list fields to lengths");
+    } else if (node["lengths"].IsDefined()) {
+      for (const auto& entry : node["lengths"]) {
+        const std::string field = entry.first.Scalar();
+        const std::string k = key + ".lengths." + field;
+        const auto n = r_.number(entry.second, k, std::nullopt, 1.0, kMaxListLength);
+        const YAML::Node list = node["values"].IsMap() ? node["values"][field] : YAML::Node();
+        if (!list.IsSequence() || list.size() == 0) {
+          r_.problem(k, entry.second, "values." + field + " must be a list with at least one element to repeat");
+        } else if (n) {
+          a.lengths[field] = static_cast<std::size_t>(*n);
+        }
+      }
+    }
     const auto count = r_.number(node["count"], key + ".count", 1.0, 1.0, 100000.0);
     const auto rate = r_.number(node["rate"], key + ".rate", 10.0, 0.01, 10000.0);
     if (!isName(node["topic"])) {
@@ -512,8 +528,13 @@ std::string Action::describe() const
       return nameOf(kProcessActions, kind) + " " + module;
     case Kind::kPlant:
       return "plant " + plant.describe();
-    case Kind::kPublish:
-      return "publish " + std::to_string(count) + " on " + topic;
+    case Kind::kPublish: {
+      std::string out = "publish " + std::to_string(count) + " on " + topic;
+      for (const auto& [field, n] : lengths) {
+        out += fmt::format(" ({} of {})", field, n);
+      }
+      return out;
+    }
     case Kind::kDds: {
       const std::string& from = datagrams.front().from;
       std::string out = "dds " + module + " <- " + (from.empty() ? "every sender" : from) + ":";

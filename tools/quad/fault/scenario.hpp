@@ -36,6 +36,9 @@ struct Action {
   plant::Fault plant;              ///< kPlant (its id is the step's number)
   std::string topic;               ///< kPublish
   std::string values;              ///< kPublish: the sample's fields in YAML, as `quad topic pub` takes them
+  /// kPublish: list fields repeated to these lengths, past their IDL bounds if so (the
+  /// sample is then encoded as given: an oversized sequence).
+  std::map<std::string, std::size_t> lengths;
   int count = 1;                   ///< kPublish: how many samples
   double rate_hz = 10.0;           ///< kPublish: at this rate
   /// kDds: the faults on what `module` receives, ids `kDatagramIdBase * step + 1..5`.

@@ -23,6 +23,7 @@
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
+#include "wait.hpp"
 
 namespace {
 
@@ -32,22 +33,10 @@ using quad::dds::EndpointEvent;
 using quad::dds::Participant;
 namespace topics = quad::dds::topics;
 
-bool waitUntil(const std::function<bool()>& done, std::chrono::milliseconds timeout)
-{
-  const auto end = std::chrono::steady_clock::now() + timeout;
-  while (!done()) {
-    if (std::chrono::steady_clock::now() > end) {
-      return false;
-    }
-    std::this_thread::sleep_for(5ms);
-  }
-  return true;
-}
-
 int sendCommands(Participant& p, int count)
 {
   quad::dds::Publisher<quad::msg::VehicleCommand> pub(p, topics::kVehicleCommand);
-  if (!waitUntil([&] { return pub.matchedReaders() > 0; }, 20s)) {
+  if (!quad::test::waitFor([&] { return pub.matchedReaders() > 0; }, 20s)) {
     std::cout << "no reader matched" << std::endl;
     return 1;
   }
@@ -141,7 +130,7 @@ int lockstepClock(Participant& p, int steps, std::chrono::milliseconds timeout,
   quad::dds::Publisher<quad::msg::SimClock> clock(p, topics::kSimClock);
   // Participants that are up must be listening before time starts; a missing one is what
   // the barrier's timeout reports.
-  waitUntil([&] { return clock.matchedReaders() >= expected; }, 5s);
+  quad::test::waitFor([&] { return clock.matchedReaders() >= expected; }, 5s);
   const std::int64_t start = quad::common::steadyTimeNs();
   for (int step = 1; step <= steps; ++step) {
     quad::msg::SimClock tick;
@@ -173,7 +162,7 @@ int lockstepParticipant(Participant& p, const std::string& name)
   while (true) {
     waker.waitUntil(quad::common::steadyTimeNs() + 100'000'000);
     for (const auto& tick : clock.takeAll()) {
-      waitUntil([&] { return reporter.matchedBarriers() > 0; }, 5s);
+      quad::test::waitFor([&] { return reporter.matchedBarriers() > 0; }, 5s);
       reporter.reportDone(tick.sim_ns());
     }
   }

@@ -48,6 +48,9 @@ std::map<std::string, std::string> runEnvironment(const Manifest& m, int domain,
   std::map<std::string, std::string> env = m.environment;
   env["QUAD_DOMAIN_ID"] = std::to_string(domain);
   env["QUAD_TRANSPORT"] = m.transport;
+  if (!m.security_dir.empty()) {
+    env["QUAD_SECURITY_DIR"] = m.security_dir.string();
+  }
   if (m.discovery == launch::Discovery::kInitialPeers) {
     std::set<std::string> peers;
     for (const auto& h : m.hosts) {
@@ -201,6 +204,22 @@ bool LaunchRun::service(int timeout_ms)
   return !failed_ && !ended_ && !interrupted();
 }
 
+void LaunchRun::reportStall()
+{
+  say("no vehicle state for 30 s; what the modules last said of lockstep:");
+  for (const auto& name : started_order_) {
+    std::ifstream log(supervisor_.logDir() / (name + ".log"));
+    std::string line;
+    std::string last;
+    while (std::getline(log, line)) {
+      if (line.find("lockstep:") != std::string::npos) {
+        last = line;
+      }
+    }
+    say(fmt::format("  {}: {}", name, last.empty() ? "(nothing)" : last));
+  }
+}
+
 std::string LaunchRun::whoWrites(const std::string& topic) const
 {
   const auto contract = dds::topics::find(topic);
@@ -328,6 +347,7 @@ int LaunchRun::execute(RunExtension* extension)
     startModule(mod);
   }
   std::int64_t stall_reported_ns = 0;
+  constexpr std::int64_t kStallNs = 30 * common::kNanosecondsPerSecond;
   while (all_started && service(50)) {
     if (auto* mission = observer_->mission(); mission != nullptr && mission->finished()) {
       break;
@@ -340,10 +360,15 @@ int LaunchRun::execute(RunExtension* extension)
     }
     // A mission whose vehicle state stopped coming is stuck, whoever is at fault.
     const std::int64_t last = observer_->lastStateNs();
-    if (m_.mission.enabled && last > 0 && common::steadyTimeNs() - last > 30 * common::kNanosecondsPerSecond &&
-        stall_reported_ns != last) {
-      say("no vehicle state for 30 s: is a lockstep participant stuck? (see the modules' logs)");
+    if (m_.mission.enabled && last > 0 && common::steadyTimeNs() - last > kStallNs && stall_reported_ns != last) {
       stall_reported_ns = last;
+      reportStall();
+      if (m_.mode == "lockstep") {
+        // Sim time waits for everyone: a lockstep run that stopped this long does not resume.
+        failed_ = true;
+        failure_ = "no vehicle state for 30 s: the lockstep run stalled";
+        break;
+      }
     }
   }
   if (interrupted()) {

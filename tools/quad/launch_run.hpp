@@ -89,6 +89,8 @@ private:
   void startModule(const launch::Module& mod);
   void handleExit(const launch::Supervisor::Exit& e);
   std::string whoWrites(const std::string& topic) const;
+  /// Says, for each module, the last line its log has about lockstep ("lockstep: ...").
+  void reportStall();
   void stopAll();
   bool waitForNeeds(const launch::Module& mod);
   const launch::Module& module(const std::string& name) const;

@@ -8,6 +8,7 @@
 
 #include "fault_command.hpp"
 #include "launch_command.hpp"
+#include "security_command.hpp"
 #include "bag_commands.hpp"
 #include "so3_command.hpp"
 #include "topic_commands.hpp"
@@ -102,6 +103,17 @@ int main(int argc, char** argv)
   auto* bag_recover = bag->add_subcommand("recover", "Rewrite a recording cut short (killed recorder) whole");
   bag_recover->add_option("file", bag_file, "MCAP file")->required();
   bag_recover->add_option("-o,--output", recover_output, "Output (default: FILE.recovered.mcap)");
+
+  quad::security::InitOptions security_options;
+  auto* security = app.add_subcommand("security", "DDS Security: authorities, identities and permissions");
+  security->require_subcommand(1);
+  auto* security_init = security->add_subcommand(
+      "init", "Create a CA, an identity per module and tool, governance and signed permissions in DIR");
+  security_init->add_option("dir", security_options.dir, "Folder for the files (created, mode 0700)")->required();
+  security_init->add_option("--days", security_options.days, "Validity of identities and permissions (1..3650)")
+      ->check(CLI::Range(1, 3650));
+  security_init->add_flag("--force", security_options.force,
+                          "Replace an existing CA (identities signed by the old one stop working)");
 
   auto* topic = app.add_subcommand("topic", "Inspect and publish topics of a running stack");
   topic->require_subcommand(1);
@@ -221,6 +233,9 @@ int main(int argc, char** argv)
     }
     if (replay->parsed()) {
       return quad::tools::replay(replay_options);
+    }
+    if (security_init->parsed()) {
+      return quad::tools::securityInit(security_options);
     }
     if (bag_info->parsed()) {
       return quad::tools::bagInfo(bag_file);

@@ -78,8 +78,11 @@ WriterEndpoint::WriterEndpoint(Participant& participant, const TopicInfo& info,
                                                         fdds::StatusMask::all());
   if (writer_ == nullptr) {
     participant_.removeLocalEndpoint(std::string(info_.name), true);
-    throw std::runtime_error("cannot create writer on " + std::string(info_.name) +
-                             " (QoS profile " + std::string(info_.qos_profile) + ".writer)");
+    throw std::runtime_error("cannot create writer on " + std::string(info_.name) + " (QoS profile " +
+                             std::string(info_.qos_profile) + ".writer" +
+                             (participant_.options().security_dir.empty()
+                                  ? ")"
+                                  : "; with security on, do its permissions grant publishing it?)"));
   }
 }
 
@@ -194,8 +197,11 @@ ReaderEndpoint::ReaderEndpoint(Participant& participant, const TopicInfo& info,
                                                          fdds::StatusMask::all());
   if (reader_ == nullptr) {
     participant_.removeLocalEndpoint(std::string(info_.name), false);
-    throw std::runtime_error("cannot create reader on " + std::string(info_.name) +
-                             " (QoS profile " + std::string(info_.qos_profile) + ".reader)");
+    throw std::runtime_error("cannot create reader on " + std::string(info_.name) + " (QoS profile " +
+                             std::string(info_.qos_profile) + ".reader" +
+                             (participant_.options().security_dir.empty()
+                                  ? ")"
+                                  : "; with security on, do its permissions grant subscribing to it?)"));
   }
 }
 

@@ -8,11 +8,11 @@
 #include <thread>
 #include <vector>
 
-#include <fastdds/rtps/transport/ChainingTransport.h>
 #include <fastdds/rtps/transport/ChainingTransportDescriptor.h>
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 
 #include "quad/common/time.hpp"
+#include "receive_layer.hpp"
 
 namespace quad::dds {
 
@@ -38,10 +38,10 @@ private:
 /// Applies fates on reception. Datagrams that go through untouched are handed on from the
 /// receive thread; delayed ones from a thread of the layer's own. One mutex serialises every
 /// hand-on, because Fast DDS's receivers expect one thread per channel.
-class FaultyTransport : public fdrtps::ChainingTransport {
+class FaultyTransport : public ReceiveLayer {
 public:
   FaultyTransport(const FaultyTransportDescriptor& d, std::shared_ptr<DatagramFaults> faults)
-      : ChainingTransport(d), descriptor_(d), faults_(std::move(faults))
+      : ReceiveLayer(d), descriptor_(d), faults_(std::move(faults))
   {
     thread_ = std::thread([this] { deliverDelayed(); });
   }
@@ -76,15 +76,6 @@ public:
     }
     std::lock_guard wait_for_hand_on(deliver_mutex_);
     return closed;
-  }
-
-  bool send(frtps::SenderResource* low_sender_resource, const frtps::octet* send_buffer,
-            uint32_t send_buffer_size, frtps::LocatorsIterator* destination_locators_begin,
-            frtps::LocatorsIterator* destination_locators_end,
-            const std::chrono::steady_clock::time_point& timeout) override
-  {
-    return low_sender_resource->send(send_buffer, send_buffer_size, destination_locators_begin,
-                                     destination_locators_end, timeout);
   }
 
   void receive(fdrtps::TransportReceiverInterface* next_receiver, const frtps::octet* receive_buffer,

@@ -23,6 +23,24 @@ bool LockstepReporter::reportDone(std::int64_t done_ns)
   return publisher_.write(report);
 }
 
+void LockstepReporter::holding(std::int64_t clock_ns, const std::function<std::string()>& why)
+{
+  constexpr std::int64_t kFirstLogNs = 2'000'000'000;
+  constexpr std::int64_t kLogPeriodNs = 5'000'000'000;
+  const std::int64_t now = common::steadyTimeNs();
+  if (clock_ns != holding_clock_ns_) {
+    holding_clock_ns_ = clock_ns;
+    holding_since_ns_ = now;
+    next_holding_log_ns_ = now + kFirstLogNs;
+    return;
+  }
+  if (now >= next_holding_log_ns_) {
+    spdlog::warn("lockstep: {} not done up to sim time {:.3f} s after {:.1f} s: {}", name_, common::toSeconds(clock_ns),
+                 common::toSeconds(now - holding_since_ns_), why());
+    next_holding_log_ns_ = now + kLogPeriodNs;
+  }
+}
+
 LockstepBarrier::LockstepBarrier(Participant& participant, std::vector<std::string> participants,
                                  Waker* waker)
     : ledger_(std::move(participants)),

@@ -12,9 +12,10 @@
 #include "quad/common/logging.hpp"
 #include "quad/common/time.hpp"
 #include "quad/common/yaml_input.hpp"
-#include "quad/dds/fault_messages.hpp"
 #include "quad/dds/message_types.hpp"
 #include "quad/dds/topics.hpp"
+#include "quad/dds/validating_transport.hpp"
+#include "fault_layer_control.hpp"
 
 namespace quad::dds {
 
@@ -83,9 +84,7 @@ Node::Node(std::string module_name, ParticipantOptions options)
 {
   participant_.events().setNotifier([this] { waker_.notify(); });
   if (participant_.datagramFaults() != nullptr) {
-    fault_commands_ = std::make_unique<Subscriber<msg::FaultCommand>>(participant_, topics::kFault, &waker_);
-    fault_events_ = std::make_unique<Publisher<msg::SimEvent>>(participant_, topics::kFaultEvents);
-    spdlog::info("datagram fault layer in front of UDP (shared memory and data-sharing off)");
+    fault_layer_ = std::make_unique<FaultLayerControl>(participant_, module_name_, &waker_);
   }
   liveliness_thread_ = std::thread([this] {
     std::unique_lock<std::mutex> lock(liveliness_mutex_);
@@ -125,56 +124,17 @@ void Node::countRejectedPayloads()
     spdlog::warn("{} received payload(s) refused; the last: {}", r.count - rejected_payloads_, r.last);
     rejected_payloads_ = r.count;
   }
+  // The validating transport logs each itself (at most once a second).
+  const std::uint64_t malformed = malformedDatagrams().count;
+  if (malformed > malformed_datagrams_) {
+    counters_.errors += malformed - malformed_datagrams_;
+    malformed_datagrams_ = malformed;
+  }
 }
 
 bool Node::isDatagramFaultId(std::uint32_t id) const
 {
-  const auto* faults = participant_.datagramFaults();
-  return faults != nullptr && faults->knows(id);
-}
-
-void Node::faultEvent(const msg::FaultCommand& command, msg::SimEventKind kind, const std::string& detail)
-{
-  msg::SimEvent e;
-  e.header().stamp_ns(command.header().stamp_ns());  // the command's sim time: nodes do not keep one
-  e.kind(kind);
-  e.subject_id(command.fault_id());
-  e.detail((module_name_ + ": " + detail).substr(0, 256));
-  fault_events_->write(e);
-}
-
-void Node::takeDatagramFaults()
-{
-  DatagramFaults& layer = *participant_.datagramFaults();
-  while (const auto command = fault_commands_->take()) {
-    if (command->module_name().to_string() != module_name_) {
-      continue;
-    }
-    if (command->kind() == msg::FAULT_CLEAR) {
-      if (const auto tally = layer.clear(command->fault_id())) {
-        const std::string what = fmt::format("datagram fault {} cleared: it acted on {} of {} datagrams",
-                                             command->fault_id(), tally->acted, tally->affected);
-        spdlog::warn("{}", what);
-        faultEvent(*command, msg::SIM_EVENT_FAULT_CLEARED, what);
-      }
-      continue;  // not the layer's: the module's own (the plant's) to clear
-    }
-    if (!isDatagramFault(command->kind())) {
-      continue;
-    }
-    std::string why_not;
-    const auto fault = datagramFaultFrom(*command, why_not);
-    if (fault && !layer.apply(*fault)) {
-      why_not = "fault id " + std::to_string(fault->id) + " already in use";
-    }
-    if (!why_not.empty()) {
-      spdlog::warn("quad/system/fault: fault {} rejected: {}", command->fault_id(), why_not);
-      faultEvent(*command, msg::SIM_EVENT_FAULT_REJECTED, "fault " + std::to_string(command->fault_id()) + " rejected: " + why_not);
-      continue;
-    }
-    spdlog::warn("datagram fault {} applied: {}", fault->id, fault->describe());
-    faultEvent(*command, msg::SIM_EVENT_FAULT_APPLIED, fault->describe());
-  }
+  return fault_layer_ && fault_layer_->knows(id);
 }
 
 void Node::stop()
@@ -243,8 +203,8 @@ void Node::run()
       onEvent(event);
     }
     countRejectedPayloads();
-    if (woken && fault_commands_) {
-      takeDatagramFaults();
+    if (woken && fault_layer_) {
+      fault_layer_->take();
     }
     if (woken) {
       onWake();
@@ -264,11 +224,8 @@ void Node::run()
     }
   }
   publishHeartbeat(msg::MODULE_STOPPING);
-  if (const auto* layer = participant_.datagramFaults()) {
-    for (const auto& [id, tally] : layer->tallies()) {
-      spdlog::warn("datagram fault {} still active at exit: it acted on {} of {} datagrams", id, tally.acted,
-                   tally.affected);
-    }
+  if (fault_layer_) {
+    fault_layer_->logActive();
   }
   onStop();
 }

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <fstream>
 #include <typeinfo>
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
@@ -18,6 +19,8 @@
 #include <fastrtps/xmlparser/XMLProfileManager.h>
 
 #include "fault_transport.hpp"
+#include "quad/dds/security.hpp"
+#include "quad/dds/validating_transport.hpp"
 
 namespace quad::dds {
 
@@ -114,6 +117,39 @@ std::string prefixText(const frtps::GuidPrefix_t& prefix)
 
 }  // namespace
 
+void Participant::enableSecurity(fdds::DomainParticipantQos& qos) const
+{
+  const std::string identity =
+      options_.security_identity.empty() ? securityIdentity(options_.name) : options_.security_identity;
+  const SecurityFiles files = securityFiles(options_.security_dir, identity);
+  for (const auto& f : {files.ca, files.certificate, files.key, files.governance, files.permissions}) {
+    std::ifstream readable(f);
+    if (!readable) {
+      throw std::invalid_argument("participant '" + options_.name + "': security identity '" + identity +
+                                  "': cannot read " + f.string() + " (made by quad security init)");
+    }
+  }
+  const auto file = [](const std::filesystem::path& p) { return "file://" + std::filesystem::absolute(p).string(); };
+  auto& properties = qos.properties().properties();
+  properties.emplace_back("dds.sec.auth.plugin", "builtin.PKI-DH");
+  properties.emplace_back("dds.sec.auth.builtin.PKI-DH.identity_ca", file(files.ca));
+  properties.emplace_back("dds.sec.auth.builtin.PKI-DH.identity_certificate", file(files.certificate));
+  properties.emplace_back("dds.sec.auth.builtin.PKI-DH.private_key", file(files.key));
+  // The 2.9 documentation names another value; this is the one the library registers.
+  properties.emplace_back("dds.sec.access.plugin", "builtin.Access-Permissions");
+  properties.emplace_back("dds.sec.access.builtin.Access-Permissions.permissions_ca", file(files.ca));
+  properties.emplace_back("dds.sec.access.builtin.Access-Permissions.governance", file(files.governance));
+  properties.emplace_back("dds.sec.access.builtin.Access-Permissions.permissions", file(files.permissions));
+  properties.emplace_back("dds.sec.crypto.plugin", "builtin.AES-GCM-GMAC");
+}
+
+void intraprocessDeliveryOff()
+{
+  auto settings = eprosima::fastrtps::xmlparser::XMLProfileManager::library_settings();
+  settings.intraprocess_delivery = eprosima::fastrtps::INTRAPROCESS_OFF;
+  eprosima::fastrtps::xmlparser::XMLProfileManager::library_settings(settings);
+}
+
 Transport parseTransport(std::string_view text)
 {
   if (text == "default") {
@@ -172,6 +208,15 @@ ParticipantOptions optionsFromEnvironment(std::string name)
   }
   if (const char* v = env("QUAD_FAULT_LAYER")) {
     options.fault_layer = parseInt<int>(v, "QUAD_FAULT_LAYER", 0, 1) == 1;
+  }
+  if (const char* v = env("QUAD_SECURITY_DIR")) {
+    options.security_dir = v;
+  }
+  if (const char* v = env("QUAD_SECURITY_IDENTITY")) {
+    options.security_identity = v;
+  }
+  if (const char* v = env("QUAD_VALIDATE_DATAGRAMS")) {
+    options.validate_datagrams = parseInt<int>(v, "QUAD_VALIDATE_DATAGRAMS", 0, 1) == 1;
   }
   options.qos_file = defaultQosFile();
   return options;
@@ -256,6 +301,10 @@ Participant::Participant(ParticipantOptions options)
   }
   qos.name(options_.name);
 
+  using TransportDescriptor = std::shared_ptr<eprosima::fastdds::rtps::TransportDescriptorInterface>;
+  const auto checked = [this](TransportDescriptor udp) {
+    return options_.validate_datagrams ? validatingTransport(std::move(udp)) : udp;
+  };
   if (options_.udp_max_message != 0 && options_.transport != Transport::kUdp && !options_.fault_layer) {
     throw std::invalid_argument("participant '" + options_.name + "': a UDP datagram size of " +
                                 std::to_string(options_.udp_max_message) + " bytes needs the udp transport");
@@ -267,19 +316,25 @@ Participant::Participant(ParticipantOptions options)
     }
     options_.transport = Transport::kUdp;  // data-sharing off too (profileQos)
     // Endpoints of one process would otherwise talk through memory, around any transport.
-    auto settings = eprosima::fastrtps::xmlparser::XMLProfileManager::library_settings();
-    settings.intraprocess_delivery = eprosima::fastrtps::INTRAPROCESS_OFF;
-    eprosima::fastrtps::xmlparser::XMLProfileManager::library_settings(settings);
+    intraprocessDeliveryOff();
     datagram_faults_ = std::make_shared<DatagramFaults>();
     qos.transport().use_builtin_transports = false;
-    qos.transport().user_transports.push_back(faultyUdpTransport(datagram_faults_, udpDescriptor(options_.udp_max_message)));
+    qos.transport().user_transports.push_back(
+        checked(faultyUdpTransport(datagram_faults_, udpDescriptor(options_.udp_max_message))));
   } else {
     switch (options_.transport) {
       case Transport::kDefault:
+        if (options_.validate_datagrams) {
+          // Fast DDS's builtin pair, with the UDP one behind the check.
+          qos.transport().use_builtin_transports = false;
+          qos.transport().user_transports.push_back(
+              std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
+          qos.transport().user_transports.push_back(checked(udpDescriptor(0)));
+        }
         break;
       case Transport::kUdp:
         qos.transport().use_builtin_transports = false;
-        qos.transport().user_transports.push_back(udpDescriptor(options_.udp_max_message));
+        qos.transport().user_transports.push_back(checked(udpDescriptor(options_.udp_max_message)));
         break;
       case Transport::kSharedMemory:
         qos.transport().use_builtin_transports = false;
@@ -287,6 +342,10 @@ Participant::Participant(ParticipantOptions options)
             std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
         break;
     }
+  }
+
+  if (!options_.security_dir.empty()) {
+    enableSecurity(qos);
   }
 
   auto& builtin = qos.wire_protocol().builtin;
@@ -306,8 +365,12 @@ Participant::Participant(ParticipantOptions options)
   participant_ = factory->create_participant(static_cast<fdds::DomainId_t>(options_.domain_id), qos, listener_.get(),
                                              fdds::StatusMask::none());
   if (participant_ == nullptr) {
-    throw std::runtime_error("cannot create DDS participant '" + options_.name + "' on domain " +
-                             std::to_string(options_.domain_id));
+    throw std::runtime_error(
+        "cannot create DDS participant '" + options_.name + "' on domain " + std::to_string(options_.domain_id) +
+        (options_.security_dir.empty()
+             ? std::string()
+             : " (security: its certificate, permissions or governance in " + options_.security_dir.string() +
+                   " was refused: expired, not signed by ca.pem, or not for this domain; see the log above)"));
   }
   publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "quad/common/time.hpp"
+#include "wait.hpp"
 #include "quad/dds/fault_messages.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
@@ -29,18 +30,6 @@ ParticipantOptions options(const std::string& name, bool fault_layer, int domain
                             .fault_layer = fault_layer};
 }
 
-bool waitFor(const std::function<bool()>& condition, double seconds = 10.0)
-{
-  const std::int64_t deadline = common::steadyTimeNs() + common::toNanoseconds(seconds);
-  while (!condition()) {
-    if (common::steadyTimeNs() > deadline) {
-      return false;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  return true;
-}
-
 /// Sends kSamples events from "talker" to a faulty "listener" and returns their ids in the
 /// order they were taken.
 std::vector<std::int64_t> sendThrough(int domain, const std::vector<DatagramFault>& faults,
@@ -50,7 +39,7 @@ std::vector<std::int64_t> sendThrough(int domain, const std::vector<DatagramFaul
   Participant listener(options("listener", true, domain));
   Publisher<msg::SimEvent> writer(talker, topics::kSimEvents);
   Subscriber<msg::SimEvent> reader(listener, topics::kSimEvents);
-  EXPECT_TRUE(waitFor([&] { return reader.matchedWriters() == 1 && writer.matchedReaders() == 1; }));
+  EXPECT_TRUE(test::waitFor([&] { return reader.matchedWriters() == 1 && writer.matchedReaders() == 1; }));
   for (const auto& f : faults) {
     EXPECT_TRUE(listener.datagramFaults()->apply(f));
   }
@@ -64,7 +53,7 @@ std::vector<std::int64_t> sendThrough(int domain, const std::vector<DatagramFaul
       got.push_back(s.subject_id());
     }
   }
-  waitFor([&] {
+  test::waitFor([&] {
     for (const auto& s : reader.takeAll()) {
       got.push_back(s.subject_id());
     }
@@ -121,7 +110,7 @@ TEST(FaultLayer, ANodeAppliesRefusesAndClearsCommandedFaultsAndAcknowledgesEach)
   Participant tool(options("layer_test_tool", false, kNodeDomain));
   Publisher<msg::FaultCommand> commands(tool, topics::kFault);
   Subscriber<msg::SimEvent> acks(tool, topics::kFaultEvents);
-  ASSERT_TRUE(waitFor([&] { return commands.matchedReaders() == 1 && acks.matchedWriters() == 1; }));
+  ASSERT_TRUE(test::waitFor([&] { return commands.matchedReaders() == 1 && acks.matchedWriters() == 1; }));
 
   const auto send = [&](msg::FaultCommand c) {
     c.header().stamp_ns(12'000'000'000);
@@ -129,7 +118,7 @@ TEST(FaultLayer, ANodeAppliesRefusesAndClearsCommandedFaultsAndAcknowledgesEach)
   };
   const auto nextAck = [&] {
     std::optional<msg::SimEvent> e;
-    waitFor([&] { return (e = acks.take()).has_value(); });
+    test::waitFor([&] { return (e = acks.take()).has_value(); });
     return e;
   };
   send(toCommand({41, DatagramFaultKind::kLoss, 0.5, "elsewhere", 3}, "layer_test_node"));

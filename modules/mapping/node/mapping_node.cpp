@@ -151,8 +151,14 @@ void MappingNode::integrate(const msg::PointCloud& cloud)
 void MappingNode::reportLockstep()
 {
   // Done with time t once every depth frame published up to t is integrated.
-  if (lockstep() && clock_ns_ > reported_ns_ && frames_taken_ >= clock_frames_) {
-    lockstep_.reportDone(clock_ns_);
+  if (!lockstep() || clock_ns_ <= reported_ns_) {
+    return;
+  }
+  if (frames_taken_ < clock_frames_) {
+    lockstep_.holding(clock_ns_, [this] {
+      return fmt::format("{} of {} depth frames integrated", frames_taken_, clock_frames_);
+    });
+  } else if (lockstep_.reportDone(clock_ns_)) {
     reported_ns_ = clock_ns_;
   }
 }

@@ -310,9 +310,17 @@ void PlanningNode::onWake()
     goal_changed_ = false;
     next_replan_ns_ = now_ns_ + common::toNanoseconds(config_.replan_period_s);
   }
-  if (lockstep() && caught_up && clock_ns_ > reported_ns_ && (now_ns_ >= clock_ns_ || !clock_state_sent_)) {
-    lockstep_.reportDone(clock_ns_);
-    reported_ns_ = clock_ns_;
+  if (lockstep() && clock_ns_ > reported_ns_) {
+    const bool state_seen = now_ns_ >= clock_ns_ || !clock_state_sent_;
+    if (!caught_up || !state_seen) {
+      lockstep_.holding(clock_ns_, [&] {
+        return caught_up ? fmt::format("no vehicle state of that time yet (the last at {:.3f} s)",
+                                       common::toSeconds(now_ns_))
+                         : fmt::format("map updates cover {} of {} depth frames", frames_applied_, clock_frames_);
+      });
+    } else if (lockstep_.reportDone(clock_ns_)) {
+      reported_ns_ = clock_ns_;
+    }
   }
 }
 

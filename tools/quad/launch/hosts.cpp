@@ -7,42 +7,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "quad/process/spawn.hpp"
-
-#include <poll.h>
+#include "quad/process/run.hpp"
 
 namespace quad::launch {
-
-CommandResult runCommand(const std::vector<std::string>& argv)
-{
-  process::Spawned child(argv);
-  CommandResult result;
-  std::optional<int> status;
-  while (!(status = child.poll())) {
-    pollfd p{child.outputFd(), POLLIN, 0};
-    ::poll(&p, 1, 20);
-    child.readOutput(result.output);
-  }
-  child.readOutput(result.output);
-  result.status = *status;
-  return result;
-}
-
-void runChecked(const std::vector<std::string>& argv)
-{
-  auto result = runCommand(argv);
-  if (result.status != 0) {
-    std::string line;
-    for (const auto& a : argv) {
-      line += (line.empty() ? "" : " ") + a;
-    }
-    while (!result.output.empty() && result.output.back() == '\n') {
-      result.output.pop_back();
-    }
-    throw std::runtime_error("'" + line + "' failed (" + process::describeStatus(result.status) +
-                             "): " + result.output);
-  }
-}
 
 namespace {
 
@@ -73,15 +40,15 @@ void removeAbandonedNetworks()
       return true;  // not ours to judge
     }
   };
-  std::istringstream namespaces(runCommand({"ip", "netns", "list"}).output);
+  std::istringstream namespaces(process::run({"ip", "netns", "list"}).output);
   for (std::string line; std::getline(namespaces, line);) {
     const std::string name = line.substr(0, line.find(' '));
     const auto dash = name.find('-', 5);
     if (name.starts_with("quad-") && dash != std::string::npos && !alive(name.substr(5, dash - 5))) {
-      runCommand({"ip", "netns", "delete", name});
+      process::run({"ip", "netns", "delete", name});
     }
   }
-  std::istringstream links(runCommand({"ip", "-o", "link", "show"}).output);
+  std::istringstream links(process::run({"ip", "-o", "link", "show"}).output);
   for (std::string line; std::getline(links, line);) {
     // "12: qb1b25: <...>" or "13: qv1b25x0a@if12: <...>"
     const auto colon = line.find(": ");
@@ -92,7 +59,7 @@ void removeAbandonedNetworks()
     name = name.substr(0, std::min(name.find(':'), name.find('@')));
     if ((name.starts_with("qb") && !alive(name.substr(2))) ||
         (name.starts_with("qv") && name.find('x') != std::string::npos && !alive(name.substr(2, name.find('x') - 2)))) {
-      runCommand({"ip", "link", "delete", name});
+      process::run({"ip", "link", "delete", name});
     }
   }
 }
@@ -124,16 +91,16 @@ HostNetwork::HostNetwork(const Manifest& manifest, std::string run_id) : manifes
   // A subnet some interface already has would route our traffic elsewhere, or collide
   // with a concurrent run: refuse it.
   const std::string prefix = " " + manifest.subnet + ".";
-  const std::string in_use = runCommand({"ip", "-o", "-4", "addr", "show"}).output;
+  const std::string in_use = process::run({"ip", "-o", "-4", "addr", "show"}).output;
   if (in_use.find("inet" + prefix) != std::string::npos) {
     throw std::runtime_error(manifest.file.string() + ":subnet: " + manifest.subnet +
                              ": already used by an interface of this machine (another run?); pick another");
   }
   try {
     bridge_ = "qb" + run_id;
-    runChecked({"ip", "link", "add", bridge_, "type", "bridge"});
-    runChecked({"ip", "addr", "add", manifest.subnet + ".1/24", "dev", bridge_});
-    runChecked({"ip", "link", "set", bridge_, "up"});
+    process::runChecked({"ip", "link", "add", bridge_, "type", "bridge"});
+    process::runChecked({"ip", "addr", "add", manifest.subnet + ".1/24", "dev", bridge_});
+    process::runChecked({"ip", "link", "set", bridge_, "up"});
     int index = 0;
     for (const auto& h : manifest.hosts) {
       if (h.kind != HostKind::kNetns) {
@@ -143,16 +110,16 @@ HostNetwork::HostNetwork(const Manifest& manifest, std::string run_id) : manifes
       const std::string outside = "qv" + run_id + "x" + std::to_string(index) + "a";
       const std::string inside = "qv" + run_id + "x" + std::to_string(index) + "b";
       ++index;
-      runChecked({"ip", "netns", "add", ns});
+      process::runChecked({"ip", "netns", "add", ns});
       namespaces_[h.name] = ns;
-      runChecked({"ip", "link", "add", outside, "type", "veth", "peer", "name", inside});
-      runChecked({"ip", "link", "set", inside, "netns", ns});
-      runChecked({"ip", "link", "set", outside, "master", bridge_, "up"});
-      runChecked({"ip", "-n", ns, "addr", "add", addresses_[h.name] + "/24", "dev", inside});
-      runChecked({"ip", "-n", ns, "link", "set", inside, "up"});
-      runChecked({"ip", "-n", ns, "link", "set", "lo", "up"});
+      process::runChecked({"ip", "link", "add", outside, "type", "veth", "peer", "name", inside});
+      process::runChecked({"ip", "link", "set", inside, "netns", ns});
+      process::runChecked({"ip", "link", "set", outside, "master", bridge_, "up"});
+      process::runChecked({"ip", "-n", ns, "addr", "add", addresses_[h.name] + "/24", "dev", inside});
+      process::runChecked({"ip", "-n", ns, "link", "set", inside, "up"});
+      process::runChecked({"ip", "-n", ns, "link", "set", "lo", "up"});
       // Without a route to them, multicast datagrams (DDS discovery) cannot be sent.
-      runChecked({"ip", "-n", ns, "route", "add", kMulticastRoute, "dev", inside});
+      process::runChecked({"ip", "-n", ns, "route", "add", kMulticastRoute, "dev", inside});
       links_[h.name] = inside;
     }
   } catch (...) {
@@ -167,14 +134,14 @@ void HostNetwork::teardown() noexcept
 {
   for (const auto& [host, ns] : namespaces_) {
     try {
-      runChecked({"ip", "netns", "delete", ns});  // takes its veth end, and so the pair, with it
+      process::runChecked({"ip", "netns", "delete", ns});  // takes its veth end, and so the pair, with it
     } catch (const std::exception&) {
     }
   }
   namespaces_.clear();
   if (!bridge_.empty()) {
     try {
-      runChecked({"ip", "link", "delete", bridge_});
+      process::runChecked({"ip", "link", "delete", bridge_});
     } catch (const std::exception&) {
     }
     bridge_.clear();
@@ -200,7 +167,7 @@ LinkCommands HostNetwork::commandsFor(const LinkFault& fault) const
 void HostNetwork::applyLinkFault(const LinkFault& fault) const
 {
   for (const auto& argv : commandsFor(fault).apply) {
-    runChecked(argv);
+    process::runChecked(argv);
   }
 }
 
@@ -209,7 +176,7 @@ void HostNetwork::healLinkFault(const LinkFault& fault) const
   std::optional<std::runtime_error> first;
   for (const auto& argv : commandsFor(fault).heal) {
     try {
-      runChecked(argv);
+      process::runChecked(argv);
     } catch (const std::runtime_error& e) {
       if (!first) {
         first = e;

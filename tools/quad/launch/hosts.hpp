@@ -14,16 +14,6 @@
 
 namespace quad::launch {
 
-struct CommandResult {
-  int status = 0;      ///< as process::Spawned::poll gives it
-  std::string output;  ///< standard output and error
-};
-
-/// Runs a command (argv, no shell) to its end.
-CommandResult runCommand(const std::vector<std::string>& argv);
-/// Same; throws std::runtime_error with the command and its output when it fails.
-void runChecked(const std::vector<std::string>& argv);
-
 class HostNetwork {
 public:
   /// Creates what the manifest's netns hosts need; `run_id` (the launcher's pid in hex, at

@@ -302,7 +302,7 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
     r.throwIfAny();
   }
   r.onlyKeys(root, "", {"name", "domain", "transport", "discovery", "subnet", "world", "mode", "grace", "env",
-                        "hosts", "modules", "mission"});
+                        "security", "hosts", "modules", "mission"});
   m.name = r.text(root["name"], "name", origin.stem().string()).value_or("run");
   if (overrides.domain) {
     m.domain = overrides.domain;
@@ -343,6 +343,17 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
   }
   if (!m.world.empty() && !fs::is_regular_file(m.world)) {
     r.problem("world", root["world"] ? root["world"] : YAML::Node(m.world.string()), "no such file");
+  }
+  if (root["security"]) {
+    m.security_dir = r.path(r.text(root["security"], "security", "").value_or(""));
+    for (const char* file : {"ca.pem", "governance.p7s"}) {
+      if (!fs::is_regular_file(m.security_dir / file)) {
+        r.problem("security", root["security"],
+                  "no " + std::string(file) + " in " + m.security_dir.string() + ": make it with quad security init " +
+                      m.security_dir.string());
+        break;
+      }
+    }
   }
   m.mode = overrides.mode ? *overrides.mode : r.choice(root["mode"], "mode", "lockstep", {"lockstep", "realtime"}).value_or("lockstep");
   const std::map<std::string, std::string> vars{

@@ -61,6 +61,9 @@ struct Manifest {
   std::filesystem::path world;      ///< ${world}; empty when the manifest names none
   std::string mode = "lockstep";    ///< ${mode}: lockstep | realtime
   double grace_s = 5.0;             ///< SIGTERM to SIGKILL
+  /// DDS Security for every process of the run (QUAD_SECURITY_DIR): the folder of
+  /// `quad security init`; empty: off.
+  std::filesystem::path security_dir;
   std::map<std::string, std::string> environment;
   std::vector<Host> hosts;          ///< in the order written
   std::vector<Module> modules;      ///< start order

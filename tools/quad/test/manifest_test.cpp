@@ -139,6 +139,19 @@ modules:
   }
 }
 
+TEST_F(ManifestTest, SecurityNamesAnInitialisedFolder)
+{
+  auto p = problems("security: ../keys\nmodules: {control: {}}\n");
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find(":security: ../keys: no ca.pem in "), std::string::npos) << p[0];
+  EXPECT_NE(p[0].find("quad security init"), std::string::npos) << p[0];
+  fs::create_directories(root_ / "keys");
+  std::ofstream(root_ / "keys/ca.pem") << "certificate\n";
+  std::ofstream(root_ / "keys/governance.p7s") << "signed\n";
+  const Manifest m = parse("security: ../keys\nmodules: {control: {}}\n");
+  EXPECT_EQ(m.security_dir.lexically_normal(), (root_ / "keys").lexically_normal());
+}
+
 TEST_F(ManifestTest, AMissionNeedsAWorld)
 {
   const auto p = problems("modules: {control: {}}\nmission: {tolerance: 0.5}\n");

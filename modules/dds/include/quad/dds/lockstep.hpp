@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -25,11 +26,20 @@ public:
   /// Reports that the work due up to `done_ns` of sim time is finished.
   bool reportDone(std::int64_t done_ns);
 
+  /// Says that the work due up to `clock_ns` is not finished, and why (called only when it is
+  /// logged). Once the clock has waited for this participant for 2 s of wall time, logs
+  /// "lockstep: <name> not done up to ...: <why>" every 5 s, so a stalled run says who holds
+  /// it and on what.
+  void holding(std::int64_t clock_ns, const std::function<std::string()>& why);
+
   int matchedBarriers() const { return publisher_.matchedReaders(); }
 
 private:
   std::string name_;
   Publisher<msg::LockstepReport> publisher_;
+  std::int64_t holding_clock_ns_ = -1;  // the clock time held since holding_since_ns_ (wall)
+  std::int64_t holding_since_ns_ = 0;
+  std::int64_t next_holding_log_ns_ = 0;
 };
 
 /// The clock owner's side: collects reports and waits until everyone caught up.

@@ -14,9 +14,7 @@
 #include <string_view>
 #include <thread>
 
-#include <quad/msg/FaultCommand.h>
 #include <quad/msg/Heartbeat.h>
-#include <quad/msg/SimEvent.h>
 
 #include "quad/common/params.hpp"
 #include "quad/dds/participant.hpp"
@@ -25,6 +23,8 @@
 #include "quad/dds/waker.hpp"
 
 namespace quad::dds {
+
+class FaultLayerControl;  // fault_layer_control.hpp: the node's side of its datagram fault layer
 
 /// Turns SIGINT and SIGTERM into a callback on an ordinary thread. Construct it first in
 /// main(), before any other thread exists, so that every thread inherits the blocked mask.
@@ -99,14 +99,11 @@ protected:
 
 private:
   void publishHeartbeat(msg::ModuleState state);
-  /// Applies and clears the datagram faults quad/system/fault addresses to this module, and
-  /// acknowledges each on quad/system/fault_events.
-  void takeDatagramFaults();
   /// Adds a reader's lost samples to the heartbeat's count, on topics that promise every one.
   void countLoss(const EndpointEvent& event);
-  /// Payloads refused for breaking their IDL (message_types.hpp) count as rejected inputs.
+  /// Payloads refused for breaking their IDL (message_types.hpp) and datagrams the validating
+  /// transport dropped count as rejected inputs.
   void countRejectedPayloads();
-  void faultEvent(const msg::FaultCommand& command, msg::SimEventKind kind, const std::string& detail);
 
   std::string module_name_;
   Participant participant_;
@@ -114,8 +111,7 @@ private:
   NodeCounters counters_;
   Publisher<msg::Heartbeat> heartbeat_;
   // With a fault layer only (ParticipantOptions::fault_layer).
-  std::unique_ptr<Subscriber<msg::FaultCommand>> fault_commands_;
-  std::unique_ptr<Publisher<msg::SimEvent>> fault_events_;
+  std::unique_ptr<FaultLayerControl> fault_layer_;
   std::atomic<bool> stop_{false};
   // Asserts the heartbeat writer's liveliness (MANUAL_BY_TOPIC) from a thread of its own, so
   // that a node busy in a long computation stays alive and a killed or stopped one does not.
@@ -127,6 +123,7 @@ private:
   bool lockstep_ = false;
   std::int64_t last_deadline_log_ns_ = 0;
   std::uint64_t rejected_payloads_ = 0;
+  std::uint64_t malformed_datagrams_ = 0;
 };
 
 /// The body of every node's main(): installs signal handling, builds the node with `make`,

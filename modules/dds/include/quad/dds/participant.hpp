@@ -47,15 +47,33 @@ struct ParticipantOptions {
   /// fragments, each repaired on its own. 0: Fast DDS's default (65500), which over a real
   /// link is ~45 IP fragments, all lost when one is.
   std::uint32_t udp_max_message = 0;
+  /// Received UDP datagrams pass the validating transport (validating_transport.hpp), which
+  /// drops malformed ones before Fast DDS parses them. Shared memory, which only local
+  /// processes reach, is not checked.
+  bool validate_datagrams = true;
+  /// DDS Security on: authentication, access control and encryption with the files of
+  /// `quad security init` in this folder (security.hpp). Empty: off.
+  std::filesystem::path security_dir;
+  /// The identity in `security_dir` to use; empty: securityIdentity(name).
+  std::string security_identity;
 };
 
 /// The options a quad process takes from its environment, so that every module and tool of a
 /// run share one domain and discovery setup:
 /// QUAD_DOMAIN_ID, QUAD_TRANSPORT (default|udp|shm), QUAD_INITIAL_PEERS (comma separated),
 /// QUAD_DISCOVERY_SERVER, QUAD_QOS_FILE, QUAD_VEHICLE_ID, QUAD_FAULT_LAYER (0|1),
-/// QUAD_UDP_MAX_MESSAGE (bytes). A bad value throws
+/// QUAD_UDP_MAX_MESSAGE (bytes), QUAD_VALIDATE_DATAGRAMS (0|1), QUAD_SECURITY_DIR,
+/// QUAD_SECURITY_IDENTITY. A bad value throws
 /// std::invalid_argument naming the variable and the value.
 ParticipantOptions optionsFromEnvironment(std::string name);
+
+/// Turns Fast DDS's intraprocess delivery off for the whole process, for the participants
+/// created after the call. Needed where samples must cross a transport layer (the fault
+/// layer), and in every process that holds two participants: Fast DDS 2.9 delivers a
+/// liveliness assertion to the other participant's reader from its event thread while that
+/// participant's receive threads wait for the same locks the other way round, and the process
+/// deadlocks (it hears nothing more and hangs at exit).
+void intraprocessDeliveryOff();
 
 /// Parses a transport name: "default", "udp" or "shm".
 Transport parseTransport(std::string_view text);
@@ -118,6 +136,9 @@ public:
 
 private:
   class Listener;
+  /// Adds DDS Security's plugins and files (options_.security_dir) to `qos`; throws naming
+  /// a file it cannot read.
+  void enableSecurity(eprosima::fastdds::dds::DomainParticipantQos& qos) const;
   void onRemoteEndpoint(RemoteEndpoint endpoint, bool alive);
   struct RemoteParticipant {
     std::string name;

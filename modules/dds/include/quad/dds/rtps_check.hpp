@@ -1,0 +1,45 @@
+#pragma once
+/// @file
+/// Structure checks of a received RTPS datagram (the OMG DDSI-RTPS 2.x wire format), made
+/// before Fast DDS parses it: Fast DDS 2.9 trusts lengths, counts and fragment numbers it
+/// reads, and a single malformed datagram can end its process. The checks need no Fast DDS;
+/// the validating transport (validating_transport.hpp) applies them to every datagram.
+///
+/// What is checked:
+/// - the header: at least 20 bytes, "RTPS", protocol major version 2;
+/// - each submessage: its header and body within the datagram; a body long enough for the
+///   fields of its kind; sequence and fragment number sets with at most 256 bits and their
+///   bitmaps present; sequence numbers and fragment numbers where the specification requires
+///   them to be positive; DATA_FRAG's fragment size, count, start and sample size consistent
+///   with each other and with the bytes present, and the sample within kMaxSampleBytes;
+/// - parameter lists (inline QoS, and discovery payloads encapsulated as PL_CDR): every
+///   parameter within the list, lengths multiples of 4, a sentinel at the end; the values of
+///   the parameters Fast DDS decodes into strings, sequences, locators, GUIDs, properties and
+///   security tokens: every string and sequence length within its parameter.
+///
+/// Encrypted content (SEC_* and SRTPS_* submessages) is checked for lengths only; fragments
+/// are checked one by one, not reassembled (a discovery payload split into fragments has its
+/// parameter list checked by Fast DDS alone).
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace quad::dds {
+
+/// The largest sample a DATA_FRAG may announce: Fast DDS reserves that much memory for its
+/// reassembly when the first fragment arrives. Four times the largest message quad sends
+/// (a 4 MiB map snapshot).
+inline constexpr std::uint32_t kMaxSampleBytes = 16u * 1024u * 1024u;
+
+/// What is wrong with a datagram: where and what.
+struct RtpsDefect {
+  std::size_t offset = 0;  ///< of the submessage, parameter or field at fault
+  std::string what;        ///< "DATA_FRAG: fragment 3 of 2 ..."
+};
+
+/// Nothing when `data` is a well-formed RTPS message; else its first defect.
+std::optional<RtpsDefect> checkRtpsDatagram(const std::uint8_t* data, std::size_t size);
+
+}  // namespace quad::dds

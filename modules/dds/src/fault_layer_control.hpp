@@ -1,0 +1,42 @@
+#pragma once
+/// @file
+/// A node's side of its datagram fault layer: takes the faults quad/system/fault addresses
+/// to the module, applies and clears them in the participant's DatagramFaults, and
+/// acknowledges each on quad/system/fault_events.
+
+#include <cstdint>
+#include <string>
+
+#include <quad/msg/FaultCommand.h>
+#include <quad/msg/SimEvent.h>
+
+#include "quad/dds/datagram_faults.hpp"
+#include "quad/dds/publisher.hpp"
+#include "quad/dds/subscriber.hpp"
+
+namespace quad::dds {
+
+class FaultLayerControl {
+public:
+  /// `participant` must have a fault layer (ParticipantOptions::fault_layer).
+  FaultLayerControl(Participant& participant, std::string module_name, Waker* waker);
+
+  /// Handles every fault command that arrived.
+  void take();
+
+  /// The layer has (had) a fault with this id.
+  bool knows(std::uint32_t id) const { return layer_.knows(id); }
+
+  /// Logs what the faults still active did.
+  void logActive() const;
+
+private:
+  void acknowledge(const msg::FaultCommand& command, msg::SimEventKind kind, const std::string& detail);
+
+  DatagramFaults& layer_;
+  std::string module_name_;
+  Subscriber<msg::FaultCommand> commands_;
+  Publisher<msg::SimEvent> events_;
+};
+
+}  // namespace quad::dds

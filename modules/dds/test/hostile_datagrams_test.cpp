@@ -1,0 +1,168 @@
+// The validating transport between real participants over UDP: every regression datagram
+// (tests/fixtures/datagrams) sent to their ports is dropped or harmless, and they keep
+// talking; the traffic of a real exchange, fragments included, passes untouched.
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <thread>
+#include <vector>
+
+#include "quad/common/time.hpp"
+#include "wait.hpp"
+#include "quad/dds/publisher.hpp"
+#include "quad/dds/rtps_check.hpp"
+#include "quad/dds/subscriber.hpp"
+#include "quad/dds/topics.hpp"
+#include "quad/dds/validating_transport.hpp"
+
+namespace quad::dds {
+namespace {
+
+// ctest runs each case alone and in parallel with others: each has a domain of its own.
+constexpr int kHostileDomain = 171;
+constexpr int kCleanDomain = 172;
+
+/// The listener has a fault layer (with no fault in it): that turns this process's
+/// intraprocess delivery off, so that the samples cross UDP and the validating layer in
+/// front of it, as they do between processes.
+ParticipantOptions options(const std::string& name, int domain)
+{
+  return ParticipantOptions{.name = name, .domain_id = domain, .transport = Transport::kUdp,
+                            .fault_layer = name == "listener", .udp_max_message = 1400};
+}
+
+/// Sends `count` events and says how many arrived.
+int exchange(Publisher<msg::SimEvent>& writer, Subscriber<msg::SimEvent>& reader, int count)
+{
+  int got = 0;
+  for (int i = 0; i < count; ++i) {
+    msg::SimEvent e;
+    e.subject_id(i);
+    writer.write(e);
+  }
+  test::waitFor([&] {
+    got += static_cast<int>(reader.takeAll().size());
+    return got >= count;
+  });
+  return got;
+}
+
+std::vector<std::vector<std::uint8_t>> regressionDatagrams()
+{
+  std::vector<std::vector<std::uint8_t>> all;
+  for (const auto& entry : std::filesystem::directory_iterator(QUAD_DATAGRAMS_DIR)) {
+    if (entry.path().extension() == ".bin") {
+      std::ifstream in(entry.path(), std::ios::binary);
+      all.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+  }
+  return all;
+}
+
+TEST(HostileDatagrams, NoneEndsAParticipantAndTalkGoesOn)
+{
+  Participant talker(options("talker", kHostileDomain));
+  Participant listener(options("listener", kHostileDomain));
+  Publisher<msg::SimEvent> writer(talker, topics::kSimEvents);
+  Subscriber<msg::SimEvent> reader(listener, topics::kSimEvents);
+  ASSERT_TRUE(test::waitFor([&] { return reader.matchedWriters() == 1 && writer.matchedReaders() == 1; }));
+  ASSERT_EQ(exchange(writer, reader, 20), 20);
+
+  const auto datagrams = regressionDatagrams();
+  ASSERT_GE(datagrams.size(), 10u);
+  std::size_t malformed_files = 0;
+  for (const auto& d : datagrams) {
+    malformed_files += checkRtpsDatagram(d.data(), d.size()) ? 1U : 0U;
+  }
+  const std::uint64_t before = malformedDatagrams().count;
+  // The unicast metatraffic and user ports of participant ids 0..3 (RTPS port mapping: 7400 +
+  // 250 * domain + 10 / 11 + 2 * id): both participants listen on some of them.
+  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+  ASSERT_GE(fd, 0);
+  int sent_ports = 0;
+  for (int id = 0; id < 4; ++id) {
+    for (int offset : {10, 11}) {
+      sockaddr_in to{};
+      to.sin_family = AF_INET;
+      to.sin_port = htons(static_cast<std::uint16_t>(7400 + 250 * kHostileDomain + offset + 2 * id));
+      to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+      for (int round = 0; round < 3; ++round) {
+        for (const auto& d : datagrams) {
+          ::sendto(fd, d.data(), d.size(), 0, reinterpret_cast<const sockaddr*>(&to), sizeof(to));
+        }
+      }
+      ++sent_ports;
+    }
+  }
+  ::close(fd);
+  // Two participants listen on two unicast ports each: three rounds of every malformed file.
+  EXPECT_TRUE(test::waitFor([&] { return malformedDatagrams().count - before >= 3 * 4 * malformed_files; }))
+      << "dropped " << malformedDatagrams().count - before << " of " << 3 * 4 * malformed_files << " malformed";
+  EXPECT_FALSE(malformedDatagrams().last.empty());
+  // Still alive (a crash would have ended this process), still matched, still talking.
+  EXPECT_EQ(exchange(writer, reader, 50), 50);
+  EXPECT_EQ(reader.matchedWriters(), 1);
+  EXPECT_EQ(sent_ports, 8);
+}
+
+TEST(HostileDatagrams, RealTrafficPassesTheCheckWhole)
+{
+  // Discovery, events, a 300 kB map snapshot in 1400-byte fragments and liveliness:
+  // nothing dropped.
+  const MalformedDatagrams before = malformedDatagrams();
+  Participant talker(options("talker", kCleanDomain));
+  Participant listener(options("listener", kCleanDomain));
+  Publisher<msg::SimEvent> events_out(talker, topics::kSimEvents);
+  Subscriber<msg::SimEvent> events_in(listener, topics::kSimEvents);
+  Publisher<msg::MapSnapshot> snapshots_out(talker, topics::kMapSnapshot);
+  Subscriber<msg::MapSnapshot> snapshots_in(listener, topics::kMapSnapshot);
+  ASSERT_TRUE(test::waitFor([&] { return events_in.matchedWriters() == 1 && snapshots_in.matchedWriters() == 1; }));
+  EXPECT_EQ(exchange(events_out, events_in, 100), 100);
+  msg::MapSnapshot snapshot;
+  snapshot.resolution(0.2);
+  snapshot.octree().resize(300'000);
+  for (std::size_t i = 0; i < snapshot.octree().size(); ++i) {
+    snapshot.octree()[i] = static_cast<std::uint8_t>(i * 7);
+  }
+  ASSERT_TRUE(snapshots_out.write(snapshot));
+  std::optional<msg::MapSnapshot> got;
+  EXPECT_TRUE(test::waitFor([&] {
+    if (auto s = snapshots_in.take()) {
+      got = std::move(s);
+    }
+    return got.has_value();
+  }));
+  ASSERT_TRUE(got);
+  EXPECT_EQ(got->octree(), snapshot.octree());
+  // Liveliness assertions (the lockstep writer's AUTOMATIC lease is 0.5 s) for 1.5 s.
+  Publisher<msg::LockstepReport> reports_out(talker, topics::kLockstep);
+  Subscriber<msg::LockstepReport> reports_in(listener, topics::kLockstep);
+  ASSERT_TRUE(test::waitFor([&] { return reports_in.matchedWriters() == 1; }));
+  int reports = 0;
+  for (int i = 1; i <= 15; ++i) {
+    msg::LockstepReport r;
+    r.done_ns(i);
+    reports_out.write(r);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    reports += static_cast<int>(reports_in.takeAll().size());
+  }
+  EXPECT_TRUE(test::waitFor([&] {
+    reports += static_cast<int>(reports_in.takeAll().size());
+    return reports == 15;
+  }));
+  const MalformedDatagrams m = malformedDatagrams();
+  EXPECT_EQ(m.count, before.count) << m.last;
+  EXPECT_GT(m.checked - before.checked, 200u);  // every datagram went through the check
+}
+
+}  // namespace
+}  // namespace quad::dds

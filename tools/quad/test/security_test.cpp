@@ -1,12 +1,24 @@
 // DDS Security with the files of `quad security init`, between real participants: the
 // authorised talk; a participant without a certificate, with one from another authority
 // under the same name, or with an expired one, and a module writing a topic it was not
-// granted each get no match and no sample, while the authorised keep talking.
+// granted each get no match and no sample, while the authorised keep talking; a capture of
+// the traffic holds no plaintext payload.
+#include <arpa/inet.h>
+#include <linux/if_ether.h>
+#include <linux/if_packet.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include <gtest/gtest.h>
+
+#include <atomic>
 
 #include <chrono>
 #include <functional>
 #include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 #include <thread>
 
 #include "quad/common/time.hpp"
@@ -28,6 +40,8 @@ constexpr int kNoCertificateDomain = 174;
 constexpr int kOtherAuthorityDomain = 175;
 constexpr int kExpiredDomain = 176;
 constexpr int kNotGrantedDomain = 177;
+constexpr int kCaptureDomain = 178;
+constexpr int kCaptureControlDomain = 179;
 constexpr double kQuietSeconds = 3.0;  // how long the unauthorised are watched
 
 namespace fs = std::filesystem;
@@ -157,6 +171,95 @@ TEST_F(Security, AModuleCannotWriteATopicItWasNotGranted)
   // And a granted writer still reaches it.
   dds::Publisher<msg::VehicleState> states(plant, dds::topics::kSimState);
   EXPECT_TRUE(test::waitFor([&] { return reader.matchedWriters() == 1; }));
+}
+
+/// Every frame on every interface of this host while it lives (an AF_PACKET socket: root).
+class Capture {
+public:
+  Capture()
+  {
+    fd_ = ::socket(AF_PACKET, SOCK_RAW, htons(ETH_P_ALL));
+    if (fd_ < 0) {
+      return;
+    }
+    timeval timeout{0, 100'000};
+    ::setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof(timeout));
+    thread_ = std::thread([this] {
+      std::vector<char> frame(65536);
+      while (!stop_) {
+        const ssize_t n = ::recv(fd_, frame.data(), frame.size(), 0);
+        if (n > 0) {
+          bytes_.append(frame.data(), static_cast<std::size_t>(n));
+        }
+      }
+    });
+  }
+  ~Capture() { stopped(); }
+  bool open() const { return fd_ >= 0; }
+
+  /// Stops capturing; what was captured.
+  const std::string& stopped()
+  {
+    if (thread_.joinable()) {
+      stop_ = true;
+      thread_.join();
+      ::close(fd_);
+    }
+    return bytes_;
+  }
+
+private:
+  int fd_ = -1;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+  std::string bytes_;
+};
+
+/// Sends 50 events whose detail is `marker` from the plant to control on `domain` (security
+/// from `dir`, or off when empty) while capturing; returns how many arrived and the capture.
+std::pair<int, std::string> sendCaptured(int domain, const fs::path& dir, const std::string& marker)
+{
+  const auto options = [&](const char* name) {
+    return dds::ParticipantOptions{
+        .name = name, .domain_id = domain, .transport = dds::Transport::kUdp, .security_dir = dir};
+  };
+  Capture capture;
+  EXPECT_TRUE(capture.open()) << "capturing needs root";
+  dds::Participant plant(options("plant"));
+  dds::Participant control(options("control"));
+  dds::Publisher<msg::SimEvent> events(plant, dds::topics::kSimEvents);
+  dds::Subscriber<msg::SimEvent> reader(control, dds::topics::kSimEvents);
+  EXPECT_TRUE(test::waitFor([&] { return reader.matchedWriters() == 1; }));
+  int got = 0;
+  for (int i = 0; i < 50; ++i) {
+    msg::SimEvent e;
+    e.detail(marker);
+    events.write(e);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    got += static_cast<int>(reader.takeAll().size());
+  }
+  test::waitFor([&] {
+    got += static_cast<int>(reader.takeAll().size());
+    return got >= 50;
+  });
+  return {got, capture.stopped()};
+}
+
+TEST_F(Security, ACaptureOfTheTrafficHoldsNoPlaintextPayload)
+{
+  if (::geteuid() != 0) {
+    GTEST_SKIP() << "capturing packets needs root";
+  }
+  const std::string marker = "quad-capture-marker-7f3a9c51e2d84b06";
+  // Without security the marker is on the wire: the capture sees what it must not see later.
+  const auto [plain_got, plain] = sendCaptured(kCaptureControlDomain, {}, marker);
+  EXPECT_EQ(plain_got, 50);
+  EXPECT_NE(plain.find(marker), std::string::npos) << "the capture missed the plain traffic";
+  const auto [secure_got, secure] = sendCaptured(kCaptureDomain, domainDir(), marker);
+  EXPECT_EQ(secure_got, 50);
+  EXPECT_GT(secure.size(), 50u * marker.size());  // the encrypted samples were captured...
+  EXPECT_EQ(secure.find(marker), std::string::npos) << "plaintext payload on the wire";  // ...unreadable
+  EXPECT_EQ(secure.find(marker.substr(0, 16)), std::string::npos);
 }
 
 }  // namespace

@@ -20,10 +20,15 @@ bool payloadKeepsToIdl(std::string_view type_name, const eprosima::fastrtps::rtp
   if (why.empty()) {
     return true;
   }
+  countRejectedPayload(type_name, why);
+  return false;
+}
+
+void countRejectedPayload(std::string_view type_name, const std::string& why)
+{
   std::lock_guard lock(rejected_mutex);
   ++rejected.count;
   rejected.last = std::string(type_name) + ": " + why;
-  return false;
 }
 
 RejectedPayloads rejectedPayloads()

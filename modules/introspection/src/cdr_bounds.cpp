@@ -12,7 +12,7 @@ namespace {
 constexpr std::size_t kEncapsulationSize = 4;
 
 /// Walks a payload as decodeCdr does, without building anything: checks lengths against the
-/// IDL's bounds and the payload's size, and enum values, and skips runs of elements whose
+/// IDL's bounds and the payload's size, enum and boolean values, and skips runs of elements whose
 /// layout is fixed (a struct of primitives of one size has no padding: count * size bytes).
 class BoundsWalker {
 public:
@@ -71,7 +71,8 @@ private:
   std::size_t uniformSize(const TypeRef& t) const
   {
     if (t.kind == TypeRef::Kind::kPrimitive) {
-      return cdrSize(t.primitive);
+      // A boolean's byte must be 0 or 1 (Fast CDR throws on anything else): checked one by one.
+      return t.primitive == Primitive::kBool ? 0 : cdrSize(t.primitive);
     }
     if (t.kind != TypeRef::Kind::kNamed) {
       return 0;
@@ -124,6 +125,10 @@ private:
     switch (t.kind) {
       case TypeRef::Kind::kPrimitive:
         skip(cdrSize(t.primitive), cdrSize(t.primitive));
+        if (t.primitive == Primitive::kBool && body_[pos_ - 1] > 1) {
+          --pos_;
+          fail("boolean value " + std::to_string(body_[pos_]) + " is neither 0 nor 1");
+        }
         return;
       case TypeRef::Kind::kString: {
         const std::uint32_t n = length();  // with its NUL

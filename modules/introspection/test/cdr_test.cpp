@@ -1,5 +1,7 @@
 #include "quad/introspection/cdr.hpp"
 
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include <fastcdr/Cdr.h>
@@ -252,6 +254,21 @@ TEST(CdrBounds, SamplesThatKeepToTheirIdlPassAndOversizedOnesAreNamed)
   EXPECT_EQ(why.rfind("waypoints_W: sequence length 5000 exceeds its bound 4096 at byte ", 0), 0U) << why;
   // Whatever decodeCdr refuses, checkBounds refuses too.
   EXPECT_THROW(decodeCdr(quadSchema(), "quad::msg::Path", oversized), DecodeError);
+}
+
+TEST(CdrBounds, ABooleanByteOtherThanZeroOrOneIsRefused)
+{
+  // Found by fuzz_idl_types: Fast CDR throws on such a byte from a reader's thread, which
+  // ends the process; the check refuses the payload first.
+  const nlohmann::ordered_json armed = {{"armed", true}};
+  auto bytes = encodeCdr(quadSchema(), "quad::msg::ActuatorCommand", armed);
+  ASSERT_EQ(checkBounds(quadSchema(), "quad::msg::ActuatorCommand", bytes), "");
+  // Every other member is zero: the last byte that is 1 is `armed`.
+  const auto at = std::find(bytes.rbegin(), bytes.rend(), std::uint8_t{1});
+  ASSERT_NE(at, bytes.rend());
+  *at = 2;
+  const std::string why = checkBounds(quadSchema(), "quad::msg::ActuatorCommand", bytes);
+  EXPECT_EQ(why.rfind("armed: boolean value 2 is neither 0 nor 1 at byte ", 0), 0U) << why;
 }
 
 TEST(CdrBounds, TruncatedPayloadsLongStringsAndBadEnumsAreRefused)

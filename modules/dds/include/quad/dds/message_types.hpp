@@ -11,6 +11,7 @@
 #include <string>
 #include <string_view>
 
+#include <fastcdr/exceptions/Exception.h>
 #include <fastdds/dds/topic/TopicDataType.hpp>
 
 #include <quad/msg/ActuatorCommandPubSubTypes.h>
@@ -48,6 +49,9 @@ struct RejectedPayloads {
 };
 RejectedPayloads rejectedPayloads();
 
+/// Counts a payload refused for another reason than its IDL (payloadKeepsToIdl counts those).
+void countRejectedPayload(std::string_view type_name, const std::string& why);
+
 /// The generated TopicDataType with the key computed from header.vehicle_id, refusing
 /// payloads that break their IDL's bounds.
 template <class Generated, class Message>
@@ -55,7 +59,17 @@ class VehicleKeyedType : public Generated {
 public:
   bool deserialize(eprosima::fastrtps::rtps::SerializedPayload_t* payload, void* data) override
   {
-    return payloadKeepsToIdl(this->getName(), *payload) && Generated::deserialize(payload, data);
+    if (!payloadKeepsToIdl(this->getName(), *payload)) {
+      return false;
+    }
+    try {
+      return Generated::deserialize(payload, data);
+    } catch (const eprosima::fastcdr::exception::Exception& e) {
+      // The generated code lets Fast CDR's refusals (a boolean byte of 2, say) escape, and a
+      // reader thread that throws ends the process. The IDL check above catches those known.
+      countRejectedPayload(this->getName(), e.what());
+      return false;
+    }
   }
 
   bool getKey(void* data, eprosima::fastrtps::rtps::InstanceHandle_t* handle,

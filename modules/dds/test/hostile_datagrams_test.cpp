@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iostream>
 #include <iterator>
 #include <thread>
 #include <vector>
@@ -23,6 +24,7 @@
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/dds/validating_transport.hpp"
+#include "datagram_mutator.hpp"
 
 namespace quad::dds {
 namespace {
@@ -30,6 +32,7 @@ namespace {
 // ctest runs each case alone and in parallel with others: each has a domain of its own.
 constexpr int kHostileDomain = 171;
 constexpr int kCleanDomain = 172;
+constexpr int kFuzzedDomain = 166;
 
 /// The listener has a fault layer (with no fault in it): that turns this process's
 /// intraprocess delivery off, so that the samples cross UDP and the validating layer in
@@ -112,6 +115,55 @@ TEST(HostileDatagrams, NoneEndsAParticipantAndTalkGoesOn)
   EXPECT_EQ(exchange(writer, reader, 50), 50);
   EXPECT_EQ(reader.matchedWriters(), 1);
   EXPECT_EQ(sent_ports, 8);
+}
+
+TEST(HostileDatagrams, TheMutatorStartsFromWellFormedDatagramsAndBreaksMany)
+{
+  fuzz::DatagramMutator mutator(3);
+  for (std::size_t i = 0; i < mutator.templates(); ++i) {
+    const auto& t = mutator.templateBytes(i);
+    const auto defect = checkRtpsDatagram(t.data(), t.size());
+    EXPECT_FALSE(defect) << "template " << i << ": " << defect->what;
+  }
+  int refused = 0;
+  for (int i = 0; i < 10000; ++i) {
+    const auto d = mutator.next();
+    refused += checkRtpsDatagram(d.data(), d.size()) ? 1 : 0;
+  }
+  EXPECT_GT(refused, 3000);  // most break a structure the check knows...
+  EXPECT_LT(refused, 9500);  // ...and some reach Fast DDS's parser
+}
+
+TEST(HostileDatagrams, TwoHundredThousandFuzzedDatagramsEndNoParticipant)
+{
+  Participant talker(options("talker", kFuzzedDomain));
+  Participant listener(options("listener", kFuzzedDomain));
+  Publisher<msg::SimEvent> writer(talker, topics::kSimEvents);
+  Subscriber<msg::SimEvent> reader(listener, topics::kSimEvents);
+  ASSERT_TRUE(test::waitFor([&] { return reader.matchedWriters() == 1 && writer.matchedReaders() == 1; }));
+  const MalformedDatagrams before = malformedDatagrams();
+  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+  ASSERT_GE(fd, 0);
+  fuzz::DatagramMutator mutator(11);
+  for (int i = 0; i < 200'000; ++i) {
+    const auto d = mutator.next();
+    sockaddr_in to{};
+    to.sin_family = AF_INET;
+    // Both participants' unicast metatraffic and user ports (ids 0 and 1).
+    to.sin_port = htons(static_cast<std::uint16_t>(7400 + 250 * kFuzzedDomain + 10 + (i % 4)));
+    to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ::sendto(fd, d.data(), d.size(), 0, reinterpret_cast<const sockaddr*>(&to), sizeof(to));
+    if (i % 1000 == 999) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));  // let the receivers keep up
+    }
+  }
+  ::close(fd);
+  const MalformedDatagrams after = malformedDatagrams();
+  std::cout << "checked " << after.checked - before.checked << " datagrams, dropped "
+            << after.count - before.count << " as malformed\n";
+  EXPECT_GT(after.checked - before.checked, 100'000u);  // most reached the participants
+  EXPECT_EQ(exchange(writer, reader, 50), 50);         // alive and talking
+  EXPECT_EQ(reader.matchedWriters(), 1);
 }
 
 TEST(HostileDatagrams, RealTrafficPassesTheCheckWhole)

@@ -3,117 +3,25 @@
 #include <algorithm>
 #include <string>
 
+#include "rtps_builder.hpp"
+
 namespace quad::fuzz {
-
-namespace {
-
-/// Little-endian RTPS message building that records where the fields worth breaking are.
-class Builder {
-public:
-  Builder()
-  {
-    bytes_ = {'R', 'T', 'P', 'S', 2, 3, 0x01, 0x0f};
-    for (int i = 0; i < 12; ++i) {
-      bytes_.push_back(static_cast<std::uint8_t>(0xa0 + i));
-    }
-  }
-
-  /// A submessage; its length is filled in by end().
-  void begin(std::uint8_t id, std::uint8_t flags)
-  {
-    u8(id);
-    u8(static_cast<std::uint8_t>(flags | 0x01));
-    length_at_ = bytes_.size();
-    field(2);
-    u16(0);
-  }
-  void end()
-  {
-    const auto length = static_cast<std::uint16_t>(bytes_.size() - length_at_ - 2);
-    bytes_[length_at_] = static_cast<std::uint8_t>(length);
-    bytes_[length_at_ + 1] = static_cast<std::uint8_t>(length >> 8);
-  }
-  void field(std::size_t width) { fields_.push_back({bytes_.size(), width}); }
-  void u8(std::uint8_t v) { bytes_.push_back(v); }
-  void u16(std::uint16_t v)
-  {
-    u8(static_cast<std::uint8_t>(v));
-    u8(static_cast<std::uint8_t>(v >> 8));
-  }
-  void u32(std::uint32_t v)
-  {
-    u16(static_cast<std::uint16_t>(v));
-    u16(static_cast<std::uint16_t>(v >> 16));
-  }
-  void entity(std::uint32_t v)  // big-endian octets
-  {
-    for (int shift = 24; shift >= 0; shift -= 8) {
-      u8(static_cast<std::uint8_t>(v >> shift));
-    }
-  }
-  void sn(std::int64_t v)
-  {
-    field(8);
-    u32(static_cast<std::uint32_t>(v >> 32));
-    u32(static_cast<std::uint32_t>(v));
-  }
-  void string(const std::string& s)
-  {
-    field(4);
-    u32(static_cast<std::uint32_t>(s.size() + 1));
-    for (char c : s) {
-      u8(static_cast<std::uint8_t>(c));
-    }
-    u8(0);
-    while (bytes_.size() % 4 != 0) {
-      u8(0);
-    }
-  }
-  /// A parameter whose value `write` appends; its length is recorded as a field.
-  template <class Write>
-  void parameter(std::uint16_t pid, Write write)
-  {
-    u16(pid);
-    const std::size_t at = bytes_.size();
-    field(2);
-    u16(0);
-    write();
-    const auto length = static_cast<std::uint16_t>(bytes_.size() - at - 2);
-    bytes_[at] = static_cast<std::uint8_t>(length);
-    bytes_[at + 1] = static_cast<std::uint8_t>(length >> 8);
-  }
-  std::vector<std::uint8_t> bytes_;
-  std::vector<std::pair<std::size_t, std::size_t>> fields_;
-
-private:
-  std::size_t length_at_ = 0;
-};
-
-void dataHeader(Builder& b, std::uint32_t writer, std::int64_t sn, std::uint16_t to_inline_qos = 16)
-{
-  b.u16(0);
-  b.field(2);
-  b.u16(to_inline_qos);
-  b.entity(0);
-  b.entity(writer);
-  b.sn(sn);
-}
-
-}  // namespace
 
 DatagramMutator::DatagramMutator(std::uint64_t seed) : rng_(seed)
 {
-  const auto keep = [this](Builder& b) {
-    Template t{b.bytes_, {}};
-    for (const auto& [offset, width] : b.fields_) {
+  using Builder = test::RtpsBuilder;
+  constexpr std::uint8_t kGuidPrefix = 0xa0;
+  const auto keep = [this](const Builder& b) {
+    Template t{b.bytes(), {}};
+    for (const auto& [offset, width] : b.fields()) {
       t.fields.push_back({offset, width});
     }
     templates_.push_back(std::move(t));
   };
   {  // SPDP: a discovery DATA with a parameter list (name, locators, a property list)
-    Builder b;
+    Builder b(kGuidPrefix);
     b.begin(0x15, 0x04);
-    dataHeader(b, 0x000100c2, 1);
+    b.dataHeader(0x000100c2, 1);
     b.u8(0x00);
     b.u8(0x03);  // PL_CDR_LE
     b.u16(0);
@@ -142,19 +50,18 @@ DatagramMutator::DatagramMutator(std::uint64_t seed) : rng_(seed)
       b.u8(3);
       b.u8(0);
     });
-    b.u16(0x0001);
-    b.u16(0);
+    b.sentinel();
     b.end();
     keep(b);
   }
   {  // INFO_TS + a user DATA (a small CDR payload)
-    Builder b;
+    Builder b(kGuidPrefix);
     b.begin(0x09, 0);
     b.u32(1);
     b.u32(2);
     b.end();
     b.begin(0x15, 0x04);
-    dataHeader(b, 0x00000102, 7);
+    b.dataHeader(0x00000102, 7);
     b.u8(0x00);
     b.u8(0x01);  // CDR_LE
     b.u16(0);
@@ -165,9 +72,9 @@ DatagramMutator::DatagramMutator(std::uint64_t seed) : rng_(seed)
     keep(b);
   }
   {  // DATA_FRAG: fragment 2 of a 3000-byte sample in 1000-byte fragments
-    Builder b;
+    Builder b(kGuidPrefix);
     b.begin(0x16, 0);
-    dataHeader(b, 0x00000102, 3, 28);
+    b.dataHeader(0x00000102, 3, 28);
     b.field(4);
     b.u32(2);
     b.field(2);
@@ -183,7 +90,7 @@ DatagramMutator::DatagramMutator(std::uint64_t seed) : rng_(seed)
     keep(b);
   }
   {  // HEARTBEAT + ACKNACK with a bitmap + GAP
-    Builder b;
+    Builder b(kGuidPrefix);
     b.begin(0x07, 0);
     b.entity(0);
     b.entity(0x00000102);

@@ -47,12 +47,13 @@ std::vector<security::Role> securityRoles()
 
 int securityInit(const security::InitOptions& options)
 {
-  const auto written = security::init(options, securityRoles());
+  const auto roles = securityRoles();
+  const auto written = security::init(options, roles);
   for (const auto& f : written) {
     std::printf("%s\n", f.string().c_str());
   }
   std::printf("security: %zu identities in %s; set QUAD_SECURITY_DIR (or a manifest's security key) to it\n",
-              securityRoles().size(), options.dir.string().c_str());
+              roles.size(), options.dir.string().c_str());
   return 0;
 }
 

@@ -8,89 +8,46 @@
 #include <vector>
 
 #include "quad/dds/rtps_check.hpp"
+#include "rtps_builder.hpp"
 
 namespace {
 
 using Bytes = std::vector<std::uint8_t>;
 
-void put16(Bytes& b, std::uint16_t v)
-{
-  b.push_back(static_cast<std::uint8_t>(v));
-  b.push_back(static_cast<std::uint8_t>(v >> 8));
-}
-
-void put32(Bytes& b, std::uint32_t v)
-{
-  put16(b, static_cast<std::uint16_t>(v));
-  put16(b, static_cast<std::uint16_t>(v >> 16));
-}
-
-Bytes header()
-{
-  Bytes b = {'R', 'T', 'P', 'S', 2, 3, 0x01, 0x0f};
-  b.resize(20, 7);
-  return b;
-}
-
 /// INFO_TS + one DATA of `payload` bytes of user CDR (what a state or a cloud fragment is).
 Bytes userData(std::size_t payload)
 {
-  Bytes b = header();
-  b.push_back(0x09);
-  b.push_back(0x01);
-  put16(b, 8);
-  put32(b, 1);
-  put32(b, 2);
-  b.push_back(0x15);
-  b.push_back(0x05);  // E, D
-  put16(b, static_cast<std::uint16_t>(20 + 4 + payload));
-  put16(b, 0);
-  put16(b, 16);
-  put32(b, 0x00000107);
-  put32(b, 0x00000102);
-  put32(b, 0);
-  put32(b, 42);
-  b.push_back(0x00);
-  b.push_back(0x01);  // CDR_LE
-  put16(b, 0);
-  b.resize(b.size() + payload, 0x5a);
-  return b;
+  quad::test::RtpsBuilder b(7);
+  b.begin(0x09, 0);  // INFO_TS
+  b.u32(1);
+  b.u32(2);
+  b.end();
+  b.begin(0x15, 0x04);  // DATA, D
+  b.dataHeader(0x00000102, 42, 16, 0x00000107);
+  b.u8(0x00);
+  b.u8(0x01);  // CDR_LE
+  b.u16(0);
+  b.fill(payload, 0x5a);
+  b.end();
+  return b.bytes();
 }
 
 /// A DATA with a PL_CDR_LE discovery payload of `parameters` 24-byte locators and a name.
 Bytes discoveryData(int parameters)
 {
-  Bytes b = header();
-  b.push_back(0x15);
-  b.push_back(0x05);
-  const std::size_t length_at = b.size();
-  put16(b, 0);
-  put16(b, 0);
-  put16(b, 16);
-  const Bytes entities = {0x00, 0x01, 0x00, 0xc7, 0x00, 0x01, 0x00, 0xc2};  // reader, writer: big-endian
-  b.insert(b.end(), entities.begin(), entities.end());
-  put32(b, 0);
-  put32(b, 1);
-  b.push_back(0x00);
-  b.push_back(0x03);  // PL_CDR_LE
-  put16(b, 0);
-  put16(b, 0x0062);  // PID_ENTITY_NAME
-  put16(b, 16);
-  put32(b, 11);
-  for (char c : std::string("quad_plant\0\0", 12)) {
-    b.push_back(static_cast<std::uint8_t>(c));
-  }
+  quad::test::RtpsBuilder b(7);
+  b.begin(0x15, 0x04);
+  b.dataHeader(0x000100c2, 1, 16, 0x000100c7);
+  b.u8(0x00);
+  b.u8(0x03);  // PL_CDR_LE
+  b.u16(0);
+  b.parameter(0x0062, [&] { b.string("quad_plant"); });  // PID_ENTITY_NAME
   for (int i = 0; i < parameters; ++i) {
-    put16(b, 0x0031);  // PID_DEFAULT_UNICAST_LOCATOR
-    put16(b, 24);
-    b.resize(b.size() + 24, 1);
+    b.parameter(0x0031, [&] { b.fill(24, 1); });  // PID_DEFAULT_UNICAST_LOCATOR
   }
-  put16(b, 0x0001);
-  put16(b, 0);
-  const auto length = static_cast<std::uint16_t>(b.size() - length_at - 2);
-  b[length_at] = static_cast<std::uint8_t>(length);
-  b[length_at + 1] = static_cast<std::uint8_t>(length >> 8);
-  return b;
+  b.sentinel();
+  b.end();
+  return b.bytes();
 }
 
 void run(benchmark::State& state, const Bytes& datagram, bool check)

@@ -1,5 +1,6 @@
 #include "quad/dds/message_types.hpp"
 
+#include <atomic>
 #include <mutex>
 #include <span>
 
@@ -11,6 +12,7 @@ namespace quad::dds {
 namespace {
 std::mutex rejected_mutex;
 RejectedPayloads rejected;
+std::atomic<std::uint64_t> rejected_count{0};
 }  // namespace
 
 bool payloadKeepsToIdl(std::string_view type_name, const eprosima::fastrtps::rtps::SerializedPayload_t& payload)
@@ -29,12 +31,18 @@ void countRejectedPayload(std::string_view type_name, const std::string& why)
   std::lock_guard lock(rejected_mutex);
   ++rejected.count;
   rejected.last = std::string(type_name) + ": " + why;
+  rejected_count.store(rejected.count, std::memory_order_relaxed);
 }
 
 RejectedPayloads rejectedPayloads()
 {
   std::lock_guard lock(rejected_mutex);
   return rejected;
+}
+
+std::uint64_t rejectedPayloadCount()
+{
+  return rejected_count.load(std::memory_order_relaxed);
 }
 
 void vehicleKeyHash(std::uint32_t vehicle_id, eprosima::fastrtps::rtps::InstanceHandle_t& handle)

@@ -118,14 +118,14 @@ void Node::countLoss(const EndpointEvent& event)
 
 void Node::countRejectedPayloads()
 {
-  const RejectedPayloads r = rejectedPayloads();
-  if (r.count > rejected_payloads_) {
+  if (rejectedPayloadCount() > rejected_payloads_) {
+    const RejectedPayloads r = rejectedPayloads();
     counters_.errors += r.count - rejected_payloads_;
     spdlog::warn("{} received payload(s) refused; the last: {}", r.count - rejected_payloads_, r.last);
     rejected_payloads_ = r.count;
   }
   // The validating transport logs each itself (at most once a second).
-  const std::uint64_t malformed = malformedDatagrams().count;
+  const std::uint64_t malformed = malformedDatagramCount();
   if (malformed > malformed_datagrams_) {
     counters_.errors += malformed - malformed_datagrams_;
     malformed_datagrams_ = malformed;

@@ -21,6 +21,7 @@ namespace {
 constexpr std::int64_t kLogPeriodNs = 1'000'000'000;  // at most one log line a second
 
 std::atomic<std::uint64_t> checked_count{0};
+std::atomic<std::uint64_t> malformed_count{0};
 std::mutex malformed_mutex;
 MalformedDatagrams malformed;
 std::int64_t next_log_ns = 0;
@@ -34,6 +35,7 @@ void noteMalformed(const frtps::Locator_t& from, std::uint32_t size, const RtpsD
   std::lock_guard lock(malformed_mutex);
   ++malformed.count;
   malformed.last = what;
+  malformed_count.store(malformed.count, std::memory_order_relaxed);
   const std::int64_t now = common::steadyTimeNs();
   if (now >= next_log_ns) {
     spdlog::warn("malformed RTPS datagram dropped ({} since the last report): {}", malformed.count - logged_count,
@@ -94,6 +96,11 @@ MalformedDatagrams malformedDatagrams()
   MalformedDatagrams m = malformed;
   m.checked = checked_count.load(std::memory_order_relaxed);
   return m;
+}
+
+std::uint64_t malformedDatagramCount()
+{
+  return malformed_count.load(std::memory_order_relaxed);
 }
 
 }  // namespace quad::dds

@@ -48,6 +48,8 @@ struct RejectedPayloads {
   std::string last;  ///< "quad::msg::Path: waypoints_W: sequence length 5000 exceeds its bound 4096 at byte 52"
 };
 RejectedPayloads rejectedPayloads();
+/// rejectedPayloads().count without a lock or a copy: cheap enough to poll in a loop.
+std::uint64_t rejectedPayloadCount();
 
 /// Counts a payload refused for another reason than its IDL (payloadKeepsToIdl counts those).
 void countRejectedPayload(std::string_view type_name, const std::string& why);

@@ -26,5 +26,7 @@ struct MalformedDatagrams {
   std::string last;           ///< "from 127.0.0.1:41234, 92 bytes: at byte 20: DATA_FRAG: ..."
 };
 MalformedDatagrams malformedDatagrams();
+/// malformedDatagrams().count without a lock or a copy: cheap enough to poll in a loop.
+std::uint64_t malformedDatagramCount();
 
 }  // namespace quad::dds

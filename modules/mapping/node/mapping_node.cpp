@@ -148,6 +148,18 @@ void MappingNode::integrate(const msg::PointCloud& cloud)
   }
 }
 
+void MappingNode::onEvent(const dds::EndpointEvent& event)
+{
+  // A new reader of updates (a restarted planner, say) gets those published from its match
+  // on, and the latched snapshot, up to a snapshot period old (its snapshot reader may even
+  // match seconds earlier): the updates in between are lost to it, a gap it would wait out
+  // until the next snapshot. A fresh snapshot with the next cloud fills it at once.
+  if (event.kind == dds::EventKind::kMatched && event.topic == dds::topics::kMapUpdate.info.name) {
+    next_snapshot_ns_ = 0;
+  }
+  Node::onEvent(event);
+}
+
 void MappingNode::reportLockstep()
 {
   // Done with time t once every depth frame published up to t is integrated.

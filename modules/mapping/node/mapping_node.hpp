@@ -33,6 +33,7 @@ public:
 
 protected:
   void onWake() override;
+  void onEvent(const dds::EndpointEvent& event) override;
   void onStop() override;
 
 private:

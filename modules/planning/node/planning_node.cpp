@@ -111,6 +111,7 @@ PlanningNode::PlanningNode(PlanningNodeConfig config, dds::ParticipantOptions op
       goal_(participant(), dds::topics::kGoal, waker()),
       clock_(participant(), dds::topics::kSimClock, waker()),
       path_(participant(), dds::topics::kPath),
+      mapper_(participant(), "mapping", waker()),
       lockstep_(participant(), "planning")
 {
   spdlog::info("planning: lattice {} cells at {} m, inflation {} m", planner_.lattice().size(), config_.resolution,
@@ -305,7 +306,32 @@ void PlanningNode::onWake()
                    frames_applied_, clock_frames_, follower_.gapOpen() ? ", a gap in the updates" : "");
     }
   }
-  if (goal_id_ && position_ && caught_up && map_whole && (goal_changed_ || now_ns_ >= next_replan_ns_)) {
+  // The mapper's heartbeat losing its liveliness (stopped, killed or cut off; a busy mapper
+  // keeps it) withdraws the path at once: the controller holds on a path that is not PLAN_OK,
+  // where the second it would fly on before its path timeout is a second into what only the
+  // camera saw. A map that merely lags (a slow mapper catching up) only stops the replans.
+  const bool mapper_lost = mapper_.update() == dds::ModuleWatch::State::kLost;
+  if (mapper_lost != mapper_lost_) {
+    mapper_lost_ = mapper_lost;
+    if (mapper_lost) {
+      spdlog::warn("planning: the mapper's heartbeat lost its liveliness (stopped, killed or cut off): "
+                   "path withdrawn, the vehicle holds");
+    } else {
+      spdlog::info("planning: the mapper is alive again");
+    }
+  }
+  if (mapper_lost && goal_id_ && (current_.status() != msg::PLAN_MAPPER_LOST || now_ns_ >= next_publish_ns_)) {
+    const bool changed = current_.status() != msg::PLAN_MAPPER_LOST;
+    current_.goal_id(*goal_id_);
+    current_.status(msg::PLAN_MAPPER_LOST);
+    current_.cost(-1.0);
+    current_.expansions(0);
+    current_.replan_time_s(0.0);
+    current_.waypoints_W().clear();
+    publish(now_ns_, changed);
+  }
+  if (goal_id_ && position_ && caught_up && map_whole && !mapper_lost &&
+      (goal_changed_ || now_ns_ >= next_replan_ns_)) {
     replan(now_ns_);
     goal_changed_ = false;
     next_replan_ns_ = now_ns_ + common::toNanoseconds(config_.replan_period_s);

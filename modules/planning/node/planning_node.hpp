@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "quad/dds/lockstep.hpp"
+#include "quad/dds/module_watch.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
@@ -55,13 +56,15 @@ private:
   dds::Subscriber<msg::Goal> goal_;
   dds::Subscriber<msg::SimClock> clock_;
   dds::Publisher<msg::Path> path_;
+  dds::ModuleWatch mapper_;
   dds::LockstepReporter lockstep_;
 
   std::uint64_t frames_applied_ = 0;    // depth clouds the applied updates account for
   std::int64_t clock_ns_ = 0;           // lockstep: the sim time the clock is at
   std::uint64_t clock_frames_ = 0;      // lockstep: depth clouds published up to then
-  bool clock_state_sent_ = true;
-  bool map_whole_ = true;               // last said in the log        // lockstep: a state of the clock's time was published
+  bool clock_state_sent_ = true;        // lockstep: a state of the clock's time was published
+  bool map_whole_ = true;               // last said in the log
+  bool mapper_lost_ = false;            // last said in the log
   std::int64_t reported_ns_ = -1;
   bool goal_changed_ = false;
   std::optional<std::uint32_t> goal_id_;

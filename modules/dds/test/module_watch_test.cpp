@@ -1,0 +1,77 @@
+// ModuleWatch between two real participants: a module is unknown until its first heartbeat,
+// alive while its heartbeat writer asserts liveliness, lost within the 0.5 s lease once it
+// stops, and alive again when it resumes; another module's heartbeats say nothing of it.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "quad/common/time.hpp"
+#include "quad/dds/module_watch.hpp"
+#include "quad/dds/participant.hpp"
+#include "quad/dds/publisher.hpp"
+#include "quad/dds/topics.hpp"
+#include "wait.hpp"
+
+namespace quad::dds {
+namespace {
+
+constexpr int kDomain = 167;  // this test's own
+
+msg::Heartbeat heartbeat(const std::string& module)
+{
+  msg::Heartbeat hb;
+  hb.module_name(module);
+  hb.host("test");
+  hb.pid(1);
+  hb.state(msg::MODULE_RUNNING);
+  return hb;
+}
+
+TEST(ModuleWatch, FollowsTheHeartbeatWritersLiveliness)
+{
+  intraprocessDeliveryOff();  // two participants in one process (participant.hpp)
+  const auto options = [](const char* name) {
+    return ParticipantOptions{.name = name, .domain_id = kDomain, .transport = Transport::kUdp};
+  };
+  Participant module(options("module"));
+  Participant watcher(options("watcher"));
+  Publisher<msg::Heartbeat> mapping(module, topics::kHeartbeat);
+  Publisher<msg::Heartbeat> plant(module, topics::kHeartbeat);
+  ModuleWatch watch(watcher, "mapping", nullptr);
+  ASSERT_TRUE(test::waitFor([&] { return mapping.matchedReaders() == 1 && plant.matchedReaders() == 1; }));
+
+  // Another module's heartbeats, however alive, leave it unknown.
+  ASSERT_TRUE(plant.write(heartbeat("plant")));
+  EXPECT_FALSE(test::waitFor([&] { return watch.update() != ModuleWatch::State::kUnknown; },
+                             std::chrono::milliseconds(300)));
+
+  ASSERT_TRUE(mapping.write(heartbeat("mapping")));
+  ASSERT_TRUE(test::waitFor([&] { return watch.update() == ModuleWatch::State::kAlive; }));
+
+  // Kept alive by assertions alone (what a node's liveliness thread does while it is busy).
+  const std::int64_t until = common::steadyTimeNs() + 1'200'000'000;
+  while (common::steadyTimeNs() < until) {
+    mapping.assertLiveliness();
+    plant.assertLiveliness();
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    ASSERT_EQ(watch.update(), ModuleWatch::State::kAlive);
+  }
+
+  // Silent (stopped): lost within the lease, though the plant's writer goes on.
+  const std::int64_t stopped = common::steadyTimeNs();
+  ASSERT_TRUE(test::waitFor([&] {
+    plant.assertLiveliness();
+    return watch.update() == ModuleWatch::State::kLost;
+  }));
+  const double noticed_s = common::toSeconds(common::steadyTimeNs() - stopped);
+  EXPECT_GT(noticed_s, 0.3) << "lost before the 0.5 s lease ended";
+  EXPECT_LT(noticed_s, 1.0) << "the lease is 0.5 s";
+
+  // Resumed.
+  mapping.assertLiveliness();
+  EXPECT_TRUE(test::waitFor([&] { return watch.update() == ModuleWatch::State::kAlive; }));
+}
+
+}  // namespace
+}  // namespace quad::dds

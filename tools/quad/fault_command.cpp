@@ -2,6 +2,7 @@
 
 #include <signal.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -148,6 +149,7 @@ private:
         : command(p, topics::kFault),
           events(p, topics::kFaultEvents),
           status(p, topics::kControlStatus, nullptr, deepReader(p, topics::kControlStatus.info.qos_profile)),
+          path(p, topics::kPath, nullptr, deepReader(p, topics::kPath.info.qos_profile)),
           actuators(p, topics::kActuators, nullptr, deepReader(p, topics::kActuators.info.qos_profile)),
           heartbeat(p, topics::kHeartbeat, nullptr, deepReader(p, topics::kHeartbeat.info.qos_profile)),
           sim_events(p, topics::kSimEvents, nullptr, deepReader(p, topics::kSimEvents.info.qos_profile)),
@@ -157,6 +159,7 @@ private:
     dds::Publisher<msg::FaultCommand> command;
     dds::Publisher<msg::SimEvent> events;
     dds::Subscriber<msg::ControlStatus> status;
+    dds::Subscriber<msg::Path> path;
     dds::Subscriber<msg::ActuatorCommand> actuators;
     dds::Subscriber<msg::Heartbeat> heartbeat;
     dds::Subscriber<msg::SimEvent> sim_events;
@@ -231,6 +234,15 @@ private:
     // be a bad input stamped anywhere).
     t_ = common::toSeconds(run.observer().simTimeNs());
     p_W_ = dds::toMessage(run.observer().position());
+    // Paths before modes: a HOVER measured from the last path must not miss one stamped before it.
+    for (const auto& p : endpoints_->path.takeAll()) {
+      const bool flyable = p.status() == msg::PLAN_OK && !p.waypoints_W().empty() &&
+                           std::all_of(p.waypoints_W().begin(), p.waypoints_W().end(),
+                                       [](const msg::Vector3& w) { return dds::toVector(w).allFinite(); });
+      if (flyable) {
+        judge_.path(common::toSeconds(p.header().stamp_ns()));
+      }
+    }
     for (const auto& s : endpoints_->status.takeAll()) {
       judge_.mode(common::toSeconds(s.header().stamp_ns()), launch::controlModeName(static_cast<int>(s.mode())));
     }

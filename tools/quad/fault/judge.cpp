@@ -57,18 +57,27 @@ void Judge::cleared(std::size_t step, double t, const std::string& detail)
   s.cleared_detail = detail;
 }
 
+double Judge::modeOrigin(const StepState& s, const Pending& p) const
+{
+  return p.expect.since == Expectation::Since::kLastPath && last_path_t_ ? *last_path_t_ : s.t;
+}
+
 void Judge::meet(std::size_t step, Expectation::Kind kind, const std::string& subject, double measured_s)
 {
+  const StepState& s = steps_[step];
   for (auto& p : steps_[step].pending) {
     const std::string& want = kind == Expectation::Kind::kMode ? p.expect.mode : p.expect.module;
     if (p.expect.kind != kind || want != subject || p.measured_s || p.failed) {
       continue;
     }
-    if (measured_s <= p.expect.within_s) {
-      p.measured_s = measured_s;
+    // measured_s is from the fault; a mode bound may count from elsewhere.
+    const double measured = kind == Expectation::Kind::kMode ? std::max(0.0, s.t + measured_s - modeOrigin(s, p))
+                                                             : measured_s;
+    if (measured <= p.expect.within_s) {
+      p.measured_s = measured;
     } else {
       p.failed = true;
-      p.why = fmt::format("{:.3f} s", measured_s);
+      p.why = fmt::format("{:.3f} s", measured);
     }
   }
 }
@@ -84,7 +93,7 @@ void Judge::clock(double t, std::int64_t wall_ns)
       if (p.measured_s || p.failed) {
         continue;
       }
-      const double elapsed = p.expect.simTime() ? t - s.t : common::toSeconds(wall_ns - s.wall_ns);
+      const double elapsed = p.expect.simTime() ? t - modeOrigin(s, p) : common::toSeconds(wall_ns - s.wall_ns);
       if (elapsed > p.expect.within_s) {
         p.failed = true;
         p.why = "not seen";
@@ -101,6 +110,11 @@ void Judge::mode(double t, const std::string& mode)
       meet(i, Expectation::Kind::kMode, mode, std::max(0.0, t - steps_[i].t));
     }
   }
+}
+
+void Judge::path(double t)
+{
+  last_path_t_ = std::max(last_path_t_.value_or(t), t);
 }
 
 void Judge::meetAfter(Expectation::Kind kind, const std::string& module, std::int64_t wall_ns)

@@ -54,6 +54,9 @@ public:
   void clock(double t, std::int64_t wall_ns);
   /// The controller reported `mode` at sim time `t`.
   void mode(double t, const std::string& mode);
+  /// A path a controller would fly (PLAN_OK, finite waypoints) stamped at sim time `t`; feed
+  /// those of a batch before its modes.
+  void path(double t);
   /// The launcher saw `module`'s writers lose liveliness.
   void lost(const std::string& module, std::int64_t wall_ns);
   /// `module` runs again: a heartbeat from a process it was not before.
@@ -94,6 +97,8 @@ private:
     std::vector<Pending> pending;
   };
   void meet(std::size_t step, Expectation::Kind kind, const std::string& subject, double measured_s);
+  /// A kMode expectation's reference time: its step's fault, or the last path.
+  double modeOrigin(const StepState& s, const Pending& p) const;
   /// A module's event at wall time `wall_ns`, measured from every step applied before it.
   void meetAfter(Expectation::Kind kind, const std::string& module, std::int64_t wall_ns);
 
@@ -101,6 +106,7 @@ private:
   std::vector<StepState> steps_;
   std::string mode_;
   double t_ = 0.0;
+  std::optional<double> last_path_t_;  // sim time of the last path a controller would fly
 };
 
 /// The rows as an aligned table, PASS/FAIL in the last column, and a last line with the verdict.

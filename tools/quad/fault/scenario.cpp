@@ -439,7 +439,7 @@ private:
       r_.problem(key, node, "expected one of mode, noticed, back, rejected");
       return std::nullopt;
     }
-    r_.onlyKeys(node, key + ".", {*kind, "within"});
+    r_.onlyKeys(node, key + ".", {*kind, "within", "since"});
     YAML::Node value = node[*kind];
     const auto within = r_.number(node["within"], key + ".within", std::nullopt, 0.0, kMaxTime);
     if (!isName(value)) {
@@ -454,6 +454,19 @@ private:
       e.mode = value.Scalar();
     } else {
       e.module = value.Scalar();
+    }
+    if (const YAML::Node since = node["since"]; since.IsDefined()) {
+      const std::string text = since.IsScalar() ? since.Scalar() : "";
+      if (e.kind != Expectation::Kind::kMode) {
+        r_.problem(key + ".since", since, "only a mode expectation is measured from elsewhere than the fault");
+        return std::nullopt;
+      }
+      if (text == "last_path") {
+        e.since = Expectation::Since::kLastPath;
+      } else if (text != "fault") {
+        r_.problem(key + ".since", since, "expected fault or last_path");
+        return std::nullopt;
+      }
     }
     if (!within) {
       return std::nullopt;
@@ -553,7 +566,8 @@ std::string Action::describe() const
 
 std::string Expectation::describe() const
 {
-  return nameOf(kExpectations, kind) + " " + (kind == Kind::kMode ? mode : module);
+  const std::string what = nameOf(kExpectations, kind) + " " + (kind == Kind::kMode ? mode : module);
+  return since == Since::kLastPath ? what + " after the last path" : what;
 }
 
 Scenario parseScenario(std::string_view yaml_text, const fs::path& file, const ScenarioLookup& lookup)

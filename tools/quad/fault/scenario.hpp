@@ -67,10 +67,17 @@ struct Expectation {
     kBack,      ///< `module` runs again (a heartbeat from a new process) within `within_s` wall seconds
     kRejected,  ///< `module`'s count of rejected inputs (its heartbeat's errors) grows within `within_s` wall seconds
   };
+  /// Where a kMode bound is measured from.
+  enum class Since {
+    kFault,     ///< the moment the step's fault took effect
+    kLastPath,  ///< the stamp of the last path a controller would fly (PLAN_OK, finite waypoints):
+                ///< a reaction to the path going stale, its timeout included in `within_s`
+  };
   Kind kind = Kind::kMode;
   std::string mode;    ///< kMode: a ControlMode name without its prefix ("HOVER")
   std::string module;  ///< the others
   double within_s = 1.0;
+  Since since = Since::kFault;
 
   bool simTime() const { return kind == Kind::kMode; }
   /// "mode HOVER", "noticed planning", ...

@@ -67,7 +67,8 @@ mode: realtime
 steps:
   - at: 5
     kill: planning
-    expect: [{noticed: planning, within: 0.6}, {mode: HOVER, within: 1.5}, {back: planning, within: 4}]
+    expect: [{noticed: planning, within: 0.6}, {mode: HOVER, within: 1.5}, {back: planning, within: 4},
+             {mode: HOVER, within: 1.1, since: last_path}]
   - {at: 6, pause: mapping}
   - {at: 7, resume: mapping}
   - {at: 8, restart: control}
@@ -82,8 +83,11 @@ outcome: {mission: failure, collisions: 2, finite_actuators: false, recording_lo
   EXPECT_EQ(s.mode, "realtime");
   ASSERT_EQ(s.steps.size(), 6U);
   EXPECT_EQ(s.steps[0].action.describe(), "kill planning");
-  ASSERT_EQ(s.steps[0].expect.size(), 3U);
+  ASSERT_EQ(s.steps[0].expect.size(), 4U);
   EXPECT_EQ(s.steps[0].expect[1].describe(), "mode HOVER");
+  EXPECT_EQ(s.steps[0].expect[1].since, Expectation::Since::kFault);
+  EXPECT_EQ(s.steps[0].expect[3].describe(), "mode HOVER after the last path");
+  EXPECT_EQ(s.steps[0].expect[3].since, Expectation::Since::kLastPath);
   EXPECT_TRUE(s.steps[0].expect[1].simTime());
   EXPECT_FALSE(s.steps[0].expect[0].simTime());
   EXPECT_EQ(s.steps[1].action.kind, Action::Kind::kPause);
@@ -112,6 +116,7 @@ steps:
   - {at: 7, plant: {kind: motor, rotor: 7, efficiency: 0.5}}
   - {at: 8, publish: {topic: quad/sim/state, values: {nonsense: 1}}}
   - {at: -1, restart: control, expect: [{noticed: control}]}
+  - {at: 9, kill: planning, expect: [{noticed: planning, within: 1, since: last_path}, {mode: HOVER, within: 1, since: noon}]}
 outcome: {mission: maybe, colisions: 1}
 )");
   EXPECT_TRUE(mentions(p, "s.yaml:manifest: nowhere.yaml: no such file")) << ::testing::PrintToString(p);
@@ -123,6 +128,8 @@ outcome: {mission: maybe, colisions: 1}
   EXPECT_TRUE(mentions(p, "steps[4].publish.values: {nonsense: 1}: no field nonsense in VehicleState"));
   EXPECT_TRUE(mentions(p, "steps[5].at: -1"));
   EXPECT_TRUE(mentions(p, "steps[5].expect[0].within"));
+  EXPECT_TRUE(mentions(p, "steps[6].expect[0].since: last_path: only a mode expectation"));
+  EXPECT_TRUE(mentions(p, "steps[6].expect[1].since: noon: expected fault or last_path"));
   EXPECT_TRUE(mentions(p, "outcome.mission: maybe: expected success, failure or any"));
   EXPECT_TRUE(mentions(p, "outcome.colisions: 1: unknown key"));
 }
@@ -347,6 +354,40 @@ TEST(Judge, AModeAlreadyHeldWhenTheFaultTakesEffectIsMetAtOnce)
   j.applied(0, 5.0, 0, "x");
   EXPECT_TRUE(j.settled());
   EXPECT_TRUE(passed(j.finish(goodRun())));
+}
+
+TEST(Judge, AModeAfterTheLastPathIsMeasuredFromThatPathsStamp)
+{
+  // Path timeout 1 s: HOVER within 1.1 s of the last path is within 0.1 s of its going stale.
+  Scenario s = killScenario();
+  s.steps[0].expect = {{Expectation::Kind::kMode, "HOVER", "", 1.1, Expectation::Since::kLastPath}};
+  Judge in_time(s);
+  in_time.path(4.6);
+  in_time.path(4.8);
+  in_time.path(4.7);  // out of order: the newest counts
+  ASSERT_EQ(in_time.due(5.0).size(), 1U);
+  in_time.applied(0, 5.0, 0, "SIGKILL to pid 7");
+  in_time.clock(5.85, 900 * kMs);
+  in_time.mode(5.85, "HOVER");
+  const auto rows = in_time.finish(goodRun());
+  EXPECT_TRUE(passed(rows)) << toTable("k", rows);
+  EXPECT_NE(toTable("k", rows).find("1.050 s"), std::string::npos) << toTable("k", rows);
+  EXPECT_NE(toTable("k", rows).find("mode HOVER after the last path"), std::string::npos);
+
+  Judge late(s);
+  late.path(4.8);
+  ASSERT_EQ(late.due(5.0).size(), 1U);
+  late.applied(0, 5.0, 0, "SIGKILL to pid 7");
+  late.mode(6.0, "HOVER");  // 1.2 s after the last path, though 1.0 s after the kill
+  EXPECT_FALSE(passed(late.finish(goodRun())));
+
+  Judge never(s);
+  never.path(4.8);
+  ASSERT_EQ(never.due(5.0).size(), 1U);
+  never.applied(0, 5.0, 0, "SIGKILL to pid 7");
+  never.clock(5.95, 950 * kMs);  // the bound is over at 5.9
+  EXPECT_TRUE(never.settled());
+  EXPECT_FALSE(passed(never.finish(goodRun())));
 }
 
 TEST(Judge, ARefusedOrUnreachedStepFailsWithItsReason)

@@ -127,6 +127,53 @@ TEST(Record, SplitFilesTogetherHoldEveryMessageOnce)
   fs::remove_all(dir);
 }
 
+TEST(Record, AFullDiskIsReportedAndWhatWasWrittenBeforeCanBeRecovered)
+{
+  const std::map<std::string, std::string> udp = {{"QUAD_TRANSPORT", "udp"}};  // no shared-memory files
+  const fs::path dir = quad::test::scratchDir("quad_record_full");
+  // Full from the start: /dev/full refuses every write with ENOSPC.
+  const fs::path no_space = dir / "no_space.mcap";
+  fs::create_symlink("/dev/full", no_space);
+  auto full_env = env(168);
+  full_env.insert(udp.begin(), udp.end());
+  ChildProcess full({QUAD_TOOL, "record", "-q", "-o", no_space.string(), "--duration", "5"}, full_env);
+  ASSERT_EQ(full.wait(20s), 1) << full.output();
+  EXPECT_NE(full.output().find(no_space.string() + ": cannot write: No space left on device"), std::string::npos)
+      << full.output();
+
+  // Full mid-recording: a file size limit fails a write (EFBIG) where a full disk would
+  // (ENOSPC); the recorder must say so and stop, not hang or stop silently.
+  const std::string file = (dir / "f.mcap").string();
+  auto rec_env = env(169);
+  rec_env.insert(udp.begin(), udp.end());
+  ChildProcess rec({"/bin/sh", "-c", "trap '' XFSZ; ulimit -f 256; exec \"$0\" \"$@\"", QUAD_TOOL, "record", "-q",
+                    "-o", file, "--chunk-size", "4096", "quad/system/command"},
+                   rec_env);
+  ASSERT_TRUE(rec.waitForOutput("record: domain 169", 10s)) << rec.output();
+  ChildProcess pub({QUAD_TOOL, "topic", "pub", "quad/system/command", "{command_id: 1, kind: COMMAND_HOLD}", "--count",
+                    "8000", "--rate", "1000"},
+                   rec_env);
+  ASSERT_EQ(pub.wait(60s), 0) << pub.output();  // about 800 KB of samples for 128 KiB of file
+  const auto code = rec.wait(20s);
+  ASSERT_TRUE(code) << "the recorder went on after its writes failed: " << rec.output();
+  EXPECT_EQ(*code, 1) << rec.output();
+  EXPECT_NE(rec.output().find(file + ": cannot write at byte"), std::string::npos) << rec.output();
+  EXPECT_NE(rec.output().find("File too large"), std::string::npos) << rec.output();
+  EXPECT_NE(rec.output().find("stopping"), std::string::npos) << rec.output();
+  EXPECT_LE(fs::file_size(file), 256U * 1024U);  // ulimit -f counts blocks of 512 (dash) or 1024 bytes
+
+  // Its complete chunks are intact: recovered, they hold the first samples, in order, none missing.
+  const std::string whole = (dir / "whole.mcap").string();
+  ChildProcess recover({QUAD_TOOL, "bag", "recover", file, "-o", whole});
+  ASSERT_EQ(recover.wait(20s), 0) << recover.output();
+  const auto c = quad::bag::readMcap(whole);
+  ASSERT_GT(c.messages.size(), 100U) << recover.output();
+  for (std::size_t i = 0; i < c.messages.size(); ++i) {
+    ASSERT_EQ(c.messages[i].sequence, i + 1) << "message " << i;
+  }
+  fs::remove_all(dir);
+}
+
 TEST(Record, ABadFileGetsAOneLineErrorNotACrash)
 {
   const fs::path dir = quad::test::scratchDir("quad_record_bad");

@@ -52,6 +52,18 @@ void BM_RawFwrite(benchmark::State& state)
 }
 
 /// The recorder's loss audit per sample.
+// The CRC every chunk carries, over a 1 MiB chunk.
+void BM_Crc32(benchmark::State& state)
+{
+  const std::vector<std::uint8_t> data(static_cast<std::size_t>(state.range(0)), 0x5a);
+  std::uint32_t crc = 0;
+  for (auto _ : state) {
+    crc = quad::bag::crc32(data.data(), data.size(), crc);
+    benchmark::DoNotOptimize(crc);
+  }
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) * state.range(0));
+}
+
 void BM_SequenceAudit(benchmark::State& state)
 {
   quad::bag::SequenceAudit audit;
@@ -65,6 +77,7 @@ void BM_SequenceAudit(benchmark::State& state)
 BENCHMARK(BM_McapWrite)->Arg(100)->Arg(1 << 20);
 BENCHMARK(BM_McapWriteZstd)->Arg(100)->Arg(1 << 20);
 BENCHMARK(BM_RawFwrite)->Arg(100)->Arg(1 << 20);
+BENCHMARK(BM_Crc32)->Arg(1 << 20);
 BENCHMARK(BM_SequenceAudit);
 
 }  // namespace

@@ -2,9 +2,14 @@
 # Recorder throughput, side by side in one run: a subscriber that discards what it receives,
 # then quad record, each taking COUNT reliable map updates of SIZE bytes from a publisher
 # that sends as fast as flow control lets it.
-#   tools/quad/bench/record_bench.sh BUILD_DIR
+#   tools/quad/bench/record_bench.sh BUILD_DIR [SIZE:COUNT ...]   (default: 100:200000 1048576:200)
 set -euo pipefail
-build=${1:?usage: record_bench.sh BUILD_DIR}
+build=${1:?usage: record_bench.sh BUILD_DIR [SIZE:COUNT ...]}
+shift
+specs=("$@")
+if [ ${#specs[@]} -eq 0 ]; then
+  specs=(100:200000 1048576:200)
+fi
 quad="$build/tools/quad/quad"
 bench="$build/tools/quad/quad_record_bench"
 tmp=$(mktemp -d)
@@ -12,8 +17,9 @@ trap 'rm -rf "$tmp"' EXIT
 export QUAD_TRANSPORT=udp
 
 printf "%-8s %-7s %-10s %12s %12s %10s  %s\n" SIZE COUNT SIDE SECONDS MSG/S MB/S LOSS
-for spec in "100 200000" "1048576 200"; do
-  read -r size count <<< "$spec"
+for spec in "${specs[@]}"; do
+  size=${spec%%:*}
+  count=${spec##*:}
   export QUAD_DOMAIN_ID=$((RANDOM % 100 + 120))
   # The discarding subscriber.
   "$bench" discard "$count" 120 > "$tmp/discard.out" &

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <memory>
 
 #include <zstd.h>
 
@@ -369,6 +370,47 @@ void McapWriter::close()
 
 namespace {
 
+/// The largest chunk the writer makes: --chunk-size up to 1 GiB, and the message that ends it.
+constexpr std::uint64_t kMaxChunkBytes = (std::uint64_t{1} << 30) + (std::uint64_t{32} << 20);
+
+/// A zstd chunk's records. The buffer grows with what the data really decompresses to (never
+/// to what the chunk merely claims), and that must be exactly `expected` bytes.
+std::string inflateZstd(const std::uint8_t* stored, std::size_t size, std::uint64_t expected)
+{
+  if (expected > kMaxChunkBytes) {
+    throw BagError("chunk claims " + std::to_string(expected) + " bytes uncompressed, more than any chunk holds");
+  }
+  const std::unique_ptr<ZSTD_DCtx, std::size_t (*)(ZSTD_DCtx*)> ctx(ZSTD_createDCtx(), ZSTD_freeDCtx);
+  ZSTD_inBuffer in{stored, size, 0};
+  std::string out;
+  std::size_t produced = 0;
+  std::size_t more = 1;  // ZSTD_decompressStream's hint: 0 once the frame is whole
+  while (more != 0) {
+    if (produced == out.size()) {
+      if (out.size() > expected) {
+        throw BagError("chunk decompresses to more than the " + std::to_string(expected) + " bytes it claims");
+      }
+      out.resize(static_cast<std::size_t>(std::min<std::uint64_t>(expected + 1, std::max<std::size_t>(2 * out.size(), 1 << 16))));
+    }
+    ZSTD_outBuffer o{out.data(), out.size(), produced};
+    const std::size_t consumed = in.pos;
+    more = ZSTD_decompressStream(ctx.get(), &o, &in);
+    if (ZSTD_isError(more) != 0U) {
+      throw BagError(std::string("chunk does not decompress (zstd: ") + ZSTD_getErrorName(more) + ")");
+    }
+    if (more != 0 && in.pos == consumed && o.pos == produced) {
+      throw BagError("chunk's zstd data ends before its frame does");
+    }
+    produced = o.pos;
+  }
+  if (produced != expected || in.pos != size) {
+    throw BagError("chunk decompresses to " + std::to_string(produced) + " bytes, not the " + std::to_string(expected) +
+                   " it claims");
+  }
+  out.resize(produced);
+  return out;
+}
+
 /// Reads fields from a byte range, throwing on running past its end.
 class Cursor {
 public:
@@ -507,15 +549,7 @@ void parseRecords(const std::uint8_t* begin, std::size_t size, std::uint64_t bas
           std::string inflated;
           const std::uint8_t* records = stored;
           if (compression == "zstd") {
-            if (uncompressed_size > (std::uint64_t{1} << 32)) {
-              throw BagError("chunk claims " + std::to_string(uncompressed_size) + " bytes uncompressed");
-            }
-            inflated.resize(static_cast<std::size_t>(uncompressed_size));
-            const std::size_t n = ZSTD_decompress(inflated.data(), inflated.size(), stored,
-                                                  static_cast<std::size_t>(records_size));
-            if (ZSTD_isError(n) != 0U || n != inflated.size()) {
-              throw BagError("chunk does not decompress (zstd)");
-            }
+            inflated = inflateZstd(stored, static_cast<std::size_t>(records_size), uncompressed_size);
             records = reinterpret_cast<const std::uint8_t*>(inflated.data());
           } else if (!compression.empty()) {
             throw BagError("chunk compressed with '" + compression + "', which this reader does not support");
@@ -592,9 +626,14 @@ McapContents readMcap(const std::filesystem::path& path, bool tolerant)
     throw BagError(path.string() + ": cannot open: " + std::strerror(errno));
   }
   const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return readMcap(bytes, path.string(), tolerant);
+}
+
+McapContents readMcap(std::span<const std::uint8_t> bytes, const std::string& name, bool tolerant)
+{
   McapContents out;
   if (bytes.size() < kMagicSize || std::memcmp(bytes.data(), kMagic, kMagicSize) != 0) {
-    throw BagError(path.string() + ": not an MCAP file (no MCAP magic at its start)");
+    throw BagError(name + ": not an MCAP file (no MCAP magic at its start)");
   }
   bool footer = false;
   std::uint64_t good_end = kMagicSize;
@@ -609,7 +648,7 @@ McapContents readMcap(const std::filesystem::path& path, bool tolerant)
     out.complete = true;
   } catch (const BagError& e) {
     if (!tolerant) {
-      throw BagError(path.string() + ": " + e.what());
+      throw BagError(name + ": " + e.what());
     }
     out.problem = e.what();
   }

@@ -115,6 +115,41 @@ TEST(Mcap, ZstdChunksReadBackTheSameAndAreSmaller)
   fs::remove_all(dir);
 }
 
+TEST(Mcap, AZstdChunkClaimingMoreThanItHoldsIsRefusedWithoutAllocatingTheClaim)
+{
+  const fs::path dir = quad::test::scratchDir("quad_mcap_claims");
+  const auto good = bytesOf(writeSample(dir, "zstd"));
+  // The first chunk record: records are opcode, u64 length, body, from byte 8 on.
+  std::size_t chunk = 8;
+  while (good.at(chunk) != 0x06) {
+    std::uint64_t length = 0;
+    for (int i = 0; i < 8; ++i) {
+      length |= static_cast<std::uint64_t>(good.at(chunk + 1 + static_cast<std::size_t>(i))) << (8 * i);
+    }
+    chunk += 9 + length;
+  }
+  const std::size_t claim = chunk + 9 + 16;  // after the start and end times
+  const auto claiming = [&](std::uint64_t bytes) {
+    auto b = good;
+    for (int i = 0; i < 8; ++i) {
+      b[claim + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(bytes >> (8 * i));
+    }
+    try {
+      readMcap(b, "claims.mcap");
+    } catch (const BagError& e) {
+      return std::string(e.what());
+    }
+    return std::string("read");
+  };
+  // 900 MB claimed for a few KiB of data: refused once the data runs out, not allocated first.
+  EXPECT_NE(claiming(900'000'000).find("claims.mcap: at byte"), std::string::npos);
+  EXPECT_NE(claiming(900'000'000).find("not the 900000000 it claims"), std::string::npos) << claiming(900'000'000);
+  EXPECT_NE(claiming(std::uint64_t{1} << 40).find("more than any chunk holds"), std::string::npos);
+  EXPECT_NE(claiming(10).find("more than the 10 bytes it claims"), std::string::npos) << claiming(10);
+  EXPECT_EQ(readMcap(good, "good.mcap").messages.size(), 1000U);
+  fs::remove_all(dir);
+}
+
 TEST(Mcap, TheFileHasTheLayoutTheSpecificationFixes)
 {
   const fs::path dir = quad::test::scratchDir("quad_mcap_layout");

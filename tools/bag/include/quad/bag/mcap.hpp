@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -121,6 +122,8 @@ std::map<std::string, std::string> metadataValues(const McapContents& contents, 
 /// Strict: throws BagError "<file>: at byte N: <what>" at the first problem. Tolerant: stops
 /// there and returns what came before, with `problem` set (what `quad bag recover` needs).
 McapContents readMcap(const std::filesystem::path& path, bool tolerant = false);
+/// The same for bytes in memory; `name` stands for the file in errors.
+McapContents readMcap(std::span<const std::uint8_t> bytes, const std::string& name, bool tolerant = false);
 
 /// Rewrites what can be read of `damaged` (every complete chunk; a writer killed with
 /// SIGKILL leaves no summary or footer) as a whole file at `output`: same schemas, channels

@@ -43,21 +43,40 @@ ParticipantOptions options(const std::string& name, int domain)
                             .fault_layer = name == "listener", .udp_max_message = 1400};
 }
 
-/// Sends `count` events and says how many arrived.
-int exchange(Publisher<msg::SimEvent>& writer, Subscriber<msg::SimEvent>& reader, int count)
-{
-  int got = 0;
-  for (int i = 0; i < count; ++i) {
-    msg::SimEvent e;
-    e.subject_id(i);
-    writer.write(e);
+/// A talker and a listener on one domain with the events topic between them.
+struct Talk {
+  explicit Talk(int domain)
+      : talker(options("talker", domain)),
+        listener(options("listener", domain)),
+        writer(talker, topics::kSimEvents),
+        reader(listener, topics::kSimEvents)
+  {
   }
-  test::waitFor([&] {
-    got += static_cast<int>(reader.takeAll().size());
-    return got >= count;
-  });
-  return got;
-}
+  bool matched()
+  {
+    return test::waitFor([&] { return reader.matchedWriters() == 1 && writer.matchedReaders() == 1; });
+  }
+  /// Sends `count` events and says how many arrived.
+  int exchange(int count)
+  {
+    int got = 0;
+    for (int i = 0; i < count; ++i) {
+      msg::SimEvent e;
+      e.subject_id(i);
+      writer.write(e);
+    }
+    test::waitFor([&] {
+      got += static_cast<int>(reader.takeAll().size());
+      return got >= count;
+    });
+    return got;
+  }
+
+  Participant talker;
+  Participant listener;
+  Publisher<msg::SimEvent> writer;
+  Subscriber<msg::SimEvent> reader;
+};
 
 std::vector<std::vector<std::uint8_t>> regressionDatagrams()
 {
@@ -73,12 +92,9 @@ std::vector<std::vector<std::uint8_t>> regressionDatagrams()
 
 TEST(HostileDatagrams, NoneEndsAParticipantAndTalkGoesOn)
 {
-  Participant talker(options("talker", kHostileDomain));
-  Participant listener(options("listener", kHostileDomain));
-  Publisher<msg::SimEvent> writer(talker, topics::kSimEvents);
-  Subscriber<msg::SimEvent> reader(listener, topics::kSimEvents);
-  ASSERT_TRUE(test::waitFor([&] { return reader.matchedWriters() == 1 && writer.matchedReaders() == 1; }));
-  ASSERT_EQ(exchange(writer, reader, 20), 20);
+  Talk talk(kHostileDomain);
+  ASSERT_TRUE(talk.matched());
+  ASSERT_EQ(talk.exchange(20), 20);
 
   const auto datagrams = regressionDatagrams();
   ASSERT_GE(datagrams.size(), 10u);
@@ -112,8 +128,8 @@ TEST(HostileDatagrams, NoneEndsAParticipantAndTalkGoesOn)
       << "dropped " << malformedDatagrams().count - before << " of " << 3 * 4 * malformed_files << " malformed";
   EXPECT_FALSE(malformedDatagrams().last.empty());
   // Still alive (a crash would have ended this process), still matched, still talking.
-  EXPECT_EQ(exchange(writer, reader, 50), 50);
-  EXPECT_EQ(reader.matchedWriters(), 1);
+  EXPECT_EQ(talk.exchange(50), 50);
+  EXPECT_EQ(talk.reader.matchedWriters(), 1);
   EXPECT_EQ(sent_ports, 8);
 }
 
@@ -136,11 +152,8 @@ TEST(HostileDatagrams, TheMutatorStartsFromWellFormedDatagramsAndBreaksMany)
 
 TEST(HostileDatagrams, TwoHundredThousandFuzzedDatagramsEndNoParticipant)
 {
-  Participant talker(options("talker", kFuzzedDomain));
-  Participant listener(options("listener", kFuzzedDomain));
-  Publisher<msg::SimEvent> writer(talker, topics::kSimEvents);
-  Subscriber<msg::SimEvent> reader(listener, topics::kSimEvents);
-  ASSERT_TRUE(test::waitFor([&] { return reader.matchedWriters() == 1 && writer.matchedReaders() == 1; }));
+  Talk talk(kFuzzedDomain);
+  ASSERT_TRUE(talk.matched());
   const MalformedDatagrams before = malformedDatagrams();
   const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
   ASSERT_GE(fd, 0);
@@ -162,8 +175,8 @@ TEST(HostileDatagrams, TwoHundredThousandFuzzedDatagramsEndNoParticipant)
   std::cout << "checked " << after.checked - before.checked << " datagrams, dropped "
             << after.count - before.count << " as malformed\n";
   EXPECT_GT(after.checked - before.checked, 100'000u);  // most reached the participants
-  EXPECT_EQ(exchange(writer, reader, 50), 50);         // alive and talking
-  EXPECT_EQ(reader.matchedWriters(), 1);
+  EXPECT_EQ(talk.exchange(50), 50);  // alive and talking
+  EXPECT_EQ(talk.reader.matchedWriters(), 1);
 }
 
 TEST(HostileDatagrams, RealTrafficPassesTheCheckWhole)
@@ -171,14 +184,12 @@ TEST(HostileDatagrams, RealTrafficPassesTheCheckWhole)
   // Discovery, events, a 300 kB map snapshot in 1400-byte fragments and liveliness:
   // nothing dropped.
   const MalformedDatagrams before = malformedDatagrams();
-  Participant talker(options("talker", kCleanDomain));
-  Participant listener(options("listener", kCleanDomain));
-  Publisher<msg::SimEvent> events_out(talker, topics::kSimEvents);
-  Subscriber<msg::SimEvent> events_in(listener, topics::kSimEvents);
-  Publisher<msg::MapSnapshot> snapshots_out(talker, topics::kMapSnapshot);
-  Subscriber<msg::MapSnapshot> snapshots_in(listener, topics::kMapSnapshot);
-  ASSERT_TRUE(test::waitFor([&] { return events_in.matchedWriters() == 1 && snapshots_in.matchedWriters() == 1; }));
-  EXPECT_EQ(exchange(events_out, events_in, 100), 100);
+  Talk talk(kCleanDomain);
+  Publisher<msg::MapSnapshot> snapshots_out(talk.talker, topics::kMapSnapshot);
+  Subscriber<msg::MapSnapshot> snapshots_in(talk.listener, topics::kMapSnapshot);
+  ASSERT_TRUE(talk.matched());
+  ASSERT_TRUE(test::waitFor([&] { return snapshots_in.matchedWriters() == 1; }));
+  EXPECT_EQ(talk.exchange(100), 100);
   msg::MapSnapshot snapshot;
   snapshot.resolution(0.2);
   snapshot.octree().resize(300'000);
@@ -196,8 +207,8 @@ TEST(HostileDatagrams, RealTrafficPassesTheCheckWhole)
   ASSERT_TRUE(got);
   EXPECT_EQ(got->octree(), snapshot.octree());
   // Liveliness assertions (the lockstep writer's AUTOMATIC lease is 0.5 s) for 1.5 s.
-  Publisher<msg::LockstepReport> reports_out(talker, topics::kLockstep);
-  Subscriber<msg::LockstepReport> reports_in(listener, topics::kLockstep);
+  Publisher<msg::LockstepReport> reports_out(talk.talker, topics::kLockstep);
+  Subscriber<msg::LockstepReport> reports_in(talk.listener, topics::kLockstep);
   ASSERT_TRUE(test::waitFor([&] { return reports_in.matchedWriters() == 1; }));
   int reports = 0;
   for (int i = 1; i <= 15; ++i) {

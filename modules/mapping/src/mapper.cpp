@@ -99,7 +99,6 @@ Mapper::Mapper(MapperConfig config) : config_(config), tree_(config.resolution),
   tree_.setClampingThresMin(config_.clamp_min);
   tree_.setClampingThresMax(config_.clamp_max);
   tree_.setOccupancyThres(config_.occupancy_threshold);
-  tree_.enableChangeDetection(true);
 }
 
 IntegrationResult Mapper::integrate(const Scan& scan)
@@ -135,16 +134,14 @@ IntegrationResult Mapper::integrate(const Scan& scan)
   out.points = cloud.size();
   const octomap::point3d origin(static_cast<float>(scan.origin_W.x()), static_cast<float>(scan.origin_W.y()),
                                 static_cast<float>(scan.origin_W.z()));
-  tree_.resetChangeDetection();
-  // OctoMap's own insertion, unchanged (not discretized: a voxel crossed by many rays gets
-  // their evidence), so the map is the one octomap would build; change detection is the
-  // only addition.
-  tree_.insertPointCloud(cloud, origin, max_range);
-  for (auto it = tree_.changedKeysBegin(); it != tree_.changedKeysEnd(); ++it) {
-    const VoxelIndex index = indexOf(it->first);
-    out.changes.push_back({index, classify(index)});
+  // The tree OctoMap's own insertPointCloud builds (not discretized: a voxel crossed by many
+  // rays gets their evidence), with the voxels it reclassified reported on the way.
+  std::vector<KeyChange> changed;
+  tree_.insertPointCloudTracked(cloud, origin, max_range, changed);
+  out.changes.reserve(changed.size());
+  for (const KeyChange& c : changed) {
+    out.changes.push_back({indexOf(c.key), c.occupied ? VoxelState::kOccupied : VoxelState::kFree});
   }
-  tree_.resetChangeDetection();
   std::sort(out.changes.begin(), out.changes.end(),
             [](const VoxelChange& a, const VoxelChange& b) { return indexLess(a.index, b.index); });
   out.accepted = true;

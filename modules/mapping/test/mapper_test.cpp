@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <random>
+#include <sstream>
 
 #include "scans.hpp"
 
@@ -55,6 +56,70 @@ TEST(Mapper, ChangeSetsReplayedInOrderReproduceTheMapExactly)
     ASSERT_EQ(replica.contents().size(), mapper.classification().size()) << "after scan " << k;
   }
   test::expectSameClassification(mapper.classification(), replica.contents());
+}
+
+/// What changed between two classifications (both sorted by index): each voxel whose state
+/// differs, with its state after (unknown when it left the map).
+std::vector<VoxelChange> differenceOf(const std::vector<VoxelChange>& before, const std::vector<VoxelChange>& after)
+{
+  std::vector<VoxelChange> out;
+  std::size_t i = 0, j = 0;
+  while (i < before.size() || j < after.size()) {
+    if (j == after.size() || (i < before.size() && indexLess(before[i].index, after[j].index))) {
+      out.push_back({before[i++].index, VoxelState::kUnknown});
+    } else if (i == before.size() || indexLess(after[j].index, before[i].index)) {
+      out.push_back(after[j++]);
+    } else {
+      if (before[i].state != after[j].state) {
+        out.push_back(after[j]);
+      }
+      ++i;
+      ++j;
+    }
+  }
+  return out;
+}
+
+TEST(Mapper, BuildsTheTreeOctomapBuildsAndReportsExactlyTheReclassifiedVoxels)
+{
+  const plant::World world = boxWorld();
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::normal_distribution<double> noise(0.0, 0.08);
+  // A threshold above the hit probability too: a voxel's first hit then leaves it free.
+  for (const double threshold : {0.5, 0.8}) {
+    MapperConfig config;
+    config.max_range = 8.0;  // many rays end beyond it and only clear space
+    config.occupancy_threshold = threshold;
+    Mapper mapper(config);
+    octomap::OcTree bare(config.resolution);
+    bare.setProbHit(config.prob_hit);
+    bare.setProbMiss(config.prob_miss);
+    bare.setClampingThresMin(config.clamp_min);
+    bare.setClampingThresMax(config.clamp_max);
+    bare.setOccupancyThres(config.occupancy_threshold);
+    for (int k = 0; k < 30; ++k) {
+      Scan scan = scanFrom(world, Vector3(-2.0 + 0.1 * k, 1.5 * u(rng), 1.5 + 0.5 * u(rng)), 0.3 * u(rng), rng);
+      octomap::Pointcloud cloud;
+      for (Vector3& p : scan.points_W) {
+        p += Vector3(noise(rng), noise(rng), noise(rng));
+        cloud.push_back(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()));
+      }
+      const auto before = mapper.classification();
+      const IntegrationResult result = mapper.integrate(scan);
+      ASSERT_TRUE(result.accepted);
+      bare.insertPointCloud(cloud, octomap::point3d(static_cast<float>(scan.origin_W.x()), static_cast<float>(scan.origin_W.y()),
+                                                    static_cast<float>(scan.origin_W.z())),
+                            std::min(scan.max_range, config.max_range));
+      // The same tree, node for node and log-odds for log-odds (OctoMap's full .ot format).
+      std::ostringstream ours, theirs;
+      mapper.tree().write(ours);
+      bare.write(theirs);
+      ASSERT_EQ(ours.str(), theirs.str()) << "threshold " << threshold << ", after scan " << k;
+      test::expectSameClassification(differenceOf(before, mapper.classification()), result.changes);
+    }
+    EXPECT_LT(mapper.nodes(), 8 * mapper.classification().size()) << "the tree was pruned";
+  }
 }
 
 TEST(Mapper, ALateJoinerCatchesUpFromASnapshotAndLaterChanges)

@@ -19,6 +19,7 @@
 
 #include "quad/common/params.hpp"
 #include "quad/geometry/grid.hpp"
+#include "quad/mapping/map_tree.hpp"
 
 namespace quad::mapping {
 
@@ -92,7 +93,7 @@ public:
 
 private:
   MapperConfig config_;
-  octomap::OcTree tree_;
+  MapTree tree_;
   geometry::VoxelGrid grid_;
 };
 

@@ -1,0 +1,87 @@
+#pragma once
+/// @file
+/// The mapper's octree: an octomap::OcTree whose point-cloud insertion builds exactly the tree
+/// `OcTree::insertPointCloud` builds (not discretized, inner nodes kept up to date), and on
+/// the way reports every voxel whose classification changed.
+///
+/// OctoMap's own route costs two descents per voxel (a search for its early abort at the
+/// clamping bounds, then the update), keeps its key sets in node-allocating hash sets, and
+/// its change detection adds a hash-map insertion for every new voxel. Here the keys of a
+/// scan go into one flat open-addressing set, and each voxel is updated by one descent that
+/// does the early abort, the update and the change check together, then one ascent that
+/// prunes or refreshes the inner nodes, as OctoMap's recursion does.
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <octomap/OcTree.h>
+
+namespace quad::mapping {
+
+/// A voxel whose classification a scan changed, by its OctoMap key.
+struct KeyChange {
+  octomap::OcTreeKey key;
+  bool occupied;  ///< after the scan (it is known after, by construction)
+};
+
+/// The set of keys one scan touches: free along the rays, occupied at the endpoints, with
+/// an occupied endpoint winning over a ray that crosses the same voxel (OctoMap's rule).
+class ScanKeySet {
+public:
+  void clear();
+  void insertFree(const octomap::OcTreeKey& key) { insert(pack(key), 0); }
+  void insertOccupied(const octomap::OcTreeKey& key) { insert(pack(key), kOccupiedBit); }
+  std::size_t size() const { return order_.size(); }
+
+  /// Calls f(key, occupied) once per key, in first-insertion order.
+  template <typename F>
+  void forEach(F&& f) const
+  {
+    for (const std::uint32_t slot : order_) {
+      const std::uint64_t v = slots_[slot];
+      f(unpack(v), (v & kOccupiedBit) != 0);
+    }
+  }
+
+private:
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+  static constexpr std::uint64_t kOccupiedBit = std::uint64_t{1} << 63;
+  static constexpr std::uint64_t kKeyMask = (std::uint64_t{1} << 48) - 1;
+
+  static std::uint64_t pack(const octomap::OcTreeKey& k)
+  {
+    return std::uint64_t{k[0]} | (std::uint64_t{k[1]} << 16) | (std::uint64_t{k[2]} << 32);
+  }
+  static octomap::OcTreeKey unpack(std::uint64_t v)
+  {
+    return {static_cast<octomap::key_type>(v & 0xffff), static_cast<octomap::key_type>((v >> 16) & 0xffff),
+            static_cast<octomap::key_type>((v >> 32) & 0xffff)};
+  }
+  void insert(std::uint64_t key, std::uint64_t flag);
+  void grow();
+
+  std::vector<std::uint64_t> slots_;   // key | flag, or kEmpty
+  std::vector<std::uint32_t> order_;   // occupied slots, in insertion order
+  int shift_ = 64;                     // 64 − log2(capacity)
+};
+
+class MapTree : public octomap::OcTree {
+public:
+  explicit MapTree(double voxel_size) : octomap::OcTree(voxel_size) {}
+
+  /// OcTree::insertPointCloud(cloud, origin, max_range) (lazy_eval off, not discretized),
+  /// with the voxels whose classification changed appended to `changes`, each once.
+  void insertPointCloudTracked(const octomap::Pointcloud& cloud, const octomap::point3d& origin, double max_range,
+                               std::vector<KeyChange>& changes);
+
+private:
+  /// OcTree::updateNode(key, occupied) in one descent; the voxel's classification after it
+  /// (true: occupied) when that changed, nothing when it did not.
+  std::optional<bool> updateTracked(const octomap::OcTreeKey& key, bool occupied);
+
+  ScanKeySet keys_;
+  octomap::KeyRay ray_;
+};
+
+}  // namespace quad::mapping

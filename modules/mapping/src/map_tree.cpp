@@ -1,0 +1,153 @@
+#include "quad/mapping/map_tree.hpp"
+
+#include <array>
+#include <optional>
+
+namespace quad::mapping {
+
+void ScanKeySet::clear()
+{
+  for (const std::uint32_t slot : order_) {
+    slots_[slot] = kEmpty;
+  }
+  order_.clear();
+}
+
+void ScanKeySet::insert(std::uint64_t key, std::uint64_t flag)
+{
+  if (slots_.empty()) {
+    shift_ = 64 - 16;
+    slots_.assign(std::size_t{1} << 16, kEmpty);
+  }
+  const std::size_t mask = slots_.size() - 1;
+  // Fibonacci hashing: the top bits of key · 2^64/φ spread neighbouring keys apart.
+  for (std::size_t i = (key * 0x9E3779B97F4A7C15ULL) >> shift_;; i = (i + 1) & mask) {
+    std::uint64_t& slot = slots_[i];
+    if (slot == kEmpty) {
+      slot = key | flag;
+      order_.push_back(static_cast<std::uint32_t>(i));
+      if (order_.size() * 2 > slots_.size()) {
+        grow();
+      }
+      return;
+    }
+    if ((slot & kKeyMask) == key) {
+      slot |= flag;
+      return;
+    }
+  }
+}
+
+void ScanKeySet::grow()
+{
+  std::vector<std::uint64_t> old;
+  old.reserve(order_.size());
+  for (const std::uint32_t slot : order_) {
+    old.push_back(slots_[slot]);
+  }
+  slots_.assign(slots_.size() * 2, kEmpty);
+  --shift_;
+  order_.clear();
+  for (const std::uint64_t v : old) {
+    insert(v & kKeyMask, v & kOccupiedBit);
+  }
+}
+
+void MapTree::insertPointCloudTracked(const octomap::Pointcloud& cloud, const octomap::point3d& origin,
+                                      double max_range, std::vector<KeyChange>& changes)
+{
+  // OccupancyOcTreeBase::computeUpdate without a bounding box, expression for expression,
+  // so that every ray ends in the same voxel.
+  keys_.clear();
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const octomap::point3d& p = cloud[i];
+    if (max_range < 0.0 || (p - origin).norm() <= max_range) {
+      if (computeRayKeys(origin, p, ray_)) {
+        for (const octomap::OcTreeKey& k : ray_) {
+          keys_.insertFree(k);
+        }
+      }
+      octomap::OcTreeKey key;
+      if (coordToKeyChecked(p, key)) {
+        keys_.insertOccupied(key);
+      }
+    } else {
+      const octomap::point3d direction = (p - origin).normalized();
+      const octomap::point3d end = origin + direction * static_cast<float>(max_range);
+      if (computeRayKeys(origin, end, ray_)) {
+        for (const octomap::OcTreeKey& k : ray_) {
+          keys_.insertFree(k);
+        }
+      }
+    }
+  }
+  // Each voxel is updated once per scan and only its own update changes its value, so the
+  // order of the updates changes neither the leaves nor the pruning the tree ends with.
+  keys_.forEach([&](const octomap::OcTreeKey& key, bool occupied) {
+    if (const std::optional<bool> after = updateTracked(key, occupied)) {
+      changes.push_back({key, *after});
+    }
+  });
+}
+
+std::optional<bool> MapTree::updateTracked(const octomap::OcTreeKey& key, bool occupied)
+{
+  const float delta = occupied ? prob_hit_log : prob_miss_log;
+  std::array<octomap::OcTreeNode*, 17> path{};  // root at 0, the voxel at tree_depth (16)
+  bool created = false;                         // path[depth] was created by this update
+  if (root == nullptr) {
+    root = new octomap::OcTreeNode();
+    ++tree_size;
+    created = true;
+  }
+  path[0] = root;
+  // As far as the key's path exists: where OcTree::search stops.
+  unsigned depth = 0;
+  while (depth < tree_depth) {
+    const unsigned pos = octomap::computeChildIdx(key, static_cast<int>(tree_depth - 1 - depth));
+    if (!nodeChildExists(path[depth], pos)) {
+      break;
+    }
+    path[depth + 1] = getNodeChild(path[depth], pos);
+    ++depth;
+  }
+  // OcTree::updateNode's early abort: the voxel (or the pruned node holding it) is already
+  // at the clamping bound the update pushes towards; nothing changes.
+  if (!created && (depth == tree_depth || !nodeHasChildren(path[depth]))) {
+    const float value = path[depth]->getLogOdds();
+    if ((delta >= 0 && value >= clamping_thres_max) || (delta <= 0 && value <= clamping_thres_min)) {
+      return std::nullopt;
+    }
+  }
+  // The rest of the way down, as updateNodeRecurs goes: a pruned node is expanded (its
+  // children inherit its value), a missing child of an inner node is created unknown.
+  for (; depth < tree_depth; ++depth) {
+    octomap::OcTreeNode* node = path[depth];
+    const unsigned pos = octomap::computeChildIdx(key, static_cast<int>(tree_depth - 1 - depth));
+    bool child_created = false;
+    if (!nodeChildExists(node, pos)) {
+      if (!nodeHasChildren(node) && !created) {
+        expandNode(node);
+      } else {
+        createNodeChild(node, pos);
+        child_created = true;
+      }
+    }
+    path[depth + 1] = getNodeChild(node, pos);
+    created = child_created;
+  }
+  octomap::OcTreeNode* leaf = path[tree_depth];
+  const bool occupied_before = !created && isNodeOccupied(leaf);
+  updateNodeLogOdds(leaf, delta);
+  const bool occupied_after = isNodeOccupied(leaf);
+  const bool changed = created || occupied_before != occupied_after;
+  // Back up: prune where the eight children agree, else refresh the inner node's value.
+  for (int d = static_cast<int>(tree_depth) - 1; d >= 0; --d) {
+    if (!pruneNode(path[static_cast<std::size_t>(d)])) {
+      path[static_cast<std::size_t>(d)]->updateOccupancyChildren();
+    }
+  }
+  return changed ? std::optional<bool>(occupied_after) : std::nullopt;
+}
+
+}  // namespace quad::mapping

@@ -29,7 +29,8 @@ std::string_view toString(PlanStatus s)
   return "?";
 }
 
-DStarLite::DStarLite(Lattice lattice, PlannerConfig config) : lattice_(std::move(lattice)), config_(config)
+DStarLite::DStarLite(Lattice lattice, PlannerConfig config)
+    : lattice_(std::move(lattice)), config_(config), dims_(lattice_.dims()), size_(lattice_.size())
 {
   if (config_.connectivity != 6 && config_.connectivity != 18 && config_.connectivity != 26) {
     throw std::invalid_argument("planner connectivity " + std::to_string(config_.connectivity) + ": expected 6, 18 or 26");
@@ -38,6 +39,8 @@ DStarLite::DStarLite(Lattice lattice, PlannerConfig config) : lattice_(std::move
     throw std::invalid_argument("planner vehicle radius must be finite and >= 0");
   }
   const double res = lattice_.grid().resolution();
+  const Cell nx = dims_.x();
+  const Cell nxy = nx * dims_.y();
   for (int dz = -1; dz <= 1; ++dz) {
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dx = -1; dx <= 1; ++dx) {
@@ -45,19 +48,53 @@ DStarLite::DStarLite(Lattice lattice, PlannerConfig config) : lattice_(std::move
         if (nonzero == 0 || (config_.connectivity == 6 && nonzero > 1) || (config_.connectivity == 18 && nonzero > 2)) {
           continue;
         }
-        offsets_.emplace_back(dx, dy, dz);
-        offset_costs_.push_back(res * std::sqrt(static_cast<double>(nonzero)));
+        steps_.push_back({dx, dy, dz, dx + nx * dy + nxy * dz, res * std::sqrt(static_cast<double>(nonzero))});
       }
     }
   }
   inflation_ = geometry::inflationOffsets(config_.vehicle_radius, res);
   blockers_.assign(static_cast<std::size_t>(lattice_.size()), 0);
   cell_state_.assign(static_cast<std::size_t>(lattice_.size()), Occupancy::kUnknown);
+  pages_.resize(static_cast<std::size_t>((lattice_.size() >> kPageBits) + 1));
 }
+
+Eigen::Vector3i DStarLite::coordinates(Cell c) const
+{
+  const Cell nx = dims_.x();
+  const Cell nxy = nx * dims_.y();
+  return {static_cast<int>(c % nx), static_cast<int>((c % nxy) / nx), static_cast<int>(c / nxy)};
+}
+
+template <typename F>
+void DStarLite::forEachNeighbour(Cell c, F&& f) const
+{
+  const Eigen::Vector3i p = coordinates(c);
+  const bool interior = p.x() > 0 && p.y() > 0 && p.z() > 0 && p.x() + 1 < dims_.x() && p.y() + 1 < dims_.y() &&
+                        p.z() + 1 < dims_.z();
+  for (const Step& s : steps_) {
+    if (interior || (static_cast<unsigned>(p.x() + s.dx) < static_cast<unsigned>(dims_.x()) &&
+                     static_cast<unsigned>(p.y() + s.dy) < static_cast<unsigned>(dims_.y()) &&
+                     static_cast<unsigned>(p.z() + s.dz) < static_cast<unsigned>(dims_.z()))) {
+      f(c + s.delta, s.cost);
+    }
+  }
+}
+
+DStarLite::Vertex& DStarLite::vertex(Cell c)
+{
+  auto& page = pages_[static_cast<std::size_t>(c >> kPageBits)];
+  if (!page) {
+    page = std::make_unique<Vertex[]>(std::size_t{1} << kPageBits);
+    ++allocated_pages_;
+  }
+  return page[static_cast<std::size_t>(c & ((Cell{1} << kPageBits) - 1))];
+}
+
+std::size_t DStarLite::searchBytes() const { return allocated_pages_ * (std::size_t{1} << kPageBits) * sizeof(Vertex); }
 
 bool DStarLite::traversable(Cell c) const
 {
-  if (c < 0 || c >= lattice_.size()) {
+  if (c < 0 || c >= size_) {
     return false;
   }
   const auto i = static_cast<std::size_t>(c);
@@ -69,7 +106,6 @@ std::optional<Cell> DStarLite::nearestTraversable(Cell c, double max_distance) c
   if (traversable(c)) {
     return c;
   }
-  // Offsets sorted by distance: the inflation offsets of a zero-size box are exactly that.
   const double res = lattice_.grid().resolution();
   const VoxelIndex v = lattice_.voxel(c);
   std::optional<Cell> best;
@@ -96,12 +132,7 @@ std::optional<Cell> DStarLite::nearestTraversable(Cell c, double max_distance) c
 void DStarLite::neighbours(Cell c, std::vector<std::pair<Cell, double>>& out) const
 {
   out.clear();
-  const VoxelIndex v = lattice_.voxel(c);
-  for (std::size_t i = 0; i < offsets_.size(); ++i) {
-    if (const auto n = lattice_.cell(v + offsets_[i])) {
-      out.emplace_back(*n, offset_costs_[i]);
-    }
-  }
+  forEachNeighbour(c, [&](Cell n, double step) { out.emplace_back(n, step); });
 }
 
 double DStarLite::edgeCost(Cell a, Cell b) const
@@ -109,7 +140,7 @@ double DStarLite::edgeCost(Cell a, Cell b) const
   if (!traversable(a) || !traversable(b)) {
     return kInfinity;
   }
-  const VoxelIndex d = (lattice_.voxel(a) - lattice_.voxel(b)).cwiseAbs();
+  const Eigen::Vector3i d = (coordinates(a) - coordinates(b)).cwiseAbs();
   const int nonzero = (d.x() != 0) + (d.y() != 0) + (d.z() != 0);
   if (d.maxCoeff() != 1 || (config_.connectivity == 6 && nonzero > 1) || (config_.connectivity == 18 && nonzero > 2)) {
     return kInfinity;
@@ -119,25 +150,26 @@ double DStarLite::edgeCost(Cell a, Cell b) const
 
 double DStarLite::heuristic(Cell a, Cell b) const
 {
-  return (lattice_.centre(a) - lattice_.centre(b)).norm();
+  return lattice_.grid().resolution() * (coordinates(a) - coordinates(b)).cast<double>().norm();
 }
 
 double DStarLite::g(Cell c) const
 {
-  const auto it = g_.find(c);
-  return it == g_.end() ? kInfinity : it->second;
+  const Vertex* v = find(c);
+  return v ? v->g : kInfinity;
 }
 
 double DStarLite::rhs(Cell c) const
 {
-  const auto it = rhs_.find(c);
-  return it == rhs_.end() ? kInfinity : it->second;
+  const Vertex* v = find(c);
+  return v ? v->rhs : kInfinity;
 }
 
 DStarLite::Key DStarLite::calculateKey(Cell c) const
 {
   const double m = std::min(g(c), rhs(c));
-  return {m + heuristic(*start_, c) + km_, m};
+  const double h = lattice_.grid().resolution() * (coordinates(c) - start_coordinates_).cast<double>().norm();
+  return {m + h + km_, m};
 }
 
 double DStarLite::bestRhs(Cell u) const
@@ -147,51 +179,58 @@ double DStarLite::bestRhs(Cell u) const
   }
   double best = kInfinity;
   if (traversable(u)) {
-    thread_local std::vector<std::pair<Cell, double>> succ;
-    neighbours(u, succ);
-    for (const auto& [s, step] : succ) {
+    forEachNeighbour(u, [&](Cell s, double step) {
       if (traversable(s)) {
         best = std::min(best, step + g(s));
       }
-    }
+    });
   }
   return best;
 }
 
 void DStarLite::setRhs(Cell u, double value)
 {
-  if (value == kInfinity) {
-    rhs_.erase(u);
-  } else {
-    rhs_[u] = value;
+  if (value != kInfinity || find(u) != nullptr) {
+    vertex(u).rhs = value;
   }
+}
+
+void DStarLite::push(Cell u, Vertex& v, const Key& k)
+{
+  ++v.stamp;
+  v.queued = true;
+  open_.push({k, u, v.stamp});
+  ++pushes_;
 }
 
 void DStarLite::updateVertex(Cell u)
 {
-  queued_.erase(u);  // lazy deletion: an entry whose key no longer matches is skipped
-  if (g(u) != rhs(u)) {
-    const Key k = calculateKey(u);
-    queued_[u] = k;
-    open_.push({k, u});
-    ++pushes_;
+  // Lazy deletion: an entry whose stamp is no longer the cell's is skipped when it surfaces.
+  const Vertex* found = find(u);
+  if (found == nullptr) {
+    return;  // g = rhs = ∞: consistent, and never queued
+  }
+  Vertex& v = vertex(u);
+  v.queued = false;
+  if (v.g != v.rhs) {
+    push(u, v, calculateKey(u));
   }
 }
 
 void DStarLite::reset()
 {
-  g_.clear();
-  rhs_.clear();
-  queued_.clear();
+  for (auto& page : pages_) {
+    page.reset();
+  }
+  allocated_pages_ = 0;
   open_ = {};
   km_ = 0.0;
   last_ = start_;
   if (goal_) {
-    rhs_[*goal_] = 0.0;
+    Vertex& v = vertex(*goal_);
+    v.rhs = 0.0;
     if (start_) {
-      const Key k = calculateKey(*goal_);
-      queued_[*goal_] = k;
-      open_.push({k, *goal_});
+      push(*goal_, v, calculateKey(*goal_));
     }
   }
 }
@@ -212,6 +251,7 @@ void DStarLite::setStart(Cell start)
   }
   const bool first = !start_;
   start_ = start;
+  start_coordinates_ = coordinates(start);
   if (first || !last_) {
     reset();
     return;
@@ -226,28 +266,27 @@ void DStarLite::cellChanged(Cell c, bool blocked)
     return;
   }
   // Koenig & Likhachev 2002, Fig. 4, lines 38-48, for every edge into and out of c.
-  std::vector<std::pair<Cell, double>> around;
-  neighbours(c, around);
+  const double gc = g(c);
   if (blocked) {
     // Costs rose to infinity: only vertices whose rhs came through the lost edge recompute.
-    for (const auto& [n, step] : around) {
-      if (n != *goal_ && rhs(n) == step + g(c)) {
+    forEachNeighbour(c, [&](Cell n, double step) {
+      if (n != *goal_ && rhs(n) == step + gc) {
         setRhs(n, bestRhs(n));
         updateVertex(n);
       }
-    }
+    });
     if (c != *goal_) {
       setRhs(c, kInfinity);  // no edge leaves a blocked cell
     }
     updateVertex(c);
   } else {
     // Costs fell: a neighbour may now do better through c, and c through its neighbours.
-    for (const auto& [n, step] : around) {
-      if (n != *goal_ && traversable(n) && step + g(c) < rhs(n)) {
-        setRhs(n, step + g(c));
+    forEachNeighbour(c, [&](Cell n, double step) {
+      if (n != *goal_ && traversable(n) && step + gc < rhs(n)) {
+        setRhs(n, step + gc);
         updateVertex(n);
       }
-    }
+    });
     if (c != *goal_) {
       setRhs(c, bestRhs(c));
     }
@@ -318,11 +357,10 @@ PlanResult DStarLite::plan(std::uint64_t max_expansions)
   }
   const std::uint64_t pushes_before = pushes_;
   // ComputeShortestPath, optimised version (Koenig & Likhachev 2002, Fig. 4).
-  std::vector<std::pair<Cell, double>> around;
   while (!open_.empty()) {
     const Entry top = open_.top();
-    const auto queued = queued_.find(top.cell);
-    if (queued == queued_.end() || !(queued->second == top.key)) {
+    const Vertex* queued = find(top.cell);
+    if (queued == nullptr || !queued->queued || queued->stamp != top.stamp) {
       open_.pop();  // stale entry
       continue;
     }
@@ -330,47 +368,46 @@ PlanResult DStarLite::plan(std::uint64_t max_expansions)
     if (!(top.key < k_start) && rhs(*start_) <= g(*start_)) {
       break;
     }
-    if (max_expansions != 0 && out.expansions >= max_expansions) {
+    if (max_expansions != 0 && out.expansions + out.rekeys >= max_expansions) {
       out.status = PlanStatus::kBudgetExceeded;
       out.heap_pushes = pushes_ - pushes_before;
       return out;
     }
     const Cell u = top.cell;
+    Vertex& vu = vertex(u);
     const Key k_new = calculateKey(u);
-    ++out.expansions;
+    open_.pop();
     if (top.key < k_new) {
-      open_.pop();
-      queued_[u] = k_new;
-      open_.push({k_new, u});
-      ++pushes_;
-    } else if (g(u) > rhs(u)) {
+      // Queued before the start moved (k_m grew): requeue with its key now; not an expansion.
+      push(u, vu, k_new);
+      ++out.rekeys;
+      continue;
+    }
+    ++out.expansions;
+    if (vu.g > vu.rhs) {
       // Overconsistent: settle g, and let predecessors improve through u.
-      const double gu = rhs(u);
-      g_[u] = gu;
-      open_.pop();
-      queued_.erase(u);
+      const double gu = vu.rhs;
+      vu.g = gu;
+      vu.queued = false;
       if (traversable(u)) {
-        neighbours(u, around);
-        for (const auto& [s, step] : around) {
+        forEachNeighbour(u, [&](Cell s, double step) {
           if (s != *goal_ && traversable(s) && step + gu < rhs(s)) {
             setRhs(s, step + gu);
             updateVertex(s);
           }
-        }
+        });
       }
     } else {
       // Underconsistent: raise g to infinity; whoever went through u recomputes.
-      const double g_old = g(u);
-      g_.erase(u);
-      open_.pop();
-      queued_.erase(u);
-      neighbours(u, around);
-      for (const auto& [s, step] : around) {
+      const double g_old = vu.g;
+      vu.g = kInfinity;
+      vu.queued = false;
+      forEachNeighbour(u, [&](Cell s, double step) {
         if (s != *goal_ && rhs(s) == step + g_old) {
           setRhs(s, bestRhs(s));
         }
         updateVertex(s);
-      }
+      });
       updateVertex(u);  // rhs(u) does not depend on g(u): it stays, u is inconsistent now
     }
   }
@@ -390,16 +427,15 @@ PlanResult DStarLite::plan(std::uint64_t max_expansions)
   out.cells.push_back(s);
   std::unordered_map<Cell, bool> visited{{s, true}};
   while (s != *goal_) {
-    neighbours(s, around);
     Cell best = -1;
     double best_cost = kInfinity;
-    for (const auto& [n, step] : around) {
+    forEachNeighbour(s, [&](Cell n, double step) {
       const double c = traversable(n) ? step + g(n) : kInfinity;
       if (c < best_cost || (c == best_cost && n < best)) {
         best_cost = c;
         best = n;
       }
-    }
+    });
     if (best < 0 || best_cost == kInfinity || !visited.emplace(best, true).second) {
       out.status = PlanStatus::kNoPath;
       out.cells.clear();

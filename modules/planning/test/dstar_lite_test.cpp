@@ -243,6 +243,18 @@ TEST(DStarLite, ADriftedStartEscapesToTheNearestFreeCell)
   EXPECT_FALSE(planner.nearestTraversable(inside, 0.5).has_value());
 }
 
+TEST(DStarLite, SearchMemoryFollowsTheRegionSearchedNotTheBox)
+{
+  // 200 x 200 x 50 = 2,000,000 cells; a short search in one corner.
+  DStarLite planner(box(200, 200, 50), {26, true, 0.0});
+  planner.setGoal(at(planner, 10, 10, 2));
+  planner.setStart(at(planner, 2, 2, 2));
+  ASSERT_EQ(planner.plan().status, PlanStatus::kOk);
+  const std::size_t whole_box = static_cast<std::size_t>(planner.lattice().size()) * 2 * sizeof(double);
+  EXPECT_GT(planner.searchBytes(), 0U);
+  EXPECT_LT(planner.searchBytes(), whole_box / 50) << "g and rhs for 2 % of the box at most";
+}
+
 TEST(DStarLite, BadConnectivityIsRefused)
 {
   EXPECT_THROW(DStarLite(box(3, 3, 3), {8, true, 0.0}), std::invalid_argument);

@@ -6,11 +6,13 @@
 /// the vehicle's centre may go wherever a cell is free. Edge costs are Euclidean step
 /// lengths (6-, 18- or 26-connectivity), the heuristic is the Euclidean distance
 /// (consistent), the key modifier k_m follows the moving start, the queue uses lazy deletion
-/// with deterministic tie-breaking (key, then cell number). Memory grows with the cells the
-/// search touched, not with the box.
+/// with deterministic tie-breaking (key, then cell number). The search's g and rhs live in
+/// pages of 4,096 consecutive cells, allocated when the search first touches one of them:
+/// memory grows with the region searched, not with the box, and a lookup is two indexings.
 
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <queue>
 #include <string>
@@ -43,7 +45,8 @@ struct PlanResult {
   PlanStatus status = PlanStatus::kNoGoal;
   std::vector<Cell> cells;          ///< start first, goal last (when kOk)
   double cost = kInfinity;          ///< [m]
-  std::uint64_t expansions = 0;     ///< vertices expanded by this replan
+  std::uint64_t expansions = 0;     ///< vertices expanded (g settled or raised) by this replan
+  std::uint64_t rekeys = 0;         ///< queue entries whose key was out of date, requeued
   std::uint64_t heap_pushes = 0;
 };
 
@@ -76,8 +79,11 @@ public:
   /// Neighbours of c inside the lattice with the step length to each.
   void neighbours(Cell c, std::vector<std::pair<Cell, double>>& out) const;
   double heuristic(Cell a, Cell b) const;
+  /// A cell's position in the lattice (0 ... dims − 1 per axis); no bounds check.
+  Eigen::Vector3i coordinates(Cell c) const;
 
-  std::size_t touched() const { return g_.size(); }
+  /// Bytes of the search's per-cell state (g, rhs, queue bookkeeping) now allocated.
+  std::size_t searchBytes() const;
 
 private:
   /// Keys compare with a tolerance far above rounding and far below any difference of two
@@ -104,6 +110,7 @@ private:
   struct Entry {
     Key key;
     Cell cell;
+    std::uint32_t stamp;  ///< the cell's queue stamp when pushed: older entries are stale
     bool operator>(const Entry& o) const
     {
       if (o.key < key) {
@@ -115,6 +122,30 @@ private:
       return cell > o.cell;  // deterministic among equal keys
     }
   };
+  /// A cell's search state.
+  struct Vertex {
+    double g = kInfinity;
+    double rhs = kInfinity;
+    std::uint32_t stamp = 0;  ///< bumped on every push of the cell
+    bool queued = false;      ///< its entry with the current stamp is live
+  };
+  static constexpr int kPageBits = 12;  // 4,096 cells a page
+  /// A neighbour offset: steps along the axes, the cell-number difference, the step length.
+  struct Step {
+    int dx, dy, dz;
+    Cell delta;
+    double cost;
+  };
+
+  /// The state of c, nullptr when the search never touched c's page (g = rhs = ∞).
+  const Vertex* find(Cell c) const
+  {
+    const auto& page = pages_[static_cast<std::size_t>(c >> kPageBits)];
+    return page ? &page[static_cast<std::size_t>(c & ((Cell{1} << kPageBits) - 1))] : nullptr;
+  }
+  Vertex& vertex(Cell c);  ///< allocates c's page on first touch
+  template <typename F>
+  void forEachNeighbour(Cell c, F&& f) const;
 
   double g(Cell c) const;
   double rhs(Cell c) const;
@@ -122,6 +153,7 @@ private:
   /// rhs(u) from scratch: min over successors of c(u, s') + g(s').
   double bestRhs(Cell u) const;
   void setRhs(Cell u, double value);
+  void push(Cell u, Vertex& v, const Key& k);
   /// UpdateVertex of the optimised version: (re)queue u when inconsistent, drop it when not.
   void updateVertex(Cell u);
   /// Every edge touching c changed (c became blocked or free): the paper's edge-update rules.
@@ -130,17 +162,18 @@ private:
 
   Lattice lattice_;
   PlannerConfig config_;
-  std::vector<VoxelIndex> offsets_;           // neighbour offsets
-  std::vector<double> offset_costs_;
+  Eigen::Vector3i dims_;
+  Cell size_;                                 // cells in the lattice
+  Eigen::Vector3i start_coordinates_ = Eigen::Vector3i::Zero();  // of start_, for the keys
+  std::vector<Step> steps_;                   // neighbour offsets
   std::vector<VoxelIndex> inflation_;         // inflation offsets
   // Per cell, flat over the lattice (3 bytes a cell): occupied voxels blocking it, and the
   // classification of its own voxel. Traversability is asked for every edge: no hashing.
   std::vector<std::uint16_t> blockers_;
   std::vector<Occupancy> cell_state_;
   std::unordered_map<VoxelIndex, Occupancy, geometry::VoxelIndexHash> voxels_;
-  std::unordered_map<Cell, double> g_;
-  std::unordered_map<Cell, double> rhs_;
-  std::unordered_map<Cell, Key> queued_;               // current key of each queued cell
+  std::vector<std::unique_ptr<Vertex[]>> pages_;
+  std::size_t allocated_pages_ = 0;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open_;
   std::optional<Cell> start_;
   std::optional<Cell> goal_;

@@ -48,27 +48,25 @@ MixerOutput Mixer::mix(double thrust, const Vector3& torque_B) const
     out.roll_pitch_scale = span / rp_spread;
   }
   Eigen::Vector4d u = out.roll_pitch_scale * rp;
-  // 2. Yaw: as much as fits beside roll and pitch.
-  const double yaw_room = span - out.roll_pitch_scale * rp_spread;
-  const Eigen::Vector4d with_yaw = u + yaw;
-  const double spread = with_yaw.maxCoeff() - with_yaw.minCoeff();
-  if (spread > span + 1e-12) {
-    // Largest s in [0, 1] with spread(u + s·yaw) <= span (spread is convex in s: bisect).
-    double lo = 0.0, hi = 1.0;
-    for (int i = 0; i < 50; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      const Eigen::Vector4d t = u + mid * yaw;
-      (t.maxCoeff() - t.minCoeff() <= span ? lo : hi) = mid;
-    }
-    out.yaw_scale = yaw_room > 0.0 ? lo : 0.0;
-  }
-  u += out.yaw_scale * yaw;
-  // 3. Thrust: the requested collective if it fits, else the nearest that does.
+  // 2. Thrust: the requested collective if it fits beside roll and pitch, else the nearest
+  //    that does. It comes before yaw: a quadrotor's yaw authority is weak (rotor drag), and
+  //    a yaw demand that took thrust would make the vehicle sink in every turn.
   const double wanted = thrust * unit;
   const auto [t_lo, t_hi] = shiftRange(u, min_, max_);
   const double t = std::clamp(wanted, t_lo, std::max(t_lo, t_hi));
   out.thrust_limited = std::abs(t - wanted) > 1e-9 * std::max(1.0, std::abs(wanted));
   u.array() += t;
+  // 3. Yaw: the largest share in [0, 1] that keeps every rotor within its limits.
+  double s_max = 1.0;
+  for (int i = 0; i < vehicle::kRotorCount; ++i) {
+    if (yaw[i] > 0.0) {
+      s_max = std::min(s_max, (max_ - u[i]) / yaw[i]);
+    } else if (yaw[i] < 0.0) {
+      s_max = std::min(s_max, (min_ - u[i]) / yaw[i]);
+    }
+  }
+  out.yaw_scale = std::clamp(s_max, 0.0, 1.0);
+  u += out.yaw_scale * yaw;
   out.saturated = out.thrust_limited || out.roll_pitch_scale < 1.0 || out.yaw_scale < 1.0;
   for (int i = 0; i < vehicle::kRotorCount; ++i) {
     out.rotor_speed[static_cast<std::size_t>(i)] = std::sqrt(std::clamp(u[i], min_, max_));

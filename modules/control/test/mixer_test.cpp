@@ -41,6 +41,26 @@ TEST(Mixer, ThrustGivesWayToKeepTheTorques)
   EXPECT_LT(out.thrust, max_thrust);
 }
 
+TEST(Mixer, YawGivesWayBeforeThrust)
+{
+  // A climb at 1.6 g with a yaw demand beyond what the rotors can add on top of it: the
+  // thrust is delivered, the yaw is what is left.
+  const vehicle::VehicleParams v = test::loadVehicle("x500");
+  const Mixer mixer(v);
+  const double thrust = 1.6 * v.mass * 9.81;
+  const MixerOutput out = mixer.mix(thrust, Vector3(0.1, 0.0, 0.5));
+  EXPECT_TRUE(out.saturated);
+  EXPECT_FALSE(out.thrust_limited);
+  EXPECT_NEAR(out.thrust, thrust, 1e-6);
+  EXPECT_NEAR(out.torque_B.x(), 0.1, 1e-6);
+  EXPECT_GT(out.yaw_scale, 0.0);
+  EXPECT_LT(out.yaw_scale, 1.0);
+  EXPECT_NEAR(out.torque_B.z(), out.yaw_scale * 0.5, 1e-6);
+  for (const double w : out.rotor_speed) {
+    EXPECT_LE(w, v.rotor_speed_max);
+  }
+}
+
 TEST(Mixer, ImpossibleRollIsScaledAndReported)
 {
   const vehicle::VehicleParams v = test::loadVehicle("x500");

@@ -2,7 +2,9 @@
 /// @file
 /// Thrust and torques to rotor speeds, inverting the vehicle's allocation matrix, with
 /// saturation handled in order of importance: roll and pitch torque first (they keep the
-/// vehicle upright), then yaw torque, then collective thrust. Saturation is reported.
+/// vehicle upright), then collective thrust (it keeps the altitude), then yaw torque (as
+/// PX4's mixer does: rotor drag gives a quadrotor little yaw authority, and a yaw demand
+/// that took thrust would sink the vehicle in every turn). Saturation is reported.
 
 #include <array>
 

@@ -42,4 +42,16 @@ TEST(PlanningNode, PlansFromTheVehicleToTheGoalAndRefusesGoalsOutsideTheBounds)
       << planning.output();
 }
 
+TEST(PlanningNode, ARepublishPeriodReadersWouldCallStaleIsRefusedNamingTheKey)
+{
+  // The quad/planning/path contract's deadline is 1 s: a repeat every 0.8 s is too slow.
+  ChildProcess planning({QUAD_PLANNING_NODE, "--config", std::string(QUAD_CONFIG_DIR) + "/planning.yaml", "--set",
+                         "republish_period=0.8"},
+                        env(166));
+  EXPECT_NE(planning.wait(15s), 0) << planning.output();
+  EXPECT_NE(planning.output().find("republish_period: 0.8: above half the quad/planning/path deadline (1 s)"),
+            std::string::npos)
+      << planning.output();
+}
+
 }  // namespace

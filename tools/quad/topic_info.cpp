@@ -3,6 +3,7 @@
 #include <thread>
 
 #include "connection.hpp"
+#include "quad/common/params.hpp"
 #include "quad/dds/topics.hpp"
 #include "topic_commands.hpp"
 
@@ -15,6 +16,9 @@ int topicInfo(const TopicInfoOptions& options)
   std::printf("type:        %s (idl/%s)\n", std::string(info.type_name).c_str(), std::string(info.idl_file).c_str());
   std::printf("qos:         %s (configs/dds/quad_qos.xml)\n", std::string(info.qos_profile).c_str());
   std::printf("rate:        %s\n", info.rate_hz > 0 ? (std::to_string(static_cast<int>(info.rate_hz)) + " Hz").c_str() : "event");
+  std::printf("stale after: %s\n",
+              info.stale_after_s > 0 ? (common::formatValue(info.stale_after_s) + " s without a sample (sim time)").c_str()
+                                     : "not judged");
   std::printf("written by:  %s\n", std::string(dds::toString(info.owner)).c_str());
   std::printf("what:        %s\n", std::string(info.description).c_str());
 

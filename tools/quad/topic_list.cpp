@@ -4,6 +4,7 @@
 #include <thread>
 
 #include "connection.hpp"
+#include "quad/common/params.hpp"
 #include "quad/dds/topics.hpp"
 #include "topic_commands.hpp"
 
@@ -13,14 +14,15 @@ namespace {
 
 void printContracts()
 {
-  std::printf("%-26s %-28s %-10s %8s  %-12s %s\n", "TOPIC", "TYPE", "QOS", "RATE", "OWNER",
-              "DESCRIPTION");
+  std::printf("%-26s %-28s %-10s %8s %11s  %-12s %s\n", "TOPIC", "TYPE", "QOS", "RATE", "STALE AFTER",
+              "OWNER", "DESCRIPTION");
   for (const auto& t : dds::topics::kAll) {
     const std::string rate = t.rate_hz > 0 ? std::to_string(static_cast<int>(t.rate_hz)) + " Hz"
                                            : "event";
-    std::printf("%-26s %-28s %-10s %8s  %-12s %s\n", std::string(t.name).c_str(),
+    const std::string stale = t.stale_after_s > 0 ? common::formatValue(t.stale_after_s) + " s" : "-";
+    std::printf("%-26s %-28s %-10s %8s %11s  %-12s %s\n", std::string(t.name).c_str(),
                 std::string(t.type_name).c_str(), std::string(t.qos_profile).c_str(),
-                rate.c_str(), std::string(dds::toString(t.owner)).c_str(),
+                rate.c_str(), stale.c_str(), std::string(dds::toString(t.owner)).c_str(),
                 std::string(t.description).c_str());
   }
 }

@@ -1,5 +1,7 @@
 #include "control_config.hpp"
 
+#include "quad/dds/topics.hpp"
+
 namespace quad::control {
 
 common::ParamSchema controlSchema()
@@ -22,8 +24,10 @@ common::ParamSchema controlSchema()
       .addDouble("follower.corner_deviation", 0.1, 0.0, 5.0, "m", "rounded corners stay this close to the path")
       .addDouble("takeoff_altitude", 2.0, 0.2, 100.0, "m", "above the take-off point")
       .addDouble("land_speed", 0.5, 0.05, 5.0, "m/s", "descent in LAND")
-      .addDouble("timeouts.state", 0.1, 0.005, 10.0, "s", "vehicle state older than this is stale")
-      .addDouble("timeouts.path", 3.0, 0.05, 600.0, "s", "path not republished for this long is stale")
+      .addDouble("timeouts.state", dds::topics::kSimState.info.stale_after_s, 0.005, 10.0, "s",
+                 "vehicle state older than this is stale (default: the quad/sim/state contract's)")
+      .addDouble("timeouts.path", dds::topics::kPath.info.stale_after_s, 0.05, 600.0, "s",
+                 "path not republished for this long is stale (default: the quad/planning/path contract's)")
       .addDouble("goal_tolerance", 0.3, 0.01, 10.0, "m", "when the goal gives none")
       .addDouble("failsafe_thrust", 0.85, 0.3, 1.0, "", "fraction of the weight in a blind descent")
       .addDouble("modes.path_stale_land_after", 5.0, 0.0, 3600.0, "s", "hover without a path, then land")

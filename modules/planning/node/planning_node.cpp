@@ -59,7 +59,8 @@ common::ParamSchema planningSchema()
       .addInt("connectivity", 26, 6, 26, "", "6, 18 or 26 neighbours")
       .addBool("unknown_traversable", true, "plan through unknown space")
       .addDouble("replan_period", 0.2, 0.01, 60.0, "s", "sim time between replans")
-      .addDouble("republish_period", 0.5, 0.01, 60.0, "s", "sim time between repeats of an unchanged path")
+      .addDouble("republish_period", 0.5, 0.01, 60.0, "s",
+                 "sim time between repeats of an unchanged path (at most half the path contract's deadline)")
       .addInt("max_expansions", 200000, 1, 100000000, "", "replan budget per cycle")
       .addInt("map_frames_behind", 5, 1, 1000, "",
               "depth frames the map may lag the camera before paths stop (a stalled mapper)");
@@ -95,6 +96,13 @@ PlanningNodeConfig planningConfigFrom(const common::Params& p)
   c.planner.unknown_traversable = p.getBool("unknown_traversable");
   c.replan_period_s = p.getDouble("replan_period");
   c.republish_period_s = p.getDouble("republish_period");
+  // Readers judge the path stale after the contract's deadline: repeat it twice within it.
+  const double deadline = dds::topics::kPath.info.stale_after_s;
+  if (c.republish_period_s > deadline / 2.0) {
+    throw common::ConfigError({common::configProblem(
+        p.origin(), "republish_period", c.republish_period_s,
+        "above half the quad/planning/path deadline (" + common::formatValue(deadline) + " s): readers would judge the path stale")});
+  }
   c.max_expansions = static_cast<std::uint64_t>(p.getInt("max_expansions"));
   c.map_frames_behind = static_cast<std::uint64_t>(p.getInt("map_frames_behind"));
   return c;

@@ -25,6 +25,9 @@ struct TopicInfo {
   std::string_view description;
   /// Largest serialized sample, encapsulation included [bytes]: sizes type-agnostic readers.
   std::uint32_t (*max_serialized_size)() = nullptr;
+  /// The deadline: a reader judges the topic stale once its newest sample is older than this
+  /// (in sim time) [s]; its writers publish, or republish, well within it. 0: not judged.
+  double stale_after_s = 0.0;
 };
 
 /// A typed topic contract. Publisher<T> and Subscriber<T> accept only a Topic<T>, so a topic
@@ -38,11 +41,12 @@ struct Topic {
 /// Builds a contract whose type name and IDL file come from the message type itself.
 template <class Message>
 constexpr Topic<Message> makeTopic(std::string_view name, std::string_view qos_profile,
-                                   double rate_hz, Owner owner, std::string_view description)
+                                   double rate_hz, Owner owner, std::string_view description,
+                                   double stale_after_s = 0.0)
 {
   return Topic<Message>{TopicInfo{name, MessageTraits<Message>::kTypeName,
                                   MessageTraits<Message>::kIdlFile, qos_profile, rate_hz, owner,
-                                  description, &MessageTraits<Message>::maxSerializedSize}};
+                                  description, &MessageTraits<Message>::maxSerializedSize, stale_after_s}};
 }
 
 }  // namespace quad::dds

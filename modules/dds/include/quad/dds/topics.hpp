@@ -21,7 +21,7 @@ inline constexpr auto kSimClock = makeTopic<SimClock>(
     "Simulation time, once per plant step");
 inline constexpr auto kSimState = makeTopic<VehicleState>(
     "quad/sim/state", "state", 250.0, Owner::kPlant,
-    "Ground-truth vehicle state");
+    "Ground-truth vehicle state", 0.1);
 inline constexpr auto kSimImu = makeTopic<Imu>(
     "quad/sim/imu", "sensor", 250.0, Owner::kPlant,
     "Simulated IMU");
@@ -48,7 +48,7 @@ inline constexpr auto kGoal = makeTopic<Goal>(
     "Where the vehicle should go");
 inline constexpr auto kPath = makeTopic<Path>(
     "quad/planning/path", "latched", 0.0, Owner::kPlanning,
-    "Planned path, per replan");
+    "Planned path, per replan, republished unchanged at least every half deadline", 1.0);
 inline constexpr auto kActuators = makeTopic<ActuatorCommand>(
     "quad/control/actuators", "actuators", 250.0, Owner::kControl,
     "Rotor speed commands");

@@ -27,7 +27,8 @@ public:
       fail(path.empty() ? def.name : path, "expected an object for " + def.name);
     }
     if (value != nullptr) {
-      for (const auto& [key, unused] : value->items()) {
+      for (const auto& item : value->items()) {
+        const std::string& key = item.key();
         const bool known = std::any_of(def.members.begin(), def.members.end(),
                                        [&key](const Member& m) { return m.name == key; });
         if (!known) {

@@ -565,4 +565,64 @@ std::optional<RtpsDefect> checkRtpsDatagram(const std::uint8_t* data, std::size_
   return std::nullopt;
 }
 
+std::vector<RtpsCount> rtpsCounts(const std::uint8_t* data, std::size_t size)
+{
+  std::vector<RtpsCount> out;
+  if (size < kHeaderBytes) {
+    return out;
+  }
+  std::array<std::uint8_t, 12> prefix{};
+  std::memcpy(prefix.data(), data + 8, prefix.size());
+  const auto entity = [&](std::size_t at) {
+    return (std::uint32_t{data[at]} << 24) | (std::uint32_t{data[at + 1]} << 16) | (std::uint32_t{data[at + 2]} << 8) |
+           std::uint32_t{data[at + 3]};
+  };
+  std::size_t at = kHeaderBytes;
+  while (size - at >= 4) {
+    const std::uint8_t id = data[at];
+    const bool le = (data[at + 1] & 0x01) != 0;
+    const std::uint16_t length =
+        le ? static_cast<std::uint16_t>(data[at + 2] | (data[at + 3] << 8)) : static_cast<std::uint16_t>((data[at + 2] << 8) | data[at + 3]);
+    const std::size_t body = at + 4;
+    const std::size_t end = length == 0 && id != kPad && id != kInfoTs ? size : std::min(size, body + length);
+    Reader r(data, body, end, le);
+    RtpsCount c;
+    c.kind = id;
+    c.prefix = prefix;
+    c.offset = at;
+    std::uint32_t bits = 0;
+    bool counted = false;
+    switch (id) {
+      case kInfoSrc:
+        if (end - body >= 20) {
+          std::memcpy(prefix.data(), data + body + 8, prefix.size());
+        }
+        break;
+      case kHeartbeat:  // reader, writer, first and last sequence numbers, count
+        counted = r.skip(24) && r.u32(c.count);
+        break;
+      case kHeartbeatFrag:  // reader, writer, sequence number, last fragment, count
+        counted = r.skip(20) && r.u32(c.count);
+        break;
+      case kAckNack:  // reader, writer, sequence number set, count
+        counted = r.skip(8) && numberSet(r, true, bits) && r.u32(c.count);
+        break;
+      case kNackFrag:  // reader, writer, sequence number, fragment number set, count
+        counted = r.skip(16) && numberSet(r, false, bits) && r.u32(c.count);
+        break;
+      default:
+        break;
+    }
+    if (counted) {
+      c.count_offset = r.pos() - 4;
+      c.little_endian = le;
+      c.reader_id = entity(body);
+      c.writer_id = entity(body + 4);
+      out.push_back(c);
+    }
+    at = end;
+  }
+  return out;
+}
+
 }  // namespace quad::dds

@@ -8,8 +8,9 @@
 #include <spdlog/spdlog.h>
 
 #include "quad/common/time.hpp"
-#include "receive_layer.hpp"
+#include "quad/dds/count_guard.hpp"
 #include "quad/dds/rtps_check.hpp"
+#include "receive_layer.hpp"
 
 namespace quad::dds {
 
@@ -45,6 +46,22 @@ void noteMalformed(const frtps::Locator_t& from, std::uint32_t size, const RtpsD
   }
 }
 
+std::atomic<std::uint64_t> tamed_count{0};
+std::int64_t next_tamed_log_ns = 0;
+
+void noteTamed(const frtps::Locator_t& from, const CountGuard::Taming& t)
+{
+  tamed_count.fetch_add(1, std::memory_order_relaxed);
+  std::lock_guard lock(malformed_mutex);
+  const std::int64_t now = common::steadyTimeNs();
+  if (now >= next_tamed_log_ns) {
+    spdlog::warn("RTPS count from {}.{}.{}.{}:{} leaps to {}: passed on as {} ({} so far)", from.address[12],
+                 from.address[13], from.address[14], from.address[15], from.port, t.count.count, t.replaced,
+                 tamed_count.load(std::memory_order_relaxed));
+    next_tamed_log_ns = now + kLogPeriodNs;
+  }
+}
+
 class ValidatingTransportDescriptor : public fdrtps::ChainingTransportDescriptor {
 public:
   explicit ValidatingTransportDescriptor(std::shared_ptr<fdrtps::TransportDescriptorInterface> inner)
@@ -70,11 +87,22 @@ public:
       noteMalformed(remote_locator, receive_buffer_size, *defect);
       return;
     }
+    const auto tamings = counts_.admit(rtpsCounts(receive_buffer, receive_buffer_size), common::steadyTimeNs());
+    if (!tamings.empty()) {
+      // Passed on, with each leaping count lowered (count_guard.hpp).
+      thread_local std::vector<frtps::octet> copy;
+      copy.assign(receive_buffer, receive_buffer + receive_buffer_size);
+      CountGuard::apply(tamings, copy.data());
+      noteTamed(remote_locator, tamings.front());
+      next_receiver->OnDataReceived(copy.data(), receive_buffer_size, local_locator, remote_locator);
+      return;
+    }
     next_receiver->OnDataReceived(receive_buffer, receive_buffer_size, local_locator, remote_locator);
   }
 
 private:
   ValidatingTransportDescriptor descriptor_;
+  CountGuard counts_;  // per participant, as the counts a receiver keeps
 };
 
 fdrtps::TransportInterface* ValidatingTransportDescriptor::create_transport() const

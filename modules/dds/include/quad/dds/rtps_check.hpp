@@ -21,10 +21,12 @@
 /// are checked one by one, not reassembled (a discovery payload split into fragments has its
 /// parameter list checked by Fast DDS alone).
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace quad::dds {
 
@@ -41,5 +43,22 @@ struct RtpsDefect {
 
 /// Nothing when `data` is a well-formed RTPS message; else its first defect.
 std::optional<RtpsDefect> checkRtpsDatagram(const std::uint8_t* data, std::size_t size);
+
+/// A count a receiver only lets grow: HEARTBEAT and HEARTBEAT_FRAG carry one per writer,
+/// ACKNACK and NACK_FRAG one per reader and writer; a submessage whose count is not above the
+/// highest taken from its sender is ignored.
+struct RtpsCount {
+  std::uint8_t kind = 0;                 ///< the submessage id
+  std::array<std::uint8_t, 12> prefix{};  ///< the sender's GUID prefix (header, or INFO_SRC)
+  std::uint32_t reader_id = 0;           ///< entity ids as on the wire (big-endian octets)
+  std::uint32_t writer_id = 0;
+  std::uint32_t count = 0;
+  std::size_t offset = 0;                ///< of the submessage
+  std::size_t count_offset = 0;          ///< of the count field
+  bool little_endian = false;            ///< the count's byte order
+};
+
+/// The counts in a datagram that checkRtpsDatagram found well-formed.
+std::vector<RtpsCount> rtpsCounts(const std::uint8_t* data, std::size_t size);
 
 }  // namespace quad::dds

@@ -1,6 +1,7 @@
 #include "quad/dds/message_types.hpp"
 
 #include <atomic>
+#include <map>
 #include <mutex>
 #include <span>
 
@@ -13,6 +14,7 @@ namespace {
 std::mutex rejected_mutex;
 RejectedPayloads rejected;
 std::atomic<std::uint64_t> rejected_count{0};
+std::map<std::string, std::uint64_t, std::less<>> rejected_by_type;
 }  // namespace
 
 bool payloadKeepsToIdl(std::string_view type_name, const eprosima::fastrtps::rtps::SerializedPayload_t& payload)
@@ -30,6 +32,7 @@ void countRejectedPayload(std::string_view type_name, const std::string& why)
 {
   std::lock_guard lock(rejected_mutex);
   ++rejected.count;
+  ++rejected_by_type[std::string(type_name)];
   rejected.last = std::string(type_name) + ": " + why;
   rejected_count.store(rejected.count, std::memory_order_relaxed);
 }
@@ -43,6 +46,16 @@ RejectedPayloads rejectedPayloads()
 std::uint64_t rejectedPayloadCount()
 {
   return rejected_count.load(std::memory_order_relaxed);
+}
+
+std::uint64_t rejectedPayloadCount(std::string_view type_name)
+{
+  if (rejected_count.load(std::memory_order_relaxed) == 0) {
+    return 0;
+  }
+  std::lock_guard lock(rejected_mutex);
+  const auto it = rejected_by_type.find(type_name);
+  return it == rejected_by_type.end() ? 0 : it->second;
 }
 
 void vehicleKeyHash(std::uint32_t vehicle_id, eprosima::fastrtps::rtps::InstanceHandle_t& handle)

@@ -12,6 +12,10 @@
 namespace quad::planning {
 
 namespace {
+/// How long an update may trail the mapper's lockstep report before it counts as lost [ns]:
+/// ten heartbeat periods of the reliable QoS (configs/dds/quad_qos.xml).
+constexpr std::int64_t kLostUpdateGraceNs = 1'000'000'000;
+
 Occupancy fromMessage(msg::VoxelState s)
 {
   switch (s) {
@@ -118,6 +122,7 @@ PlanningNode::PlanningNode(PlanningNodeConfig config, dds::ParticipantOptions op
       state_(participant(), dds::topics::kSimState, waker()),
       goal_(participant(), dds::topics::kGoal, waker()),
       clock_(participant(), dds::topics::kSimClock, waker()),
+      reports_(participant(), dds::topics::kLockstep),
       path_(participant(), dds::topics::kPath),
       mapper_(participant(), "mapping", waker()),
       lockstep_(participant(), "planning")
@@ -170,6 +175,34 @@ void PlanningNode::applyUpdate(const msg::MapUpdate& update)
   }
   // Covered by a snapshot or applied now, what it accounts for is in the map.
   frames_applied_ = std::max(frames_applied_, update.depth_frames());
+  update_lost_ = false;
+}
+
+void PlanningNode::noticeLostUpdate()
+{
+  while (auto r = reports_.take()) {
+    if (r->participant() == "mapping") {
+      mapper_done_ns_ = std::max(mapper_done_ns_, r->done_ns());
+    }
+  }
+  // The mapper reports a time done once the updates for every cloud up to it are out; reliable
+  // delivery repairs a lost datagram within a few 100 ms heartbeats. An update still missing
+  // a second after that report was corrupted past recognition (another vehicle's id, a wrong
+  // count) and will not come: without this, lockstep would wait for it for ever.
+  if (!lockstep() || update_lost_ || frames_applied_ >= clock_frames_ || mapper_done_ns_ < clock_ns_) {
+    mapper_done_wall_ns_ = 0;
+    return;
+  }
+  const std::int64_t now = common::steadyTimeNs();
+  if (mapper_done_wall_ns_ == 0) {
+    mapper_done_wall_ns_ = now;
+  } else if (now - mapper_done_wall_ns_ > kLostUpdateGraceNs) {
+    update_lost_ = true;
+    counters().errors++;
+    spdlog::warn("quad/mapping/update: the mapper was done up to {:.3f} s a second ago and the update for depth frame {} "
+                 "never came: lost; a gap until the next snapshot",
+                 common::toSeconds(mapper_done_ns_), clock_frames_);
+  }
 }
 
 void PlanningNode::publish(std::int64_t t_ns, bool changed)
@@ -257,6 +290,15 @@ void PlanningNode::onWake()
     counters().samples_in++;
     applyUpdate(u);
   }
+  // An update refused on receipt (its payload broke the IDL) is lost for good: the middleware
+  // counts it delivered and never sends it again. The follower sees the gap at the next
+  // update and waits for a snapshot; until then what the lost one accounted for is unknown.
+  const std::uint64_t refused = dds::rejectedPayloadCount(dds::MessageTraits<msg::MapUpdate>::kTypeName);
+  if (refused > refused_updates_) {
+    refused_updates_ = refused;
+    update_lost_ = true;
+    spdlog::warn("quad/mapping/update: an update was refused on receipt: a gap until the next snapshot");
+  }
   while (auto g = goal_.take()) {
     counters().samples_in++;
     const Vector3 p = dds::toVector(g->p_W());
@@ -296,14 +338,16 @@ void PlanningNode::onWake()
     now_ns_ = s.header().stamp_ns();
   }
   // In lockstep a replan sees every depth cloud published up to its time, so that runs
-  // repeat; the clock waits for this node's report.
-  const bool caught_up = !lockstep() || frames_applied_ >= clock_frames_;
+  // repeat; the clock waits for this node's report. A lost update is not waited for (it
+  // never comes, and the next one only comes once sim time moves on).
+  noticeLostUpdate();
+  const bool caught_up = !lockstep() || frames_applied_ >= clock_frames_ || update_lost_;
   // A planner that joined late or missed an update plans nothing until a snapshot fills the
   // gap: a path through what it does not know the mapper saw could hit it. Without paths the
   // controller holds position.
   // A mapper that stopped (killed, stopped, starved) leaves the map behind what the camera
   // saw: flying it would meet what only the camera knows.
-  const bool map_whole = !follower_.gapOpen() && !(follower_.appliedSeq() == 0 && clock_frames_ > 0) &&
+  const bool map_whole = !follower_.gapOpen() && !update_lost_ && !(follower_.appliedSeq() == 0 && clock_frames_ > 0) &&
                          clock_frames_ <= frames_applied_ + config_.map_frames_behind;
   if (map_whole != map_whole_) {
     map_whole_ = map_whole;
@@ -311,7 +355,8 @@ void PlanningNode::onWake()
       spdlog::info("planning: the map is whole again; planning");
     } else {
       spdlog::warn("planning: the map lags the camera ({} of {} depth frames{}): no paths until it catches up",
-                   frames_applied_, clock_frames_, follower_.gapOpen() ? ", a gap in the updates" : "");
+                   frames_applied_, clock_frames_,
+                   follower_.gapOpen() || update_lost_ ? ", a gap in the updates" : "");
     }
   }
   // The mapper's heartbeat losing its liveliness (stopped, killed or cut off; a busy mapper

@@ -44,6 +44,8 @@ protected:
 private:
   void applySnapshot(const msg::MapSnapshot& snapshot);
   void applyUpdate(const msg::MapUpdate& update);
+  /// In lockstep: an update the mapper sent that never came (see the .cpp) is declared lost.
+  void noticeLostUpdate();
   void replan(std::int64_t t_ns);
   void publish(std::int64_t t_ns, bool changed);
 
@@ -55,11 +57,16 @@ private:
   dds::Subscriber<msg::VehicleState> state_;
   dds::Subscriber<msg::Goal> goal_;
   dds::Subscriber<msg::SimClock> clock_;
+  dds::Subscriber<msg::LockstepReport> reports_;  // polled: the mapper's tell a lost update from a late one
   dds::Publisher<msg::Path> path_;
   dds::ModuleWatch mapper_;
   dds::LockstepReporter lockstep_;
 
   std::uint64_t frames_applied_ = 0;    // depth clouds the applied updates account for
+  std::uint64_t refused_updates_ = 0;   // MapUpdate payloads refused on receipt, so far
+  bool update_lost_ = false;            // one was refused or never came since the last update applied
+  std::int64_t mapper_done_ns_ = 0;     // the mapper's newest lockstep report
+  std::int64_t mapper_done_wall_ns_ = 0;  // steady time that report first covered the clock (0: not yet)
   std::int64_t clock_ns_ = 0;           // lockstep: the sim time the clock is at
   std::uint64_t clock_frames_ = 0;      // lockstep: depth clouds published up to then
   bool clock_state_sent_ = true;        // lockstep: a state of the clock's time was published

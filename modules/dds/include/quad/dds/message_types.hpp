@@ -50,6 +50,9 @@ struct RejectedPayloads {
 RejectedPayloads rejectedPayloads();
 /// rejectedPayloads().count without a lock or a copy: cheap enough to poll in a loop.
 std::uint64_t rejectedPayloadCount();
+/// Payloads of one type this process refused: a reader of a reliable topic learns from it
+/// that a sample the middleware counts as delivered never reached it.
+std::uint64_t rejectedPayloadCount(std::string_view type_name);
 
 /// Counts a payload refused for another reason than its IDL (payloadKeepsToIdl counts those).
 void countRejectedPayload(std::string_view type_name, const std::string& why);

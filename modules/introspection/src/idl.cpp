@@ -407,7 +407,9 @@ void forEachNamed(Type& t, F&& f)
 
 void Schema::link()
 {
-  for (auto& [name, def] : structs_) {
+  for (auto& entry : structs_) {
+    const std::string& name = entry.first;
+    StructDef& def = entry.second;
     for (auto& m : def.members) {
       forEachNamed(m.type, [&](TypeRef& t) {
         auto resolved = resolve(t.name, t.scope);

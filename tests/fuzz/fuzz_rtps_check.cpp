@@ -1,13 +1,24 @@
-// Fuzz target: the RTPS structure check every received UDP datagram passes. Whatever the
-// bytes, it reads inside them and returns a verdict. Corpus: tests/fixtures/datagrams.
+// Fuzz target: what the validating transport does with every received UDP datagram: the
+// RTPS structure check, then, for a datagram it passes, the counts read from it and the
+// count guard lowering those that leap. Whatever the bytes, it reads inside them and
+// returns. Corpus: tests/fixtures/datagrams.
 #include "harness.hpp"
+#include "quad/dds/count_guard.hpp"
 #include "quad/dds/rtps_check.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
   // The datagram in a buffer of exactly its size, so that a read past it is caught.
   std::vector<std::uint8_t> datagram(data, data + size);
-  (void)quad::dds::checkRtpsDatagram(datagram.data(), datagram.size());
+  if (quad::dds::checkRtpsDatagram(datagram.data(), datagram.size())) {
+    return 0;
+  }
+  // One guard across inputs, as one participant keeps it across datagrams.
+  static quad::dds::CountGuard guard;
+  static std::int64_t now_ns = 0;
+  now_ns += 1'000'000;
+  const auto tamings = guard.admit(quad::dds::rtpsCounts(datagram.data(), datagram.size()), now_ns);
+  quad::dds::CountGuard::apply(tamings, datagram.data());
   return 0;
 }
 

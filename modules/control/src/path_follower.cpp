@@ -166,7 +166,19 @@ bool PathFollower::setPath(const std::vector<Vector3>& waypoints, std::uint32_t 
   const double speed = ref_.v_W.norm();
   if (speed > 0.05) {
     // Lead-in along the current motion, so the direction of the reference turns smoothly.
-    joined.push_back(ref_.p_W + ref_.v_W / speed * std::min(0.5, 0.5 * speed));
+    Vector3 lead = ref_.p_W + ref_.v_W / speed * std::min(0.5, 0.5 * speed);
+    // Replans can come faster than a lead-in is flown: a fresh one each time, always ahead,
+    // would carry the reference on in its old direction for as long as they come (seen: a
+    // second and a half of creep into a sphere every new path led away from). The last
+    // lead-in, while still ahead and no farther than a fresh one, is kept.
+    if (lead_in_ && (*lead_in_ - ref_.p_W).dot(ref_.v_W) > 0.0 &&
+        (*lead_in_ - ref_.p_W).norm() <= (lead - ref_.p_W).norm() + 1e-9) {
+      lead = *lead_in_;
+    }
+    joined.push_back(lead);
+    lead_in_ = lead;
+  } else {
+    lead_in_.reset();
   }
   // Join the new polyline where it passes closest to the reference.
   std::size_t next = waypoints.size() > 1 ? 1 : 0;
@@ -193,6 +205,7 @@ void PathFollower::hold(const Vector3& p, double yaw)
 {
   trajectory_.emplace(std::vector<Vector3>{p}, limits_, 0.0);
   version_.reset();
+  lead_in_.reset();
   s_ = 0.0;
   v_ = 0.0;
   a_ = 0.0;

@@ -87,6 +87,33 @@ TEST(PathFollower, ANewPathIsJoinedWithoutAJump)
   EXPECT_EQ(f.version(), 2U);
 }
 
+TEST(PathFollower, ReplansFasterThanTheLeadInDoNotCarryTheReferenceOn)
+{
+  // GIVEN a reference slowing to 0.35 m/s along +x
+  PathFollower f({});
+  f.hold(Vector3(0, 0, 2), 0.0);
+  ASSERT_TRUE(f.setPath({{0, 0, 2}, {2, 0, 2}}, 1));
+  while (f.reference().p_W.x() < 1.85) {
+    f.step(0.004);
+  }
+  const Reference start = f.reference();
+  ASSERT_GT(start.v_W.x(), 0.2);
+  // WHEN every 0.2 s a new path leads back and away (an obstacle ahead), as a planner
+  // replanning from inside an inflated margin sends them
+  double furthest = start.p_W.x();
+  for (std::uint32_t version = 2; version < 12; ++version) {
+    const double x = f.reference().p_W.x();
+    ASSERT_TRUE(f.setPath({{x, 0, 2}, {x - 0.5, 0.5, 2}, {x - 0.5, 3, 2}}, version));
+    for (int k = 0; k < 50; ++k) {
+      furthest = std::max(furthest, f.step(0.004).p_W.x());
+    }
+  }
+  // THEN the reference goes no further than its first lead-in (0.5 s of its speed), and
+  // turns back (it crept on for as long as the paths came when each brought a lead-in anew)
+  EXPECT_LT(furthest - start.p_W.x(), 0.5 * start.v_W.norm() + 0.02);
+  EXPECT_LT(f.reference().p_W.x(), furthest - 0.1);
+}
+
 TEST(PathFollower, YawFacesAlongThePathAtALimitedRate)
 {
   FollowerLimits limits;

@@ -85,6 +85,7 @@ private:
   FollowerLimits limits_;
   std::optional<Trajectory> trajectory_;
   std::optional<std::uint32_t> version_;
+  std::optional<Vector3> lead_in_;  // the lead-in point of the path joined last
   double s_ = 0.0;
   double v_ = 0.0;
   double a_ = 0.0;

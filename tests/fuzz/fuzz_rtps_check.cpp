@@ -10,14 +10,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 {
   // The datagram in a buffer of exactly its size, so that a read past it is caught.
   std::vector<std::uint8_t> datagram(data, data + size);
-  if (quad::dds::checkRtpsDatagram(datagram.data(), datagram.size())) {
+  std::vector<quad::dds::RtpsCount> counts;
+  if (quad::dds::checkRtpsDatagram(datagram.data(), datagram.size(), &counts)) {
     return 0;
   }
   // One guard across inputs, as one participant keeps it across datagrams.
   static quad::dds::CountGuard guard;
   static std::int64_t now_ns = 0;
   now_ns += 1'000'000;
-  const auto tamings = guard.admit(quad::dds::rtpsCounts(datagram.data(), datagram.size()), now_ns);
+  const auto tamings = guard.admit(counts, now_ns);
   quad::dds::CountGuard::apply(tamings, datagram.data());
   return 0;
 }

@@ -57,6 +57,15 @@ struct Rig {
   Mode mode() const { return fc.mode(); }
 };
 
+/// Arms, takes off and waits for the hover at the take-off altitude.
+void takeOff(Rig& rig)
+{
+  rig.fc.onCommand(Command::kArm);
+  rig.run(0.1);
+  rig.fc.onCommand(Command::kTakeoff);
+  rig.run(15.0, [&] { return rig.mode() == Mode::kHover; });
+}
+
 TEST(FlightController, ArmTakeOffFlyTheMissionAndLand)
 {
   Rig rig;
@@ -95,10 +104,7 @@ TEST(FlightController, ARotorAtSeventyPercentKeepsTheAltitudeThroughTurns)
 {
   // GIVEN a vehicle in hover and a zig-zag mission at 2 m/s, 2 m up
   Rig rig;
-  rig.fc.onCommand(Command::kArm);
-  rig.run(0.1);
-  rig.fc.onCommand(Command::kTakeoff);
-  rig.run(15.0, [&] { return rig.mode() == Mode::kHover; });
+  takeOff(rig);
   const std::vector<Vector3> path = {{0, 0, 2},  {6, 0, 2},  {10, -3, 2}, {16, -3, 2},
                                      {20, 2, 2}, {26, 2, 2}, {30, -2, 2}, {40, 0, 2}};
   rig.fc.onGoal(path.back(), 0.3);
@@ -133,10 +139,7 @@ TEST(FlightController, ARotorAtSeventyPercentKeepsTheAltitudeThroughTurns)
 /// Takes off to hover and starts a long mission; returns the rig in MISSION.
 void intoMission(Rig& rig)
 {
-  rig.fc.onCommand(Command::kArm);
-  rig.run(0.1);
-  rig.fc.onCommand(Command::kTakeoff);
-  rig.run(15.0, [&] { return rig.mode() == Mode::kHover; });
+  takeOff(rig);
   rig.fc.onPath({{0, 0, 2}, {40, 0, 2}}, 1, true, rig.t());
   rig.fc.onGoal(Vector3(40, 0, 2), 0.3);
   rig.fc.onCommand(Command::kStartMission);

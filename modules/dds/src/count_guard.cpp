@@ -1,11 +1,8 @@
 #include "quad/dds/count_guard.hpp"
 
-namespace quad::dds {
+#include <algorithm>
 
-namespace {
-constexpr std::uint8_t kHeartbeat = 0x07;
-constexpr std::uint8_t kHeartbeatFrag = 0x13;
-}  // namespace
+namespace quad::dds {
 
 std::vector<CountGuard::Taming> CountGuard::admit(const std::vector<RtpsCount>& counts, std::int64_t now_ns)
 {
@@ -18,9 +15,7 @@ std::vector<CountGuard::Taming> CountGuard::admit(const std::vector<RtpsCount>& 
     tracks_.clear();  // a flood of forged senders: start over rather than grow
   }
   for (const RtpsCount& c : counts) {
-    // A writer's heartbeats count up across all its readers; a reader counts per writer.
-    const bool per_writer = c.kind == kHeartbeat || c.kind == kHeartbeatFrag;
-    Track& t = tracks_[Key{c.kind, c.prefix, per_writer ? 0U : c.reader_id, c.writer_id}];
+    Track& t = tracks_[Key{c.kind, c.prefix, c.per_writer ? 0U : c.reader_id, c.writer_id}];
     const double elapsed_s = t.at_ns == 0 ? 0.0 : static_cast<double>(now_ns - t.at_ns) * 1e-9;
     const auto allowed = static_cast<std::uint64_t>(kSlack + kMaxRate * elapsed_s);
     const bool within = c.count <= t.highest || std::uint64_t{c.count} - t.highest <= allowed;

@@ -1,5 +1,6 @@
 #include "quad/dds/rtps_check.hpp"
 
+#include <array>
 #include <cstring>
 
 #include <fmt/format.h>
@@ -522,9 +523,50 @@ Defect checkSubmessage(const std::uint8_t* data, std::size_t body, std::size_t e
   }
 }
 
+/// The count of a well-formed submessage body in [body, end) that carries one.
+std::optional<RtpsCount> countOf(const std::uint8_t* data, std::size_t body, std::size_t end, std::uint8_t id,
+                                 bool le)
+{
+  Reader r(data, body, end, le);
+  RtpsCount c;
+  std::uint32_t bits = 0;
+  bool counted = false;
+  switch (id) {
+    case kHeartbeat:  // reader, writer, first and last sequence numbers, count
+      counted = r.skip(24) && r.u32(c.count);
+      break;
+    case kHeartbeatFrag:  // reader, writer, sequence number, last fragment, count
+      counted = r.skip(20) && r.u32(c.count);
+      break;
+    case kAckNack:  // reader, writer, sequence number set, count
+      counted = r.skip(8) && numberSet(r, true, bits) && r.u32(c.count);
+      break;
+    case kNackFrag:  // reader, writer, sequence number, fragment number set, count
+      counted = r.skip(16) && numberSet(r, false, bits) && r.u32(c.count);
+      break;
+    default:
+      break;
+  }
+  if (!counted) {
+    return std::nullopt;
+  }
+  const auto entity = [&](std::size_t at) {
+    return (std::uint32_t{data[at]} << 24) | (std::uint32_t{data[at + 1]} << 16) | (std::uint32_t{data[at + 2]} << 8) |
+           std::uint32_t{data[at + 3]};
+  };
+  c.kind = id;
+  c.per_writer = id == kHeartbeat || id == kHeartbeatFrag;
+  c.offset = body - 4;
+  c.count_offset = r.pos() - 4;
+  c.little_endian = le;
+  c.reader_id = entity(body);
+  c.writer_id = entity(body + 4);
+  return c;
+}
+
 }  // namespace
 
-std::optional<RtpsDefect> checkRtpsDatagram(const std::uint8_t* data, std::size_t size)
+std::optional<RtpsDefect> checkRtpsDatagram(const std::uint8_t* data, std::size_t size, std::vector<RtpsCount>* counts)
 {
   if (size < kHeaderBytes) {
     return defect(0, fmt::format("{} bytes, shorter than an RTPS header", size));
@@ -539,6 +581,9 @@ std::optional<RtpsDefect> checkRtpsDatagram(const std::uint8_t* data, std::size_
   if (at == size) {
     return defect(at, "an RTPS header without submessages");
   }
+  std::array<std::uint8_t, 12> prefix{};  // the sender's, until an INFO_SRC names another
+  std::memcpy(prefix.data(), data + 8, prefix.size());
+  const std::size_t counts_before = counts != nullptr ? counts->size() : 0;
   while (at < size) {
     if (size - at < 4) {
       return defect(at, fmt::format("{} bytes left, too few for a submessage header", size - at));
@@ -558,71 +603,22 @@ std::optional<RtpsDefect> checkRtpsDatagram(const std::uint8_t* data, std::size_
                                     size - body));
     }
     if (auto d = checkSubmessage(data, body, end, id, flags)) {
+      if (counts != nullptr) {
+        counts->resize(counts_before);  // counts only of a well-formed message
+      }
       return d;
+    }
+    if (id == kInfoSrc) {
+      std::memcpy(prefix.data(), data + body + 8, prefix.size());
+    } else if (counts != nullptr) {
+      if (auto c = countOf(data, body, end, id, le)) {
+        c->prefix = prefix;
+        counts->push_back(*c);
+      }
     }
     at = end;
   }
   return std::nullopt;
-}
-
-std::vector<RtpsCount> rtpsCounts(const std::uint8_t* data, std::size_t size)
-{
-  std::vector<RtpsCount> out;
-  if (size < kHeaderBytes) {
-    return out;
-  }
-  std::array<std::uint8_t, 12> prefix{};
-  std::memcpy(prefix.data(), data + 8, prefix.size());
-  const auto entity = [&](std::size_t at) {
-    return (std::uint32_t{data[at]} << 24) | (std::uint32_t{data[at + 1]} << 16) | (std::uint32_t{data[at + 2]} << 8) |
-           std::uint32_t{data[at + 3]};
-  };
-  std::size_t at = kHeaderBytes;
-  while (size - at >= 4) {
-    const std::uint8_t id = data[at];
-    const bool le = (data[at + 1] & 0x01) != 0;
-    const std::uint16_t length =
-        le ? static_cast<std::uint16_t>(data[at + 2] | (data[at + 3] << 8)) : static_cast<std::uint16_t>((data[at + 2] << 8) | data[at + 3]);
-    const std::size_t body = at + 4;
-    const std::size_t end = length == 0 && id != kPad && id != kInfoTs ? size : std::min(size, body + length);
-    Reader r(data, body, end, le);
-    RtpsCount c;
-    c.kind = id;
-    c.prefix = prefix;
-    c.offset = at;
-    std::uint32_t bits = 0;
-    bool counted = false;
-    switch (id) {
-      case kInfoSrc:
-        if (end - body >= 20) {
-          std::memcpy(prefix.data(), data + body + 8, prefix.size());
-        }
-        break;
-      case kHeartbeat:  // reader, writer, first and last sequence numbers, count
-        counted = r.skip(24) && r.u32(c.count);
-        break;
-      case kHeartbeatFrag:  // reader, writer, sequence number, last fragment, count
-        counted = r.skip(20) && r.u32(c.count);
-        break;
-      case kAckNack:  // reader, writer, sequence number set, count
-        counted = r.skip(8) && numberSet(r, true, bits) && r.u32(c.count);
-        break;
-      case kNackFrag:  // reader, writer, sequence number, fragment number set, count
-        counted = r.skip(16) && numberSet(r, false, bits) && r.u32(c.count);
-        break;
-      default:
-        break;
-    }
-    if (counted) {
-      c.count_offset = r.pos() - 4;
-      c.little_endian = le;
-      c.reader_id = entity(body);
-      c.writer_id = entity(body + 4);
-      out.push_back(c);
-    }
-    at = end;
-  }
-  return out;
 }
 
 }  // namespace quad::dds

@@ -28,11 +28,16 @@ MalformedDatagrams malformed;
 std::int64_t next_log_ns = 0;
 std::uint64_t logged_count = 0;
 
+/// "127.0.0.1:41234"
+std::string addressOf(const frtps::Locator_t& from)
+{
+  return fmt::format("{}.{}.{}.{}:{}", from.address[12], from.address[13], from.address[14], from.address[15],
+                     from.port);
+}
+
 void noteMalformed(const frtps::Locator_t& from, std::uint32_t size, const RtpsDefect& d)
 {
-  const std::string what = fmt::format("from {}.{}.{}.{}:{}, {} bytes: at byte {}: {}", from.address[12],
-                                       from.address[13], from.address[14], from.address[15], from.port, size,
-                                       d.offset, d.what);
+  const std::string what = fmt::format("from {}, {} bytes: at byte {}: {}", addressOf(from), size, d.offset, d.what);
   std::lock_guard lock(malformed_mutex);
   ++malformed.count;
   malformed.last = what;
@@ -55,9 +60,8 @@ void noteTamed(const frtps::Locator_t& from, const CountGuard::Taming& t)
   std::lock_guard lock(malformed_mutex);
   const std::int64_t now = common::steadyTimeNs();
   if (now >= next_tamed_log_ns) {
-    spdlog::warn("RTPS count from {}.{}.{}.{}:{} leaps to {}: passed on as {} ({} so far)", from.address[12],
-                 from.address[13], from.address[14], from.address[15], from.port, t.count.count, t.replaced,
-                 tamed_count.load(std::memory_order_relaxed));
+    spdlog::warn("RTPS count from {} leaps to {}: passed on as {} ({} so far)", addressOf(from), t.count.count,
+                 t.replaced, tamed_count.load(std::memory_order_relaxed));
     next_tamed_log_ns = now + kLogPeriodNs;
   }
 }
@@ -83,11 +87,13 @@ public:
                const frtps::Locator_t& remote_locator) override
   {
     checked_count.fetch_add(1, std::memory_order_relaxed);
-    if (const auto defect = checkRtpsDatagram(receive_buffer, receive_buffer_size)) {
+    thread_local std::vector<RtpsCount> counts;
+    counts.clear();
+    if (const auto defect = checkRtpsDatagram(receive_buffer, receive_buffer_size, &counts)) {
       noteMalformed(remote_locator, receive_buffer_size, *defect);
       return;
     }
-    const auto tamings = counts_.admit(rtpsCounts(receive_buffer, receive_buffer_size), common::steadyTimeNs());
+    const auto tamings = counts_.admit(counts, common::steadyTimeNs());
     if (!tamings.empty()) {
       // Passed on, with each leaping count lowered (count_guard.hpp).
       thread_local std::vector<frtps::octet> copy;

@@ -58,8 +58,9 @@ Bytes acknack(std::uint32_t count)
 
 std::vector<RtpsCount> countsOf(const Bytes& b)
 {
-  EXPECT_FALSE(checkRtpsDatagram(b.data(), b.size()));
-  return rtpsCounts(b.data(), b.size());
+  std::vector<RtpsCount> counts;
+  EXPECT_FALSE(checkRtpsDatagram(b.data(), b.size(), &counts));
+  return counts;
 }
 
 TEST(RtpsCounts, AreReadWithTheirSenderAndEndpoints)

@@ -61,24 +61,17 @@ void MapTree::insertPointCloudTracked(const octomap::Pointcloud& cloud, const oc
   keys_.clear();
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const octomap::point3d& p = cloud[i];
-    if (max_range < 0.0 || (p - origin).norm() <= max_range) {
-      if (computeRayKeys(origin, p, ray_)) {
-        for (const octomap::OcTreeKey& k : ray_) {
-          keys_.insertFree(k);
-        }
+    // A point beyond range clears space up to the range only; its end is not a hit.
+    const bool hit = max_range < 0.0 || (p - origin).norm() <= max_range;
+    const octomap::point3d end = hit ? p : origin + (p - origin).normalized() * static_cast<float>(max_range);
+    if (computeRayKeys(origin, end, ray_)) {
+      for (const octomap::OcTreeKey& k : ray_) {
+        keys_.insertFree(k);
       }
-      octomap::OcTreeKey key;
-      if (coordToKeyChecked(p, key)) {
-        keys_.insertOccupied(key);
-      }
-    } else {
-      const octomap::point3d direction = (p - origin).normalized();
-      const octomap::point3d end = origin + direction * static_cast<float>(max_range);
-      if (computeRayKeys(origin, end, ray_)) {
-        for (const octomap::OcTreeKey& k : ray_) {
-          keys_.insertFree(k);
-        }
-      }
+    }
+    octomap::OcTreeKey key;
+    if (hit && coordToKeyChecked(p, key)) {
+      keys_.insertOccupied(key);
     }
   }
   // Each voxel is updated once per scan and only its own update changes its value, so the

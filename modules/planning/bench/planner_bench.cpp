@@ -99,8 +99,7 @@ public:
   {
     ++number_;
     const Eigen::Vector3i to = graph_.coordinates(goal);
-    const double res = graph_.lattice().grid().resolution();
-    const auto heuristic = [&](Cell c) { return res * (graph_.coordinates(c) - to).cast<double>().norm(); };
+    const auto heuristic = [&](Cell c) { return graph_.distance(graph_.coordinates(c), to); };
     AStarResult out;
     using Item = std::tuple<double, double, Cell>;  // f, g, cell: ties by g, then cell
     std::priority_queue<Item, std::vector<Item>, std::greater<>> open;

@@ -148,9 +148,11 @@ double DStarLite::edgeCost(Cell a, Cell b) const
   return lattice_.grid().resolution() * std::sqrt(static_cast<double>(nonzero));
 }
 
-double DStarLite::heuristic(Cell a, Cell b) const
+double DStarLite::heuristic(Cell a, Cell b) const { return distance(coordinates(a), coordinates(b)); }
+
+double DStarLite::distance(const Eigen::Vector3i& a, const Eigen::Vector3i& b) const
 {
-  return lattice_.grid().resolution() * (coordinates(a) - coordinates(b)).cast<double>().norm();
+  return lattice_.grid().resolution() * (a - b).cast<double>().norm();
 }
 
 double DStarLite::g(Cell c) const
@@ -168,8 +170,7 @@ double DStarLite::rhs(Cell c) const
 DStarLite::Key DStarLite::calculateKey(Cell c) const
 {
   const double m = std::min(g(c), rhs(c));
-  const double h = lattice_.grid().resolution() * (coordinates(c) - start_coordinates_).cast<double>().norm();
-  return {m + h + km_, m};
+  return {m + distance(coordinates(c), start_coordinates_) + km_, m};
 }
 
 double DStarLite::bestRhs(Cell u) const

@@ -41,14 +41,12 @@ struct RtpsDefect {
   std::string what;        ///< "DATA_FRAG: fragment 3 of 2 ..."
 };
 
-/// Nothing when `data` is a well-formed RTPS message; else its first defect.
-std::optional<RtpsDefect> checkRtpsDatagram(const std::uint8_t* data, std::size_t size);
-
 /// A count a receiver only lets grow: HEARTBEAT and HEARTBEAT_FRAG carry one per writer,
 /// ACKNACK and NACK_FRAG one per reader and writer; a submessage whose count is not above the
 /// highest taken from its sender is ignored.
 struct RtpsCount {
   std::uint8_t kind = 0;                 ///< the submessage id
+  bool per_writer = false;               ///< a writer's count across its readers (HEARTBEAT, HEARTBEAT_FRAG)
   std::array<std::uint8_t, 12> prefix{};  ///< the sender's GUID prefix (header, or INFO_SRC)
   std::uint32_t reader_id = 0;           ///< entity ids as on the wire (big-endian octets)
   std::uint32_t writer_id = 0;
@@ -58,7 +56,9 @@ struct RtpsCount {
   bool little_endian = false;            ///< the count's byte order
 };
 
-/// The counts in a datagram that checkRtpsDatagram found well-formed.
-std::vector<RtpsCount> rtpsCounts(const std::uint8_t* data, std::size_t size);
+/// Nothing when `data` is a well-formed RTPS message; else its first defect. With `counts`,
+/// a well-formed message's counts are appended to it on the same pass.
+std::optional<RtpsDefect> checkRtpsDatagram(const std::uint8_t* data, std::size_t size,
+                                            std::vector<RtpsCount>* counts = nullptr);
 
 }  // namespace quad::dds

@@ -81,6 +81,8 @@ public:
   double heuristic(Cell a, Cell b) const;
   /// A cell's position in the lattice (0 ... dims − 1 per axis); no bounds check.
   Eigen::Vector3i coordinates(Cell c) const;
+  /// The Euclidean distance [m] between two positions in the lattice: the heuristic.
+  double distance(const Eigen::Vector3i& a, const Eigen::Vector3i& b) const;
 
   /// Bytes of the search's per-cell state (g, rhs, queue bookkeeping) now allocated.
   std::size_t searchBytes() const;

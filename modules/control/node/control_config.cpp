@@ -30,6 +30,8 @@ common::ParamSchema controlSchema()
                  "path not republished for this long is stale (default: the quad/planning/path contract's)")
       .addDouble("goal_tolerance", 0.3, 0.01, 10.0, "m", "when the goal gives none")
       .addDouble("failsafe_thrust", 0.85, 0.3, 1.0, "", "fraction of the weight in a blind descent")
+      .addDouble("dead_reckoning_horizon", 2.0, 0.0, 30.0, "s",
+                 "how long the IMU may carry the last state on while it is stale (0: never)")
       .addDouble("modes.path_stale_land_after", 5.0, 0.0, 3600.0, "s", "hover without a path, then land")
       .addDouble("modes.idle_disarm_after", 30.0, 0.1, 1e6, "s", "armed on the ground, then disarm")
       .addBool("modes.auto_mission", false, "start the mission as soon as a path is available")
@@ -64,6 +66,7 @@ ControlNodeConfig controlConfigFrom(const common::Params& p)
   f.path_timeout = p.getDouble("timeouts.path");
   f.goal_tolerance = p.getDouble("goal_tolerance");
   f.failsafe_thrust = p.getDouble("failsafe_thrust");
+  f.dead_reckoning_horizon = p.getDouble("dead_reckoning_horizon");
   f.modes.path_stale_land_after = p.getDouble("modes.path_stale_land_after");
   f.modes.idle_disarm_after = p.getDouble("modes.idle_disarm_after");
   f.modes.auto_mission = p.getBool("modes.auto_mission");

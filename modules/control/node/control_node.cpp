@@ -21,6 +21,7 @@ ControlNode::ControlNode(ControlNodeConfig config, dds::ParticipantOptions optio
       goal_(participant(), dds::topics::kGoal, waker()),
       command_(participant(), dds::topics::kVehicleCommand, waker()),
       clock_(participant(), dds::topics::kSimClock, waker()),
+      imu_(participant(), dds::topics::kSimImu, waker()),
       actuators_(participant(), dds::topics::kActuators),
       status_(participant(), dds::topics::kControlStatus),
       reference_(participant(), dds::topics::kControlReference)
@@ -35,6 +36,17 @@ void ControlNode::takeInputs()
     setLockstep(c->lockstep());
     clock_seen_ = true;
     clock_ns_ = std::max(clock_ns_, c->sim_ns());
+  }
+  while (auto m = imu_.take()) {
+    counters().samples_in++;
+    const double t = common::toSeconds(m->header().stamp_ns());
+    if (!fc_.onImu({dds::toVector(m->specific_force_B()), dds::toVector(m->angular_rate_B())}, t)) {
+      counters().errors++;
+      spdlog::warn("quad/sim/imu: sample seq {} rejected: non-finite", m->header().seq());
+      continue;
+    }
+    imu_ns_ = std::max(imu_ns_, m->header().stamp_ns());
+    imu_wall_ns_ = common::steadyTimeNs();
   }
   while (auto c = command_.take()) {
     counters().samples_in++;
@@ -94,6 +106,11 @@ void ControlNode::control(double t, std::int64_t stamp_ns)
     spdlog::info("control: {} -> {}: {}", toString(out.transition->from), toString(out.transition->to),
                  out.transition->why);
   }
+  if (out.dead_reckoning && !last_.dead_reckoning) {
+    spdlog::info("control: state stale at {:.3f} s: flying on the IMU's dead reckoning", t);
+  } else if (last_.dead_reckoning && !out.dead_reckoning) {
+    spdlog::info("control: dead reckoning ended at {:.3f} s", t);
+  }
   if (!out.refused.empty()) {
     spdlog::warn("control: {}", out.refused);
   }
@@ -142,20 +159,22 @@ void ControlNode::onWake()
     latest_wall_ns_ = common::steadyTimeNs();
     control(t, s.header().stamp_ns());
   }
-  controlOnClock();
+  controlWithoutState();
 }
 
-void ControlNode::controlOnClock()
+void ControlNode::controlWithoutState()
 {
-  // In lockstep the states stop coming only when a fault drops them (the plant then does not
-  // wait for us): the controller must still reach its failsafe, on the clock's time.
-  if (!lockstep() || latest_t_ < 0.0) {
+  // When the states stop coming (in lockstep only a fault drops them, and the plant then does
+  // not wait for us) the controller must still reach its failsafe and fly it: on the clock's
+  // time in lockstep, on the IMU samples' in real time (which carry the dead reckoning).
+  const std::int64_t now_ns = lockstep() ? clock_ns_ : imu_ns_;
+  if (latest_t_ < 0.0 || now_ns <= last_stateless_ns_) {
     return;
   }
-  const double t = common::toSeconds(clock_ns_);
-  if (t - latest_t_ > config_.flight.state_timeout && clock_ns_ > last_clock_control_ns_) {
-    last_clock_control_ns_ = clock_ns_;
-    control(t, clock_ns_);
+  const double t = common::toSeconds(now_ns);
+  if (t - latest_t_ > config_.flight.state_timeout) {
+    last_stateless_ns_ = now_ns;
+    control(t, now_ns);
   }
 }
 
@@ -163,13 +182,16 @@ void ControlNode::onTick(std::int64_t steady_ns)
 {
   takeInputs();
   // In real time a silent plant (or a lost link) must still reach the failsafe: advance the
-  // controller's clock by the wall time since the last state. In lockstep the plant waits.
+  // controller's clock by the wall time since the plant was last heard (a state or an IMU
+  // sample). In lockstep the plant waits.
   if (!clock_seen_ || lockstep() || latest_t_ < 0.0) {
     return;  // (until a clock says which, a quiet plant may be a lockstep one waiting for us)
   }
-  const double silent = common::toSeconds(steady_ns - latest_wall_ns_);
+  const bool imu_newer = imu_wall_ns_ > latest_wall_ns_;
+  const double heard_t = imu_newer ? common::toSeconds(imu_ns_) : latest_t_;
+  const double silent = common::toSeconds(steady_ns - std::max(latest_wall_ns_, imu_wall_ns_));
   if (silent > config_.flight.state_timeout) {
-    const double t = latest_t_ + silent;
+    const double t = heard_t + silent;
     control(t, common::toNanoseconds(t));
   }
 }

@@ -25,8 +25,8 @@ protected:
 private:
   void takeInputs();
   void control(double t, std::int64_t stamp_ns);
-  /// Lockstep: a command on the clock's time when states stopped coming (see the .cpp).
-  void controlOnClock();
+  /// A command when states stopped coming, on the clock's time (lockstep) or the IMU's.
+  void controlWithoutState();
   void publishStatus(const FlightOutput& out, std::int64_t stamp_ns);
   void autostart();
 
@@ -37,13 +37,16 @@ private:
   dds::Subscriber<msg::Goal> goal_;
   dds::Subscriber<msg::VehicleCommand> command_;
   dds::Subscriber<msg::SimClock> clock_;
+  dds::Subscriber<msg::Imu> imu_;
   dds::Publisher<msg::ActuatorCommand> actuators_;
   dds::Publisher<msg::ControlStatus> status_;
   dds::Publisher<msg::ControlReference> reference_;
 
   bool clock_seen_ = false;                // lockstep() is known only once a clock arrived
   std::int64_t clock_ns_ = 0;              // the newest sim time the clock told
-  std::int64_t last_clock_control_ns_ = 0; // the clock time last commanded without a state
+  std::int64_t imu_ns_ = 0;                // the newest IMU sample's sim time
+  std::int64_t imu_wall_ns_ = 0;           // steady time it arrived
+  std::int64_t last_stateless_ns_ = 0;     // the sim time last commanded without a state
   double latest_t_ = -1.0;                 // sim time of the newest state [s]
   std::int64_t latest_wall_ns_ = 0;        // steady time it arrived
   double next_status_t_ = 0.0;

@@ -38,6 +38,16 @@ bool FlightController::onState(const VehicleState& s, bool landed, double t)
   state_ = VehicleState{s.p_W, s.v_W, s.q_WB.normalized(), s.w_B};
   landed_ = landed;
   state_t_ = t;
+  reckoning_.anchor(*state_, t);
+  return true;
+}
+
+bool FlightController::onImu(const InertialSample& sample, double t)
+{
+  if (!reckoning_.onImu(sample, t)) {
+    ++rejected_;
+    return false;
+  }
   return true;
 }
 
@@ -69,10 +79,10 @@ bool FlightController::onGoal(const Vector3& p, double tolerance)
   return true;
 }
 
-void FlightController::enter(Mode mode, double t)
+void FlightController::enter(Mode mode, double t, const std::optional<VehicleState>& state)
 {
-  const Vector3 p = state_ ? state_->p_W : Vector3::Zero();
-  const double yaw = state_ ? yawOf(state_->q_WB) : 0.0;
+  const Vector3 p = state ? state->p_W : Vector3::Zero();
+  const double yaw = state ? yawOf(state->q_WB) : 0.0;
   switch (mode) {
     case Mode::kDisarmed:
     case Mode::kIdle:
@@ -122,10 +132,15 @@ FlightOutput FlightController::update(double t)
   // mission this keeps auto_mission from starting again for a goal already reached.
   in.goal_reached = state_ && goal_ && (state_->p_W - *goal_).norm() <= goal_tolerance_ &&
                     (modes_.mode() != Mode::kMission || follower_.finished());
+  // The last state carried to now by the IMU samples since (the state itself when none came
+  // after it). Closing the loops on a state frozen at its last value would pitch the vehicle
+  // over in the moments before it counts as stale. Once stale, only up to the horizon.
+  const std::optional<VehicleState> state = reckoning_.estimate(
+      t, config_.state_timeout, in.state_fresh ? config_.state_timeout : config_.dead_reckoning_horizon);
   out.transition = modes_.update(in);
   out.refused = modes_.refused();
   if (out.transition) {
-    enter(out.transition->to, t);
+    enter(out.transition->to, t, state ? state : state_);
   }
   out.mode = modes_.mode();
   out.reason = modes_.reason();
@@ -146,7 +161,7 @@ FlightOutput FlightController::update(double t)
       break;
   }
   out.armed = true;
-  if (!in.state_fresh) {
+  if (!state) {
     // Blind: no state to close any loop on. Descend on a little less than the weight.
     const MixerOutput m = mixer_.mix(config_.failsafe_thrust * vehicle_.mass * 9.81, Vector3::Zero());
     out.rotor_speed = m.rotor_speed;
@@ -165,14 +180,15 @@ FlightOutput FlightController::update(double t)
     out.progress = follower_.progress();
   }
   out.reference = ref;
-  out.control = controller_.update(*state_, ref, dt);
+  out.dead_reckoning = !in.state_fresh;
+  out.control = controller_.update(*state, ref, dt);
   if (!out.control.valid) {
     ++rejected_;
   }
   out.mixer = mixer_.mix(out.control.thrust, out.control.torque_B);
   out.rotor_speed = out.mixer.rotor_speed;
-  out.position_error_W = ref.p_W - state_->p_W;
-  out.velocity_error_W = ref.v_W - state_->v_W;
+  out.position_error_W = ref.p_W - state->p_W;
+  out.velocity_error_W = ref.v_W - state->v_W;
   return out;
 }
 

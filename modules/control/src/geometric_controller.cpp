@@ -62,13 +62,18 @@ bool finite(const Reference& r)
 }
 }  // namespace
 
+ControlOutput GeometricController::invalidOutput() const
+{
+  ControlOutput invalid;
+  invalid.valid = false;
+  invalid.thrust = mass_ * gravity_;
+  return invalid;
+}
+
 ControlOutput GeometricController::update(const VehicleState& s, const Reference& ref, double dt)
 {
   if (!finite(s) || !finite(ref) || !std::isfinite(dt)) {
-    ControlOutput invalid;
-    invalid.valid = false;
-    invalid.thrust = mass_ * gravity_;
-    return invalid;
+    return invalidOutput();
   }
   const Vector3 e3 = Vector3::UnitZ();
   const Vector3 e_x = s.p_W - ref.p_W;
@@ -86,6 +91,9 @@ ControlOutput GeometricController::update(const VehicleState& s, const Reference
   const double h = thrust_W.head<2>().norm();
   if (h > max_horizontal) {
     thrust_W.head<2>() *= max_horizontal / h;
+  }
+  if (!thrust_W.allFinite()) {
+    return invalidOutput();  // finite inputs so far apart that the feedback overflows
   }
   const Matrix3 R_WD = desiredAttitude(thrust_W, ref.yaw);
   // Ω_d from the change of the desired attitude, plus the yaw rate feed-forward.
@@ -106,10 +114,7 @@ ControlOutput GeometricController::updateAttitude(const VehicleState& s, const M
                                                   const Vector3& w_D_B)
 {
   if (!finite(s) || !R_WD.allFinite() || !std::isfinite(thrust) || !w_D_B.allFinite()) {
-    ControlOutput invalid;
-    invalid.valid = false;
-    invalid.thrust = mass_ * gravity_;
-    return invalid;
+    return invalidOutput();
   }
   const Matrix3 R = geometry::toMatrix(s.q_WB);
   ControlOutput out;

@@ -22,6 +22,7 @@ struct Rig {
   FlightController fc;
   std::vector<FlightOutput> log;
   bool feed_state = true;
+  bool feed_imu = true;
 
   explicit Rig(FlightControllerConfig config = defaults()) : fc(v, withGains(config, v)) {}
 
@@ -44,6 +45,10 @@ struct Rig {
     const double end = t() + seconds;
     while (t() < end && !done()) {
       const plant::StepOutputs out = sim.step();
+      if (out.imu && feed_imu) {
+        fc.onImu({out.imu->sample.specific_force_B, out.imu->sample.angular_rate_B},
+                 common::toSeconds(out.imu->t_ns));
+      }
       if (out.state && feed_state) {
         const auto& s = out.state->state;
         fc.onState({s.p_W, s.v_W, s.q_WB, s.w_B}, s.landed, common::toSeconds(out.state->t_ns));
@@ -170,7 +175,8 @@ TEST(FlightController, StaleStateLandsWithinATickOfItsTimeout)
 {
   Rig rig;
   intoMission(rig);
-  rig.feed_state = false;  // the state stops arriving
+  rig.feed_state = false;  // the state stops arriving, and no IMU carries it on
+  rig.feed_imu = false;
   const double lost = rig.t();
   rig.run(1.0, [&] { return rig.mode() == Mode::kFailsafeLand; });
   ASSERT_EQ(rig.mode(), Mode::kFailsafeLand);
@@ -182,6 +188,80 @@ TEST(FlightController, StaleStateLandsWithinATickOfItsTimeout)
   }
 }
 
+/// Flies the mission at full speed, then stops the state for `seconds` (the IMU as the rig
+/// says); returns how far the vehicle went horizontally from where the state was lost.
+double driftThroughAStateDropout(Rig& rig, double seconds)
+{
+  intoMission(rig);
+  double next_path = rig.t();
+  const auto republish = [&] {
+    if (rig.t() >= next_path) {
+      rig.fc.onPath({{0, 0, 2}, {40, 0, 2}}, 1, true, rig.t());
+      next_path += 0.5;
+    }
+  };
+  rig.run(4.0, [&] { republish(); return false; });  // up to the follower's 2 m/s
+  EXPECT_GT(rig.sim.state().v_W.norm(), 1.9);
+  const Vector3 lost = rig.sim.state().p_W;
+  rig.feed_state = false;
+  double drift = 0.0;
+  rig.run(seconds, [&] {
+    republish();
+    drift = std::max(drift, (rig.sim.state().p_W - lost).head<2>().norm());
+    return false;
+  });
+  return drift;
+}
+
+TEST(FlightController, AStateDropoutIsFlownOnDeadReckoningBrakingWhereTheStateWasLost)
+{
+  // GIVEN a mission at 2 m/s WHEN the state stops for 1.5 s but the IMU goes on
+  Rig rig;
+  const double drift = driftThroughAStateDropout(rig, 1.5);
+  // THEN the failsafe landing is flown on the IMU's estimate: the vehicle brakes (0.2 m in
+  // the 0.1 s the state takes to go stale, then turning round and braking at the tilt
+  // limit: 0.88 m at most here) and comes back over where it was when the state went stale;
+  // the estimate stays within 5 cm of the truth
+  ASSERT_EQ(rig.mode(), Mode::kFailsafeLand);
+  const FlightOutput& last = rig.log.back();
+  EXPECT_TRUE(last.dead_reckoning);
+  EXPECT_LT(drift, 1.0);
+  const Vector3 estimate = last.reference.p_W - last.position_error_W;
+  EXPECT_LT((estimate - rig.sim.state().p_W).norm(), 0.05);
+  EXPECT_LT((last.reference.p_W - rig.sim.state().p_W).head<2>().norm(), 0.2);
+  // AND when the state comes back the landing goes on, on the state, to the ground
+  rig.feed_state = true;
+  rig.run(20.0, [&] { return rig.mode() == Mode::kIdle; });
+  EXPECT_FALSE(rig.log.back().dead_reckoning);
+  EXPECT_TRUE(rig.sim.state().landed);
+  EXPECT_EQ(rig.sim.collisionCount(), 0U);
+}
+
+TEST(FlightController, WithoutTheImuAStateDropoutIsABlindDescentOnTheMomentum)
+{
+  // The same dropout with no IMU (or past dead_reckoning_horizon): nothing to brake on
+  Rig rig;
+  rig.feed_imu = false;
+  const double drift = driftThroughAStateDropout(rig, 1.5);
+  EXPECT_FALSE(rig.log.back().dead_reckoning);
+  EXPECT_GT(drift, 1.5);
+}
+
+TEST(FlightController, DeadReckoningEndsAtItsHorizon)
+{
+  FlightControllerConfig config = Rig::defaults();
+  config.dead_reckoning_horizon = 0.5;
+  Rig rig(config);
+  intoMission(rig);
+  const double lost = rig.t();
+  rig.feed_state = false;
+  rig.run(0.45);
+  EXPECT_TRUE(rig.log.back().dead_reckoning);
+  rig.run(0.1);
+  EXPECT_FALSE(rig.log.back().dead_reckoning);  // blind after 0.5 s
+  EXPECT_GT(rig.t() - lost, 0.5);
+}
+
 TEST(FlightController, InvalidInputsAreRejectedCountedAndTheLastGoodKept)
 {
   Rig rig;
@@ -190,7 +270,9 @@ TEST(FlightController, InvalidInputsAreRejectedCountedAndTheLastGoodKept)
   EXPECT_FALSE(rig.fc.onPath({{0, 0, 0}, {INFINITY, 0, 0}}, 3, true, 0.0));
   EXPECT_FALSE(rig.fc.onPath({}, 4, true, 0.0));
   EXPECT_FALSE(rig.fc.onGoal(Vector3(NAN, 0, 0), 0.3));
-  EXPECT_EQ(rig.fc.rejectedInputs(), 5U);
+  EXPECT_FALSE(rig.fc.onImu({Vector3(0, 0, INFINITY), Vector3::Zero()}, 0.0));
+  EXPECT_FALSE(rig.fc.onImu({Vector3::Zero(), Vector3(1e308, 1e308, 0)}, 1.0));
+  EXPECT_EQ(rig.fc.rejectedInputs(), 7U);
   EXPECT_FALSE(rig.fc.pathVersion().has_value());
 }
 
@@ -204,7 +286,7 @@ TEST(FlightController, FuzzedInputsNeverProduceANonFiniteCommand)
   const auto value = [&] { return rng() % 5 == 0 ? specials[rng() % 5] : u(rng); };
   for (int k = 0; k < 20000; ++k) {
     const double t = rig.t() + 0.004 * static_cast<double>(k);
-    switch (rng() % 4) {
+    switch (rng() % 5) {
       case 0:
         rig.fc.onState({Vector3(value(), value(), value()), Vector3(value(), value(), value()),
                         Quaternion{value(), value(), value(), value()}, Vector3(value(), value(), value())},
@@ -216,6 +298,9 @@ TEST(FlightController, FuzzedInputsNeverProduceANonFiniteCommand)
         break;
       case 2:
         rig.fc.onGoal(Vector3(value(), value(), value()), value());
+        break;
+      case 3:
+        rig.fc.onImu({Vector3(value(), value(), value()), Vector3(value(), value(), value())}, t);
         break;
       default:
         rig.fc.onCommand(static_cast<Command>(rng() % 7));

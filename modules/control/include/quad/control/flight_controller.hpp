@@ -9,6 +9,7 @@
 #include <optional>
 #include <vector>
 
+#include "quad/control/dead_reckoning.hpp"
 #include "quad/control/geometric_controller.hpp"
 #include "quad/control/mixer.hpp"
 #include "quad/control/modes.hpp"
@@ -27,6 +28,9 @@ struct FlightControllerConfig {
   double path_timeout = 3.0;      ///< [s] a path not (re)published for this long is stale
   double goal_tolerance = 0.3;    ///< [m] default when the goal does not give one
   double failsafe_thrust = 0.85;  ///< fraction of the weight for a blind failsafe descent
+  /// [s] how long after the last state the IMU may carry it on (0: never; then a stale state
+  /// means a blind descent at once)
+  double dead_reckoning_horizon = 2.0;
 };
 
 struct FlightOutput {
@@ -42,6 +46,8 @@ struct FlightOutput {
   Vector3 position_error_W = Vector3::Zero();  ///< reference − actual
   Vector3 velocity_error_W = Vector3::Zero();
   double progress = 0.0;  ///< [m] arc length along the path being followed
+  /// Flown on the IMU's dead reckoning from the last state (the state is stale)
+  bool dead_reckoning = false;
 };
 
 class FlightController {
@@ -54,6 +60,9 @@ public:
   /// A planned path. `ok` is the planner's status (waypoints are meaningful only when OK).
   /// Rejected (false, counted) when a waypoint is non-finite or an OK path has none.
   bool onPath(const std::vector<Vector3>& waypoints, std::uint32_t version, bool ok, double t);
+  /// An IMU sample at sim time t [s], carrying the last state on while the state is stale.
+  /// Rejected (false, counted) when non-finite.
+  bool onImu(const InertialSample& sample, double t);
   /// The goal the mission flies to; rejected (false, counted) when non-finite.
   bool onGoal(const Vector3& p, double tolerance);
   /// An operator command, applied at the next update.
@@ -70,7 +79,7 @@ public:
   double lastStateTime() const { return state_t_; }
 
 private:
-  void enter(Mode mode, double t);
+  void enter(Mode mode, double t, const std::optional<VehicleState>& state);
 
   vehicle::VehicleParams vehicle_;
   FlightControllerConfig config_;
@@ -78,6 +87,7 @@ private:
   PathFollower follower_;
   GeometricController controller_;
   Mixer mixer_;
+  DeadReckoning reckoning_;
 
   std::optional<VehicleState> state_;
   bool landed_ = true;

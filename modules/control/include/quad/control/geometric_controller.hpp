@@ -79,6 +79,8 @@ public:
 
 private:
   Matrix3 desiredAttitude(const Vector3& thrust_W, double yaw);
+  /// The flagged hover output for inputs it cannot use.
+  ControlOutput invalidOutput() const;
 
   double mass_;
   Vector3 inertia_;

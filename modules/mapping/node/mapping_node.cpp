@@ -13,6 +13,7 @@ namespace quad::mapping {
 
 namespace {
 constexpr std::size_t kMaxChangesPerMessage = 262144;  // MapUpdate's bound
+constexpr int kMatchSnapshots = 3;        // snapshots sent with the clouds after a new update reader
 
 msg::VoxelState toMessage(VoxelState s)
 {
@@ -132,7 +133,8 @@ void MappingNode::integrate(const msg::PointCloud& cloud)
   stats.rejected_clouds(rejected_);
   stats.skipped_clouds(skipped_);
   stats_.write(stats);
-  if (cloud.header().stamp_ns() >= next_snapshot_ns_) {
+  if (cloud.header().stamp_ns() >= next_snapshot_ns_ || match_snapshots_ > 0) {
+    match_snapshots_ = match_snapshots_ > 0 ? match_snapshots_ - 1 : 0;
     const auto bytes = mapper_.snapshot();
     if (bytes.size() <= 4194304) {
       msg::MapSnapshot snapshot;
@@ -153,9 +155,11 @@ void MappingNode::onEvent(const dds::EndpointEvent& event)
   // A new reader of updates (a restarted planner, say) gets those published from its match
   // on, and the latched snapshot, up to a snapshot period old (its snapshot reader may even
   // match seconds earlier): the updates in between are lost to it, a gap it would wait out
-  // until the next snapshot. A fresh snapshot with the next cloud fills it at once.
+  // until the next snapshot. Fresh snapshots with the next clouds fill it at once: several,
+  // as the reader's side of the match may complete an update or two after ours (it then
+  // misses those too, and takes a snapshot newer than what it holds).
   if (event.kind == dds::EventKind::kMatched && event.topic == dds::topics::kMapUpdate.info.name) {
-    next_snapshot_ns_ = 0;
+    match_snapshots_ = kMatchSnapshots;
   }
   Node::onEvent(event);
 }

@@ -57,6 +57,7 @@ private:
   std::int64_t reported_ns_ = -1;
   std::uint64_t update_seq_ = 0;
   std::int64_t next_snapshot_ns_ = 0;
+  int match_snapshots_ = 0;  // still to send with the next clouds, for a newly matched update reader
   std::uint64_t rejected_ = 0;
   std::uint64_t skipped_ = 0;
 };

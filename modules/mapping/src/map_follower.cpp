@@ -9,8 +9,11 @@ MapFollower::MapFollower(double resolution, std::size_t max_kept)
 {
 }
 
-std::vector<VoxelChange> MapFollower::update(std::uint64_t seq, std::vector<VoxelChange> changes)
+std::vector<VoxelChange> MapFollower::update(std::uint64_t seq, std::vector<VoxelChange> changes, bool* bad)
 {
+  if (bad != nullptr) {
+    *bad = false;
+  }
   if (seq <= applied_seq_) {
     return {};  // in a snapshot already applied
   }
@@ -28,6 +31,15 @@ std::vector<VoxelChange> MapFollower::update(std::uint64_t seq, std::vector<Voxe
       since_gap_.pop_front();
     }
   }
+  if (kept_ && gap_open_ && kept_->first >= gap_end_) {
+    auto kept = std::move(*kept_);
+    kept_.reset();
+    if (const auto diff = fill(kept.first, kept.second, bad)) {
+      changes.insert(changes.end(), diff->begin(), diff->end());
+    }
+  } else if (kept_ && kept_->first <= applied_seq_) {
+    kept_.reset();  // the updates reached it: not needed
+  }
   return changes;
 }
 
@@ -37,9 +49,21 @@ std::optional<std::vector<VoxelChange>> MapFollower::snapshot(std::uint64_t seq,
   if (bad != nullptr) {
     *bad = false;
   }
-  if ((!gap_open_ && applied_seq_ != 0) || seq < gap_end_) {
-    return std::nullopt;  // nothing missing, or too old to fill the hole
+  if (!gap_open_ && applied_seq_ != 0) {
+    if (seq > applied_seq_ && (!kept_ || seq > kept_->first)) {
+      kept_.emplace(seq, bytes);
+    }
+    return std::nullopt;  // nothing missing (yet)
   }
+  if (seq < gap_end_) {
+    return std::nullopt;  // too old to fill the hole
+  }
+  return fill(seq, bytes, bad);
+}
+
+std::optional<std::vector<VoxelChange>> MapFollower::fill(std::uint64_t seq, const std::vector<std::uint8_t>& bytes,
+                                                          bool* bad)
+{
   VoxelMap map(resolution_);
   if (!map.applySnapshot(bytes)) {
     if (bad != nullptr) {
@@ -70,6 +94,9 @@ std::optional<std::vector<VoxelChange>> MapFollower::snapshot(std::uint64_t seq,
   applied_seq_ = std::max(applied_seq_, seq);
   gap_open_ = false;
   since_gap_.clear();
+  if (kept_ && kept_->first <= applied_seq_) {
+    kept_.reset();
+  }
   return diff;
 }
 

@@ -36,6 +36,14 @@ void expectSame(const std::vector<VoxelChange>& expected, const VoxelMap& held)
   test::expectSameClassification(expected, held.contents());
 }
 
+/// Updates 1..last of the flight, in order.
+void applyInOrder(const Flight& f, std::uint64_t last, MapFollower& follower)
+{
+  for (std::uint64_t seq = 1; seq <= last; ++seq) {
+    follower.update(seq, f.changes[seq - 1]);
+  }
+}
+
 TEST(MapFollower, InOrderUpdatesNeedNoSnapshot)
 {
   const Flight f(12);
@@ -93,6 +101,53 @@ TEST(MapFollower, AMissedUpdateIsFilledByANewerSnapshotAndTheDiffReachesAnOutsid
   }
   expectSame(f.classification.back(), follower.held());
   expectSame(f.classification.back(), downstream);
+}
+
+TEST(MapFollower, ASnapshotAheadOfTheUpdatesFillsTheGapThatOpensLater)
+{
+  // GIVEN a follower at update 6 (a restarted planner, say, whose update reader matched
+  // after update 7 was sent: 7 will never come)
+  const Flight f(12);
+  MapFollower follower(f.mapper.resolution());
+  applyInOrder(f, 6, follower);
+  // WHEN snapshot 8 arrives before update 8 shows the hole: kept, nothing changes yet
+  EXPECT_FALSE(follower.snapshot(8, f.snapshots[7]).has_value());
+  EXPECT_EQ(follower.appliedSeq(), 6U);
+  // THEN update 8 opens the gap and the kept snapshot fills it at once: what the consumer
+  // is given brings an outside copy to the mapper's map, and 9 on apply in order
+  VoxelMap outside(f.mapper.resolution());
+  for (std::uint64_t seq = 1; seq <= 6; ++seq) {
+    outside.apply(f.changes[seq - 1]);
+  }
+  outside.apply(follower.update(8, f.changes[7]));
+  EXPECT_FALSE(follower.gapOpen());
+  EXPECT_EQ(follower.gaps(), 1U);
+  expectSame(f.classification[7], follower.held());
+  expectSame(f.classification[7], outside);
+  for (std::uint64_t seq = 9; seq <= 12; ++seq) {
+    outside.apply(follower.update(seq, f.changes[seq - 1]));
+  }
+  EXPECT_FALSE(follower.gapOpen());
+  expectSame(f.classification.back(), follower.held());
+  expectSame(f.classification.back(), outside);
+}
+
+TEST(MapFollower, AKeptSnapshotIsDroppedWhenTheUpdatesReachIt)
+{
+  const Flight f(12);
+  MapFollower follower(f.mapper.resolution());
+  applyInOrder(f, 6, follower);
+  // Snapshot 8 ahead of updates 7 and 8, which then come in order: no gap, nothing filled;
+  // a gap opening later is not filled by the stale snapshot.
+  EXPECT_FALSE(follower.snapshot(8, f.snapshots[7]).has_value());
+  follower.update(7, f.changes[6]);
+  follower.update(8, f.changes[7]);
+  EXPECT_EQ(follower.gaps(), 0U);
+  follower.update(10, f.changes[9]);
+  EXPECT_TRUE(follower.gapOpen());
+  ASSERT_TRUE(follower.snapshot(9, f.snapshots[8]).has_value());  // the one that covers it
+  EXPECT_FALSE(follower.gapOpen());
+  expectSame(f.classification[9], follower.held());
 }
 
 TEST(MapFollower, KeepingFewUpdatesOnlyNewerSnapshotsFillTheGap)

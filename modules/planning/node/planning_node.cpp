@@ -170,8 +170,17 @@ void PlanningNode::applyUpdate(const msg::MapUpdate& update)
   for (const auto& c : update.changes()) {
     changes.push_back({VoxelIndex(c.ix(), c.iy(), c.iz()), static_cast<mapping::VoxelState>(fromMessage(c.state()))});
   }
-  for (const auto& c : follower_.update(update.update_seq(), std::move(changes))) {
+  const std::uint64_t gaps = follower_.gaps();
+  bool bad = false;
+  for (const auto& c : follower_.update(update.update_seq(), std::move(changes), &bad)) {
     planner_.updateVoxel(c.index, static_cast<Occupancy>(c.state));
+  }
+  if (bad) {
+    counters().errors++;
+    spdlog::warn("quad/mapping/octomap: a snapshot kept for a gap is not a map at {} m; ignored", config_.resolution);
+  } else if (follower_.gaps() > gaps && !follower_.gapOpen()) {
+    spdlog::info("planning: the gap before update {} filled from a snapshot that came ahead of it",
+                 update.update_seq());
   }
   // Covered by a snapshot or applied now, what it accounts for is in the map.
   frames_applied_ = std::max(frames_applied_, update.depth_frames());

@@ -24,12 +24,18 @@ public:
   explicit MapFollower(double resolution, std::size_t max_kept = 256);
 
   /// Update `seq` with its changes; returns the changes to apply downstream (none when the
-  /// update was already covered by a snapshot).
-  std::vector<VoxelChange> update(std::uint64_t seq, std::vector<VoxelChange> changes);
+  /// update was already covered by a snapshot). When it opens a gap that a kept snapshot
+  /// covers (see snapshot()), the gap is filled at once: the changes returned then bring
+  /// the consumer to that snapshot too (`bad` as for snapshot()).
+  std::vector<VoxelChange> update(std::uint64_t seq, std::vector<VoxelChange> changes, bool* bad = nullptr);
 
   /// A snapshot taken at update `seq`, as OctoMap bytes. When it fills the open gap (or
   /// nothing was received yet) returns the changes that bring what is held to it; nothing
   /// otherwise. Bytes that are not a map of this resolution: `bad` is set, nothing returned.
+  /// A snapshot newer than every update held, with no gap open, is kept undecoded (decoding
+  /// a large map costs the consumer seconds) until the updates reach it, or until a gap it
+  /// covers opens: a reader that matched mid-stream may never get the update or two sent
+  /// around its match, and the mapper's fresh snapshots may arrive before the hole shows.
   std::optional<std::vector<VoxelChange>> snapshot(std::uint64_t seq, const std::vector<std::uint8_t>& bytes,
                                                    bool* bad = nullptr);
 
@@ -44,6 +50,9 @@ public:
   const VoxelMap& held() const { return held_; }
 
 private:
+  /// Fills the open gap from a snapshot (see snapshot()); nothing when the bytes are bad.
+  std::optional<std::vector<VoxelChange>> fill(std::uint64_t seq, const std::vector<std::uint8_t>& bytes, bool* bad);
+
   double resolution_;
   std::size_t max_kept_;
   VoxelMap held_;
@@ -53,6 +62,7 @@ private:
   std::deque<std::pair<std::uint64_t, std::vector<VoxelChange>>> since_gap_;
   std::uint64_t gaps_ = 0;
   std::size_t replayed_ = 0;
+  std::optional<std::pair<std::uint64_t, std::vector<std::uint8_t>>> kept_;  // a snapshot ahead of the updates
 };
 
 }  // namespace quad::mapping

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <algorithm>
 #include <fstream>
@@ -77,6 +78,85 @@ TEST(Launch, ThreeHostManifestFliesTheMissionAcrossNetworkNamespaces)
     GTEST_SKIP() << "network namespaces need root";
   }
   flyMission("three_hosts.yaml", 181, {"--subnet", "10.181.0"});
+}
+
+/// Runs a shell command line as root; its exit status.
+int sh(const std::string& line)
+{
+  return std::system(line.c_str());
+}
+
+/// Whether `quad topic echo` in network namespace `ns` gets a vehicle state on `domain`
+/// within 8 s; its output in `out`.
+bool echoesAState(const std::string& ns, int domain, std::string* out)
+{
+  ChildProcess echo({"/usr/bin/env", "ip", "netns", "exec", ns, QUAD_TOOL, "topic", "echo", "quad/sim/state", "--domain",
+                     std::to_string(domain), "-n", "1", "--timeout", "8"},
+                    {{"QUAD_TRANSPORT", "udp"}});
+  const auto status = echo.wait(30s);
+  *out = echo.output();
+  return status && *status == 0;
+}
+
+TEST(Launch, TheFirewallAdmitsTheManifestsHostsAndDropsAnyoneElseOnTheLink)
+{
+  if (::geteuid() != 0) {
+    GTEST_SKIP() << "network namespaces and firewall rules need root";
+  }
+  // The plant alone on one namespace host, a second manifest host beside it, and a rogue
+  // namespace on the same bridge that the manifest does not name. Without the firewall the
+  // rogue reads the vehicle state; with it, it gets nothing while the manifest's host does.
+  for (const bool firewall : {false, true}) {
+    const int domain = firewall ? 198 : 197;
+    const std::string subnet = firewall ? "10.198.0" : "10.197.0";
+    const fs::path dir = quad::test::scratchDir("quad_launch_firewall_" + std::to_string(domain));
+    const std::string root = QUAD_SOURCE_DIR;
+    const auto manifest = writeManifest(dir, "mode: realtime\ntransport: udp\nnetwork: {interfaces: hosts, firewall: " +
+                                                 std::string(firewall ? "true" : "false") + R"(}
+hosts:
+  sim: {type: netns}
+  ops: {type: netns}
+modules:
+  plant:
+    host: sim
+    config: )" + root + R"(/configs/plant.yaml
+    set: {world: )" + root + R"(/configs/worlds/demo.yaml, sim.mode: realtime, sim.duration: 120.0}
+)");
+    ChildProcess launch({QUAD_TOOL, "launch", manifest.string(), "--domain", std::to_string(domain), "--subnet", subnet,
+                         "--log-dir", (dir / "run").string()});
+    ASSERT_TRUE(launch.waitForOutput("started plant on sim", 30s)) << launch.output();
+    const std::smatch m = [&] {
+      std::smatch found;
+      const std::string& out = launch.output();
+      std::regex_search(out, found, std::regex(R"(network namespace quad-([0-9a-f]+)-sim at)"));
+      return found;
+    }();
+    ASSERT_EQ(m.size(), 2U) << launch.output();
+    const std::string run = m[1].str();
+    EXPECT_EQ(launch.output().find("firewall: UDP") != std::string::npos, firewall) << launch.output();
+    const std::string rogue = "qrogue" + std::to_string(::getpid());
+    const std::string veth = "qr" + std::to_string(::getpid());
+    ASSERT_EQ(sh("ip netns add " + rogue + " && ip link add " + veth + "a type veth peer name " + veth + "b && ip link set " +
+                 veth + "b netns " + rogue + " && ip link set " + veth + "a master qb" + run + " up && ip -n " + rogue +
+                 " addr add " + subnet + ".200/24 dev " + veth + "b && ip -n " + rogue + " link set " + veth +
+                 "b up && ip -n " + rogue + " link set lo up && ip -n " + rogue + " route add 224.0.0.0/4 dev " + veth + "b"),
+              0);
+    std::string out;
+    const bool rogue_reads = echoesAState(rogue, domain, &out);
+    EXPECT_EQ(rogue_reads, !firewall) << out;
+    if (firewall) {
+      EXPECT_NE(out.find("0 of 1 sample(s)"), std::string::npos) << out;
+      EXPECT_TRUE(echoesAState("quad-" + run + "-ops", domain, &out)) << out;  // a manifest host reads
+    }
+    sh("ip netns delete " + rogue);
+    launch.signal(SIGTERM);
+    const auto status = launch.wait(30s);
+    ASSERT_TRUE(status) << launch.output();
+    EXPECT_EQ(*status, 0) << launch.output();
+    if (!::testing::Test::HasFailure()) {
+      fs::remove_all(dir);
+    }
+  }
 }
 
 /// The pid a launcher's output gives for the `n`-th start (from 1) of `module`; 0 if none yet.

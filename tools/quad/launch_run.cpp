@@ -51,6 +51,9 @@ std::map<std::string, std::string> runEnvironment(const Manifest& m, int domain,
   if (!m.security_dir.empty()) {
     env["QUAD_SECURITY_DIR"] = m.security_dir.string();
   }
+  if (m.restrict_interfaces) {
+    env["QUAD_INTERFACES"] = net.interfaces("");  // the launcher's side; each module gets its host's
+  }
   if (m.discovery == launch::Discovery::kInitialPeers) {
     std::set<std::string> peers;
     for (const auto& h : m.hosts) {
@@ -103,6 +106,9 @@ const Module& LaunchRun::module(const std::string& name) const
 void LaunchRun::startModule(const Module& mod)
 {
   std::map<std::string, std::string> env = env_;
+  if (m_.restrict_interfaces) {
+    env["QUAD_INTERFACES"] = net_->interfaces(mod.host);
+  }
   for (const auto& [k, v] : mod.environment) {
     env[k] = v;
   }
@@ -292,6 +298,16 @@ int LaunchRun::execute(RunExtension* extension)
   }
   try {
     net_ = std::make_unique<launch::HostNetwork>(m_, fmt::format("{:x}", getpid()));
+    if (m_.firewall) {
+      std::vector<int> extra;
+      if (m_.discovery == launch::Discovery::kServer) {
+        extra.push_back(m_.discovery_port);
+      }
+      net_->installFirewall(domain_, extra);
+      const auto ports = launch::ddsPorts(domain_);
+      say(fmt::format("firewall: UDP {}-{}{} on the netns and ssh hosts admits the manifest's hosts only", ports.first,
+                      ports.last, extra.empty() ? "" : fmt::format(" and {}", extra.front())));
+    }
   } catch (const std::exception& e) {
     say(std::string("cannot set up the hosts: ") + e.what());
     return 1;

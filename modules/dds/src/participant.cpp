@@ -33,13 +33,16 @@ constexpr int kMaxDomainId = 232;  // RTPS port mapping limit with the default p
 constexpr std::uint32_t kMinUdpMessage = 1200;   // room for an RTPS header and a fragment
 constexpr std::uint32_t kMaxUdpMessage = 65500;  // Fast DDS's own limit
 
-/// UDPv4 for quad: with the datagram size `max_message` when it is set.
-std::shared_ptr<eprosima::fastdds::rtps::UDPv4TransportDescriptor> udpDescriptor(std::uint32_t max_message)
+/// UDPv4 for quad: with the datagram size `max_message` when it is set, on `interfaces`
+/// only when there are any.
+std::shared_ptr<eprosima::fastdds::rtps::UDPv4TransportDescriptor> udpDescriptor(
+    std::uint32_t max_message, const std::vector<std::string>& interfaces)
 {
   auto d = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
   if (max_message != 0) {
     d->maxMessageSize = max_message;
   }
+  d->interfaceWhiteList = interfaces;
   return d;
 }
 
@@ -196,6 +199,19 @@ ParticipantOptions optionsFromEnvironment(std::string name)
       }
     }
   }
+  if (const char* v = env("QUAD_INTERFACES")) {
+    std::stringstream list(v);
+    for (std::string address; std::getline(list, address, ',');) {
+      if (address.empty()) {
+        continue;
+      }
+      if (address.find(':') != std::string::npos) {
+        throw std::invalid_argument("QUAD_INTERFACES: " + address + ": expected an IPv4 address, without a port");
+      }
+      parseLocator(address, "QUAD_INTERFACES", false);
+      options.interfaces.push_back(address);
+    }
+  }
   if (const char* v = env("QUAD_DISCOVERY_SERVER")) {
     parseLocator(v, "QUAD_DISCOVERY_SERVER", true);
     options.discovery_server = v;
@@ -309,6 +325,10 @@ Participant::Participant(ParticipantOptions options)
     throw std::invalid_argument("participant '" + options_.name + "': a UDP datagram size of " +
                                 std::to_string(options_.udp_max_message) + " bytes needs the udp transport");
   }
+  if (!options_.interfaces.empty() && options_.transport == Transport::kSharedMemory) {
+    throw std::invalid_argument("participant '" + options_.name + "': interfaces to use (" +
+                                options_.interfaces.front() + ", ...) need UDP, and the transport is shared memory");
+  }
   if (options_.fault_layer) {
     if (options_.transport == Transport::kSharedMemory) {
       throw std::invalid_argument("participant '" + options_.name +
@@ -320,21 +340,21 @@ Participant::Participant(ParticipantOptions options)
     datagram_faults_ = std::make_shared<DatagramFaults>();
     qos.transport().use_builtin_transports = false;
     qos.transport().user_transports.push_back(
-        checked(faultyUdpTransport(datagram_faults_, udpDescriptor(options_.udp_max_message))));
+        checked(faultyUdpTransport(datagram_faults_, udpDescriptor(options_.udp_max_message, options_.interfaces))));
   } else {
     switch (options_.transport) {
       case Transport::kDefault:
-        if (options_.validate_datagrams) {
+        if (options_.validate_datagrams || !options_.interfaces.empty()) {
           // Fast DDS's builtin pair, with the UDP one behind the check.
           qos.transport().use_builtin_transports = false;
           qos.transport().user_transports.push_back(
               std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
-          qos.transport().user_transports.push_back(checked(udpDescriptor(0)));
+          qos.transport().user_transports.push_back(checked(udpDescriptor(0, options_.interfaces)));
         }
         break;
       case Transport::kUdp:
         qos.transport().use_builtin_transports = false;
-        qos.transport().user_transports.push_back(checked(udpDescriptor(options_.udp_max_message)));
+        qos.transport().user_transports.push_back(checked(udpDescriptor(options_.udp_max_message, options_.interfaces)));
         break;
       case Transport::kSharedMemory:
         qos.transport().use_builtin_transports = false;

@@ -15,7 +15,8 @@ protected:
   static void clear()
   {
     for (const char* v : {"QUAD_DOMAIN_ID", "QUAD_TRANSPORT", "QUAD_INITIAL_PEERS",
-                          "QUAD_DISCOVERY_SERVER", "QUAD_VEHICLE_ID", "QUAD_FAULT_LAYER", "QUAD_UDP_MAX_MESSAGE"}) {
+                          "QUAD_DISCOVERY_SERVER", "QUAD_VEHICLE_ID", "QUAD_FAULT_LAYER", "QUAD_UDP_MAX_MESSAGE",
+                          "QUAD_INTERFACES"}) {
       unsetenv(v);
     }
   }
@@ -48,7 +49,9 @@ TEST_F(EnvironmentOptions, ValidValuesAreTaken)
   setenv("QUAD_VEHICLE_ID", "2", 1);
   setenv("QUAD_FAULT_LAYER", "1", 1);
   setenv("QUAD_UDP_MAX_MESSAGE", "1400", 1);
+  setenv("QUAD_INTERFACES", "10.0.0.3,192.168.1.7", 1);
   const auto o = optionsFromEnvironment("test");
+  EXPECT_EQ(o.interfaces, (std::vector<std::string>{"10.0.0.3", "192.168.1.7"}));
   EXPECT_TRUE(o.fault_layer);
   EXPECT_EQ(o.udp_max_message, 1400U);
   EXPECT_EQ(o.domain_id, 42);
@@ -82,6 +85,11 @@ TEST_F(EnvironmentOptions, BadValuesNameTheVariableAndTheValue)
   EXPECT_EQ(errorOf(), "QUAD_DISCOVERY_SERVER: 10.0.0.9: expected IP:PORT");
   setenv("QUAD_DISCOVERY_SERVER", "10.0.0.9:99999", 1);
   EXPECT_EQ(errorOf(), "QUAD_DISCOVERY_SERVER: 99999: expected an integer in [1, 65535]");
+  clear();
+  setenv("QUAD_INTERFACES", "10.0.0.3,eth0", 1);
+  EXPECT_EQ(errorOf(), "QUAD_INTERFACES: eth0: not an IPv4 address");
+  setenv("QUAD_INTERFACES", "10.0.0.3:7400", 1);
+  EXPECT_EQ(errorOf(), "QUAD_INTERFACES: 10.0.0.3:7400: expected an IPv4 address, without a port");
 }
 
 TEST_F(EnvironmentOptions, MissingQosFileIsRefusedNamingIt)

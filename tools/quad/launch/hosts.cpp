@@ -2,6 +2,7 @@
 
 #include <signal.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <optional>
 #include <sstream>
@@ -66,7 +67,7 @@ void removeAbandonedNetworks()
 
 }  // namespace
 
-HostNetwork::HostNetwork(const Manifest& manifest, std::string run_id) : manifest_(manifest)
+HostNetwork::HostNetwork(const Manifest& manifest, std::string run_id) : manifest_(manifest), run_id_(run_id)
 {
   int next = 2;
   for (const auto& h : manifest.hosts) {
@@ -132,6 +133,13 @@ HostNetwork::~HostNetwork() { teardown(); }
 
 void HostNetwork::teardown() noexcept
 {
+  for (const auto& argv : firewall_removal_) {
+    try {
+      process::runChecked(argv);
+    } catch (const std::exception&) {
+    }
+  }
+  firewall_removal_.clear();
   for (const auto& [host, ns] : namespaces_) {
     try {
       process::runChecked({"ip", "netns", "delete", ns});  // takes its veth end, and so the pair, with it
@@ -185,6 +193,61 @@ void HostNetwork::healLinkFault(const LinkFault& fault) const
   }
   if (first) {
     throw *first;
+  }
+}
+
+std::string HostNetwork::interfaces(const std::string& host) const
+{
+  const auto it = std::find_if(manifest_.hosts.begin(), manifest_.hosts.end(),
+                               [&](const Host& h) { return host.empty() ? h.kind == HostKind::kLocal : h.name == host; });
+  if (it == manifest_.hosts.end() || it->interfaces.empty()) {
+    return it == manifest_.hosts.end() ? (manifest_.usesNamespaces() ? manifest_.subnet + ".1" : "127.0.0.1")
+                                       : address(it->name);
+  }
+  std::string list;
+  for (const auto& a : it->interfaces) {
+    list += (list.empty() ? "" : ",") + a;
+  }
+  return list;
+}
+
+std::vector<std::string> HostNetwork::onHost(const Host& host, std::vector<std::string> argv) const
+{
+  return host.kind == HostKind::kNetns || host.kind == HostKind::kSsh ? command(host, std::move(argv), {}) : argv;
+}
+
+void HostNetwork::installFirewall(int domain, const std::vector<int>& extra_ports)
+{
+  // Every address a manifest host may send from (the run's and the ones it names), and the
+  // launcher's own side (its observer and recorder).
+  std::vector<std::string> admitted;
+  std::istringstream own(interfaces(""));
+  for (std::string a; std::getline(own, a, ',');) {
+    admitted.push_back(a);
+  }
+  for (const auto& h : manifest_.hosts) {
+    admitted.push_back(address(h.name));
+    admitted.insert(admitted.end(), h.interfaces.begin(), h.interfaces.end());
+  }
+  std::sort(admitted.begin(), admitted.end());
+  admitted.erase(std::unique(admitted.begin(), admitted.end()), admitted.end());
+  for (const auto& h : manifest_.hosts) {
+    if (h.kind == HostKind::kLocal) {
+      continue;
+    }
+    const FirewallRules rules = firewallRules("QUAD-" + run_id_, ddsPorts(domain), extra_ports, admitted);
+    for (const auto& argv : rules.install) {
+      try {
+        process::runChecked(onHost(h, argv));
+      } catch (const std::runtime_error& e) {
+        throw std::runtime_error("firewall on host " + h.name + ": " + e.what());
+      }
+    }
+    if (h.kind == HostKind::kSsh) {
+      for (const auto& argv : rules.remove) {
+        firewall_removal_.push_back(onHost(h, argv));
+      }
+    }
   }
 }
 

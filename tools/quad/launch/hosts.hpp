@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "firewall.hpp"
 #include "link_faults.hpp"
 #include "manifest.hpp"
 
@@ -27,6 +28,14 @@ public:
   /// The address other hosts reach `host` at: its veth address, its ssh address, or for
   /// the local machine the bridge address (when there are namespaces) or 127.0.0.1.
   std::string address(const std::string& host) const;
+  /// The addresses DDS may use on `host` (QUAD_INTERFACES, comma-separated): the manifest's
+  /// `interfaces` for it, else its address; "" for the launcher's own (this machine's) side
+  /// when no host of the manifest is local: the bridge address, or 127.0.0.1.
+  std::string interfaces(const std::string& host) const;
+  /// Installs the run's firewall (firewall.hpp) on every netns and ssh host: the domain's
+  /// DDS ports, and `extra_ports`, admit only the manifest's hosts. Removed at teardown.
+  /// Throws std::runtime_error naming the host and the command that failed.
+  void installFirewall(int domain, const std::vector<int>& extra_ports);
   /// The namespace name of a netns host ("" for the others).
   std::string namespaceOf(const std::string& host) const;
 
@@ -45,8 +54,13 @@ private:
   void teardown() noexcept;
   LinkCommands commandsFor(const LinkFault& fault) const;
 
+  /// The prefix that runs a command on `host` as root there (netns: ip netns exec).
+  std::vector<std::string> onHost(const Host& host, std::vector<std::string> argv) const;
+
   const Manifest& manifest_;
+  std::string run_id_;
   std::string bridge_;
+  std::vector<std::vector<std::string>> firewall_removal_;  // for ssh hosts (namespaces go whole)
   std::map<std::string, std::string> namespaces_;  // host -> netns name
   std::map<std::string, std::string> links_;       // host -> its veth end in its namespace
   std::map<std::string, std::string> addresses_;

@@ -1,5 +1,7 @@
 #include "manifest.hpp"
 
+#include <arpa/inet.h>
+
 #include <algorithm>
 #include <regex>
 #include <set>
@@ -158,6 +160,12 @@ std::string expand(const std::string& text, const std::map<std::string, std::str
   return out + text.substr(last);
 }
 
+bool isIpv4(const std::string& text)
+{
+  in_addr addr{};
+  return inet_pton(AF_INET, text.c_str(), &addr) == 1;
+}
+
 bool validName(const std::string& name)
 {
   static const std::regex re("[a-z][a-z0-9_]{0,14}");
@@ -186,7 +194,7 @@ void readHosts(YAML::Node node, Reader& r, Manifest& m)
       r.problem(key, spec, "expected a map with 'type'");
       continue;
     }
-    r.onlyKeys(spec, key + ".", {"type", "address", "port", "root", "options"});
+    r.onlyKeys(spec, key + ".", {"type", "address", "port", "root", "options", "interfaces"});
     const auto type = r.choice(spec["type"], key + ".type", "local", {"local", "netns", "ssh"});
     if (type == "netns") {
       h.kind = HostKind::kNetns;
@@ -197,6 +205,12 @@ void readHosts(YAML::Node node, Reader& r, Manifest& m)
       h.root = r.text(spec["root"], key + ".root", std::string()).value_or("");
       h.ssh_options = r.strings(spec["options"], key + ".options");
     }
+    h.interfaces = r.strings(spec["interfaces"], key + ".interfaces");
+    for (std::size_t i = 0; i < h.interfaces.size(); ++i) {
+      if (!isIpv4(h.interfaces[i])) {
+        r.problem(key + ".interfaces[" + std::to_string(i) + "]", spec["interfaces"][i], "not an IPv4 address");
+      }
+    }
     if (h.kind != HostKind::kSsh) {
       for (const char* k : {"address", "port", "root", "options"}) {
         if (spec[k]) {
@@ -205,6 +219,38 @@ void readHosts(YAML::Node node, Reader& r, Manifest& m)
       }
     }
     m.hosts.push_back(h);
+  }
+}
+
+/// `network:` what DDS may use on each host, and the firewall quad launch installs.
+void readNetwork(const YAML::Node& node, Reader& r, Manifest& m)
+{
+  if (!node) {
+    return;
+  }
+  if (!node.IsMap()) {
+    r.problem("network", node, "expected a map with interfaces and/or firewall");
+    return;
+  }
+  r.onlyKeys(node, "network.", {"interfaces", "firewall"});
+  m.restrict_interfaces = r.choice(node["interfaces"], "network.interfaces", "any", {"any", "hosts"}) == "hosts";
+  m.firewall = r.flag(node["firewall"], "network.firewall", false).value_or(false);
+  if (m.restrict_interfaces) {
+    if (m.transport == "shm") {
+      r.problem("network.interfaces", node["interfaces"], "restricts UDP, and the transport is shm");
+    }
+    for (const auto& h : m.hosts) {
+      const std::string address = h.address.substr(h.address.find('@') + 1);
+      if (h.kind == HostKind::kSsh && h.interfaces.empty() && !isIpv4(address)) {
+        r.problem("hosts." + h.name + ".interfaces", node["interfaces"],
+                  "network.interfaces: hosts needs this ssh host's IPv4 addresses (its address " + h.address +
+                      " is a name)");
+      }
+    }
+  }
+  if (m.firewall && std::none_of(m.hosts.begin(), m.hosts.end(), [](const Host& h) { return h.kind != HostKind::kLocal; })) {
+    r.problem("network.firewall", node["firewall"],
+              "no netns or ssh host to install it on (quad launch leaves this machine's own firewall alone)");
   }
 }
 
@@ -302,7 +348,7 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
     r.throwIfAny();
   }
   r.onlyKeys(root, "", {"name", "domain", "transport", "discovery", "subnet", "world", "mode", "grace", "env",
-                        "security", "hosts", "modules", "mission"});
+                        "security", "network", "hosts", "modules", "mission"});
   m.name = r.text(root["name"], "name", origin.stem().string()).value_or("run");
   if (overrides.domain) {
     m.domain = overrides.domain;
@@ -334,6 +380,8 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
       r.problem("discovery.host", d["host"], "only a discovery server has a host");
     }
   }
+
+  readNetwork(root["network"], r, m);
 
   // Variables, then modules.
   if (overrides.world) {

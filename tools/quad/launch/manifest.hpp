@@ -23,6 +23,9 @@ struct Host {
   int ssh_port = 22;
   std::string root;     ///< ssh: the project's checkout on that machine; empty = same as here
   std::vector<std::string> ssh_options;  ///< ssh: more ssh arguments (-i KEY, -o ...)
+  /// This host's IPv4 addresses DDS may use with `network.interfaces: hosts`; empty: the
+  /// address the run reaches it at.
+  std::vector<std::string> interfaces;
 };
 
 struct Module {
@@ -64,6 +67,12 @@ struct Manifest {
   /// DDS Security for every process of the run (QUAD_SECURITY_DIR): the folder of
   /// `quad security init`; empty: off.
   std::filesystem::path security_dir;
+  /// `network.interfaces: hosts`: every process's DDS only on its host's addresses
+  /// (QUAD_INTERFACES), not on every interface it has.
+  bool restrict_interfaces = false;
+  /// `network.firewall`: on each netns and ssh host, firewall rules admit the domain's DDS
+  /// ports only from the manifest's hosts (firewall.hpp).
+  bool firewall = false;
   std::map<std::string, std::string> environment;
   std::vector<Host> hosts;          ///< in the order written
   std::vector<Module> modules;      ///< start order

@@ -2,6 +2,7 @@
 // opposite, and a link taken down comes back with the multicast route DDS discovery needs.
 #include <gtest/gtest.h>
 
+#include "argv_text.hpp"
 #include "launch/link_faults.hpp"
 
 namespace quad::launch {
@@ -9,14 +10,7 @@ namespace {
 
 using Argv = std::vector<std::string>;
 
-std::string joined(const Argv& argv)
-{
-  std::string out;
-  for (const auto& a : argv) {
-    out += (out.empty() ? "" : " ") + a;
-  }
-  return out;
-}
+using test::joined;
 
 TEST(LinkFaults, LossDropsAtRandomBothWaysOnTheLinkOnlyAndHealsByDeletingTheSameRules)
 {

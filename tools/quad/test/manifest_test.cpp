@@ -152,6 +152,43 @@ TEST_F(ManifestTest, SecurityNamesAnInitialisedFolder)
   EXPECT_EQ(m.security_dir.lexically_normal(), (root_ / "keys").lexically_normal());
 }
 
+TEST_F(ManifestTest, NetworkRestrictionsAndFirewallAreReadAndChecked)
+{
+  const Manifest m = parse(R"(
+network: {interfaces: hosts, firewall: true}
+hosts:
+  a: {type: netns}
+  b: {type: ssh, address: pilot@192.168.1.20}
+  c: {type: local, interfaces: [192.168.1.10]}
+modules: {control: {host: a}}
+)");
+  EXPECT_TRUE(m.restrict_interfaces);
+  EXPECT_TRUE(m.firewall);
+  EXPECT_EQ(m.host("c").interfaces, std::vector<std::string>{"192.168.1.10"});
+  EXPECT_FALSE(parse("modules: {control: {}}\n").restrict_interfaces);
+
+  const auto p = problems(R"(
+network: {interfaces: some, firewall: yes}
+hosts: {a: {type: local, interfaces: [eth0]}}
+modules: {control: {}}
+)");
+  EXPECT_EQ(p.size(), 3U);
+  for (const char* key : {":network.interfaces: some: expected one of: any, hosts", ":network.firewall: yes: expected bool",
+                          ":hosts.a.interfaces[0]: eth0: not an IPv4 address"}) {
+    EXPECT_TRUE(std::any_of(p.begin(), p.end(), [&](const std::string& s) { return s.find(key) != std::string::npos; }))
+        << key;
+  }
+  // An ssh host known by name needs its addresses; a firewall needs a host to go on.
+  auto q = problems("network: {interfaces: hosts}\nhosts: {b: {type: ssh, address: pilot@uav1}}\nmodules: {control: {host: b}}\n");
+  ASSERT_EQ(q.size(), 1U);
+  EXPECT_NE(q[0].find(":hosts.b.interfaces: hosts: network.interfaces: hosts needs this ssh host's IPv4 addresses"),
+            std::string::npos)
+      << q[0];
+  q = problems("network: {firewall: true}\nmodules: {control: {}}\n");
+  ASSERT_EQ(q.size(), 1U);
+  EXPECT_NE(q[0].find(":network.firewall: true: no netns or ssh host to install it on"), std::string::npos) << q[0];
+}
+
 TEST_F(ManifestTest, AMissionNeedsAWorld)
 {
   const auto p = problems("modules: {control: {}}\nmission: {tolerance: 0.5}\n");

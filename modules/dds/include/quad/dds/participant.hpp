@@ -34,6 +34,9 @@ struct ParticipantOptions {
   Transport transport = Transport::kDefault;
   std::vector<std::string> initial_peers;  ///< "IP" or "IP:PORT" unicast discovery peers
   std::string discovery_server;            ///< "IP:PORT" of a Fast DDS discovery server (id 0)
+  /// UDP on these IPv4 addresses of this host only (Fast DDS's interface whitelist: sockets
+  /// bound to them, nothing sent or received on other interfaces); empty: every interface.
+  std::vector<std::string> interfaces;
   /// With a discovery server: learn every endpoint of the domain (a SUPER_CLIENT), not only
   /// those matching this participant's own. Tools that watch the whole graph set it.
   bool observe_all = false;

@@ -1,11 +1,12 @@
 // quad_datagram_fuzzer: sends structure-aware hostile RTPS datagrams (datagram_mutator.hpp)
-// to the participants of a domain on this host, to see that none of them ends.
+// to the participants of a domain on a host, to see that none of them ends.
 //
-//   quad_datagram_fuzzer --domain D [--count N] [--rate R] [--seed S] [--participants P]
+//   quad_datagram_fuzzer --domain D [--host IP] [--count N] [--rate R] [--seed S] [--participants P]
 //
-// Targets the unicast metatraffic and user ports of participant ids 0..P-1 on 127.0.0.1
-// (RTPS port mapping: 7400 + 250 * D + 10 / 11 + 2 * id) and the domain's discovery
-// multicast port on 239.255.0.1, in turn. R datagrams a second (0: as fast as it can).
+// Targets the unicast metatraffic and user ports of participant ids 0..P-1 on the host
+// (127.0.0.1 unless --host names another; RTPS port mapping: 7400 + 250 * D + 10 / 11 +
+// 2 * id) and the domain's discovery multicast port on 239.255.0.1, in turn. R datagrams a
+// second (0: as fast as it can).
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
@@ -27,6 +28,7 @@ int main(int argc, char** argv)
   double rate = 0.0;
   unsigned long long seed = 1;
   long participants = 8;
+  in_addr host{htonl(INADDR_LOOPBACK)};
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     const char* v = argv[i + 1];
@@ -38,6 +40,11 @@ int main(int argc, char** argv)
       rate = std::strtod(v, nullptr);
     } else if (a == "--seed") {
       seed = std::strtoull(v, nullptr, 10);
+    } else if (a == "--host") {
+      if (inet_pton(AF_INET, v, &host) != 1) {
+        std::fprintf(stderr, "quad_datagram_fuzzer: --host %s: not an IPv4 address\n", v);
+        return 2;
+      }
     } else if (a == "--participants") {
       participants = std::strtol(v, nullptr, 10);
     } else {
@@ -46,7 +53,7 @@ int main(int argc, char** argv)
     }
   }
   if (domain < 0 || domain > 232 || participants < 1 || participants > 100) {
-    std::fprintf(stderr, "usage: quad_datagram_fuzzer --domain 0..232 [--count N] [--rate R] [--seed S] "
+    std::fprintf(stderr, "usage: quad_datagram_fuzzer --domain 0..232 [--host IP] [--count N] [--rate R] [--seed S] "
                          "[--participants 1..100]\n");
     return 2;
   }
@@ -60,8 +67,8 @@ int main(int argc, char** argv)
   };
   const long base = 7400 + 250 * domain;
   for (long id = 0; id < participants; ++id) {
-    add(INADDR_LOOPBACK, base + 10 + 2 * id);
-    add(INADDR_LOOPBACK, base + 11 + 2 * id);
+    add(ntohl(host.s_addr), base + 10 + 2 * id);
+    add(ntohl(host.s_addr), base + 11 + 2 * id);
   }
   add(0xefff0001, base);  // 239.255.0.1: discovery
   const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);

@@ -42,6 +42,17 @@ std::string runFolderName(const std::string& name)
 
 namespace {
 
+/// "a,b,c": a list as the QUAD_* variables take it.
+template <class Strings>
+std::string commaList(const Strings& items)
+{
+  std::string list;
+  for (const auto& item : items) {
+    list += (list.empty() ? "" : ",") + item;
+  }
+  return list;
+}
+
 /// What a run's processes get in their environment, before a module's own entries.
 std::map<std::string, std::string> runEnvironment(const Manifest& m, int domain, const launch::HostNetwork& net)
 {
@@ -52,18 +63,14 @@ std::map<std::string, std::string> runEnvironment(const Manifest& m, int domain,
     env["QUAD_SECURITY_DIR"] = m.security_dir.string();
   }
   if (m.restrict_interfaces) {
-    env["QUAD_INTERFACES"] = net.interfaces("");  // the launcher's side; each module gets its host's
+    env["QUAD_INTERFACES"] = commaList(net.interfaces(""));  // the launcher's side; each module gets its host's
   }
   if (m.discovery == launch::Discovery::kInitialPeers) {
     std::set<std::string> peers;
     for (const auto& h : m.hosts) {
       peers.insert(net.address(h.name));
     }
-    std::string list;
-    for (const auto& p : peers) {
-      list += (list.empty() ? "" : ",") + p;
-    }
-    env["QUAD_INITIAL_PEERS"] = list;
+    env["QUAD_INITIAL_PEERS"] = commaList(peers);
   } else if (m.discovery == launch::Discovery::kServer) {
     env["QUAD_DISCOVERY_SERVER"] = net.address(m.discovery_host) + ":" + std::to_string(m.discovery_port);
   }
@@ -107,7 +114,7 @@ void LaunchRun::startModule(const Module& mod)
 {
   std::map<std::string, std::string> env = env_;
   if (m_.restrict_interfaces) {
-    env["QUAD_INTERFACES"] = net_->interfaces(mod.host);
+    env["QUAD_INTERFACES"] = commaList(net_->interfaces(mod.host));
   }
   for (const auto& [k, v] : mod.environment) {
     env[k] = v;

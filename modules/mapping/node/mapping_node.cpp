@@ -133,8 +133,8 @@ void MappingNode::integrate(const msg::PointCloud& cloud)
   stats.rejected_clouds(rejected_);
   stats.skipped_clouds(skipped_);
   stats_.write(stats);
-  if (cloud.header().stamp_ns() >= next_snapshot_ns_ || match_snapshots_ > 0) {
-    match_snapshots_ = match_snapshots_ > 0 ? match_snapshots_ - 1 : 0;
+  if (match_snapshots_ > 0 || cloud.header().stamp_ns() >= next_snapshot_ns_) {
+    match_snapshots_ = std::max(0, match_snapshots_ - 1);
     const auto bytes = mapper_.snapshot();
     if (bytes.size() <= 4194304) {
       msg::MapSnapshot snapshot;

@@ -196,19 +196,14 @@ void HostNetwork::healLinkFault(const LinkFault& fault) const
   }
 }
 
-std::string HostNetwork::interfaces(const std::string& host) const
+std::vector<std::string> HostNetwork::interfaces(const std::string& host) const
 {
   const auto it = std::find_if(manifest_.hosts.begin(), manifest_.hosts.end(),
                                [&](const Host& h) { return host.empty() ? h.kind == HostKind::kLocal : h.name == host; });
-  if (it == manifest_.hosts.end() || it->interfaces.empty()) {
-    return it == manifest_.hosts.end() ? (manifest_.usesNamespaces() ? manifest_.subnet + ".1" : "127.0.0.1")
-                                       : address(it->name);
+  if (it == manifest_.hosts.end()) {
+    return {manifest_.usesNamespaces() ? manifest_.subnet + ".1" : "127.0.0.1"};
   }
-  std::string list;
-  for (const auto& a : it->interfaces) {
-    list += (list.empty() ? "" : ",") + a;
-  }
-  return list;
+  return it->interfaces.empty() ? std::vector<std::string>{address(it->name)} : it->interfaces;
 }
 
 std::vector<std::string> HostNetwork::onHost(const Host& host, std::vector<std::string> argv) const
@@ -220,11 +215,7 @@ void HostNetwork::installFirewall(int domain, const std::vector<int>& extra_port
 {
   // Every address a manifest host may send from (the run's and the ones it names), and the
   // launcher's own side (its observer and recorder).
-  std::vector<std::string> admitted;
-  std::istringstream own(interfaces(""));
-  for (std::string a; std::getline(own, a, ',');) {
-    admitted.push_back(a);
-  }
+  std::vector<std::string> admitted = interfaces("");
   for (const auto& h : manifest_.hosts) {
     admitted.push_back(address(h.name));
     admitted.insert(admitted.end(), h.interfaces.begin(), h.interfaces.end());

@@ -28,10 +28,10 @@ public:
   /// The address other hosts reach `host` at: its veth address, its ssh address, or for
   /// the local machine the bridge address (when there are namespaces) or 127.0.0.1.
   std::string address(const std::string& host) const;
-  /// The addresses DDS may use on `host` (QUAD_INTERFACES, comma-separated): the manifest's
-  /// `interfaces` for it, else its address; "" for the launcher's own (this machine's) side
-  /// when no host of the manifest is local: the bridge address, or 127.0.0.1.
-  std::string interfaces(const std::string& host) const;
+  /// The addresses DDS may use on `host` (QUAD_INTERFACES): the manifest's `interfaces` for
+  /// it, else its address; "" for the launcher's own (this machine's) side: a local host's,
+  /// else the bridge address, or 127.0.0.1.
+  std::vector<std::string> interfaces(const std::string& host) const;
   /// Installs the run's firewall (firewall.hpp) on every netns and ssh host: the domain's
   /// DDS ports, and `extra_ports`, admit only the manifest's hosts. Removed at teardown.
   /// Throws std::runtime_error naming the host and the command that failed.

@@ -19,10 +19,13 @@ quad::vehicle::VehicleParams x500()
   return v;
 }
 
+/// Argument 0: the quaternion attitude error (the default); 1: Lee 2010's sin θ form.
 void BM_GeometricControllerAndMixer(benchmark::State& state)
 {
   const auto v = x500();
-  GeometricController controller(v.mass, v.inertia, GeometricGains{});
+  GeometricGains gains;
+  gains.attitude_error = state.range(0) == 0 ? AttitudeError::kQuaternion : AttitudeError::kLee2010;
+  GeometricController controller(v.mass, v.inertia, gains);
   const Mixer mixer(v);
   VehicleState s;
   s.p_W = {0.1, -0.2, 1.9};
@@ -66,7 +69,7 @@ void BM_FlightControllerTickInMission(benchmark::State& state)
   state.counters["mission"] = fc.mode() == Mode::kMission ? 1 : 0;
 }
 
-BENCHMARK(BM_GeometricControllerAndMixer);
+BENCHMARK(BM_GeometricControllerAndMixer)->ArgName("lee2010")->Arg(0)->Arg(1);
 BENCHMARK(BM_FlightControllerTickInMission);
 
 }  // namespace

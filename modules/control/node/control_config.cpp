@@ -13,6 +13,8 @@ common::ParamSchema controlSchema()
       .addDouble("gains.attitude", 2.33, 1e-3, 1e3, "N m/rad", "k_R")
       .addDouble("gains.rate", 0.673, 1e-4, 1e3, "N m s/rad", "k_Omega")
       .addDouble("gains.yaw_weight", 0.4, 0.01, 1.0, "", "yaw's share of the attitude error")
+      .addString("gains.attitude_error", "quaternion", {"quaternion", "lee2010"},
+                 "2 sin(theta/2) about the error axis, or Lee 2010's sin(theta) (slow from upside down)")
       .addDouble("limits.max_tilt", 0.6, 0.05, 1.5, "rad", "desired thrust vector from vertical")
       .addVector("limits.max_rate", std::vector<double>{6.0, 6.0, 2.0}, 3, 0.1, 50.0, "rad/s", "body rate limits")
       .addDouble("limits.max_acceleration", 8.0, 0.1, 50.0, "m/s^2", "horizontal feedback acceleration")
@@ -50,6 +52,8 @@ ControlNodeConfig controlConfigFrom(const common::Params& p)
   f.gains.kR = p.getDouble("gains.attitude");
   f.gains.kOmega = p.getDouble("gains.rate");
   f.gains.yaw_weight = p.getDouble("gains.yaw_weight");
+  f.gains.attitude_error = p.getString("gains.attitude_error") == "lee2010" ? AttitudeError::kLee2010
+                                                                              : AttitudeError::kQuaternion;
   f.gains.max_tilt = p.getDouble("limits.max_tilt");
   const auto& rate = p.getVector("limits.max_rate");
   f.gains.max_rate = Vector3(rate[0], rate[1], rate[2]);

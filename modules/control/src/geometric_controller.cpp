@@ -120,8 +120,13 @@ ControlOutput GeometricController::updateAttitude(const VehicleState& s, const M
   ControlOutput out;
   out.thrust = thrust;
   out.R_WD = R_WD;
-  // e_R = ½ vee(R_dᵀ R − Rᵀ R_d), e_Ω = Ω − Rᵀ R_d Ω_d
-  out.e_R = 0.5 * geometry::vee(R_WD.transpose() * R - R.transpose() * R_WD);
+  // e_R = ½ vee(R_dᵀ R − Rᵀ R_d) or 2 sgn(q_w) q_v of R_dᵀ R; e_Ω = Ω − Rᵀ R_d Ω_d
+  const Matrix3 R_DB = R_WD.transpose() * R;
+  if (gains_.attitude_error == AttitudeError::kQuaternion) {
+    out.e_R = 2.0 * geometry::fromMatrix(R_DB).canonical().imaginary();
+  } else {
+    out.e_R = 0.5 * geometry::vee(R_DB - R_DB.transpose());
+  }
   const Vector3 w_D_in_B = R.transpose() * R_WD * w_D_B;
   out.e_Omega = s.w_B - w_D_in_B;
   out.attitude_error = geometry::geodesicAngle(R, R_WD);

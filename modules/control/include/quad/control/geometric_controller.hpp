@@ -34,6 +34,17 @@ struct Reference {
   double yaw_rate = 0.0;          ///< [rad/s] feed-forward
 };
 
+/// How the attitude error e_R is formed from R_dᵀR, a rotation by θ about an axis a.
+enum class AttitudeError {
+  /// e_R = ½ vee(R_dᵀR − RᵀR_d) = sin θ a (Lee et al. 2010). It fades near θ = 180°, so a
+  /// vehicle upside down leaves slowly: with the paper's gains, 2.5 s from 178° to 1°.
+  kLee2010,
+  /// e_R = 2 sgn(q_w) q_v for the error quaternion q of R_dᵀR, = 2 sin(θ/2) a: the gradient
+  /// of Lee's 2012 error function 2(2 − √(1 + tr R_dᵀR)), the error PX4 uses. Equal to the
+  /// 2010 error to first order near θ = 0, at its largest (2) near 180°.
+  kQuaternion,
+};
+
 struct GeometricGains {
   double kx = 16.0;       ///< [N/m] position
   double kv = 5.6;        ///< [N s/m] velocity
@@ -43,6 +54,7 @@ struct GeometricGains {
   double max_tilt = 0.6;    ///< [rad] desired thrust vector at most this far from vertical
   Vector3 max_rate{6.0, 6.0, 2.0};  ///< [rad/s] body rates the attitude loop may ask for
   double max_acceleration = 8.0;    ///< [m/s²] horizontal feedback acceleration limit
+  AttitudeError attitude_error = AttitudeError::kQuaternion;
 };
 
 struct ControlOutput {

@@ -23,31 +23,6 @@ enum Op : std::uint8_t {
   kSummaryOffset = 0x0E, kDataEnd = 0x0F,
 };
 
-/// CRC-32 (ISO-HDLC, reflected 0xEDB88320) tables for slicing by 8: t[0] is the classic
-/// byte table; t[k][b] is the CRC of byte b followed by k zero bytes.
-using CrcTables = std::array<std::array<std::uint32_t, 256>, 8>;
-
-const CrcTables& crcTables()
-{
-  static const auto tables = [] {
-    CrcTables t{};
-    for (std::uint32_t i = 0; i < 256; ++i) {
-      std::uint32_t c = i;
-      for (int k = 0; k < 8; ++k) {
-        c = (c & 1U) != 0 ? 0xEDB88320U ^ (c >> 1U) : c >> 1U;
-      }
-      t[0][i] = c;
-    }
-    for (std::size_t k = 1; k < t.size(); ++k) {
-      for (std::size_t i = 0; i < 256; ++i) {
-        t[k][i] = (t[k - 1][i] >> 8U) ^ t[0][t[k - 1][i] & 0xFFU];
-      }
-    }
-    return t;
-  }();
-  return tables;
-}
-
 // Little-endian encoding of MCAP's field types.
 void u8(std::string& out, std::uint8_t v) { out.push_back(static_cast<char>(v)); }
 template <class T>
@@ -102,25 +77,6 @@ std::string channelRecord(const Channel& ch)
 
 }  // namespace
 
-std::uint32_t crc32(const void* data, std::size_t size, std::uint32_t crc)
-{
-  // Eight bytes a step (slicing by 8): a chunk's CRC cost as much as writing it, byte by byte.
-  const auto& t = crcTables();
-  const auto* p = static_cast<const std::uint8_t*>(data);
-  const auto at = [&](std::size_t i) { return static_cast<std::uint32_t>(p[i]); };
-  crc = ~crc;
-  for (; size >= 8; size -= 8, p += 8) {
-    const std::uint32_t lo = crc ^ (at(0) | at(1) << 8U | at(2) << 16U | at(3) << 24U);
-    const std::uint32_t hi = at(4) | at(5) << 8U | at(6) << 16U | at(7) << 24U;
-    crc = t[7][lo & 0xFFU] ^ t[6][(lo >> 8U) & 0xFFU] ^ t[5][(lo >> 16U) & 0xFFU] ^ t[4][lo >> 24U] ^
-          t[3][hi & 0xFFU] ^ t[2][(hi >> 8U) & 0xFFU] ^ t[1][(hi >> 16U) & 0xFFU] ^ t[0][hi >> 24U];
-  }
-  for (; size > 0; --size, ++p) {
-    crc = t[0][(crc ^ *p) & 0xFFU] ^ (crc >> 8U);
-  }
-  return ~crc;
-}
-
 // ---------------------------------------------------------------------------------------
 // Writer
 
@@ -155,7 +111,7 @@ McapWriter::~McapWriter()
   }
 }
 
-void McapWriter::put(const std::string& bytes)
+void McapWriter::put(std::string_view bytes)
 {
   if (std::fwrite(bytes.data(), 1, bytes.size(), file_) != bytes.size()) {
     throw BagError(path_.string() + ": cannot write at byte " + std::to_string(offset_) + ": " + std::strerror(errno));
@@ -191,13 +147,14 @@ void McapWriter::write(std::uint16_t channel_id, std::uint32_t sequence, std::ui
   chunk_start_ = std::min(chunk_start_, log_time);
   chunk_end_ = std::max(chunk_end_, log_time);
   chunk_index_[channel_id].emplace_back(log_time, chunk_.size());
-  std::string content;
-  le<std::uint16_t>(content, channel_id);
-  le<std::uint32_t>(content, sequence);
-  le<std::uint64_t>(content, log_time);
-  le<std::uint64_t>(content, publish_time);
-  content.append(reinterpret_cast<const char*>(data), size);
-  chunk_ += record(kMessage, content);
+  // The Message record straight into the chunk: a payload is copied once on its way.
+  u8(chunk_, kMessage);
+  le<std::uint64_t>(chunk_, 2 + 4 + 8 + 8 + size);
+  le<std::uint16_t>(chunk_, channel_id);
+  le<std::uint32_t>(chunk_, sequence);
+  le<std::uint64_t>(chunk_, log_time);
+  le<std::uint64_t>(chunk_, publish_time);
+  chunk_.append(reinterpret_cast<const char*>(data), size);
   first_time_ = message_count_ == 0 ? log_time : std::min(first_time_, log_time);
   last_time_ = std::max(last_time_, log_time);
   ++message_count_;
@@ -213,26 +170,30 @@ void McapWriter::flushChunk()
     return;
   }
   const std::uint64_t chunk_offset = offset_;
-  std::string content;
-  le<std::uint64_t>(content, chunk_start_);
-  le<std::uint64_t>(content, chunk_end_);
-  le<std::uint64_t>(content, chunk_.size());
-  le<std::uint32_t>(content, crc32(chunk_.data(), chunk_.size()));
-  str(content, compression_);
-  std::string stored;
+  std::string_view stored = chunk_;
   if (compression_ == "zstd") {
-    stored.resize(ZSTD_compressBound(chunk_.size()));
-    const std::size_t n = ZSTD_compress(stored.data(), stored.size(), chunk_.data(), chunk_.size(), 1);
+    const std::size_t bound = ZSTD_compressBound(chunk_.size());
+    if (compressed_.size() < bound) {
+      compressed_.resize(bound);  // grows only: a buffer zeroed again for every chunk costs a copy
+    }
+    const std::size_t n = ZSTD_compress(compressed_.data(), compressed_.size(), chunk_.data(), chunk_.size(), 1);
     if (ZSTD_isError(n) != 0U) {
       throw BagError(path_.string() + ": zstd: " + ZSTD_getErrorName(n));
     }
-    stored.resize(n);
-  } else {
-    stored = chunk_;
+    stored = std::string_view(compressed_.data(), n);
   }
-  le<std::uint64_t>(content, stored.size());
-  content += stored;
-  put(record(kChunk, content));
+  // The Chunk record's fields, then the stored records written from where they are.
+  std::string head;
+  u8(head, kChunk);
+  le<std::uint64_t>(head, 8 + 8 + 8 + 4 + 4 + compression_.size() + 8 + stored.size());
+  le<std::uint64_t>(head, chunk_start_);
+  le<std::uint64_t>(head, chunk_end_);
+  le<std::uint64_t>(head, chunk_.size());
+  le<std::uint32_t>(head, crc32(chunk_.data(), chunk_.size()));
+  str(head, compression_);
+  le<std::uint64_t>(head, stored.size());
+  put(head);
+  put(stored);
   const std::uint64_t chunk_length = offset_ - chunk_offset;
   // One message index per channel, right after the chunk.
   const std::uint64_t index_start = offset_;

@@ -14,6 +14,8 @@
 #include <string_view>
 #include <vector>
 
+#include "quad/bag/crc32.hpp"
+
 namespace quad::bag {
 
 /// A problem with a file: names it, the byte offset and what is wrong.
@@ -21,9 +23,6 @@ class BagError : public std::runtime_error {
 public:
   using std::runtime_error::runtime_error;
 };
-
-/// CRC-32 (ISO-HDLC, as zlib), continued from `crc` (0 to start).
-std::uint32_t crc32(const void* data, std::size_t size, std::uint32_t crc = 0);
 
 struct Schema {
   std::uint16_t id = 0;
@@ -80,7 +79,7 @@ public:
   std::uint64_t bytesWritten() const { return offset_; }
 
 private:
-  void put(const std::string& bytes);  // to the file, counted
+  void put(std::string_view bytes);  // to the file, counted
   void flushChunk();
 
   std::filesystem::path path_;
@@ -89,6 +88,7 @@ private:
   std::string compression_;
   std::uint64_t offset_ = 0;
   std::string chunk_;  // records of the open chunk
+  std::vector<char> compressed_;  // the open chunk compressed, when it is (never shrinks)
   std::uint64_t chunk_start_ = 0, chunk_end_ = 0;
   std::map<std::uint16_t, std::vector<std::pair<std::uint64_t, std::uint64_t>>> chunk_index_;  // channel -> (time, offset)
   std::vector<Schema> schemas_;

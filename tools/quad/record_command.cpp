@@ -202,6 +202,25 @@ int record(const RecordOptions& options)
   std::int64_t next_discovery = 0;
   std::int64_t next_progress = start + common::kNanosecondsPerSecond;
   std::uint64_t bytes = 0;
+  dds::RawSample sample;  // one buffer for every take: a 1 MiB payload is not allocated anew each time
+  // Writes every sample the readers hold.
+  const auto takeAll = [&] {
+    for (auto& [topic, r] : recorded) {
+      std::uint64_t writer_id = 0;
+      while (r.subscriber->take(sample, writer_id)) {
+        const auto log_time = static_cast<std::uint64_t>(common::wallTimeNs());
+        const auto header = common::payloadHeader(sample.payload);
+        const std::uint64_t publish = header && header->publish_ns > 0 ? static_cast<std::uint64_t>(header->publish_ns)
+                                                                        : log_time;
+        if (header) {
+          r.audit.add(writer_id, header->seq);
+        }
+        files->write(r.channel, header ? static_cast<std::uint32_t>(header->seq) : 0, log_time, publish,
+                     sample.payload);
+        bytes += sample.payload.size();
+      }
+    }
+  };
   int code = 0;
   try {
     while (g_stop.load() == 0) {
@@ -230,22 +249,7 @@ int record(const RecordOptions& options)
         }
         next_discovery = now + 200'000'000;
       }
-      for (auto& [topic, r] : recorded) {
-        dds::RawSample sample;
-        std::uint64_t writer_id = 0;
-        while (r.subscriber->take(sample, writer_id)) {
-          const auto log_time = static_cast<std::uint64_t>(common::wallTimeNs());
-          const auto header = common::payloadHeader(sample.payload);
-          const std::uint64_t publish = header && header->publish_ns > 0 ? static_cast<std::uint64_t>(header->publish_ns)
-                                                                          : log_time;
-          if (header) {
-            r.audit.add(writer_id, header->seq);
-          }
-          files->write(r.channel, header ? static_cast<std::uint32_t>(header->seq) : 0, log_time, publish,
-                       sample.payload);
-          bytes += sample.payload.size();
-        }
-      }
+      takeAll();
       if (now >= next_progress) {
         if (!options.quiet) {
           const double seconds = common::toSeconds(now - start);
@@ -257,6 +261,7 @@ int record(const RecordOptions& options)
       }
       waker.waitUntil(std::min(next_discovery, next_progress));
     }
+    takeAll();  // on a stop, what the readers already hold is written, not dropped
   } catch (const bag::BagError& e) {
     std::fprintf(stderr, "\nrecord: %s: stopping\n", e.what());
     code = 1;

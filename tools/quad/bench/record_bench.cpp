@@ -40,8 +40,8 @@ int publish(std::size_t bytes, int count)
     }
   }
   std::printf("published %d in %.3f s\n", count, common::toSeconds(common::steadyTimeNs() - start));
-  std::this_thread::sleep_for(std::chrono::seconds(2));  // reliable delivery of the tail
-  return 0;
+  // Every sample in the reader's history before returning: a recorder stopped then has them all.
+  return publisher.waitForAcknowledgments(std::chrono::seconds(120)) ? 0 : 1;
 }
 
 int discard(int count, double timeout_s)

@@ -24,6 +24,8 @@ common::ParamSchema controlSchema()
       .addDouble("follower.max_lateral_acceleration", 2.0, 0.05, 30.0, "m/s^2", "in curves")
       .addDouble("follower.max_yaw_rate", 1.0, 0.01, 10.0, "rad/s", "heading change")
       .addDouble("follower.corner_deviation", 0.1, 0.0, 5.0, "m", "rounded corners stay this close to the path")
+      .addDouble("follower.max_braking", 4.0, 0.05, 30.0, "m/s^2",
+                 "hardest braking, when a new path turns back nearer than max_acceleration stops for")
       .addDouble("takeoff_altitude", 2.0, 0.2, 100.0, "m", "above the take-off point")
       .addDouble("land_speed", 0.5, 0.05, 5.0, "m/s", "descent in LAND")
       .addDouble("timeouts.state", dds::topics::kSimState.info.stale_after_s, 0.005, 10.0, "s",
@@ -64,6 +66,7 @@ ControlNodeConfig controlConfigFrom(const common::Params& p)
   f.follower.max_lateral_acceleration = p.getDouble("follower.max_lateral_acceleration");
   f.follower.max_yaw_rate = p.getDouble("follower.max_yaw_rate");
   f.follower.corner_deviation = p.getDouble("follower.corner_deviation");
+  f.follower.max_braking = p.getDouble("follower.max_braking");
   f.takeoff_altitude = p.getDouble("takeoff_altitude");
   f.land_speed = p.getDouble("land_speed");
   f.state_timeout = p.getDouble("timeouts.state");

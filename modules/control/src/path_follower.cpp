@@ -154,31 +154,40 @@ Trajectory::Point Trajectory::at(double s) const
   return p;
 }
 
-PathFollower::PathFollower(FollowerLimits limits) : limits_(limits) {}
+double Trajectory::lowestSpeedLimit(double from, double to) const
+{
+  double lowest = at(from).speed_limit;
+  for (auto it = std::upper_bound(s_.begin(), s_.end(), from); it != s_.end() && *it <= to; ++it) {
+    lowest = std::min(lowest, table_[static_cast<std::size_t>(it - s_.begin())].speed_limit);
+  }
+  return lowest;
+}
+
+double Trajectory::brakingNeeded(double s, double v, double horizon) const
+{
+  double needed = 0.0;
+  const auto first = std::upper_bound(s_.begin(), s_.end(), s);
+  for (auto it = first; it != s_.end() && *it <= s + horizon; ++it) {
+    const double limit = table_[static_cast<std::size_t>(it - s_.begin())].speed_limit;
+    // Overspeed of the order the time law itself runs into corners with is left to it.
+    const double allowed = limit + 0.2;
+    if (allowed < v) {
+      needed = std::max(needed, (v * v - allowed * allowed) / (2.0 * std::max(*it - s, 1e-3)));
+    }
+  }
+  return needed;
+}
+
+PathFollower::PathFollower(FollowerLimits limits) : limits_(limits)
+{
+  limits_.max_braking = std::max(limits_.max_braking, limits_.max_acceleration);
+}
 
 bool PathFollower::setPath(const std::vector<Vector3>& waypoints, std::uint32_t version)
 {
   if (waypoints.empty() ||
       std::any_of(waypoints.begin(), waypoints.end(), [](const Vector3& w) { return !w.allFinite(); })) {
     return false;
-  }
-  std::vector<Vector3> joined{ref_.p_W};
-  const double speed = ref_.v_W.norm();
-  if (speed > 0.05) {
-    // Lead-in along the current motion, so the direction of the reference turns smoothly.
-    Vector3 lead = ref_.p_W + ref_.v_W / speed * std::min(0.5, 0.5 * speed);
-    // Replans can come faster than a lead-in is flown: a fresh one each time, always ahead,
-    // would carry the reference on in its old direction for as long as they come (seen: a
-    // second and a half of creep into a sphere every new path led away from). The last
-    // lead-in, while still ahead and no farther than a fresh one, is kept.
-    if (lead_in_ && (*lead_in_ - ref_.p_W).dot(ref_.v_W) > 0.0 &&
-        (*lead_in_ - ref_.p_W).norm() <= (lead - ref_.p_W).norm() + 1e-9) {
-      lead = *lead_in_;
-    }
-    joined.push_back(lead);
-    lead_in_ = lead;
-  } else {
-    lead_in_.reset();
   }
   // Join the new polyline where it passes closest to the reference.
   std::size_t next = waypoints.size() > 1 ? 1 : 0;
@@ -193,6 +202,36 @@ bool PathFollower::setPath(const std::vector<Vector3>& waypoints, std::uint32_t 
       next = i + 1;
     }
   }
+  std::vector<Vector3> joined{ref_.p_W};
+  const double speed = ref_.v_W.norm();
+  if (speed > 0.05) {
+    // Lead-in along the current motion, so the direction of the reference turns smoothly.
+    const Vector3 heading = ref_.v_W / speed;
+    Vector3 lead = ref_.p_W + heading * std::min(0.5, 0.5 * speed);
+    // Replans can come faster than a lead-in is flown: a fresh one each time, always ahead,
+    // would carry the reference on in its old direction for as long as they come (seen: a
+    // second and a half of creep into a sphere every new path led away from). The last
+    // lead-in, while still ahead and no farther than a fresh one, is kept.
+    if (lead_in_ && (*lead_in_ - ref_.p_W).dot(ref_.v_W) > 0.0 &&
+        (*lead_in_ - ref_.p_W).norm() <= (lead - ref_.p_W).norm() + 1e-9) {
+      lead = *lead_in_;
+    }
+    // A path that turns back after the lead-in needs room to brake first: the lead-in is
+    // then at least 1.2 v² / max_braking long (its turn's blend begins halfway along it).
+    // Seen: a replan turning back 2 cm ahead of a reference at 0.9 m/s swung its velocity
+    // round in 0.1 s, and the vehicle, lagging, into a tree.
+    const double nearest = 1.2 * speed * speed / limits_.max_braking;
+    turning_back_ = (waypoints[next] - lead).dot(heading) < 0.0;
+    if (turning_back_ && (lead - ref_.p_W).norm() < nearest) {
+      lead = ref_.p_W + heading * nearest;
+    }
+    turn_back_end_ = (lead - ref_.p_W).norm() + 1.0;
+    joined.push_back(lead);
+    lead_in_ = lead;
+  } else {
+    lead_in_.reset();
+    turning_back_ = false;
+  }
   joined.insert(joined.end(), waypoints.begin() + static_cast<std::ptrdiff_t>(next), waypoints.end());
   trajectory_.emplace(joined, limits_, speed);
   version_ = version;
@@ -206,6 +245,7 @@ void PathFollower::hold(const Vector3& p, double yaw)
   trajectory_.emplace(std::vector<Vector3>{p}, limits_, 0.0);
   version_.reset();
   lead_in_.reset();
+  turning_back_ = false;
   s_ = 0.0;
   v_ = 0.0;
   a_ = 0.0;
@@ -231,6 +271,11 @@ Reference PathFollower::step(double dt)
                                              2.0 * limits_.sample_spacing),
                                     0.5 * remaining);
   double v_target = traj.at(s_ + lookahead).speed_limit;
+  if (turning_back_) {
+    // Through a turn back, the slowest point within the lookahead, not only its end (which
+    // can lie past the turn).
+    v_target = std::min(v_target, traj.lowestSpeedLimit(s_, s_ + lookahead));
+  }
   // Brake for the end in time: the stopping distance with the jerk limit (ramping from the
   // current acceleration to full braking takes (a + a_max)/j).
   const double a_brake = 0.8 * limits_.max_acceleration;
@@ -247,6 +292,17 @@ Reference PathFollower::step(double dt)
   const double a_wanted = std::clamp(3.0 * (v_target - v_), -limits_.max_acceleration, limits_.max_acceleration);
   const double jerk = std::clamp((a_wanted - a_) / dt, -limits_.max_jerk, limits_.max_jerk);
   a_ += jerk * dt;
+  // A path joined while moving that turns back after its lead-in: brake at once, as hard as
+  // it takes (up to max_braking), so that the turn is not flown faster than its speed
+  // profile allows. Until a metre past the turn.
+  if (turning_back_) {
+    const double a_normal = 0.8 * limits_.max_acceleration;
+    const double braking = traj.brakingNeeded(s_, v_, v_ * v_ / (2.0 * a_normal) + 2.0 * limits_.sample_spacing);
+    if (braking > limits_.max_acceleration) {
+      a_ = std::min(a_, -std::min(braking, limits_.max_braking));
+    }
+    turning_back_ = s_ < turn_back_end_;
+  }
   v_ = std::max(0.0, v_ + a_ * dt);
   s_ += v_ * dt;
   if (s_ >= traj.length() || (traj.length() - s_ < kCreepSpeed * dt && v_ <= kCreepSpeed)) {

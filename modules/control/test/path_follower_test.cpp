@@ -114,6 +114,51 @@ TEST(PathFollower, ReplansFasterThanTheLeadInDoNotCarryTheReferenceOn)
   EXPECT_LT(f.reference().p_W.x(), furthest - 0.1);
 }
 
+TEST(PathFollower, APathTurningBackJustAheadIsJoinedWithinTheBrakingAndLateralLimits)
+{
+  // GIVEN a reference at ~1 m/s along +x whose replans (every 0.2 s) go on ahead and bend
+  // later, so its lead-in is kept and comes ever nearer
+  FollowerLimits limits;
+  PathFollower f(limits);
+  f.hold(Vector3(0, 0, 2), 0.0);
+  ASSERT_TRUE(f.setPath({{0, 0, 2}, {1.5, 0, 2}, {3, 2, 2}}, 1));
+  std::uint32_t version = 1;
+  while (f.reference().p_W.x() < 1.0) {
+    f.step(0.004);
+  }
+  double worst = 0.0;  // the fastest change of the reference velocity [m/s²]
+  Vector3 last_v = f.reference().v_W;
+  const auto fly = [&](int steps) {
+    for (int k = 0; k < steps; ++k) {
+      const Reference r = f.step(0.004);
+      worst = std::max(worst, (r.v_W - last_v).norm() / 0.004);
+      last_v = r.v_W;
+    }
+  };
+  for (int i = 0; i < 3; ++i) {
+    const Vector3 p = f.reference().p_W;
+    ASSERT_TRUE(f.setPath({p, {p.x() + 1.5, p.y(), 2}, {p.x() + 3, p.y() + 2, 2}}, ++version));
+    fly(50);
+  }
+  // WHEN the next path turns back (an obstacle seen ahead)
+  const Reference before = f.reference();
+  ASSERT_GT(before.v_W.norm(), 0.5);
+  ASSERT_TRUE(f.setPath({before.p_W, {before.p_W.x() - 1.0, before.p_W.y() + 1.0, 2},
+                         {before.p_W.x() - 1.0, before.p_W.y() + 4.0, 2}}, ++version));
+  double furthest = before.p_W.x();
+  for (int k = 0; k < 1000; ++k) {
+    fly(1);
+    furthest = std::max(furthest, f.reference().p_W.x());
+  }
+  // THEN the reference brakes before it turns: its velocity never changes faster than the
+  // position loop's own horizontal acceleration limit (it swung round at 170 m/s² when the
+  // turn came 2 cm ahead at full speed), and it goes on no further than that braking
+  // takes, with the lead-in
+  EXPECT_LT(worst, GeometricGains{}.max_acceleration);
+  EXPECT_LT(furthest - before.p_W.x(), 0.5 * before.v_W.norm() + 0.05);
+  EXPECT_LT(f.reference().p_W.x(), before.p_W.x() - 0.5);
+}
+
 TEST(PathFollower, YawFacesAlongThePathAtALimitedRate)
 {
   FollowerLimits limits;

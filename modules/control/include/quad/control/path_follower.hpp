@@ -27,6 +27,9 @@ struct FollowerLimits {
   double max_lateral_acceleration = 2.0;  ///< [m/s²] in curves
   double max_yaw_rate = 1.0;              ///< [rad/s]
   double corner_deviation = 0.1;          ///< [m] largest distance of the curve from the polyline
+  /// [m/s²] the hardest braking, only when a path joined while moving turns back after its
+  /// lead-in (never less than max_acceleration)
+  double max_braking = 4.0;
   double sample_spacing = 0.05;           ///< [m] of the arc-length table
 };
 
@@ -49,6 +52,11 @@ public:
   double length() const { return length_; }
   /// The curve at arc length s (clamped to [0, length]), interpolated in the table.
   Point at(double s) const;
+  /// The lowest speed limit of the profile over [from, to].
+  double lowestSpeedLimit(double from, double to) const;
+  /// The deceleration [m/s²] that brings speed `v` at arc length `s` down to the speed
+  /// profile everywhere within `horizon` metres ahead (0 when it is already below it).
+  double brakingNeeded(double s, double v, double horizon) const;
   const std::vector<Vector3>& waypoints() const { return waypoints_; }
 
 private:
@@ -86,6 +94,8 @@ private:
   std::optional<Trajectory> trajectory_;
   std::optional<std::uint32_t> version_;
   std::optional<Vector3> lead_in_;  // the lead-in point of the path joined last
+  bool turning_back_ = false;       // the path joined last turns back after its lead-in: brake
+  double turn_back_end_ = 0.0;      // [m] arc length a metre past that turn
   double s_ = 0.0;
   double v_ = 0.0;
   double a_ = 0.0;

@@ -25,7 +25,7 @@ common::ParamSchema controlSchema()
       .addDouble("follower.max_yaw_rate", 1.0, 0.01, 10.0, "rad/s", "heading change")
       .addDouble("follower.corner_deviation", 0.1, 0.0, 5.0, "m", "rounded corners stay this close to the path")
       .addDouble("follower.max_braking", 4.0, 0.05, 30.0, "m/s^2",
-                 "hardest braking, when a new path turns back nearer than max_acceleration stops for")
+                 "hardest braking, only when a path joined while moving turns back after its lead-in")
       .addDouble("takeoff_altitude", 2.0, 0.2, 100.0, "m", "above the take-off point")
       .addDouble("land_speed", 0.5, 0.05, 5.0, "m/s", "descent in LAND")
       .addDouble("timeouts.state", dds::topics::kSimState.info.stale_after_s, 0.005, 10.0, "s",

@@ -154,11 +154,19 @@ Trajectory::Point Trajectory::at(double s) const
   return p;
 }
 
+std::pair<std::size_t, std::size_t> Trajectory::samplesWithin(double from, double to) const
+{
+  const auto first = std::upper_bound(s_.begin(), s_.end(), from);
+  const auto last = std::upper_bound(first, s_.end(), to);
+  return {static_cast<std::size_t>(first - s_.begin()), static_cast<std::size_t>(last - s_.begin())};
+}
+
 double Trajectory::lowestSpeedLimit(double from, double to) const
 {
   double lowest = at(from).speed_limit;
-  for (auto it = std::upper_bound(s_.begin(), s_.end(), from); it != s_.end() && *it <= to; ++it) {
-    lowest = std::min(lowest, table_[static_cast<std::size_t>(it - s_.begin())].speed_limit);
+  const auto [first, last] = samplesWithin(from, to);
+  for (std::size_t i = first; i < last; ++i) {
+    lowest = std::min(lowest, table_[i].speed_limit);
   }
   return lowest;
 }
@@ -166,13 +174,12 @@ double Trajectory::lowestSpeedLimit(double from, double to) const
 double Trajectory::brakingNeeded(double s, double v, double horizon) const
 {
   double needed = 0.0;
-  const auto first = std::upper_bound(s_.begin(), s_.end(), s);
-  for (auto it = first; it != s_.end() && *it <= s + horizon; ++it) {
-    const double limit = table_[static_cast<std::size_t>(it - s_.begin())].speed_limit;
+  const auto [first, last] = samplesWithin(s, s + horizon);
+  for (std::size_t i = first; i < last; ++i) {
     // Overspeed of the order the time law itself runs into corners with is left to it.
-    const double allowed = limit + 0.2;
+    const double allowed = table_[i].speed_limit + 0.2;
     if (allowed < v) {
-      needed = std::max(needed, (v * v - allowed * allowed) / (2.0 * std::max(*it - s, 1e-3)));
+      needed = std::max(needed, (v * v - allowed * allowed) / (2.0 * std::max(s_[i] - s, 1e-3)));
     }
   }
   return needed;
@@ -221,16 +228,16 @@ bool PathFollower::setPath(const std::vector<Vector3>& waypoints, std::uint32_t 
     // Seen: a replan turning back 2 cm ahead of a reference at 0.9 m/s swung its velocity
     // round in 0.1 s, and the vehicle, lagging, into a tree.
     const double nearest = 1.2 * speed * speed / limits_.max_braking;
-    turning_back_ = (waypoints[next] - lead).dot(heading) < 0.0;
-    if (turning_back_ && (lead - ref_.p_W).norm() < nearest) {
+    const bool turns_back = (waypoints[next] - lead).dot(heading) < 0.0;
+    if (turns_back && (lead - ref_.p_W).norm() < nearest) {
       lead = ref_.p_W + heading * nearest;
     }
-    turn_back_end_ = (lead - ref_.p_W).norm() + 1.0;
+    turn_back_end_ = turns_back ? (lead - ref_.p_W).norm() + 1.0 : 0.0;
     joined.push_back(lead);
     lead_in_ = lead;
   } else {
     lead_in_.reset();
-    turning_back_ = false;
+    turn_back_end_ = 0.0;
   }
   joined.insert(joined.end(), waypoints.begin() + static_cast<std::ptrdiff_t>(next), waypoints.end());
   trajectory_.emplace(joined, limits_, speed);
@@ -245,7 +252,7 @@ void PathFollower::hold(const Vector3& p, double yaw)
   trajectory_.emplace(std::vector<Vector3>{p}, limits_, 0.0);
   version_.reset();
   lead_in_.reset();
-  turning_back_ = false;
+  turn_back_end_ = 0.0;
   s_ = 0.0;
   v_ = 0.0;
   a_ = 0.0;
@@ -271,7 +278,8 @@ Reference PathFollower::step(double dt)
                                              2.0 * limits_.sample_spacing),
                                     0.5 * remaining);
   double v_target = traj.at(s_ + lookahead).speed_limit;
-  if (turning_back_) {
+  const bool turning_back = s_ < turn_back_end_;
+  if (turning_back) {
     // Through a turn back, the slowest point within the lookahead, not only its end (which
     // can lie past the turn).
     v_target = std::min(v_target, traj.lowestSpeedLimit(s_, s_ + lookahead));
@@ -295,13 +303,11 @@ Reference PathFollower::step(double dt)
   // A path joined while moving that turns back after its lead-in: brake at once, as hard as
   // it takes (up to max_braking), so that the turn is not flown faster than its speed
   // profile allows. Until a metre past the turn.
-  if (turning_back_) {
-    const double a_normal = 0.8 * limits_.max_acceleration;
-    const double braking = traj.brakingNeeded(s_, v_, v_ * v_ / (2.0 * a_normal) + 2.0 * limits_.sample_spacing);
+  if (turning_back) {
+    const double braking = traj.brakingNeeded(s_, v_, v_ * v_ / (2.0 * a_brake) + 2.0 * limits_.sample_spacing);
     if (braking > limits_.max_acceleration) {
       a_ = std::min(a_, -std::min(braking, limits_.max_braking));
     }
-    turning_back_ = s_ < turn_back_end_;
   }
   v_ = std::max(0.0, v_ + a_ * dt);
   s_ += v_ * dt;

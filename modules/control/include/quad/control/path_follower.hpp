@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "quad/control/geometric_controller.hpp"
@@ -60,6 +61,9 @@ public:
   const std::vector<Vector3>& waypoints() const { return waypoints_; }
 
 private:
+  /// Indices [first, last) of the table's samples with arc length in (from, to].
+  std::pair<std::size_t, std::size_t> samplesWithin(double from, double to) const;
+
   std::vector<Vector3> waypoints_;
   std::vector<double> s_;
   std::vector<Point> table_;
@@ -94,8 +98,7 @@ private:
   std::optional<Trajectory> trajectory_;
   std::optional<std::uint32_t> version_;
   std::optional<Vector3> lead_in_;  // the lead-in point of the path joined last
-  bool turning_back_ = false;       // the path joined last turns back after its lead-in: brake
-  double turn_back_end_ = 0.0;      // [m] arc length a metre past that turn
+  double turn_back_end_ = 0.0;      // [m] a metre past the turn of a path that turns back (0: none)
   double s_ = 0.0;
   double v_ = 0.0;
   double a_ = 0.0;

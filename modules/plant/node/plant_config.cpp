@@ -35,7 +35,13 @@ common::ParamSchema plantSchema()
       .addDouble("depth.noise", 0.01, 0.0, 10.0, "m", "range noise std dev")
       .addDouble("depth.rate", 10.0, 0.1, 100.0, "Hz", "depth frame rate")
       .addVector("depth.position", std::vector<double>{0.1, 0.0, 0.0}, 3, -5.0, 5.0, "m", "mount point, body frame")
-      .addDouble("depth.tilt_down", 0.0, -1.5, 1.5, "rad", "optical axis pitched below body x");
+      .addDouble("depth.tilt_down", 0.0, -1.5, 1.5, "rad", "optical axis pitched below body x (fixed mount)")
+      .addBool("gimbal.enabled", false, "the depth camera hangs on a world-stabilised pan-tilt gimbal the controller aims")
+      .addDouble("gimbal.slew_rate", 3.0, 0.01, 100.0, "rad/s", "per axis")
+      .addDouble("gimbal.min_pitch", -1.5707963267948966, -1.5707963267948966, 1.5707963267948966, "rad",
+                 "lowest elevation of the optical axis")
+      .addDouble("gimbal.max_pitch", 1.5707963267948966, -1.5707963267948966, 1.5707963267948966, "rad",
+                 "highest elevation of the optical axis");
   return s;
 }
 
@@ -87,6 +93,10 @@ PlantNodeConfig plantConfigFrom(const common::Params& p)
   s.depth.rate_hz = p.getDouble("depth.rate");
   s.depth.position_B = vec(p, "depth.position");
   s.depth.tilt_down = p.getDouble("depth.tilt_down");
+  s.gimbal.enabled = p.getBool("gimbal.enabled");
+  s.gimbal.slew_rate = p.getDouble("gimbal.slew_rate");
+  s.gimbal.min_pitch = p.getDouble("gimbal.min_pitch");
+  s.gimbal.max_pitch = p.getDouble("gimbal.max_pitch");
 
   std::vector<std::string> problems;
   c.lockstep_period_ns = common::toNanoseconds(p.getDouble("lockstep.period"));
@@ -94,6 +104,10 @@ PlantNodeConfig plantConfigFrom(const common::Params& p)
     problems.push_back(common::configProblem(origin, "lockstep.period", p.getDouble("lockstep.period"),
                                              "must be a whole number of sim.step (" +
                                                  common::formatValue(p.getDouble("sim.step")) + ")"));
+  }
+  if (s.gimbal.min_pitch > s.gimbal.max_pitch) {
+    problems.push_back(common::configProblem(origin, "gimbal.min_pitch", s.gimbal.min_pitch,
+                                             "above gimbal.max_pitch (" + common::formatValue(s.gimbal.max_pitch) + ")"));
   }
   if (s.depth.width * s.depth.height > 65536) {
     problems.push_back(common::configProblem(origin, "depth.width", std::int64_t{s.depth.width},

@@ -90,6 +90,11 @@ void PlantNode::takeInputs()
     const auto verdict = sim_->commands().submit(speeds, cmd->armed(), cmd->header().stamp_ns(), sim_->timeNs());
     if (verdict == CommandGuard::Verdict::kAccepted || verdict == CommandGuard::Verdict::kClamped) {
       latest_command_stamp_ns_ = std::max(latest_command_stamp_ns_, cmd->header().stamp_ns());
+      if (sim_->gimbal() && !sim_->aimGimbal(cmd->gimbal_yaw_W(), cmd->gimbal_pitch())) {
+        counters().errors++;
+        spdlog::warn("{}: command seq {}: gimbal yaw {} pitch {} not finite; the gimbal keeps its aim",
+                     dds::topics::kActuators.info.name, cmd->header().seq(), cmd->gimbal_yaw_W(), cmd->gimbal_pitch());
+      }
     }
     if (verdict != CommandGuard::Verdict::kAccepted) {
       counters().errors++;

@@ -35,8 +35,14 @@ geometry::Pose3 DepthCamera::sensorPose(const geometry::Pose3& body_W) const
 DepthScan DepthCamera::capture(const World& world, const geometry::Pose3& body_W,
                                std::mt19937_64& rng, double extra_noise_std) const
 {
+  return captureFrom(world, sensorPose(body_W), rng, extra_noise_std);
+}
+
+DepthScan DepthCamera::captureFrom(const World& world, const geometry::Pose3& sensor_W,
+                                   std::mt19937_64& rng, double extra_noise_std) const
+{
   DepthScan scan;
-  scan.sensor_W = sensorPose(body_W);
+  scan.sensor_W = sensor_W;
   const geometry::Matrix3 R_WS = geometry::toMatrix(scan.sensor_W.q);
   const double noise_std = config_.noise_std + extra_noise_std;
   std::normal_distribution<double> noise(0.0, 1.0);

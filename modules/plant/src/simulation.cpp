@@ -29,6 +29,9 @@ Simulation::Simulation(vehicle::VehicleParams vehicle, World world, SimulationCo
   state_.p_W = world_.start();
   state_.landed = state_.p_W.z() <= 0.0;
   state_.p_W.z() = std::max(0.0, state_.p_W.z());
+  if (config_.gimbal.enabled) {
+    gimbal_.emplace(config_.gimbal, 0.0, 0.0);  // level, along world x: the vehicle starts level at yaw 0
+  }
   for (auto& f : schedule) {
     injectFault(f);
   }
@@ -39,6 +42,20 @@ Simulation::Simulation(vehicle::VehicleParams vehicle, World world, SimulationCo
   next_state_ns_ = first(config_.state_rate_hz);
   next_imu_ns_ = first(config_.imu.rate_hz);
   next_depth_ns_ = first(config_.depth.rate_hz);
+}
+
+bool Simulation::aimGimbal(double yaw_W, double pitch)
+{
+  return gimbal_ && gimbal_->aim(yaw_W, pitch);
+}
+
+geometry::Pose3 Simulation::cameraPose() const
+{
+  const geometry::Pose3 body_W{state_.p_W, state_.q_WB};
+  if (!gimbal_) {
+    return camera_.sensorPose(body_W);
+  }
+  return {body_W.transform(config_.depth.position_B), gimbal_->orientation_W()};
 }
 
 bool Simulation::injectFault(Fault fault)
@@ -135,6 +152,9 @@ StepOutputs Simulation::step()
   const Environment env = environment();
   const bool was_landed = state_.landed;
   dynamics_.step(state_, command, env, common::toSeconds(config_.step_ns));
+  if (gimbal_) {
+    gimbal_->step(common::toSeconds(config_.step_ns));
+  }
   t_ns_ += config_.step_ns;
   applyFaults(out);
 
@@ -183,8 +203,7 @@ StepOutputs Simulation::step()
   if (due(t_ns_, next_depth_ns_, config_.depth.rate_hz) &&
       !sensorFault(Sensor::kDepth, Fault::Kind::kSensorDropout)) {
     if (!sensorFault(Sensor::kDepth, Fault::Kind::kSensorStuck) || !last_depth_) {
-      last_depth_ = DepthReading{t_ns_, camera_.capture(world_, geometry::Pose3{state_.p_W, state_.q_WB}, rng_,
-                                                        sensorNoise(Sensor::kDepth))};
+      last_depth_ = DepthReading{t_ns_, camera_.captureFrom(world_, cameraPose(), rng_, sensorNoise(Sensor::kDepth))};
     }
     last_depth_->t_ns = t_ns_;
     out.depth = last_depth_;

@@ -51,7 +51,7 @@ inline constexpr auto kPath = makeTopic<Path>(
     "Planned path, per replan, republished unchanged at least every half deadline", 1.0);
 inline constexpr auto kActuators = makeTopic<ActuatorCommand>(
     "quad/control/actuators", "actuators", 250.0, Owner::kControl,
-    "Rotor speed commands");
+    "Rotor speed and camera gimbal commands");
 inline constexpr auto kControlStatus = makeTopic<ControlStatus>(
     "quad/control/status", "latched", 20.0, Owner::kControl,
     "Controller mode, failsafe reason, tracking errors");

@@ -47,8 +47,12 @@ public:
   /// Sensor pose for a body pose.
   geometry::Pose3 sensorPose(const geometry::Pose3& body_W) const;
 
+  /// A frame from the camera on its fixed mount on a body at `body_W`.
   DepthScan capture(const World& world, const geometry::Pose3& body_W, std::mt19937_64& rng,
                     double extra_noise_std = 0.0) const;
+  /// A frame from a camera at `sensor_W` (on a gimbal, say): rays cast from its origin.
+  DepthScan captureFrom(const World& world, const geometry::Pose3& sensor_W, std::mt19937_64& rng,
+                        double extra_noise_std = 0.0) const;
 
 private:
   DepthCameraConfig config_;

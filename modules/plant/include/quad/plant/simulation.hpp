@@ -14,6 +14,7 @@
 #include "quad/plant/command_guard.hpp"
 #include "quad/plant/dynamics.hpp"
 #include "quad/plant/faults.hpp"
+#include "quad/plant/gimbal.hpp"
 #include "quad/plant/sensors.hpp"
 #include "quad/plant/world.hpp"
 
@@ -25,6 +26,7 @@ struct SimulationConfig {
   std::int64_t command_timeout_ns = 100'000'000;
   double state_rate_hz = 250.0;
   DepthCameraConfig depth;
+  GimbalConfig gimbal;  ///< enabled: the depth camera hangs on it (at depth.position_B), not on its fixed mount
   ImuConfig imu;
   Vector3 gravity_W{0.0, 0.0, -9.81};
 };
@@ -82,6 +84,14 @@ public:
   /// Ends an active or pending fault now; false when the id is unknown.
   bool clearFault(std::uint32_t id);
 
+  /// Aims the camera gimbal (world yaw [rad], elevation [rad]); false when the plant has no
+  /// gimbal or the angles are not finite.
+  bool aimGimbal(double yaw_W, double pitch);
+  /// The gimbal, when the camera hangs on one.
+  const std::optional<Gimbal>& gimbal() const { return gimbal_; }
+  /// Where the depth camera is now, in the world.
+  geometry::Pose3 cameraPose() const;
+
   /// Places the vehicle (scenarios and tests: start in the air, moving).
   void setState(const RigidBodyState& state) { state_ = state; }
 
@@ -105,6 +115,7 @@ private:
   World world_;
   SimulationConfig config_;
   DepthCamera camera_;
+  std::optional<Gimbal> gimbal_;
   CommandGuard guard_;
   std::mt19937_64 rng_;
   RigidBodyState state_;

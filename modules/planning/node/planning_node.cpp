@@ -6,6 +6,7 @@
 #include "quad/common/time.hpp"
 #include "quad/dds/geometry_messages.hpp"
 #include "quad/plant/world_file.hpp"
+#include "quad/geometry/polyline.hpp"
 #include "quad/planning/shortcut.hpp"
 #include "quad/vehicle/vehicle.hpp"
 
@@ -45,6 +46,10 @@ msg::PlanStatus toMessage(PlanStatus s)
       return msg::PLAN_NO_GOAL;
     case PlanStatus::kBudgetExceeded:
       return msg::PLAN_BUDGET_EXCEEDED;
+    case PlanStatus::kGoalEnclosed:
+      return msg::PLAN_GOAL_ENCLOSED;
+    case PlanStatus::kStartEnclosed:
+      return msg::PLAN_START_ENCLOSED;
   }
   return msg::PLAN_NO_PATH;
 }
@@ -57,8 +62,13 @@ common::ParamSchema planningSchema()
   s.addString("world", "worlds/demo.yaml", {}, "world file whose bounds the lattice covers")
       .addString("vehicle", "vehicles/x500.yaml", {}, "vehicle file (its radius inflates obstacles)")
       .addDouble("safety_margin", 0.3, 0.0, 10.0, "m", "added to the vehicle radius")
-      .addDouble("altitude.min", -1e4, -1e4, 1e4, "m", "lowest cell centres planned through (clipped to the world)")
-      .addDouble("altitude.max", 1e4, -1e4, 1e4, "m", "highest cell centres planned through (clipped to the world)")
+      .addDouble("ground_clearance", 1.0, 0.0, 1e3, "m", "lowest cell centres above the world's floor")
+      .addDouble("altitude.min", -1e4, -1e4, 1e4, "m", "an optional band: lowest cell centres planned through")
+      .addDouble("altitude.max", 1e4, -1e4, 1e4, "m", "an optional band: highest cell centres planned through")
+      .addDouble("known_free.radius", 0.2, 0.0, 10.0, "m",
+                 "around the path's centre line, every voxel must be known free for the follower to fly it")
+      .addDouble("known_free.horizon", 8.0, 0.0, 1e3, "m",
+                 "path length checked for known-free space; 0: fly unknown space like free space")
       .addDouble("resolution", 0.2, 0.01, 10.0, "m", "lattice cell: the mapper's map.resolution")
       .addInt("connectivity", 26, 6, 26, "", "6, 18 or 26 neighbours")
       .addBool("unknown_traversable", true, "plan through unknown space")
@@ -75,10 +85,15 @@ PlanningNodeConfig planningConfigFrom(const common::Params& p)
 {
   PlanningNodeConfig c;
   const plant::World world = plant::loadWorld(common::configPath(p, "world", QUAD_CONFIG_DIR));
-  c.bounds_min = world.bounds().min;
-  c.bounds_max = world.bounds().max;
   c.resolution = p.getDouble("resolution");
-  // An altitude band: the lattice spans the cells whose centres lie in it.
+  const vehicle::VehicleParams v = vehicle::loadVehicle(common::configPath(p, "vehicle", QUAD_CONFIG_DIR));
+  c.planner.vehicle_radius = v.radius + p.getDouble("safety_margin");
+  // The whole volume the vehicle may fly in: the world's box less the inflation radius at the
+  // sides and the top, from the ground clearance up; an altitude band clips it further.
+  const Vector3 inset = Vector3::Constant(c.planner.vehicle_radius);
+  c.bounds_min = (world.bounds().min + inset).eval();
+  c.bounds_max = (world.bounds().max - inset).eval();
+  c.bounds_min.z() = world.bounds().min.z() + p.getDouble("ground_clearance");
   const double lo = p.getDouble("altitude.min");
   const double hi = p.getDouble("altitude.max");
   if (lo > hi) {
@@ -86,12 +101,18 @@ PlanningNodeConfig planningConfigFrom(const common::Params& p)
   }
   c.bounds_min.z() = std::max(c.bounds_min.z(), lo);
   c.bounds_max.z() = std::min(c.bounds_max.z(), hi);
-  if (c.bounds_min.z() >= c.bounds_max.z()) {
-    throw common::ConfigError({common::configProblem(p.origin(), "altitude.min", lo,
-                                                     "the band misses the world's bounds")});
+  for (int axis = 0; axis < 3; ++axis) {
+    if (c.bounds_min[axis] + c.resolution > c.bounds_max[axis]) {
+      throw common::ConfigError({common::configProblem(
+          p.origin(), axis == 2 ? "ground_clearance" : "safety_margin",
+          axis == 2 ? p.getDouble("ground_clearance") : p.getDouble("safety_margin"),
+          "leaves less than a cell of the world's bounds to plan in (with the altitude band, if any)")});
+    }
   }
-  const vehicle::VehicleParams v = vehicle::loadVehicle(common::configPath(p, "vehicle", QUAD_CONFIG_DIR));
-  c.planner.vehicle_radius = v.radius + p.getDouble("safety_margin");
+  c.known_space.radius = p.getDouble("known_free.radius");
+  c.known_space.horizon = p.getDouble("known_free.horizon");
+  // The vehicle's own volume is free (it is there) but partly behind its camera.
+  c.known_space.own_radius = v.radius + c.resolution;
   c.planner.connectivity = static_cast<int>(p.getInt("connectivity"));
   if (c.planner.connectivity != 6 && c.planner.connectivity != 18 && c.planner.connectivity != 26) {
     throw common::ConfigError({p.origin() + ":connectivity: " + std::to_string(c.planner.connectivity) +
@@ -251,10 +272,15 @@ void PlanningNode::replan(std::int64_t t_ns)
   }
   const double seconds = common::toSeconds(common::steadyTimeNs() - begin);
   std::vector<Vector3> waypoints;
+  std::optional<double> frontier;  // arc length where the path leaves known-free space
   if (r.status == PlanStatus::kOk) {
     waypoints = shortcut(planner_, r.cells);
     waypoints.front() = *position_;  // from where the vehicle is, not its cell's centre
+    if (config_.known_space.horizon > 0.0) {
+      frontier = knownFreeLength(planner_, waypoints, *position_, config_.known_space);
+    }
   }
+  const double known_free = frontier ? *frontier : geometry::polylineLength(waypoints);
   // Publish a new version only when the path changed meaningfully.
   bool changed = static_cast<msg::PlanStatus>(toMessage(r.status)) != current_.status() ||
                  waypoints.size() != current_.waypoints_W().size();
@@ -262,12 +288,19 @@ void PlanningNode::replan(std::int64_t t_ns)
     const auto& w = current_.waypoints_W()[i];
     changed = (waypoints[i] - Vector3(w.x(), w.y(), w.z())).norm() > config_.resolution;
   }
+  // So does the point where it leaves known-free space, which the follower stops before.
+  const std::optional<Vector3> frontier_W =
+      frontier ? std::optional<Vector3>(geometry::pointAlong(waypoints, *frontier)) : std::nullopt;
+  changed = changed || frontier_W.has_value() != frontier_W_.has_value() ||
+            (frontier_W && (*frontier_W - *frontier_W_).norm() > config_.resolution);
   if (r.status == PlanStatus::kBudgetExceeded) {
     return;  // keep the previous path; the search continues next cycle
   }
   current_.goal_id(*goal_id_);
   current_.status(toMessage(r.status));
   current_.cost(r.status == PlanStatus::kOk ? r.cost : -1.0);
+  current_.known_free_m(known_free);
+  frontier_W_ = frontier_W;
   current_.expansions(r.expansions);
   current_.replan_time_s(seconds);
   current_.waypoints_W().clear();
@@ -275,8 +308,8 @@ void PlanningNode::replan(std::int64_t t_ns)
     current_.waypoints_W().push_back(dds::toMessage(w));
   }
   if (changed) {
-    spdlog::info("planning: path {} {}: {} waypoints, cost {:.2f} m, {} expansions, {:.1f} ms", version_ + 1,
-                 toString(r.status), waypoints.size(), r.cost, r.expansions, seconds * 1e3);
+    spdlog::info("planning: path {} {}: {} waypoints, cost {:.2f} m, known free {:.1f} m, {} expansions, {:.1f} ms",
+                 version_ + 1, toString(r.status), waypoints.size(), r.cost, known_free, r.expansions, seconds * 1e3);
   }
   if (changed || t_ns >= next_publish_ns_) {
     publish(t_ns, changed);

@@ -15,6 +15,7 @@
 #include "quad/dds/topics.hpp"
 #include "quad/mapping/map_follower.hpp"
 #include "quad/planning/dstar_lite.hpp"
+#include "quad/planning/known_space.hpp"
 
 namespace quad::planning {
 
@@ -23,6 +24,7 @@ struct PlanningNodeConfig {
   Vector3 bounds_max;
   double resolution = 0.2;
   PlannerConfig planner;
+  KnownSpaceCheck known_space;       ///< horizon 0: unknown space is flown like free space
   double replan_period_s = 0.2;      ///< [s] of sim time between replans
   double republish_period_s = 0.5;   ///< [s] of sim time between repeats of an unchanged path
   std::uint64_t max_expansions = 200000;
@@ -30,8 +32,10 @@ struct PlanningNodeConfig {
 };
 
 common::ParamSchema planningSchema();
-/// Bounds come from the world file the config names; the radius from the vehicle file plus
-/// the safety margin.
+/// Bounds come from the world file the config names: its box less the inflation radius at the
+/// sides and the top (the plant counts leaving the box as a collision), from `ground_clearance`
+/// above its floor, clipped to the optional altitude band. The radius comes from the vehicle
+/// file plus the safety margin.
 PlanningNodeConfig planningConfigFrom(const common::Params& params);
 
 class PlanningNode : public dds::Node {
@@ -81,6 +85,7 @@ private:
   std::int64_t next_publish_ns_ = 0;
   std::uint32_t version_ = 0;
   msg::Path current_;
+  std::optional<Vector3> frontier_W_;  // where the published path leaves known-free space, if it does
 };
 
 }  // namespace quad::planning

@@ -1,6 +1,7 @@
 #include "quad/planning/dstar_lite.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -25,6 +26,10 @@ std::string_view toString(PlanStatus s)
       return "no goal";
     case PlanStatus::kBudgetExceeded:
       return "budget exceeded";
+    case PlanStatus::kGoalEnclosed:
+      return "goal enclosed";
+    case PlanStatus::kStartEnclosed:
+      return "start enclosed";
   }
   return "?";
 }
@@ -99,6 +104,15 @@ bool DStarLite::traversable(Cell c) const
   }
   const auto i = static_cast<std::size_t>(c);
   return blockers_[i] == 0 && (config_.unknown_traversable || cell_state_[i] != Occupancy::kUnknown);
+}
+
+Occupancy DStarLite::voxelState(const VoxelIndex& voxel) const
+{
+  if (const auto c = lattice_.cell(voxel)) {
+    return cell_state_[static_cast<std::size_t>(*c)];
+  }
+  const auto it = voxels_.find(voxel);
+  return it == voxels_.end() ? Occupancy::kUnknown : it->second;
 }
 
 std::optional<Cell> DStarLite::nearestTraversable(Cell c, double max_distance) const
@@ -418,7 +432,10 @@ PlanResult DStarLite::plan(std::uint64_t max_expansions)
     out.cost = 0.0;
   }
   if (out.cost == kInfinity) {
-    out.status = PlanStatus::kNoPath;
+    // The queue ran dry: the goal's side is exhausted and the start is not on it.
+    const auto sealed = sealedIn(*this, *goal_, *start_);
+    out.status = !sealed ? PlanStatus::kNoPath
+                         : (*sealed == *goal_ ? PlanStatus::kGoalEnclosed : PlanStatus::kStartEnclosed);
     return out;
   }
   // Follow the gradient: argmin over successors of c(s, s') + g(s'), ties by cell number.
@@ -447,6 +464,44 @@ PlanResult DStarLite::plan(std::uint64_t max_expansions)
   }
   out.status = s == *goal_ ? PlanStatus::kOk : PlanStatus::kNoPath;
   return out;
+}
+
+std::optional<Cell> sealedIn(const DStarLite& graph, Cell a, Cell b)
+{
+  if (!graph.traversable(a)) {
+    return a;
+  }
+  if (!graph.traversable(b)) {
+    return b;
+  }
+  struct Flood {
+    Cell origin;
+    std::vector<Cell> frontier;
+    std::size_t next = 0;  // frontier[next] is expanded next
+  };
+  std::array<Flood, 2> floods{Flood{a, {a}}, Flood{b, {b}}};
+  std::unordered_map<Cell, int> seen{{a, 0}, {b, 1}};  // which flood reached a cell
+  std::vector<std::pair<Cell, double>> around;
+  for (;;) {
+    for (int side = 0; side < 2; ++side) {
+      Flood& f = floods[static_cast<std::size_t>(side)];
+      if (f.next == f.frontier.size()) {
+        return f.origin;  // ran out first
+      }
+      graph.neighbours(f.frontier[f.next++], around);
+      for (const auto& [n, step] : around) {
+        if (!graph.traversable(n)) {
+          continue;
+        }
+        const auto [it, fresh] = seen.emplace(n, side);
+        if (fresh) {
+          f.frontier.push_back(n);
+        } else if (it->second != side) {
+          return std::nullopt;  // the floods met: a path exists
+        }
+      }
+    }
+  }
 }
 
 double shortestPathCost(const DStarLite& graph, Cell start, Cell goal)

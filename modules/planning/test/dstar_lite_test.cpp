@@ -52,7 +52,8 @@ TEST(DStarLite, CostEqualsDijkstraAfterEveryBatchOfUpdatesWithAMovingStart)
       const PlanResult r = planner.plan();
       const double reference = shortestPathCost(planner, start, goal);
       if (reference == kInfinity) {
-        EXPECT_EQ(r.status, PlanStatus::kNoPath);
+        EXPECT_TRUE(r.status == PlanStatus::kGoalEnclosed || r.status == PlanStatus::kStartEnclosed)
+            << toString(r.status);
         continue;
       }
       ASSERT_EQ(r.status, PlanStatus::kOk) << "connectivity " << connectivity << " batch " << batch;
@@ -157,7 +158,8 @@ TEST(DStarLiteRegression, OneCellWallWithNoGapHasNoPathAndNoDiagonalLeak)
   }
   planner.setStart(at(planner, 0, 0, 0));
   planner.setGoal(at(planner, 8, 0, 0));
-  EXPECT_EQ(planner.plan().status, PlanStatus::kNoPath);
+  // Two halves of 36 cells each: a tie goes to the goal's side.
+  EXPECT_EQ(planner.plan().status, PlanStatus::kGoalEnclosed);
 }
 
 TEST(DStarLiteRegression, ReplanningAfterTheStartMoved)

@@ -38,7 +38,21 @@ struct PlannerConfig {
   double vehicle_radius = 0.35;     ///< [m] inflation
 };
 
-enum class PlanStatus { kOk, kNoPath, kStartBlocked, kGoalBlocked, kOutOfBounds, kNoGoal, kBudgetExceeded };
+/// kGoalEnclosed and kStartEnclosed: the search ran out, so no chain of traversable cells
+/// (free, or unknown when unknown_traversable) joins start and goal; blocked cells (known
+/// occupied space, inflated) seal one of them in, the one whose side is the smaller.
+/// kNoPath: the search's values are not yet consistent along the way (a passing state).
+enum class PlanStatus {
+  kOk,
+  kNoPath,
+  kStartBlocked,
+  kGoalBlocked,
+  kOutOfBounds,
+  kNoGoal,
+  kBudgetExceeded,
+  kGoalEnclosed,
+  kStartEnclosed
+};
 std::string_view toString(PlanStatus s);
 
 struct PlanResult {
@@ -72,6 +86,9 @@ public:
   PlanResult plan(std::uint64_t max_expansions = 0);
 
   bool traversable(Cell c) const;
+  /// The mapper's classification of a voxel as the planner last heard it (inside the
+  /// lattice or not; unknown when never heard of).
+  Occupancy voxelState(const VoxelIndex& voxel) const;
   /// The traversable cell nearest to c (c itself when traversable), searching out to
   /// `max_distance` [m]; for a vehicle that drifted into an inflated margin.
   std::optional<Cell> nearestTraversable(Cell c, double max_distance) const;
@@ -183,6 +200,12 @@ private:
   double km_ = 0.0;
   std::uint64_t pushes_ = 0;
 };
+
+/// Which of two cells is sealed in: floods the traversable cells reachable from each in turn,
+/// one cell at a time, until one side runs out (or the floods meet: then neither, nullopt).
+/// Costs about twice the smaller side, so a goal sealed in a room is told cheaply even in a
+/// large box. Returns `a` or `b`, the one whose side ran out first.
+std::optional<Cell> sealedIn(const DStarLite& graph, Cell a, Cell b);
 
 /// Dijkstra from scratch on the same graph: the reference D* Lite's costs are checked against.
 double shortestPathCost(const DStarLite& graph, Cell start, Cell goal);

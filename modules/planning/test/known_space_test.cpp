@@ -1,0 +1,87 @@
+// How far a path keeps to known-free space: against voxels laid out by hand.
+#include "quad/planning/known_space.hpp"
+
+#include <gtest/gtest.h>
+
+namespace quad::planning {
+namespace {
+
+using geometry::VoxelGrid;
+
+/// A 0.2 m lattice, 20 m along x, with every voxel of |y|, |z − 2| <= `half` m known free up to
+/// x = `free_to` m; the rest unknown.
+DStarLite corridor(double free_to, double half = 1.0)
+{
+  DStarLite p(Lattice(VoxelGrid(0.2), Vector3(-2, -3, 0), Vector3(20, 3, 5)), {26, true, 0.65});
+  const VoxelGrid& g = p.lattice().grid();
+  const VoxelIndex lo = g.toIndex(Vector3(-2, -half, 2 - half));
+  const VoxelIndex hi = g.toIndex(Vector3(free_to - 1e-9, half, 2 + half));
+  for (int x = lo.x(); x <= hi.x(); ++x) {
+    for (int y = lo.y(); y <= hi.y(); ++y) {
+      for (int z = lo.z(); z <= hi.z(); ++z) {
+        p.updateVoxel(VoxelIndex(x, y, z), Occupancy::kFree);
+      }
+    }
+  }
+  return p;
+}
+
+const std::vector<Vector3> kPath{Vector3(0, 0, 2), Vector3(6, 0, 2), Vector3(6, 0, 4), Vector3(18, 0, 2)};
+
+TEST(KnownSpace, TheFrontierIsWhereTheCheckedBallFirstMeetsUnknownSpace)
+{
+  // GIVEN free space up to x = 5 m around a path along x
+  const DStarLite p = corridor(5.0);
+  KnownSpaceCheck check;
+  check.radius = 0.2;
+  check.own_radius = 0.0;
+  // WHEN the path is checked
+  const auto frontier = knownFreeLength(p, kPath, kPath.front(), check);
+  // THEN it ends where the ball around the path's voxel reaches the first unknown voxel (one
+  // voxel before x = 5), within a sampling step
+  ASSERT_TRUE(frontier.has_value());
+  EXPECT_GT(*frontier, 5.0 - 0.2 - 0.2 - 0.05);
+  EXPECT_LE(*frontier, 5.0);
+}
+
+TEST(KnownSpace, AnOccupiedVoxelOnTheWayIsAFrontierToo)
+{
+  DStarLite p = corridor(20.0, 2.0);
+  p.updateVoxel(p.lattice().grid().toIndex(Vector3(3.1, 0, 2)), Occupancy::kOccupied);
+  KnownSpaceCheck check;
+  check.own_radius = 0.0;
+  const auto frontier = knownFreeLength(p, kPath, kPath.front(), check);
+  ASSERT_TRUE(frontier.has_value());
+  EXPECT_LT(*frontier, 3.0);
+  EXPECT_GT(*frontier, 2.5);
+}
+
+TEST(KnownSpace, NothingWithinTheHorizonIsNoFrontier)
+{
+  // GIVEN all known free, the path's climb included; the horizon ends before the unknown
+  const DStarLite p = corridor(20.0, 2.5);
+  KnownSpaceCheck check;
+  check.horizon = 8.0;
+  EXPECT_EQ(knownFreeLength(p, kPath, kPath.front(), check), std::nullopt);
+  // and a horizon past the end of the path: the whole path is checked, and found free
+  check.horizon = 100.0;
+  EXPECT_EQ(knownFreeLength(p, {Vector3(0, 0, 2), Vector3(10, 0, 2)}, Vector3(0, 0, 2), check), std::nullopt);
+}
+
+TEST(KnownSpace, TheVehiclesOwnVolumeCountsAsFree)
+{
+  // GIVEN nothing known at all
+  const DStarLite p(Lattice(VoxelGrid(0.2), Vector3(-2, -3, 0), Vector3(20, 3, 5)), {26, true, 0.65});
+  KnownSpaceCheck check;
+  check.radius = 0.2;
+  check.own_radius = 0.55;
+  // WHEN checked from where the vehicle is
+  const auto frontier = knownFreeLength(p, kPath, kPath.front(), check);
+  // THEN the path is flyable only through its own volume: a few tenths of a metre
+  ASSERT_TRUE(frontier.has_value());
+  EXPECT_GT(*frontier, 0.05);
+  EXPECT_LT(*frontier, 0.55);
+}
+
+}  // namespace
+}  // namespace quad::planning

@@ -56,12 +56,12 @@ void BM_FlightControllerTickInMission(benchmark::State& state)
     fc.onState(s, false, t);
     s.p_W = fc.update(t).reference.p_W;
   }
-  fc.onPath({{0, 0, 2}, {100, 0, 2}, {100, 50, 2}}, 1, true, t);
+  fc.onPath({{0, 0, 2}, {100, 0, 2}, {100, 50, 2}}, 1, PathKind::kOk, t);
   fc.onCommand(Command::kStartMission);
   for (auto _ : state) {
     t += 0.004;
     fc.onState(s, false, t);
-    fc.onPath({{0, 0, 2}, {100, 0, 2}, {100, 50, 2}}, 1, true, t);
+    fc.onPath({{0, 0, 2}, {100, 0, 2}, {100, 50, 2}}, 1, PathKind::kOk, t);
     const FlightOutput out = fc.update(t);
     s.p_W = out.reference.p_W;
     benchmark::DoNotOptimize(out);

@@ -37,6 +37,9 @@ common::ParamSchema controlSchema()
       .addDouble("dead_reckoning_horizon", 2.0, 0.0, 30.0, "s",
                  "how long the IMU may carry the last state on while it is stale (0: never)")
       .addDouble("modes.path_stale_land_after", 5.0, 0.0, 3600.0, "s", "hover without a path, then land")
+      .addDouble("modes.no_path_land_after", 5.0, 0.0, 3600.0, "s",
+                 "hover while the planner says the goal cannot be reached, then land")
+      .addDouble("camera.look_ahead", 3.0, 0.1, 100.0, "m", "the camera gimbal looks at the path this far ahead")
       .addDouble("modes.idle_disarm_after", 30.0, 0.1, 1e6, "s", "armed on the ground, then disarm")
       .addBool("modes.auto_mission", false, "start the mission as soon as a path is available")
       .addBool("autostart", false, "arm and take off once the vehicle state is fresh")
@@ -76,6 +79,8 @@ ControlNodeConfig controlConfigFrom(const common::Params& p)
   f.dead_reckoning_horizon = p.getDouble("dead_reckoning_horizon");
   f.modes.path_stale_land_after = p.getDouble("modes.path_stale_land_after");
   f.modes.idle_disarm_after = p.getDouble("modes.idle_disarm_after");
+  f.modes.no_path_land_after = p.getDouble("modes.no_path_land_after");
+  f.camera_look_ahead = p.getDouble("camera.look_ahead");
   f.modes.auto_mission = p.getBool("modes.auto_mission");
   c.autostart = p.getBool("autostart");
   c.status_rate = p.getDouble("status.rate");

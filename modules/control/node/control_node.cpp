@@ -64,9 +64,10 @@ void ControlNode::takeInputs()
   while (auto p = path_.take()) {
     counters().samples_in++;
     const double t = latest_t_ >= 0.0 ? latest_t_ : common::toSeconds(p->header().stamp_ns());
-    if (!fc_.onPath(waypointsOf(*p), p->version(), p->status() == msg::PLAN_OK, t)) {
+    if (!fc_.onPath(waypointsOf(*p), p->version(), pathKind(p->status()), t, p->known_free_m())) {
       counters().errors++;
-      spdlog::warn("quad/planning/path: version {} rejected: invalid waypoints", p->version());
+      spdlog::warn("{}: version {} rejected: invalid waypoints or known-free length ({})", dds::topics::kPath.info.name,
+                   p->version(), p->known_free_m());
     }
   }
 }
@@ -97,6 +98,8 @@ void ControlNode::control(double t, std::int64_t stamp_ns)
   cmd.header().stamp_ns(stamp_ns);
   cmd.rotor_speed({out.rotor_speed[0], out.rotor_speed[1], out.rotor_speed[2], out.rotor_speed[3]});
   cmd.armed(out.armed);
+  cmd.gimbal_yaw_W(out.camera.yaw_W);
+  cmd.gimbal_pitch(out.camera.pitch);
   actuators_.write(cmd);
   msg::ControlReference ref = toMessage(out.reference, out.progress);
   ref.header().stamp_ns(stamp_ns);

@@ -59,8 +59,25 @@ msg::ControlMode toMessage(Mode mode)
       return msg::CONTROL_LAND;
     case Mode::kFailsafeLand:
       return msg::CONTROL_FAILSAFE_LAND;
+    case Mode::kReturn:
+      return msg::CONTROL_RETURN;
   }
   return msg::CONTROL_DISARMED;
+}
+
+PathKind pathKind(msg::PlanStatus status)
+{
+  switch (status) {
+    case msg::PLAN_OK:
+      return PathKind::kOk;
+    case msg::PLAN_GOAL_ENCLOSED:
+    case msg::PLAN_START_ENCLOSED:
+    case msg::PLAN_GOAL_BLOCKED:
+    case msg::PLAN_OUT_OF_BOUNDS:
+      return PathKind::kUnreachable;
+    default:
+      return PathKind::kNone;  // passing: the map lags, the search is not done, the mapper is lost
+  }
 }
 
 msg::FailsafeReason toMessage(Reason reason)
@@ -78,6 +95,8 @@ msg::FailsafeReason toMessage(Reason reason)
       return msg::FAILSAFE_SATURATION;
     case Reason::kCommanded:
       return msg::FAILSAFE_COMMANDED;
+    case Reason::kNoPath:
+      return msg::FAILSAFE_NO_PATH;
   }
   return msg::FAILSAFE_NONE;
 }

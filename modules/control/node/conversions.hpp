@@ -16,6 +16,8 @@ namespace quad::control {
 
 VehicleState fromMessage(const msg::VehicleState& m);
 std::vector<Vector3> waypointsOf(const msg::Path& m);
+/// What a planner status means to the controller: fly, hold, or give the goal up.
+PathKind pathKind(msg::PlanStatus status);
 Command fromMessage(msg::CommandKind kind);
 msg::ControlMode toMessage(Mode mode);
 msg::FailsafeReason toMessage(Reason reason);

@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "quad/geometry/polyline.hpp"
 #include "quad/geometry/so3.hpp"
 
 namespace quad::control {
 
 namespace {
+constexpr double kBreadcrumbSpacing = 0.5;  // [m] between the flown path's points kept for a return
+
 double yawOf(const Quaternion& q)
 {
   const Vector3 x = geometry::toMatrix(q).col(0);
@@ -51,21 +54,61 @@ bool FlightController::onImu(const InertialSample& sample, double t)
   return true;
 }
 
-bool FlightController::onPath(const std::vector<Vector3>& waypoints, std::uint32_t version, bool ok, double t)
+bool FlightController::onPath(const std::vector<Vector3>& waypoints, std::uint32_t version, PathKind kind, double t,
+                              double known_free_m)
 {
+  const bool ok = kind == PathKind::kOk;
   const bool finite = std::all_of(waypoints.begin(), waypoints.end(), [](const Vector3& w) { return w.allFinite(); });
-  if (!finite || (ok && waypoints.empty()) || !std::isfinite(t)) {
+  if (!finite || (ok && waypoints.empty()) || !std::isfinite(t) || !(known_free_m >= 0.0)) {
     ++rejected_;
     return false;
   }
   path_t_ = t;
   path_ok_ = ok;
+  path_unreachable_ = kind == PathKind::kUnreachable;
   if (ok && (!path_version_ || version != *path_version_)) {
     path_ = waypoints;
     path_version_ = version;
+    path_known_free_ = known_free_m;
     path_changed_ = true;
   }
   return true;
+}
+
+std::vector<Vector3> FlightController::flyablePath() const { return geometry::truncated(path_, path_known_free_); }
+
+void FlightController::aimCamera(Mode mode, const Vector3& p_W)
+{
+  Vector3 look = Vector3::Zero();
+  switch (mode) {
+    case Mode::kTakeoff:
+      look = Vector3::UnitZ();  // the column it climbs into
+      break;
+    case Mode::kLand:
+    case Mode::kFailsafeLand:
+      look = -Vector3::UnitZ();  // the column it descends into
+      break;
+    case Mode::kMission:
+    case Mode::kHover:
+    case Mode::kReturn: {
+      const std::vector<Vector3>& path = mode == Mode::kReturn ? return_path_ : path_;
+      if (path.size() >= 2) {
+        const double s = geometry::nearestArcLength(path, p_W) + config_.camera_look_ahead;
+        look = geometry::pointAlong(path, s) - p_W;
+      }
+      break;
+    }
+    default:
+      break;
+  }
+  if (look.norm() < 0.3) {
+    return;  // nothing to look at, or too close to tell a direction: keep the aim
+  }
+  const double horizontal = look.head<2>().norm();
+  if (horizontal > 0.05 * look.norm()) {
+    camera_.yaw_W = std::atan2(look.y(), look.x());
+  }
+  camera_.pitch = std::atan2(look.z(), horizontal);
 }
 
 bool FlightController::onGoal(const Vector3& p, double tolerance)
@@ -93,6 +136,13 @@ void FlightController::enter(Mode mode, double t, const std::optional<VehicleSta
       follower_.hold(p, yaw);
       takeoff_target_ = p + Vector3(0.0, 0.0, config_.takeoff_altitude);
       follower_.setPath({p, takeoff_target_}, 0);
+      flown_ = {takeoff_target_};
+      break;
+    case Mode::kReturn:
+      // Back along the flown path: the one way known to be clear (the world stands still).
+      return_path_ = {p};
+      return_path_.insert(return_path_.end(), flown_.rbegin(), flown_.rend());
+      follower_.setPath(return_path_, 0);
       break;
     case Mode::kHover: {
       // Hold where the reference is, unless the vehicle is far from it (after a failsafe).
@@ -101,7 +151,7 @@ void FlightController::enter(Mode mode, double t, const std::optional<VehicleSta
       break;
     }
     case Mode::kMission:
-      follower_.setPath(path_, path_version_.value_or(0));
+      follower_.setPath(flyablePath(), path_version_.value_or(0));
       path_changed_ = false;
       break;
     case Mode::kLand:
@@ -125,6 +175,7 @@ FlightOutput FlightController::update(double t)
   pending_ = Command::kNone;
   in.state_fresh = state_ && t - state_t_ <= config_.state_timeout;
   in.path_fresh = path_ok_ && path_version_ && t - path_t_ <= config_.path_timeout;
+  in.no_path = path_unreachable_ && t - path_t_ <= config_.path_timeout;
   in.landed = landed_;
   in.takeoff_altitude_reached = modes_.mode() == Mode::kTakeoff && state_ && follower_.finished() &&
                                 std::abs(state_->p_W.z() - takeoff_target_.z()) < 0.1;
@@ -132,6 +183,11 @@ FlightOutput FlightController::update(double t)
   // mission this keeps auto_mission from starting again for a goal already reached.
   in.goal_reached = state_ && goal_ && (state_->p_W - *goal_).norm() <= goal_tolerance_ &&
                     (modes_.mode() != Mode::kMission || follower_.finished());
+  in.returned = modes_.mode() == Mode::kReturn && follower_.finished();
+  if (state_ && (modes_.mode() == Mode::kMission || modes_.mode() == Mode::kHover) &&
+      (flown_.empty() || (state_->p_W - flown_.back()).norm() >= kBreadcrumbSpacing)) {
+    flown_.push_back(state_->p_W);
+  }
   // The last state carried to now by the IMU samples since (the state itself when none came
   // after it). Closing the loops on a state frozen at its last value would pitch the vehicle
   // over in the moments before it counts as stale. Once stale, only up to the horizon.
@@ -144,8 +200,9 @@ FlightOutput FlightController::update(double t)
   }
   out.mode = modes_.mode();
   out.reason = modes_.reason();
+  out.camera = camera_;  // held where no loop runs
   if (out.mode == Mode::kMission && path_changed_) {
-    follower_.setPath(path_, path_version_.value_or(0));  // a replan: joined without a jump
+    follower_.setPath(flyablePath(), path_version_.value_or(0));  // a replan: joined without a jump
     path_changed_ = false;
   }
 
@@ -180,6 +237,8 @@ FlightOutput FlightController::update(double t)
     out.progress = follower_.progress();
   }
   out.reference = ref;
+  aimCamera(out.mode, state->p_W);
+  out.camera = camera_;
   out.dead_reckoning = !in.state_fresh;
   out.control = controller_.update(*state, ref, dt);
   if (!out.control.valid) {

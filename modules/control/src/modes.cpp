@@ -19,6 +19,8 @@ std::string_view toString(Mode m)
       return "LAND";
     case Mode::kFailsafeLand:
       return "FAILSAFE_LAND";
+    case Mode::kReturn:
+      return "RETURN";
   }
   return "?";
 }
@@ -38,6 +40,8 @@ std::string_view toString(Reason r)
       return "saturation";
     case Reason::kCommanded:
       return "commanded";
+    case Reason::kNoPath:
+      return "no path";
   }
   return "?";
 }
@@ -66,7 +70,7 @@ std::string_view toString(Command c)
 bool airborne(Mode m)
 {
   return m == Mode::kTakeoff || m == Mode::kMission || m == Mode::kHover || m == Mode::kLand ||
-         m == Mode::kFailsafeLand;
+         m == Mode::kFailsafeLand || m == Mode::kReturn;
 }
 
 ModeMachine::ModeMachine(ModeConfig config) : config_(config) {}
@@ -78,6 +82,7 @@ std::optional<Transition> ModeMachine::go(Mode to, Reason reason, std::string wh
   reason_ = reason;
   entered_ = t;
   path_stale_since_ = -1.0;
+  no_path_since_ = reason == Reason::kNoPath ? t : -1.0;  // the hold counts from the planner's word
   return tr;
 }
 
@@ -166,6 +171,20 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
         return go(Mode::kMission, commanded(Command::kStartMission) ? Reason::kCommanded : Reason::kNone,
                   commanded(Command::kStartMission) ? "commanded: start mission" : "path available", in.t);
       }
+      // The planner says the goal cannot be reached: hold, for a map that was wrong to
+      // right itself, then go back the way the vehicle came (what lies below it now may be
+      // an obstacle's roof) and land where it took off.
+      if (in.no_path) {
+        if (no_path_since_ < 0.0) {
+          no_path_since_ = in.t;
+        }
+        if (in.t - no_path_since_ >= config_.no_path_land_after) {
+          return go(Mode::kReturn, Reason::kNoPath, "no path to the goal: returning to land at the take-off point",
+                    in.t);
+        }
+        break;
+      }
+      no_path_since_ = -1.0;
       if (reason_ == Reason::kPathStale) {
         if (in.path_fresh) {
           path_stale_since_ = -1.0;
@@ -180,6 +199,9 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
       }
       break;
     case Mode::kMission:
+      if (in.no_path) {
+        return go(Mode::kHover, Reason::kNoPath, "no path to the goal", in.t);
+      }
       if (!in.path_fresh) {
         return go(Mode::kHover, Reason::kPathStale, "path stale", in.t);
       }
@@ -189,7 +211,12 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
       break;
     case Mode::kLand:
       if (in.landed) {
-        return go(Mode::kIdle, Reason::kNone, "landed", in.t);
+        return go(Mode::kIdle, reason_ == Reason::kNoPath ? Reason::kNoPath : Reason::kNone, "landed", in.t);
+      }
+      break;
+    case Mode::kReturn:
+      if (in.returned) {
+        return go(Mode::kLand, reason_, "back above the take-off point: landing", in.t);
       }
       break;
     default:

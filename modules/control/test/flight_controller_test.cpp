@@ -84,13 +84,13 @@ TEST(FlightController, ArmTakeOffFlyTheMissionAndLand)
   EXPECT_NEAR(rig.sim.state().p_W.z(), 2.0, 0.1);
   const std::vector<Vector3> path = {{0, 0, 2}, {5, 0, 2}, {5, 5, 3}, {10, 5, 2}};
   rig.fc.onGoal(path.back(), 0.3);
-  rig.fc.onPath(path, 1, true, rig.t());
+  rig.fc.onPath(path, 1, PathKind::kOk, rig.t());
   rig.fc.onCommand(Command::kStartMission);
   // The planner re-publishes its path; here every 0.5 s.
   double next_path = rig.t() + 0.5;
   rig.run(40.0, [&] {
     if (rig.t() >= next_path) {
-      rig.fc.onPath(path, 1, true, rig.t());
+      rig.fc.onPath(path, 1, PathKind::kOk, rig.t());
       next_path += 0.5;
     }
     return rig.log.back().transition && rig.log.back().transition->why == "goal reached";
@@ -113,7 +113,7 @@ TEST(FlightController, ARotorAtSeventyPercentKeepsTheAltitudeThroughTurns)
   const std::vector<Vector3> path = {{0, 0, 2},  {6, 0, 2},  {10, -3, 2}, {16, -3, 2},
                                      {20, 2, 2}, {26, 2, 2}, {30, -2, 2}, {40, 0, 2}};
   rig.fc.onGoal(path.back(), 0.3);
-  rig.fc.onPath(path, 1, true, rig.t());
+  rig.fc.onPath(path, 1, PathKind::kOk, rig.t());
   rig.fc.onCommand(Command::kStartMission);
   // WHEN rotor 2 loses 30 % of its thrust (and drag) a second in, for the rest of the flight
   plant::Fault loss;
@@ -127,7 +127,7 @@ TEST(FlightController, ARotorAtSeventyPercentKeepsTheAltitudeThroughTurns)
   double lowest = std::numeric_limits<double>::infinity();
   rig.run(60.0, [&] {
     if (rig.t() >= next_path) {
-      rig.fc.onPath(path, 1, true, rig.t());
+      rig.fc.onPath(path, 1, PathKind::kOk, rig.t());
       next_path += 0.5;
     }
     lowest = std::min(lowest, rig.sim.state().p_W.z());
@@ -145,7 +145,7 @@ TEST(FlightController, ARotorAtSeventyPercentKeepsTheAltitudeThroughTurns)
 void intoMission(Rig& rig)
 {
   takeOff(rig);
-  rig.fc.onPath({{0, 0, 2}, {40, 0, 2}}, 1, true, rig.t());
+  rig.fc.onPath({{0, 0, 2}, {40, 0, 2}}, 1, PathKind::kOk, rig.t());
   rig.fc.onGoal(Vector3(40, 0, 2), 0.3);
   rig.fc.onCommand(Command::kStartMission);
   rig.run(0.5);
@@ -196,7 +196,7 @@ double driftThroughAStateDropout(Rig& rig, double seconds)
   double next_path = rig.t();
   const auto republish = [&] {
     if (rig.t() >= next_path) {
-      rig.fc.onPath({{0, 0, 2}, {40, 0, 2}}, 1, true, rig.t());
+      rig.fc.onPath({{0, 0, 2}, {40, 0, 2}}, 1, PathKind::kOk, rig.t());
       next_path += 0.5;
     }
   };
@@ -267,8 +267,8 @@ TEST(FlightController, InvalidInputsAreRejectedCountedAndTheLastGoodKept)
   Rig rig;
   EXPECT_FALSE(rig.fc.onState({Vector3(NAN, 0, 0), Vector3::Zero(), Quaternion::identity(), Vector3::Zero()}, true, 0.0));
   EXPECT_FALSE(rig.fc.onState({Vector3::Zero(), Vector3::Zero(), Quaternion{2, 0, 0, 0}, Vector3::Zero()}, true, 0.0));
-  EXPECT_FALSE(rig.fc.onPath({{0, 0, 0}, {INFINITY, 0, 0}}, 3, true, 0.0));
-  EXPECT_FALSE(rig.fc.onPath({}, 4, true, 0.0));
+  EXPECT_FALSE(rig.fc.onPath({{0, 0, 0}, {INFINITY, 0, 0}}, 3, PathKind::kOk, 0.0));
+  EXPECT_FALSE(rig.fc.onPath({}, 4, PathKind::kOk, 0.0));
   EXPECT_FALSE(rig.fc.onGoal(Vector3(NAN, 0, 0), 0.3));
   EXPECT_FALSE(rig.fc.onImu({Vector3(0, 0, INFINITY), Vector3::Zero()}, 0.0));
   EXPECT_FALSE(rig.fc.onImu({Vector3::Zero(), Vector3(1e308, 1e308, 0)}, 1.0));
@@ -294,7 +294,7 @@ TEST(FlightController, FuzzedInputsNeverProduceANonFiniteCommand)
         break;
       case 1:
         rig.fc.onPath({Vector3(value(), value(), value()), Vector3(value(), value(), value())},
-                      static_cast<std::uint32_t>(rng() % 5), rng() % 2 == 0, t);
+                      static_cast<std::uint32_t>(rng() % 5), rng() % 2 == 0 ? PathKind::kOk : PathKind::kNone, t);
         break;
       case 2:
         rig.fc.onGoal(Vector3(value(), value(), value()), value());
@@ -313,6 +313,96 @@ TEST(FlightController, FuzzedInputsNeverProduceANonFiniteCommand)
     }
   }
   EXPECT_GT(rig.fc.rejectedInputs(), 0U);
+}
+
+TEST(FlightController, TheVehicleStopsBeforeThePathLeavesKnownFreeSpace)
+{
+  // GIVEN a hovering vehicle and a 20 m path of which the first 6 m are known free
+  Rig rig;
+  takeOff(rig);
+  const Vector3 start = rig.sim.state().p_W;
+  const std::vector<Vector3> path = {start, start + Vector3(20, 0, 0)};
+  rig.fc.onGoal(path.back(), 0.3);
+  rig.fc.onPath(path, 1, PathKind::kOk, rig.t(), 6.0);
+  rig.fc.onCommand(Command::kStartMission);
+  // WHEN it flies for long enough to have crossed the whole path
+  double furthest = 0.0;
+  double next_path = rig.t() + 0.5;
+  rig.run(20.0, [&] {
+    if (rig.t() >= next_path) {
+      rig.fc.onPath(path, 1, PathKind::kOk, rig.t(), 6.0);
+      next_path += 0.5;
+    }
+    furthest = std::max(furthest, rig.sim.state().p_W.x() - start.x());
+    return false;
+  });
+  // THEN it never went past the end of the known-free part (its tracking error aside), and
+  // waits there in the mission
+  EXPECT_LT(furthest, 6.0 + 0.15);
+  EXPECT_GT(rig.sim.state().p_W.x() - start.x(), 5.8);
+  EXPECT_EQ(rig.mode(), Mode::kMission);
+  // AND a newer path whose known part reaches the goal takes it there
+  rig.fc.onPath({rig.sim.state().p_W, path.back()}, 2, PathKind::kOk, rig.t());
+  next_path = rig.t() + 0.5;
+  rig.run(30.0, [&] {
+    if (rig.t() >= next_path) {
+      rig.fc.onPath({rig.sim.state().p_W, path.back()}, 2, PathKind::kOk, rig.t());
+      next_path += 0.5;
+    }
+    return rig.log.back().transition && rig.log.back().transition->why == "goal reached";
+  });
+  EXPECT_EQ(rig.mode(), Mode::kHover);
+  EXPECT_LT((rig.sim.state().p_W - path.back()).norm(), 0.3);
+}
+
+TEST(FlightController, TheCameraLooksUpOnTakeOffAlongThePathInFlightAndDownWhenLanding)
+{
+  Rig rig;
+  rig.fc.onCommand(Command::kArm);
+  rig.run(0.1);
+  rig.fc.onCommand(Command::kTakeoff);
+  rig.run(0.5);
+  EXPECT_NEAR(rig.log.back().camera.pitch, geometry::kPi / 2.0, 1e-9);  // the column it climbs into
+  rig.run(15.0, [&] { return rig.mode() == Mode::kHover; });
+  // A path that climbs 45° to the left: the camera looks 3 m along it.
+  const Vector3 p = rig.sim.state().p_W;
+  rig.fc.onPath({p, p + Vector3(0, 10, 10)}, 1, PathKind::kOk, rig.t());
+  rig.run(0.1);
+  const CameraAim aim = rig.log.back().camera;
+  EXPECT_NEAR(aim.yaw_W, geometry::kPi / 2.0, 0.05);
+  EXPECT_NEAR(aim.pitch, geometry::kPi / 4.0, 0.05);
+  rig.fc.onCommand(Command::kLand);
+  rig.run(0.1);
+  EXPECT_NEAR(rig.log.back().camera.pitch, -geometry::kPi / 2.0, 1e-9);
+  EXPECT_NEAR(rig.log.back().camera.yaw_W, aim.yaw_W, 1e-9);  // the yaw is kept
+}
+
+TEST(FlightController, AGoalThePlannerCannotReachIsHeldThenLandedShortOfIt)
+{
+  ModeConfig modes;
+  modes.idle_disarm_after = 1e9;
+  modes.no_path_land_after = 3.0;
+  FlightControllerConfig config = Rig::defaults();
+  config.modes = modes;
+  Rig rig(config);
+  takeOff(rig);
+  const Vector3 p = rig.sim.state().p_W;
+  rig.fc.onGoal(p + Vector3(10, 0, 0), 0.3);
+  double said = -1.0;
+  rig.run(20.0, [&] {
+    if (rig.t() >= said + 0.5) {
+      rig.fc.onPath({}, 1, PathKind::kUnreachable, rig.t());
+      said = rig.t();
+    }
+    return rig.mode() == Mode::kIdle;
+  });
+  EXPECT_EQ(rig.mode(), Mode::kIdle);
+  EXPECT_LT((rig.sim.state().p_W.head<2>() - p.head<2>()).norm(), 0.2);
+  const auto landing = std::find_if(rig.log.begin(), rig.log.end(), [](const FlightOutput& o) {
+    return o.transition && o.transition->to == Mode::kLand;
+  });
+  ASSERT_NE(landing, rig.log.end());
+  EXPECT_EQ(landing->transition->reason, Reason::kNoPath);
 }
 
 }  // namespace

@@ -9,8 +9,8 @@
 namespace quad::control {
 namespace {
 
-constexpr std::array kModes = {Mode::kDisarmed, Mode::kIdle, Mode::kTakeoff, Mode::kMission,
-                               Mode::kHover, Mode::kLand, Mode::kFailsafeLand};
+constexpr std::array kModes = {Mode::kDisarmed, Mode::kIdle,         Mode::kTakeoff, Mode::kMission,
+                               Mode::kHover,    Mode::kLand,         Mode::kFailsafeLand, Mode::kReturn};
 
 /// A machine put into `mode` through legal transitions.
 ModeMachine machineIn(Mode mode, ModeConfig config = {})
@@ -47,6 +47,13 @@ ModeMachine machineIn(Mode mode, ModeConfig config = {})
     step(Command::kLand);
   } else if (mode == Mode::kFailsafeLand) {
     step(Command::kNone, [](ModeInputs& i) { i.state_fresh = false; });
+  } else if (mode == Mode::kReturn) {
+    for (const double t : {0.0, 1e3}) {  // no path for longer than any hold
+      step(Command::kNone, [t](ModeInputs& i) {
+        i.no_path = true;
+        i.t = t;
+      });
+    }
   }
   EXPECT_EQ(m.mode(), mode);
   return m;
@@ -55,27 +62,30 @@ ModeMachine machineIn(Mode mode, ModeConfig config = {})
 struct Row {
   const char* condition;
   std::function<void(ModeInputs&)> apply;
-  std::array<Mode, 7> expected;  // in the order of kModes
+  std::array<Mode, 8> expected;  // in the order of kModes
 };
 
 TEST(Modes, EveryConditionInEveryMode)
 {
   using enum Mode;
-  const Mode D = kDisarmed, I = kIdle, T = kTakeoff, M = kMission, H = kHover, L = kLand, F = kFailsafeLand;
+  const Mode D = kDisarmed, I = kIdle, T = kTakeoff, M = kMission, H = kHover, L = kLand, F = kFailsafeLand,
+             R = kReturn;
   const std::vector<Row> table = {
-      //                                                         DISARMED IDLE TAKEOFF MISSION HOVER LAND FAILSAFE
-      {"nothing", [](ModeInputs&) {}, {D, I, T, M, H, L, F}},
-      {"arm", [](ModeInputs& i) { i.command = Command::kArm; }, {I, I, T, M, H, L, F}},
-      {"disarm", [](ModeInputs& i) { i.command = Command::kDisarm; }, {D, D, T, M, H, L, F}},
-      {"takeoff", [](ModeInputs& i) { i.command = Command::kTakeoff; }, {D, T, T, M, H, L, F}},
-      {"start mission", [](ModeInputs& i) { i.command = Command::kStartMission; }, {D, I, T, M, M, L, F}},
-      {"hold", [](ModeInputs& i) { i.command = Command::kHold; }, {D, I, H, H, H, H, F}},
-      {"land", [](ModeInputs& i) { i.command = Command::kLand; }, {D, I, L, L, L, L, F}},
-      {"state stale", [](ModeInputs& i) { i.state_fresh = false; }, {D, I, F, F, F, F, F}},
-      {"path stale", [](ModeInputs& i) { i.path_fresh = false; }, {D, I, T, H, H, L, F}},
-      {"landed", [](ModeInputs& i) { i.landed = true; }, {D, I, T, M, H, I, I}},
-      {"altitude reached", [](ModeInputs& i) { i.takeoff_altitude_reached = true; }, {D, I, H, M, H, L, F}},
-      {"goal reached", [](ModeInputs& i) { i.goal_reached = true; }, {D, I, T, H, H, L, F}},
+      //                                                         DISARMED IDLE TAKEOFF MISSION HOVER LAND FAILSAFE RETURN
+      {"nothing", [](ModeInputs&) {}, {D, I, T, M, H, L, F, R}},
+      {"arm", [](ModeInputs& i) { i.command = Command::kArm; }, {I, I, T, M, H, L, F, R}},
+      {"disarm", [](ModeInputs& i) { i.command = Command::kDisarm; }, {D, D, T, M, H, L, F, R}},
+      {"takeoff", [](ModeInputs& i) { i.command = Command::kTakeoff; }, {D, T, T, M, H, L, F, R}},
+      {"start mission", [](ModeInputs& i) { i.command = Command::kStartMission; }, {D, I, T, M, M, L, F, R}},
+      {"hold", [](ModeInputs& i) { i.command = Command::kHold; }, {D, I, H, H, H, H, F, H}},
+      {"land", [](ModeInputs& i) { i.command = Command::kLand; }, {D, I, L, L, L, L, F, L}},
+      {"state stale", [](ModeInputs& i) { i.state_fresh = false; }, {D, I, F, F, F, F, F, F}},
+      {"path stale", [](ModeInputs& i) { i.path_fresh = false; }, {D, I, T, H, H, L, F, R}},
+      {"landed", [](ModeInputs& i) { i.landed = true; }, {D, I, T, M, H, I, I, R}},
+      {"altitude reached", [](ModeInputs& i) { i.takeoff_altitude_reached = true; }, {D, I, H, M, H, L, F, R}},
+      {"goal reached", [](ModeInputs& i) { i.goal_reached = true; }, {D, I, T, H, H, L, F, R}},
+      {"no path", [](ModeInputs& i) { i.no_path = true; i.path_fresh = false; }, {D, I, T, H, H, L, F, R}},
+      {"returned", [](ModeInputs& i) { i.returned = true; }, {D, I, T, M, H, L, F, L}},
   };
   for (const Row& row : table) {
     for (std::size_t k = 0; k < kModes.size(); ++k) {
@@ -124,6 +134,64 @@ TEST(Modes, StalePathInHoverLandsAfterItsTimeout)
   const auto tr = m.update(in);
   EXPECT_EQ(m.mode(), Mode::kLand);
   EXPECT_EQ(tr->reason, Reason::kPathStale);
+}
+
+TEST(Modes, NoPathHoldsThenLandsUnlessAPathComesBack)
+{
+  // GIVEN a mission, and a planner that says the goal cannot be reached
+  ModeConfig config;
+  config.no_path_land_after = 5.0;
+  config.auto_mission = true;
+  ModeMachine m = machineIn(Mode::kMission, config);
+  ModeInputs in;
+  in.landed = false;
+  in.no_path = true;
+  in.t = 10.0;
+  // WHEN it says so: the vehicle holds, for the stated reason
+  auto tr = m.update(in);
+  ASSERT_EQ(m.mode(), Mode::kHover);
+  EXPECT_EQ(tr->reason, Reason::kNoPath);
+  // THEN a path that comes back within the hold resumes the mission
+  in.t = 12.0;
+  in.no_path = false;
+  in.path_fresh = true;
+  m.update(in);
+  EXPECT_EQ(m.mode(), Mode::kMission);
+  // and one that does not lands it after the hold, counted from when it was last said
+  in.no_path = true;
+  in.path_fresh = false;
+  in.t = 20.0;
+  m.update(in);
+  ASSERT_EQ(m.mode(), Mode::kHover);
+  in.t = 24.9;
+  m.update(in);
+  EXPECT_EQ(m.mode(), Mode::kHover);
+  in.t = 25.0;
+  tr = m.update(in);
+  EXPECT_EQ(m.mode(), Mode::kReturn);
+  EXPECT_EQ(tr->reason, Reason::kNoPath);
+  // back above the take-off point, it lands there, and says why
+  in.t = 40.0;
+  in.returned = true;
+  tr = m.update(in);
+  EXPECT_EQ(m.mode(), Mode::kLand);
+  EXPECT_EQ(tr->reason, Reason::kNoPath);
+}
+
+TEST(Modes, NoPathRightAfterTakeOffLandsToo)
+{
+  ModeConfig config;
+  config.no_path_land_after = 2.0;
+  ModeMachine m = machineIn(Mode::kHover, config);
+  ModeInputs in;
+  in.landed = false;
+  in.no_path = true;
+  in.t = 3.0;
+  m.update(in);
+  EXPECT_EQ(m.mode(), Mode::kHover);
+  in.t = 5.0;
+  EXPECT_EQ(m.update(in)->reason, Reason::kNoPath);
+  EXPECT_EQ(m.mode(), Mode::kReturn);
 }
 
 TEST(Modes, IdleDisarmsAfterItsTimeoutAndAutoMissionStartsWithAPath)

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -17,6 +18,13 @@
 #include "quad/vehicle/vehicle.hpp"
 
 namespace quad::control {
+
+/// What the planner's status makes of a path.
+enum class PathKind {
+  kOk,           ///< waypoints to fly
+  kNone,         ///< no path to fly now (the map lags, the search is not done): hold
+  kUnreachable,  ///< the planner says the goal cannot be reached: hold, then land
+};
 
 struct FlightControllerConfig {
   GeometricGains gains;
@@ -31,6 +39,14 @@ struct FlightControllerConfig {
   /// [s] how long after the last state the IMU may carry it on (0: never; then a stale state
   /// means a blind descent at once)
   double dead_reckoning_horizon = 2.0;
+  /// [m] the camera gimbal looks at the path this far ahead of the vehicle
+  double camera_look_ahead = 3.0;
+};
+
+/// Where the camera gimbal should look: world yaw and elevation [rad].
+struct CameraAim {
+  double yaw_W = 0.0;
+  double pitch = 0.0;
 };
 
 struct FlightOutput {
@@ -48,6 +64,10 @@ struct FlightOutput {
   double progress = 0.0;  ///< [m] arc length along the path being followed
   /// Flown on the IMU's dead reckoning from the last state (the state is stale)
   bool dead_reckoning = false;
+  /// Where the depth camera looks: up on take-off, along the path ahead (the end of what the
+  /// planner found known free comes into view before the vehicle stops at it), down when
+  /// landing.
+  CameraAim camera;
 };
 
 class FlightController {
@@ -57,9 +77,13 @@ public:
   /// A vehicle state at sim time t [s]. Rejected (false, counted) when non-finite, the
   /// quaternion is not unit within 1e-3, or t goes back.
   bool onState(const VehicleState& state, bool landed, double t);
-  /// A planned path. `ok` is the planner's status (waypoints are meaningful only when OK).
-  /// Rejected (false, counted) when a waypoint is non-finite or an OK path has none.
-  bool onPath(const std::vector<Vector3>& waypoints, std::uint32_t version, bool ok, double t);
+  /// A planned path of the planner's status `kind` (waypoints are meaningful only when OK).
+  /// The follower flies the path only up to `known_free_m` [m of arc length from its first
+  /// waypoint]: there it leaves space the map knows free, and the vehicle must be able to stop
+  /// before it. Rejected (false, counted) when a waypoint or `t` is non-finite, an OK path has
+  /// none, or the known-free length is negative or NaN.
+  bool onPath(const std::vector<Vector3>& waypoints, std::uint32_t version, PathKind kind, double t,
+              double known_free_m = std::numeric_limits<double>::infinity());
   /// An IMU sample at sim time t [s], carrying the last state on while the state is stale.
   /// Rejected (false, counted) when non-finite.
   bool onImu(const InertialSample& sample, double t);
@@ -80,6 +104,9 @@ public:
 
 private:
   void enter(Mode mode, double t, const std::optional<VehicleState>& state);
+  /// The follower's path: the planner's, up to its known-free length.
+  std::vector<Vector3> flyablePath() const;
+  void aimCamera(Mode mode, const Vector3& p_W);
 
   vehicle::VehicleParams vehicle_;
   FlightControllerConfig config_;
@@ -94,7 +121,12 @@ private:
   double state_t_ = -1.0;
   std::vector<Vector3> path_;
   std::optional<std::uint32_t> path_version_;
+  double path_known_free_ = 0.0;  // [m] of path_ flown
   bool path_ok_ = false;
+  bool path_unreachable_ = false;
+  CameraAim camera_;
+  std::vector<Vector3> flown_;        // the flown path since take-off, a point every half metre
+  std::vector<Vector3> return_path_;  // RETURN flies it: back along flown_
   double path_t_ = -1e300;
   bool path_changed_ = false;
   std::optional<Vector3> goal_;

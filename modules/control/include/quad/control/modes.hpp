@@ -6,6 +6,10 @@
 ///   DISARMED --arm--> IDLE --takeoff--> TAKEOFF --altitude--> HOVER --mission--> MISSION
 ///   MISSION --goal reached--> HOVER;  any airborne --land--> LAND --landed--> IDLE
 ///   MISSION --path stale--> HOVER --path still stale for path_stale_land_after--> LAND
+///   MISSION --no path--> HOVER --still no path for no_path_land_after--> RETURN --back--> LAND
+///     (the planner says the goal cannot be reached: sealed off, in an obstacle, out of bounds;
+///     RETURN retraces the flown path to the take-off point, the one way known to be clear,
+///     and lands there)
 ///   any airborne --state stale--> FAILSAFE_LAND --landed--> IDLE --idle timeout--> DISARMED
 
 #include <optional>
@@ -14,8 +18,8 @@
 
 namespace quad::control {
 
-enum class Mode { kDisarmed, kIdle, kTakeoff, kMission, kHover, kLand, kFailsafeLand };
-enum class Reason { kNone, kStateStale, kPathStale, kInputInvalid, kSaturation, kCommanded };
+enum class Mode { kDisarmed, kIdle, kTakeoff, kMission, kHover, kLand, kFailsafeLand, kReturn };
+enum class Reason { kNone, kStateStale, kPathStale, kInputInvalid, kSaturation, kCommanded, kNoPath };
 enum class Command { kNone, kArm, kDisarm, kTakeoff, kStartMission, kHold, kLand };
 
 std::string_view toString(Mode m);
@@ -29,13 +33,16 @@ struct ModeInputs {
   Command command = Command::kNone;
   bool state_fresh = true;        ///< a valid state within its timeout
   bool path_fresh = false;        ///< a valid path (status OK) within its timeout
+  bool no_path = false;           ///< the planner's latest word: the goal cannot be reached
   bool landed = true;
   bool takeoff_altitude_reached = false;
   bool goal_reached = false;
+  bool returned = false;          ///< in RETURN: back above the take-off point
 };
 
 struct ModeConfig {
   double path_stale_land_after = 5.0;  ///< [s] in HOVER without a path before landing
+  double no_path_land_after = 5.0;     ///< [s] in HOVER while the planner finds no path, before returning to land
   double idle_disarm_after = 10.0;     ///< [s] on the ground, armed, before disarming
   bool auto_mission = false;           ///< HOVER with a fresh path starts the mission by itself
 };
@@ -69,6 +76,7 @@ private:
   Reason reason_ = Reason::kNone;
   double entered_ = 0.0;          // time the current mode began
   double path_stale_since_ = -1;  // time the path went stale in HOVER, -1 if fresh
+  double no_path_since_ = -1;     // time the planner first said no path in HOVER, -1 if it did not
   std::string refused_;
 };
 

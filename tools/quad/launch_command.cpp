@@ -43,7 +43,7 @@ int runManifest(const launch::Manifest& manifest, const LaunchOptions& options, 
     domain = manifest.domain ? *manifest.domain : dds::optionsFromEnvironment("quad_launch").domain_id;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "launch: %s\n", e.what());
-    return 2;
+    return kExitInvalid;
   }
   const fs::path dir = options.log_dir ? fs::path(*options.log_dir) : fs::path("log") / runFolderName(manifest.name);
   try {
@@ -51,7 +51,7 @@ int runManifest(const launch::Manifest& manifest, const LaunchOptions& options, 
     return run.execute(extension);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "launch: %s\n", e.what());
-    return 1;
+    return kExitFailed;
   }
 }
 
@@ -63,7 +63,7 @@ int launch(const LaunchOptions& options)
   const auto manifest = loadRunManifest(options);
   if (!manifest) {
     std::fprintf(stderr, "launch: refusing to start with an invalid manifest\n");
-    return 2;
+    return kExitInvalid;
   }
   if (options.check) {
     std::printf("%s: ok (%zu hosts, %zu modules)\n", manifest->file.string().c_str(), manifest->hosts.size(),

@@ -346,6 +346,10 @@ int LaunchRun::execute(RunExtension* extension)
   if (m_.mission.enabled) {
     world = plant::loadWorld(m_.world);
     const double radius = m_.mission.vehicle.empty() ? 0.0 : vehicle::loadVehicle(m_.mission.vehicle).radius;
+    if (const auto problem = launch::goalProblem(*world, radius)) {
+      say(fmt::format("{}: {}: refused", m_.world.string(), *problem));
+      return kExitInvalid;
+    }
     observer_->startMission(m_.mission, *world, radius);
     const auto& g = world->goal();
     say(fmt::format("mission: fly from ({:.1f}, {:.1f}, {:.1f}) to the goal ({:.1f}, {:.1f}, {:.1f}) of {}",
@@ -422,7 +426,7 @@ int LaunchRun::execute(RunExtension* extension)
     }
     std::printf("%s", launch::toText(*summary_).c_str());
     if (!summary_->success && code == 0 && extension == nullptr) {
-      code = 1;
+      code = summary_->end == launch::MissionEnd::kNoPath ? kExitNoPath : 1;
     }
   }
   if (failed_) {

@@ -27,6 +27,12 @@ namespace quad::tools {
 
 class LaunchRun;
 
+/// `quad launch`'s exit status (docs/launch.md): 0 when every module ran as it should and the
+/// mission, if any, succeeded.
+inline constexpr int kExitFailed = 1;   ///< a module failed, or the mission did
+inline constexpr int kExitInvalid = 2;  ///< an invalid manifest or command line, or a goal refused at once
+inline constexpr int kExitNoPath = 3;   ///< the planner found the goal cannot be reached; the vehicle landed
+
 /// Something that acts on a run while it flies.
 class RunExtension {
 public:

@@ -37,7 +37,7 @@ void MissionTracker::onState(double t, const Eigen::Vector3d& p)
     progress_.push_back(fmt::format("t = {:.1f} s: goal reached ({:.2f} m from it)", t, to_goal));
     land_requested_ = mission_.land;
     if (!mission_.land) {
-      finish(collisions_ == 0, "reached the goal");
+      finishAtGoal("reached the goal");
     }
   }
   if (t >= next_progress_t_) {
@@ -46,7 +46,8 @@ void MissionTracker::onState(double t, const Eigen::Vector3d& p)
     next_progress_t_ += 10.0;
   }
   if (!finished_ && t >= mission_.timeout_s) {
-    finish(false, fmt::format("timed out after {:.0f} s of sim time, {:.2f} m from the goal", t, to_goal));
+    finish(MissionEnd::kFailed, fmt::format("timed out after {:.0f} s of sim time, {:.2f} m from the goal", t, to_goal),
+           no_path_.empty() ? "timed out" : "timed out; " + no_path_);
   }
 }
 
@@ -62,16 +63,22 @@ void MissionTracker::onMode(double t, const std::string& mode)
   if (was_landing && mode == "IDLE") {
     const double to_goal = last_p_ ? (last_p_->head<2>() - goal_.head<2>()).norm() : 0.0;
     if (goal_reached_ && to_goal <= mission_.tolerance_m + 0.5) {
-      finish(collisions_ == 0, collisions_ == 0 ? "landed at the goal"
-                                                : fmt::format("landed at the goal after {} collisions", collisions_));
+      finishAtGoal("landed at the goal");
+    } else if (!no_path_.empty()) {
+      finish(MissionEnd::kNoPath, fmt::format("landed {:.2f} m from the goal: {}", to_goal, no_path_), no_path_);
     } else {
-      finish(false, fmt::format("landed {:.2f} m from the goal", to_goal));
+      finish(MissionEnd::kFailed, fmt::format("landed {:.2f} m from the goal", to_goal), "landed short of the goal");
     }
   }
 }
 
-void MissionTracker::onPath(std::uint32_t version)
+void MissionTracker::onPath(std::uint32_t version, const std::string& no_path)
 {
+  if (no_path != no_path_ && !finished_) {
+    progress_.push_back(no_path.empty() ? fmt::format("t = {:.1f} s: the planner has a path again", t_)
+                                        : fmt::format("t = {:.1f} s: {}", t_, no_path));
+  }
+  no_path_ = no_path;
   if (version != last_version_) {
     last_version_ = version;
     ++paths_;
@@ -95,18 +102,31 @@ bool MissionTracker::takeLandRequest()
 
 std::vector<std::string> MissionTracker::takeProgress() { return std::exchange(progress_, {}); }
 
-void MissionTracker::finish(bool success, std::string outcome)
+void MissionTracker::finishAtGoal(const std::string& outcome)
+{
+  if (collisions_ == 0) {
+    finish(MissionEnd::kSuccess, outcome);
+  } else {
+    finish(MissionEnd::kFailed, fmt::format("{} after {} collisions", outcome, collisions_),
+           fmt::format("{} collisions", collisions_));
+  }
+}
+
+void MissionTracker::finish(MissionEnd end, std::string outcome, std::string failure)
 {
   finished_ = true;
-  success_ = success;
+  end_ = end;
   outcome_ = std::move(outcome);
+  failure_ = std::move(failure);
 }
 
 MissionSummary MissionTracker::summary(double wall_s) const
 {
   MissionSummary s;
-  s.success = finished_ && success_;
+  s.success = finished_ && end_ == MissionEnd::kSuccess;
+  s.end = end_;
   s.outcome = finished_ ? outcome_ : "not finished";
+  s.failure = s.success ? "" : (finished_ ? failure_ : "not finished");
   s.collisions = collisions_;
   s.sim_s = t_;
   s.wall_s = wall_s;
@@ -120,11 +140,48 @@ MissionSummary MissionTracker::summary(double wall_s) const
   return s;
 }
 
+std::string_view toString(MissionEnd end)
+{
+  switch (end) {
+    case MissionEnd::kUnfinished:
+      return "unfinished";
+    case MissionEnd::kSuccess:
+      return "success";
+    case MissionEnd::kFailed:
+      return "failed";
+    case MissionEnd::kNoPath:
+      return "no_path";
+  }
+  return "?";
+}
+
+std::optional<std::string> goalProblem(const plant::World& world, double radius)
+{
+  const Eigen::Vector3d& g = world.goal();
+  const std::string goal = fmt::format("the goal ({}, {}, {})", g.x(), g.y(), g.z());
+  if (!world.bounds().contains(g)) {
+    const auto& b = world.bounds();
+    return fmt::format("{} is outside the world's bounds ({}, {}, {}) ... ({}, {}, {})", goal, b.min.x(), b.min.y(),
+                       b.min.z(), b.max.x(), b.max.y(), b.max.z());
+  }
+  for (std::size_t i = 0; i < world.obstacles().size(); ++i) {
+    const double d = world.obstacles()[i].signedDistance(g);
+    if (d < radius) {
+      return d < 0.0 ? fmt::format("{} lies inside obstacle {}", goal, i)
+                     : fmt::format("{} lies {:.2f} m from obstacle {}, within the vehicle's radius ({} m)", goal, d, i,
+                                   radius);
+    }
+  }
+  return std::nullopt;
+}
+
 std::string toJson(const MissionSummary& s)
 {
   nlohmann::ordered_json j;
   j["success"] = s.success;
   j["outcome"] = s.outcome;
+  j["end"] = toString(s.end);
+  j["failure"] = s.failure;
   j["collisions"] = s.collisions;
   j["sim_seconds"] = s.sim_s;
   j["wall_seconds"] = s.wall_s;
@@ -141,11 +198,11 @@ std::string toJson(const MissionSummary& s)
 std::string toText(const MissionSummary& s)
 {
   return fmt::format(
-      "mission: {} ({})\n"
+      "mission: {} ({})\n{}"
       "  sim {:.1f} s in {:.1f} s wall ({:.1f}x)\n"
       "  flown {:.1f} m for a {:.1f} m straight line ({:.2f}x); {} paths from the planner\n"
       "  closest approach to an obstacle {:.2f} m; collisions {}; {} mode changes; ends {:.2f} m from the goal\n",
-      s.success ? "SUCCESS" : "FAILED", s.outcome, s.sim_s, s.wall_s, s.wall_s > 0 ? s.sim_s / s.wall_s : 0.0,
+      s.success ? "SUCCESS" : "FAILED", s.outcome, s.failure.empty() ? "" : "  failure: " + s.failure + "\n", s.sim_s, s.wall_s, s.wall_s > 0 ? s.sim_s / s.wall_s : 0.0,
       s.path_length_m, s.straight_line_m, s.straight_line_m > 0 ? s.path_length_m / s.straight_line_m : 0.0,
       s.paths, s.min_clearance_m, s.collisions, s.mode_changes, s.goal_distance_m);
 }

@@ -15,9 +15,16 @@
 
 namespace quad::launch {
 
+/// How a mission ended, for the exit status: each kind its own (docs/launch.md).
+enum class MissionEnd { kUnfinished, kSuccess, kFailed, kNoPath };
+/// "unfinished", "success", "failed", "no_path": the summary's `end`.
+std::string_view toString(MissionEnd end);
+
 struct MissionSummary {
   bool success = false;
+  MissionEnd end = MissionEnd::kUnfinished;
   std::string outcome;          ///< "landed at the goal", "timed out 3.2 m from the goal", ...
+  std::string failure;          ///< why it failed, in words ("" when it succeeded)
   int collisions = 0;
   double sim_s = 0.0;           ///< sim time when the mission ended
   double wall_s = 0.0;
@@ -39,8 +46,9 @@ public:
   void onState(double t, const Eigen::Vector3d& p);
   /// The controller's mode (its name) at sim time t; repeats are ignored.
   void onMode(double t, const std::string& mode);
-  /// A path of this version was published.
-  void onPath(std::uint32_t version);
+  /// A path of this version was published. `no_path`: the planner said the goal cannot be
+  /// reached, and why (in words); empty when it has a path or is merely waiting.
+  void onPath(std::uint32_t version, const std::string& no_path = {});
   /// The plant reported a collision.
   void onCollision(double t);
 
@@ -55,7 +63,9 @@ public:
   MissionSummary summary(double wall_s) const;
 
 private:
-  void finish(bool success, std::string outcome);
+  void finish(MissionEnd end, std::string outcome, std::string failure = {});
+  /// At the goal: a success unless the vehicle collided on the way.
+  void finishAtGoal(const std::string& outcome);
 
   Mission mission_;
   const plant::World& world_;
@@ -74,11 +84,17 @@ private:
   bool land_requested_ = false;
   bool land_taken_ = false;
   bool finished_ = false;
-  bool success_ = false;
+  MissionEnd end_ = MissionEnd::kUnfinished;
   std::string outcome_;
+  std::string failure_;
+  std::string no_path_;  // the planner's last word that the goal cannot be reached
   std::vector<std::string> progress_;
   double next_progress_t_ = 10.0;
 };
+
+/// Why a mission to this world's goal cannot be flown at all, naming the goal: it lies outside
+/// the world's bounds, or inside an obstacle or within `radius` [m] of one. Nothing when it can.
+std::optional<std::string> goalProblem(const plant::World& world, double radius);
 
 /// The summary as one JSON object (the --summary file).
 std::string toJson(const MissionSummary& s);

@@ -83,6 +83,22 @@ std::string withoutPrefix(const std::string& name)
 }
 }  // namespace
 
+std::string noPathReason(int status)
+{
+  switch (status) {
+    case msg::PLAN_GOAL_ENCLOSED:
+      return "no path: known-occupied space seals the goal off";
+    case msg::PLAN_START_ENCLOSED:
+      return "no path: known-occupied space seals the vehicle in";
+    case msg::PLAN_GOAL_BLOCKED:
+      return "no path: the goal lies in an obstacle (or within the vehicle's radius and margin of one)";
+    case msg::PLAN_OUT_OF_BOUNDS:
+      return "no path: the goal is outside the planning bounds";
+    default:
+      return "";
+  }
+}
+
 std::string controlModeName(int mode)
 {
   const auto* modes = controlModes();
@@ -131,7 +147,7 @@ void Observer::update()
     tracker_->onMode(common::toSeconds(s.header().stamp_ns()), controlModeName(static_cast<int>(s.mode())));
   }
   for (const auto& p : endpoints_->path.takeAll()) {
-    tracker_->onPath(p.version());
+    tracker_->onPath(p.version(), noPathReason(p.status()));
   }
   for (const auto& e : endpoints_->events.takeAll()) {
     if (e.kind() == msg::SIM_EVENT_COLLISION) {

@@ -13,6 +13,8 @@
 
 namespace quad::launch {
 
+/// Why a path status means the goal cannot be reached, in words; empty when it does not.
+std::string noPathReason(int status);
 /// "HOVER" for CONTROL_HOVER: a ControlMode's name from the IDL, without its prefix.
 std::string controlModeName(int mode);
 /// Every ControlMode's name, in that form.

@@ -1,0 +1,93 @@
+// Flying the whole volume: worlds that need a climb, a dip or a window, in lockstep with a
+// fixed seed, and a goal that no path reaches. Each reads the run's summary and exit status.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "process.hpp"
+#include "scratch.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+using quad::test::ChildProcess;
+namespace fs = std::filesystem;
+
+struct Flight {
+  int exit_status = -1;
+  nlohmann::json summary;
+  std::string output;  // for the failure message only
+};
+
+/// Flies the demo manifest in `world` (configs/worlds/<world>.yaml) on its own domain.
+Flight fly(const std::string& world, int domain)
+{
+  const fs::path dir = quad::test::scratchDir("quad_volume_" + world);
+  ChildProcess launch({QUAD_TOOL, "launch", std::string(QUAD_SOURCE_DIR) + "/bringup/demo.yaml", "--world",
+                       std::string(QUAD_SOURCE_DIR) + "/configs/worlds/" + world + ".yaml", "--domain",
+                       std::to_string(domain), "--quiet", "--wall-timeout", "300", "--summary",
+                       (dir / "summary.json").string(), "--log-dir", (dir / "run").string()});
+  Flight f;
+  const auto status = launch.wait(330s);
+  f.output = launch.output();
+  if (!status) {
+    ADD_FAILURE() << world << ": quad launch did not end within 330 s\n" << f.output;
+    return f;
+  }
+  f.exit_status = *status;
+  f.summary = nlohmann::json::parse(quad::test::readFile(dir / "summary.json"), nullptr, false);
+  if (!::testing::Test::HasFailure()) {
+    fs::remove_all(dir);
+  }
+  return f;
+}
+
+/// Reached with no collision, landed at the goal.
+void expectReached(const std::string& world, int domain)
+{
+  const Flight f = fly(world, domain);
+  ASSERT_TRUE(f.summary.is_object()) << f.output;
+  EXPECT_EQ(f.exit_status, 0) << f.summary.dump(2) << f.output;
+  EXPECT_EQ(f.summary["end"], "success") << f.summary.dump(2);
+  EXPECT_EQ(f.summary["collisions"], 0) << f.summary.dump(2);
+  EXPECT_GT(f.summary["min_clearance_m"].get<double>(), 0.0) << f.summary.dump(2);
+}
+
+TEST(Volume, AWallAcrossTheBoxIsOverflown) { expectReached("wall", 150); }
+TEST(Volume, AHighWindowOffTheAxisIsThreaded) { expectReached("window", 151); }
+TEST(Volume, TheVehicleLeavesACourtyardOverItsWalls) { expectReached("courtyard", 152); }
+TEST(Volume, GapsLowThenHighThenLowAreFlownThrough) { expectReached("gaps", 153); }
+TEST(Volume, AnOverhangIsFlownUnder) { expectReached("overhang", 154); }
+
+TEST(Volume, ASealedGoalEndsWithNoPathLandedAndNoCollision)
+{
+  const Flight f = fly("sealed", 155);
+  ASSERT_TRUE(f.summary.is_object()) << f.output;
+  EXPECT_EQ(f.exit_status, 3) << f.summary.dump(2) << f.output;  // docs/launch.md: no path
+  EXPECT_EQ(f.summary["success"], false);
+  EXPECT_EQ(f.summary["end"], "no_path") << f.summary.dump(2);
+  EXPECT_NE(f.summary["failure"].get<std::string>(), "") << f.summary.dump(2);
+  EXPECT_EQ(f.summary["collisions"], 0) << f.summary.dump(2);
+  EXPECT_LT(f.summary["sim_seconds"].get<double>(), 150.0) << f.summary.dump(2);  // well before the timeout
+}
+
+TEST(Volume, AGoalInsideAnObstacleIsRefusedAtOnce)
+{
+  const fs::path dir = quad::test::scratchDir("quad_volume_refused");
+  const fs::path world = dir / "w.yaml";
+  std::ofstream(world) << "bounds: {min: [-5, -10, 0], max: [45, 10, 10]}\nstart: [0, 0, 0]\ngoal: [20, 0, 2]\n"
+                          "obstacles:\n  - {type: box, center: [20, 0, 2], size: [2, 2, 4]}\n";
+  ChildProcess launch({QUAD_TOOL, "launch", std::string(QUAD_SOURCE_DIR) + "/bringup/demo.yaml", "--world",
+                       world.string(), "--domain", "156", "--quiet", "--log-dir", (dir / "run").string()});
+  const auto status = launch.wait(60s);
+  ASSERT_TRUE(status) << launch.output();
+  EXPECT_EQ(*status, 2) << launch.output();  // docs/launch.md: refused before anything started
+  EXPECT_FALSE(fs::exists(dir / "run" / "plant.log")) << launch.output();
+  fs::remove_all(dir);
+}
+
+}  // namespace

@@ -1,5 +1,7 @@
 #include "mapping_node.hpp"
 
+#include "quad/plant/world_file.hpp"
+
 #include <spdlog/spdlog.h>
 
 #include <cmath>
@@ -32,7 +34,8 @@ common::ParamSchema mappingSchema()
 {
   common::ParamSchema s;
   addMapperParams(s);
-  s.addString("frames", "depth_front", {}, "comma-separated sensor frames accepted")
+  s.addString("world", "", {}, "world file whose box the map covers (one voxel beyond); empty: unbounded")
+      .addString("frames", "depth_front", {}, "comma-separated sensor frames accepted")
       .addDouble("snapshot.period", 1.0, 0.05, 3600.0, "s", "sim time between map snapshots")
       .addString("save_path", "", {}, ".bt file written on shutdown and on COMMAND_SAVE_MAP; empty: never");
   return s;
@@ -42,6 +45,11 @@ MappingNodeConfig mappingConfigFrom(const common::Params& p)
 {
   MappingNodeConfig c;
   c.map = mapperConfigFrom(p);
+  if (const auto world = common::configPath(p, "world", QUAD_CONFIG_DIR); !world.empty()) {
+    const plant::Bounds b = plant::loadWorld(world).bounds();
+    const Vector3 margin = Vector3::Constant(c.map.resolution);
+    c.map.box = std::make_pair(Vector3(b.min - margin), Vector3(b.max + margin));
+  }
   std::stringstream list(p.getString("frames"));
   for (std::string f; std::getline(list, f, ',');) {
     if (!f.empty()) {

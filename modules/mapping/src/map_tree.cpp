@@ -66,11 +66,13 @@ void MapTree::insertPointCloudTracked(const octomap::Pointcloud& cloud, const oc
     const octomap::point3d end = hit ? p : origin + (p - origin).normalized() * static_cast<float>(max_range);
     if (computeRayKeys(origin, end, ray_)) {
       for (const octomap::OcTreeKey& k : ray_) {
-        keys_.insertFree(k);
+        if (inBox(k)) {
+          keys_.insertFree(k);
+        }
       }
     }
     octomap::OcTreeKey key;
-    if (hit && coordToKeyChecked(p, key)) {
+    if (hit && coordToKeyChecked(p, key) && inBox(key)) {
       keys_.insertOccupied(key);
     }
   }

@@ -99,6 +99,14 @@ Mapper::Mapper(MapperConfig config) : config_(config), tree_(config.resolution),
   tree_.setClampingThresMin(config_.clamp_min);
   tree_.setClampingThresMax(config_.clamp_max);
   tree_.setOccupancyThres(config_.occupancy_threshold);
+  if (config_.box) {
+    const auto lo = grid_.octomapKey(grid_.toIndex(config_.box->first));
+    const auto hi = grid_.octomapKey(grid_.toIndex(config_.box->second));
+    if (!lo || !hi || !(config_.box->first.array() <= config_.box->second.array()).all()) {
+      throw std::invalid_argument("mapper box: empty, inverted or beyond the octree's reach");
+    }
+    tree_.limitTo(octomap::OcTreeKey((*lo)[0], (*lo)[1], (*lo)[2]), octomap::OcTreeKey((*hi)[0], (*hi)[1], (*hi)[2]));
+  }
 }
 
 IntegrationResult Mapper::integrate(const Scan& scan)

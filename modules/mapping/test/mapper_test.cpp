@@ -218,5 +218,38 @@ TEST(Mapper, HeightLimitsAndMinimumRangeDropPoints)
   EXPECT_EQ(mapper.classify(voxelAt(mapper, Vector3(5.05, 0.1, 0.5))), VoxelState::kOccupied);
 }
 
+
+TEST(Mapper, ABoxedMapIsTheUnboundedMapCutToItsBox)
+{
+  // GIVEN two mappers fed the same scans, one limited to x -1 ... 5.6, z 0 ... 2.4
+  const plant::World world = boxWorld();
+  MapperConfig boxed_config;
+  boxed_config.box = std::make_pair(Vector3(-1.0, -20.0, 0.0), Vector3(5.6, 20.0, 2.4));
+  Mapper free_mapper(MapperConfig{});
+  Mapper boxed(boxed_config);
+  std::mt19937_64 rng(3);
+  std::size_t free_changes = 0, boxed_changes = 0;
+  for (int k = 0; k < 6; ++k) {
+    const Vector3 p(-0.5 + 0.5 * k, 0.3 * k - 1.0, 1.5);
+    std::mt19937_64 copy = rng;
+    free_changes += free_mapper.integrate(scanFrom(world, p, 0.1 * k, rng)).changes.size();
+    boxed_changes += boxed.integrate(scanFrom(world, p, 0.1 * k, copy)).changes.size();
+  }
+  // THEN the boxed map holds exactly the unbounded map's voxels whose index lies in the box's
+  const geometry::VoxelGrid grid(boxed.resolution());
+  const VoxelIndex lo = grid.toIndex(boxed_config.box->first);
+  const VoxelIndex hi = grid.toIndex(boxed_config.box->second);
+  std::vector<VoxelChange> cut;
+  for (const auto& c : free_mapper.classification()) {
+    if ((c.index.array() >= lo.array()).all() && (c.index.array() <= hi.array()).all()) {
+      cut.push_back(c);
+    }
+  }
+  test::expectSameClassification(cut, boxed.classification());
+  // and the box saved most of the work: rays past it touched nothing
+  EXPECT_LT(boxed_changes * 2, free_changes);
+  EXPECT_LT(boxed.nodes() * 2, free_mapper.nodes());
+}
+
 }  // namespace
 }  // namespace quad::mapping

@@ -75,13 +75,31 @@ public:
   void insertPointCloudTracked(const octomap::Pointcloud& cloud, const octomap::point3d& origin, double max_range,
                                std::vector<KeyChange>& changes);
 
+  /// Only voxels whose keys lie in [lo, hi] (inclusive, per axis) are updated from now on, as
+  /// OctoMap's bounding-box limit does: rays still run their whole length, what they cross
+  /// outside the box is left alone.
+  void limitTo(const octomap::OcTreeKey& lo, const octomap::OcTreeKey& hi)
+  {
+    box_lo_ = lo;
+    box_hi_ = hi;
+    limited_ = true;
+  }
+
 private:
+  bool inBox(const octomap::OcTreeKey& k) const
+  {
+    return !limited_ || (k[0] >= box_lo_[0] && k[0] <= box_hi_[0] && k[1] >= box_lo_[1] && k[1] <= box_hi_[1] &&
+                         k[2] >= box_lo_[2] && k[2] <= box_hi_[2]);
+  }
   /// OcTree::updateNode(key, occupied) in one descent; the voxel's classification after it
   /// (true: occupied) when that changed, nothing when it did not.
   std::optional<bool> updateTracked(const octomap::OcTreeKey& key, bool occupied);
 
   ScanKeySet keys_;
   octomap::KeyRay ray_;
+  bool limited_ = false;  // updates only inside [box_lo_, box_hi_]
+  octomap::OcTreeKey box_lo_;
+  octomap::OcTreeKey box_hi_;
 };
 
 }  // namespace quad::mapping

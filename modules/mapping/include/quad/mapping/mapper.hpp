@@ -45,6 +45,9 @@ struct MapperConfig {
   std::optional<double> min_z;       ///< [m] points below are dropped
   std::optional<double> max_z;       ///< [m] points above are dropped
   std::size_t max_points = 65536;    ///< larger clouds are refused as absurd
+  /// [m] The box the map covers (the world's: nothing flies outside it); voxels outside are
+  /// never updated, so rays into the sky or past the walls cost no map. Unset: unbounded.
+  std::optional<std::pair<Vector3, Vector3>> box;
 };
 
 /// The schema of the mapper's parameters (`map.*` keys of configs/mapping.yaml).

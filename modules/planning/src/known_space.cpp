@@ -11,33 +11,57 @@ std::optional<double> knownFreeLength(const DStarLite& planner, const std::vecto
                                       const Vector3& vehicle_W, const KnownSpaceCheck& check)
 {
   const geometry::VoxelGrid& grid = planner.lattice().grid();
-  const double step = grid.resolution() / 4.0;
   const std::vector<VoxelIndex> ball = geometry::inflationOffsets(check.radius, grid.resolution());
   const auto known_free = [&](const VoxelIndex& v) {
     return planner.voxelState(v) == Occupancy::kFree || (grid.centre(v) - vehicle_W).norm() <= check.own_radius;
   };
+  // Every voxel the polyline passes through, in order, with the arc length where the path
+  // enters it (Amanatides & Woo's traversal): the frontier is where it enters the first
+  // voxel whose neighbourhood holds a voxel not known free.
   std::optional<VoxelIndex> last;
-  double s = 0.0;  // arc length of the last point found clear
-  for (std::size_t i = 0; i < waypoints.size(); ++i) {
+  double s = 0.0;  // arc length at the start of the segment
+  const double res = grid.resolution();
+  for (std::size_t i = 0; i + 1 < waypoints.size() || (i == 0 && waypoints.size() == 1); ++i) {
     const Vector3 a = waypoints[i];
     const Vector3 b = i + 1 < waypoints.size() ? waypoints[i + 1] : a;
     const double length = (b - a).norm();
-    const int n = std::max(1, static_cast<int>(std::ceil(length / step)));
-    for (int k = 0; k <= n; ++k) {
-      const double along = length * k / n;
-      if (s + along > check.horizon) {
+    const Vector3 d = length > 0.0 ? Vector3((b - a) / length) : Vector3::UnitX();
+    VoxelIndex v = grid.toIndex(a);
+    Eigen::Vector3i step = Eigen::Vector3i::Zero();
+    Vector3 t_max = Vector3::Constant(kInfinity);
+    Vector3 t_delta = Vector3::Constant(kInfinity);
+    for (int axis = 0; axis < 3; ++axis) {
+      if (d[axis] > 1e-12) {
+        step[axis] = 1;
+        t_max[axis] = ((v[axis] + 1) * res - a[axis]) / d[axis];
+        t_delta[axis] = res / d[axis];
+      } else if (d[axis] < -1e-12) {
+        step[axis] = -1;
+        t_max[axis] = (v[axis] * res - a[axis]) / d[axis];
+        t_delta[axis] = -res / d[axis];
+      }
+    }
+    double entry = 0.0;  // where the path enters v, along this segment
+    for (;;) {
+      if (s + entry > check.horizon) {
         return std::nullopt;
       }
-      const VoxelIndex v = grid.toIndex(a + (b - a) * (along / std::max(length, 1e-12)));
-      if (last && v == *last) {
-        continue;
-      }
-      last = v;
-      for (const VoxelIndex& d : ball) {
-        if (!known_free(v + d)) {
-          return std::max(0.0, s + along - step);
+      if (!last || v != *last) {
+        last = v;
+        for (const VoxelIndex& o : ball) {
+          if (!known_free(v + o)) {
+            return s + entry;
+          }
         }
       }
+      int axis = 0;
+      t_max.minCoeff(&axis);
+      if (!(t_max[axis] <= length)) {
+        break;  // the segment ends in v
+      }
+      entry = t_max[axis];
+      v[axis] += step[axis];
+      t_max[axis] += t_delta[axis];
     }
     s += length;
   }

@@ -3,6 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
+#include "quad/geometry/inflation.hpp"
+#include "quad/geometry/polyline.hpp"
+
 namespace quad::planning {
 namespace {
 
@@ -81,6 +86,67 @@ TEST(KnownSpace, TheVehiclesOwnVolumeCountsAsFree)
   ASSERT_TRUE(frontier.has_value());
   EXPECT_GT(*frontier, 0.05);
   EXPECT_LT(*frontier, 0.55);
+}
+
+
+TEST(KnownSpace, ThePathUpToTheFrontierNeverMeetsAVoxelThePolicyForbids)
+{
+  // GIVEN random seeded maps (free, occupied and unknown voxels in blobs) and random paths
+  const VoxelGrid grid(0.2);
+  for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+    std::mt19937_64 rng(seed);
+    DStarLite p(Lattice(grid, Vector3(0, 0, 0), Vector3(12, 12, 6)), {26, true, 0.5});
+    std::uniform_real_distribution<double> x(0.5, 11.5), z(0.5, 5.5), r(0.3, 2.5);
+    for (int k = 0; k < 30; ++k) {
+      const Vector3 c(x(rng), x(rng), z(rng));
+      const double radius = r(rng);
+      const Occupancy state = k % 6 == 5 ? Occupancy::kOccupied : (k % 6 == 4 ? Occupancy::kUnknown : Occupancy::kFree);
+      const VoxelIndex lo = grid.toIndex(c - Vector3::Constant(radius));
+      const VoxelIndex hi = grid.toIndex(c + Vector3::Constant(radius));
+      for (int i = lo.x(); i <= hi.x(); ++i) {
+        for (int j = lo.y(); j <= hi.y(); ++j) {
+          for (int h = lo.z(); h <= hi.z(); ++h) {
+            if ((grid.centre(VoxelIndex(i, j, h)) - c).norm() <= radius) {
+              p.updateVoxel(VoxelIndex(i, j, h), state);
+            }
+          }
+        }
+      }
+    }
+    std::vector<Vector3> path;
+    for (int k = 0; k < 4; ++k) {
+      path.emplace_back(x(rng), x(rng), z(rng));
+    }
+    KnownSpaceCheck check;
+    check.horizon = 100.0;
+    check.own_radius = 0.3;
+    // WHEN the frontier is found
+    const auto frontier = knownFreeLength(p, path, path.front(), check);
+    // THEN every point before it, sampled finely, has only known-free voxels (or the vehicle's
+    // own) within the checked ball; and when there is one, a forbidden voxel lies just past it
+    const auto ball = geometry::inflationOffsets(check.radius, grid.resolution());
+    const auto allowed = [&](const Vector3& point) {
+      const VoxelIndex v = grid.toIndex(point);
+      for (const VoxelIndex& d : ball) {
+        if (p.voxelState(v + d) != Occupancy::kFree && (grid.centre(v + d) - path.front()).norm() > check.own_radius) {
+          return false;
+        }
+      }
+      return true;
+    };
+    const double length = geometry::polylineLength(path);
+    const double end = frontier ? *frontier : length;
+    for (double s = 0.0; s < end; s += 0.01) {
+      ASSERT_TRUE(allowed(geometry::pointAlong(path, s))) << "seed " << seed << " at " << s << " of " << end;
+    }
+    if (frontier) {
+      bool forbidden = false;
+      for (double s = *frontier; s <= *frontier + 0.1 && !forbidden; s += 0.005) {
+        forbidden = !allowed(geometry::pointAlong(path, s));
+      }
+      EXPECT_TRUE(forbidden) << "seed " << seed << ": nothing forbidden just past the frontier at " << *frontier;
+    }
+  }
 }
 
 }  // namespace

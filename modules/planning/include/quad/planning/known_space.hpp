@@ -20,11 +20,12 @@ struct KnownSpaceCheck {
   double horizon = 8.0;       ///< [m] of path checked; what lies beyond does not change the answer
 };
 
-/// The frontier: the arc length [m] from the first waypoint to the first point of the
-/// polyline whose neighbourhood (the voxels within `check.radius` of its voxel's centre) holds
-/// a voxel not known free (unknown or occupied). Nothing when there is none within
+/// The frontier: the arc length [m] from the first waypoint to where the polyline enters the
+/// first voxel whose neighbourhood (the voxels within `check.radius` of its centre) holds a
+/// voxel not known free (unknown or occupied). Nothing when there is none within
 /// `check.horizon` of path. Voxels within `check.own_radius` of `vehicle_W` count as free. The
-/// polyline is walked at a quarter of the resolution; each voxel's neighbourhood is read once.
+/// polyline is walked voxel by voxel (Amanatides & Woo 1987), each voxel's neighbourhood read
+/// once.
 std::optional<double> knownFreeLength(const DStarLite& planner, const std::vector<Vector3>& waypoints,
                                       const Vector3& vehicle_W, const KnownSpaceCheck& check);
 

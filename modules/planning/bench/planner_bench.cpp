@@ -78,6 +78,41 @@ World facades()
   return w;
 }
 
+/// Overhangs: four walls across the way (x = 20, 40, 60, 80, two cells thick, wall to wall and
+/// floor to ceiling), each with one 12x12 window, low (z 4-15) and high (z 84-95) in turn, at
+/// seeded places along y; behind each low window a roof (z 20-21, ten cells deep, wall to
+/// wall) overhangs the way. From mid-height the robot dips under, flies under the roof, climbs
+/// to the next window: vertical detours of some 40 cells each, found as the walls come into view.
+World overhangs()
+{
+  World w;
+  std::mt19937_64 rng(11);
+  std::uniform_int_distribution<int> u(5, kN - 17);
+  bool low = true;
+  for (int x0 = 20; x0 < kN - 10; x0 += 20, low = !low) {
+    const int wy = u(rng);
+    const int wz = low ? 4 : 84;
+    for (int z = 0; z < kN; ++z) {
+      for (int y = 0; y < kN; ++y) {
+        if (y >= wy && y < wy + 12 && z >= wz && z < wz + 12) {
+          continue;
+        }
+        w.set(x0, y, z);
+        w.set(x0 + 1, y, z);
+      }
+    }
+    if (low) {
+      for (int x = x0 + 2; x < x0 + 12; ++x) {
+        for (int y = 0; y < kN; ++y) {
+          w.set(x, y, 20);
+          w.set(x, y, 21);
+        }
+      }
+    }
+  }
+  return w;
+}
+
 struct AStarResult {
   double cost = kInfinity;
   std::uint64_t expansions = 0;
@@ -248,7 +283,14 @@ void BM_Navigation_Facades(benchmark::State& state)
   navigate(state, hidden);
 }
 
+void BM_Navigation_Overhangs(benchmark::State& state)
+{
+  static const World hidden = overhangs();
+  navigate(state, hidden);
+}
+
 BENCHMARK(BM_Navigation_Forest)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_Navigation_Overhangs)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_Navigation_Facades)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace

@@ -284,12 +284,17 @@ void DStarLite::cellChanged(Cell c, bool blocked)
   const double gc = g(c);
   if (blocked) {
     // Costs rose to infinity: only vertices whose rhs came through the lost edge recompute.
-    forEachNeighbour(c, [&](Cell n, double step) {
-      if (n != *goal_ && rhs(n) == step + gc) {
-        setRhs(n, bestRhs(n));
-        updateVertex(n);
-      }
-    });
+    // None did when g(c) is infinite (the search never reached c): an rhs through c would be
+    // infinite too, and recomputing it gives infinity again. Most cells a sensor reveals lie
+    // there, and 26 neighbours of 26 lookups each made their repair cost more than the search.
+    if (gc != kInfinity) {
+      forEachNeighbour(c, [&](Cell n, double step) {
+        if (n != *goal_ && rhs(n) == step + gc) {
+          setRhs(n, bestRhs(n));
+          updateVertex(n);
+        }
+      });
+    }
     if (c != *goal_) {
       setRhs(c, kInfinity);  // no edge leaves a blocked cell
     }

@@ -15,32 +15,17 @@
 #include "quad/dds/topics.hpp"
 #include "quad/mapping/map_follower.hpp"
 #include "quad/planning/dstar_lite.hpp"
-#include "quad/planning/known_space.hpp"
+#include "quad/planning/planning_params.hpp"
 
 namespace quad::planning {
 
-struct PlanningNodeConfig {
-  Vector3 bounds_min;
-  Vector3 bounds_max;
-  double resolution = 0.2;
-  PlannerConfig planner;
-  KnownSpaceCheck known_space;       ///< horizon 0: unknown space is flown like free space
-  double replan_period_s = 0.2;      ///< [s] of sim time between replans
-  double republish_period_s = 0.5;   ///< [s] of sim time between repeats of an unchanged path
-  std::uint64_t max_expansions = 200000;
-  std::uint64_t map_frames_behind = 5;  ///< depth frames the map may lag the camera before paths stop
-};
-
-common::ParamSchema planningSchema();
-/// Bounds come from the world file the config names: its box less the inflation radius at the
-/// sides and the top (the plant counts leaving the box as a collision), from `ground_clearance`
-/// above its floor, clipped to the optional altitude band. The radius comes from the vehicle
-/// file plus the safety margin.
-PlanningNodeConfig planningConfigFrom(const common::Params& params);
+/// The planning parameters of a config: its world's box and its vehicle's radius loaded from
+/// the files it names. Throws common::ConfigError naming the file or key.
+PlanningParams planningConfigFrom(const common::Params& params);
 
 class PlanningNode : public dds::Node {
 public:
-  PlanningNode(PlanningNodeConfig config, dds::ParticipantOptions options);
+  PlanningNode(PlanningParams config, dds::ParticipantOptions options);
 
 protected:
   void onWake() override;
@@ -53,7 +38,7 @@ private:
   void replan(std::int64_t t_ns);
   void publish(std::int64_t t_ns, bool changed);
 
-  PlanningNodeConfig config_;
+  PlanningParams config_;
   DStarLite planner_;
   mapping::MapFollower follower_;  // the mapper's classification, from updates and snapshots
   dds::Subscriber<msg::MapUpdate> updates_;

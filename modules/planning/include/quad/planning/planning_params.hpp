@@ -1,0 +1,42 @@
+#pragma once
+/// @file
+/// The planner's parameters (configs/planning.yaml), declared once: the planning node and
+/// `quad plan` read them. The files they name (the world, the vehicle) are loaded by the
+/// caller; this turns their box and radius into the lattice the planner searches.
+
+#include <cstdint>
+#include <filesystem>
+
+#include "quad/common/params.hpp"
+#include "quad/planning/dstar_lite.hpp"
+#include "quad/planning/known_space.hpp"
+
+namespace quad::planning {
+
+struct PlanningParams {
+  Vector3 bounds_min;                   ///< [m] the lattice's box: cell centres within it
+  Vector3 bounds_max;
+  double resolution = 0.2;              ///< [m]
+  PlannerConfig planner;                ///< vehicle_radius: the vehicle's plus the safety margin
+  KnownSpaceCheck known_space;          ///< horizon 0: unknown space is flown like free space
+  double replan_period_s = 0.2;         ///< [s] of sim time between replans
+  double republish_period_s = 0.5;      ///< [s] of sim time between repeats of an unchanged path
+  std::uint64_t max_expansions = 200000;
+  std::uint64_t map_frames_behind = 5;  ///< depth frames the map may lag the camera before paths stop
+};
+
+common::ParamSchema planningSchema();
+
+/// The world and vehicle files the parameters name (`world`, `vehicle`).
+std::filesystem::path worldFileOf(const common::Params& params);
+std::filesystem::path vehicleFileOf(const common::Params& params);
+
+/// The parameters, with the lattice's box made from the world's box (`world_min`,
+/// `world_max` [m]): less the inflation radius at the sides and the top (leaving the box is a
+/// collision), from `ground_clearance` above its floor, clipped to the optional altitude band.
+/// `vehicle_radius` [m] is the vehicle's own. Throws common::ConfigError naming the key when
+/// the band is inverted or leaves less than a cell, or the connectivity is not 6, 18 or 26.
+PlanningParams planningParamsFrom(const common::Params& params, const Vector3& world_min, const Vector3& world_max,
+                                  double vehicle_radius);
+
+}  // namespace quad::planning

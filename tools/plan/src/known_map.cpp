@@ -1,0 +1,91 @@
+#include "quad/plan/known_map.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "quad/geometry/polyline.hpp"
+#include "quad/planning/shortcut.hpp"
+
+namespace quad::plan {
+
+namespace {
+
+using geometry::VoxelIndex;
+
+/// Marks the surface voxels of every obstacle occupied (those that can block a cell of the
+/// lattice: within `inflation` [m] of it); returns how many.
+std::size_t giveObstacles(const plant::World& world, planning::DStarLite& planner, double inflation)
+{
+  const planning::Lattice& lattice = planner.lattice();
+  const geometry::VoxelGrid& grid = lattice.grid();
+  const double half_diagonal = 0.5 * std::sqrt(3.0) * grid.resolution();
+  const Vector3 reach = Vector3::Constant(inflation + grid.resolution());
+  const Vector3 region_lo = grid.centre(lattice.origin()) - reach;
+  const Vector3 region_hi = grid.centre(lattice.origin() + lattice.dims() - VoxelIndex::Ones()) + reach;
+  std::size_t marked = 0;
+  for (const plant::Obstacle& o : world.obstacles()) {
+    Vector3 lo;
+    Vector3 hi;
+    o.bounds(lo, hi);
+    lo = (lo - Vector3::Constant(half_diagonal)).cwiseMax(region_lo);
+    hi = (hi + Vector3::Constant(half_diagonal)).cwiseMin(region_hi);
+    if ((lo.array() > hi.array()).any()) {
+      continue;  // too far from the lattice to block any of it
+    }
+    const VoxelIndex a = grid.toIndex(lo);
+    const VoxelIndex b = grid.toIndex(hi);
+    for (int z = a.z(); z <= b.z(); ++z) {
+      for (int y = a.y(); y <= b.y(); ++y) {
+        for (int x = a.x(); x <= b.x(); ++x) {
+          const VoxelIndex v(x, y, z);
+          if (std::abs(o.signedDistance(grid.centre(v))) <= half_diagonal &&
+              planner.voxelState(v) != planning::Occupancy::kOccupied) {
+            planner.updateVoxel(v, planning::Occupancy::kOccupied);
+            ++marked;
+          }
+        }
+      }
+    }
+  }
+  return marked;
+}
+
+}  // namespace
+
+KnownMapPlan planOnKnownMap(const plant::World& world, const planning::PlanningParams& params, bool land)
+{
+  planning::DStarLite planner(
+      planning::Lattice(geometry::VoxelGrid(params.resolution), params.bounds_min, params.bounds_max), params.planner);
+  KnownMapPlan out;
+  out.occupied_voxels = giveObstacles(world, planner, params.planner.vehicle_radius);
+  // Take-off: straight up from the start into the lattice's lowest layer (or down into its top).
+  const planning::Lattice& lattice = planner.lattice();
+  const double bottom = lattice.grid().centre(lattice.origin()).z();
+  const double top = lattice.grid().centre(lattice.origin() + lattice.dims() - VoxelIndex::Ones()).z();
+  out.from = world.start();
+  out.from.z() = std::clamp(out.from.z(), bottom, top);
+  out.climb_m = (out.from - world.start()).norm();
+  out.landing_m = land ? std::max(0.0, world.goal().z() - world.bounds().min.z()) : 0.0;
+  const auto start = planner.lattice().cellAt(out.from);
+  const auto goal = planner.lattice().cellAt(world.goal());
+  if (!start || !goal) {
+    out.status = planning::PlanStatus::kOutOfBounds;
+    return out;
+  }
+  planner.setGoal(*goal);
+  planner.setStart(*start);
+  const planning::PlanResult r = planner.plan();
+  out.status = r.status;
+  out.expansions = r.expansions;
+  if (r.status != planning::PlanStatus::kOk) {
+    return out;
+  }
+  out.waypoints = planning::shortcut(planner, r.cells);
+  out.waypoints.front() = out.from;
+  out.waypoints.back() = world.goal();
+  out.path_m = geometry::polylineLength(out.waypoints);
+  out.optimum_m = out.climb_m + out.path_m + out.landing_m;
+  return out;
+}
+
+}  // namespace quad::plan

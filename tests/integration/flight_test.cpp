@@ -40,7 +40,8 @@ TEST(Flight, LockstepMissionReachesItsGoalWithoutCollision)
       writeFile("control.yaml", std::string("vehicle: ") + QUAD_CONFIG_DIR +
                                     "/vehicles/x500.yaml\nautostart: true\nmodes: {auto_mission: true}\n"
                                     "timeouts: {path: 600}\n");
-  // GIVEN the control node (autostart, auto mission) and an operator's goal and path
+  // GIVEN the control node (autostart, auto mission) and an operator's goal and path, which
+  // the operator vouches is free all along (known_free_m: the controller flies no further)
   ChildProcess control({QUAD_CONTROL_NODE, "--config", control_config}, env(domain));
   ASSERT_TRUE(control.waitForOutput("running on domain", 10s)) << control.output();
   ChildProcess goal({QUAD_TOOL, "topic", "pub", "quad/planning/goal",
@@ -48,7 +49,7 @@ TEST(Flight, LockstepMissionReachesItsGoalWithoutCollision)
                     env(domain));
   ChildProcess path({QUAD_TOOL, "topic", "pub", "quad/planning/path",
                      "{version: 1, goal_id: 1, status: PLAN_OK, waypoints_W: [{x: 0, y: 0, z: 2}, "
-                     "{x: 10, y: 0, z: 2}, {x: 20, y: 5, z: 3}]}",
+                     "{x: 10, y: 0, z: 2}, {x: 20, y: 5, z: 3}], known_free_m: 1000}",
                      "--count", "100", "--rate", "2", "--wait-match", "5"},
                     env(domain));
   ASSERT_TRUE(goal.waitForOutput("published", 10s)) << goal.output();

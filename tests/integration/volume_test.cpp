@@ -1,4 +1,4 @@
-// Flying the whole volume: worlds that need a climb, a dip or a window, in lockstep with a
+// Flying the whole volume (DDS domains 221 to 228): worlds that need a climb, a dip or a window, in lockstep with a
 // fixed seed, and a goal that no path reaches. Each reads the run's summary and exit status.
 #include <gtest/gtest.h>
 
@@ -55,17 +55,20 @@ void expectReached(const std::string& world, int domain)
   EXPECT_EQ(f.summary["end"], "success") << f.summary.dump(2);
   EXPECT_EQ(f.summary["collisions"], 0) << f.summary.dump(2);
   EXPECT_GT(f.summary["min_clearance_m"].get<double>(), 0.0) << f.summary.dump(2);
+  // flown no more than 1.3 times the known-map optimum (quad plan's, climb and landing included)
+  ASSERT_TRUE(f.summary["flown_over_optimum"].is_number()) << f.summary.dump(2);
+  EXPECT_LE(f.summary["flown_over_optimum"].get<double>(), 1.3) << f.summary.dump(2);
 }
 
-TEST(Volume, AWallAcrossTheBoxIsOverflown) { expectReached("wall", 150); }
-TEST(Volume, AHighWindowOffTheAxisIsThreaded) { expectReached("window", 151); }
-TEST(Volume, TheVehicleLeavesACourtyardOverItsWalls) { expectReached("courtyard", 152); }
-TEST(Volume, GapsLowThenHighThenLowAreFlownThrough) { expectReached("gaps", 153); }
-TEST(Volume, AnOverhangIsFlownUnder) { expectReached("overhang", 154); }
+TEST(Volume, AWallAcrossTheBoxIsOverflown) { expectReached("wall", 221); }
+TEST(Volume, AHighWindowOffTheAxisIsThreaded) { expectReached("window", 222); }
+TEST(Volume, TheVehicleLeavesACourtyardOverItsWalls) { expectReached("courtyard", 223); }
+TEST(Volume, GapsLowThenHighThenLowAreFlownThrough) { expectReached("gaps", 224); }
+TEST(Volume, AnOverhangIsFlownUnder) { expectReached("overhang", 225); }
 
 TEST(Volume, ASealedGoalEndsWithNoPathLandedAndNoCollision)
 {
-  const Flight f = fly("sealed", 155);
+  const Flight f = fly("sealed", 226);
   ASSERT_TRUE(f.summary.is_object()) << f.output;
   EXPECT_EQ(f.exit_status, 3) << f.summary.dump(2) << f.output;  // docs/launch.md: no path
   EXPECT_EQ(f.summary["success"], false);
@@ -82,12 +85,35 @@ TEST(Volume, AGoalInsideAnObstacleIsRefusedAtOnce)
   std::ofstream(world) << "bounds: {min: [-5, -10, 0], max: [45, 10, 10]}\nstart: [0, 0, 0]\ngoal: [20, 0, 2]\n"
                           "obstacles:\n  - {type: box, center: [20, 0, 2], size: [2, 2, 4]}\n";
   ChildProcess launch({QUAD_TOOL, "launch", std::string(QUAD_SOURCE_DIR) + "/bringup/demo.yaml", "--world",
-                       world.string(), "--domain", "156", "--quiet", "--log-dir", (dir / "run").string()});
+                       world.string(), "--domain", "227", "--quiet", "--log-dir", (dir / "run").string()});
   const auto status = launch.wait(60s);
   ASSERT_TRUE(status) << launch.output();
   EXPECT_EQ(*status, 2) << launch.output();  // docs/launch.md: refused before anything started
   EXPECT_FALSE(fs::exists(dir / "run" / "plant.log")) << launch.output();
   fs::remove_all(dir);
+}
+
+TEST(Campaign, FliesEachWorldInTurnAndFailsWhenOneDoes)
+{
+  const fs::path dir = quad::test::scratchDir("quad_campaign");
+  const std::string worlds = std::string(QUAD_SOURCE_DIR) + "/configs/worlds/";
+  ChildProcess campaign({QUAD_TOOL, "campaign", worlds + "wall.yaml", worlds + "sealed.yaml", "--domain", "228",
+                         "--log-dir", (dir / "runs").string(), "--json", (dir / "campaign.json").string()});
+  const auto status = campaign.wait(600s);
+  ASSERT_TRUE(status) << campaign.output();
+  EXPECT_EQ(*status, 1) << campaign.output();  // the sealed goal fails the campaign
+  const auto j = nlohmann::json::parse(quad::test::readFile(dir / "campaign.json"), nullptr, false);
+  ASSERT_TRUE(j.is_object()) << campaign.output();
+  ASSERT_EQ(j["runs"].size(), 2U) << j.dump(2);
+  EXPECT_EQ(j["runs"][0]["world"], "wall");
+  EXPECT_EQ(j["runs"][0]["success"], true) << j.dump(2);
+  EXPECT_TRUE(j["runs"][0]["flown_over_optimum"].is_number()) << j.dump(2);
+  EXPECT_EQ(j["runs"][1]["end"], "no_path") << j.dump(2);
+  EXPECT_EQ(j["runs"][1]["exit_status"], 3) << j.dump(2);
+  EXPECT_EQ(j["succeeded"], 1);
+  if (!::testing::Test::HasFailure()) {
+    fs::remove_all(dir);
+  }
 }
 
 }  // namespace

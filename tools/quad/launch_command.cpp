@@ -22,6 +22,7 @@ std::optional<launch::Manifest> loadRunManifest(const LaunchOptions& options)
   } else if (options.lockstep) {
     overrides.mode = "lockstep";
   }
+  overrides.seed = options.seed;
   overrides.domain = options.domain;
   overrides.subnet = options.subnet;
   launch::ProgramLookup lookup{buildDir(), QUAD_SOURCE_DIR,

@@ -3,6 +3,7 @@
 /// `quad launch MANIFEST`: starts a manifest's modules on their hosts, supervises them, and
 /// flies its mission when it has one.
 
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -13,6 +14,7 @@ struct LaunchOptions {
   std::optional<std::string> world;    ///< replaces the manifest's world
   bool realtime = false;               ///< mode realtime instead of the manifest's
   bool lockstep = false;               ///< mode lockstep instead of the manifest's
+  std::optional<std::uint64_t> seed;   ///< ${seed} instead of the manifest's
   std::optional<int> domain;           ///< replaces the manifest's and the environment's
   std::optional<std::string> subnet;   ///< replaces the manifest's netns subnet
   std::optional<std::string> summary;  ///< JSON summary of the mission to this file

@@ -14,6 +14,9 @@
 
 #include "launch/shm.hpp"
 #include "quad/common/time.hpp"
+#include "quad/common/yaml_input.hpp"
+#include "quad/plan/known_map.hpp"
+#include "quad/planning/planning_params.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/plant/world_file.hpp"
@@ -296,6 +299,37 @@ void LaunchRun::stopAll()
   supervisor_.stop("discovery", m_.grace_s);
 }
 
+std::optional<double> LaunchRun::knownMapOptimum()
+{
+  const auto planning = std::find_if(m_.modules.begin(), m_.modules.end(), [](const Module& x) { return x.kind == "planning"; });
+  if (planning == m_.modules.end()) {
+    return std::nullopt;
+  }
+  try {
+    std::vector<common::ParamOverride> overrides;
+    for (const auto& [key, value] : planning->sets) {
+      overrides.push_back({key, value});
+    }
+    const common::Params params =
+        planning->config.empty()
+            ? common::defaultParams(planning::planningSchema())
+            : common::parseParams(common::readTextFile(planning->config), planning->config.string(),
+                                  planning::planningSchema(), overrides);
+    const plant::World world = plant::loadWorld(planning::worldFileOf(params));
+    const double radius = vehicle::loadVehicle(planning::vehicleFileOf(params)).radius;
+    const plan::KnownMapPlan best =
+        plan::planOnKnownMap(world, planning::planningParamsFrom(params, world.bounds().min, world.bounds().max, radius),
+                             m_.mission.land);
+    if (best.status != planning::PlanStatus::kOk) {
+      return std::nullopt;  // no optimum where no path exists
+    }
+    return best.optimum_m;
+  } catch (const std::exception& e) {
+    say(std::string("no known-map optimum: ") + e.what());
+    return std::nullopt;
+  }
+}
+
 int LaunchRun::execute(RunExtension* extension)
 {
   say(fmt::format("{}: domain {}, {} hosts, {} modules, mode {}, logs in {}", m_.file.string(), domain_,
@@ -414,6 +448,7 @@ int LaunchRun::execute(RunExtension* extension)
   int code = failed_ ? 1 : 0;
   if (auto* mission = observer_->mission()) {
     summary_ = mission->summary(common::toSeconds(common::steadyTimeNs() - start_ns_));
+    summary_->optimum_m = knownMapOptimum();
     const std::string json = launch::toJson(*summary_);
     std::ofstream(supervisor_.logDir() / "summary.json") << json;
     if (options_.summary) {

@@ -97,6 +97,9 @@ private:
   std::string whoWrites(const std::string& topic) const;
   /// Says, for each module, the last line its log has about lockstep ("lockstep: ...").
   void reportStall();
+  /// The known-map optimum of the run's world, with its planning module's parameters; nothing
+  /// when the run has no planner or no path exists.
+  std::optional<double> knownMapOptimum();
   void stopAll();
   bool waitForNeeds(const launch::Module& mod);
   const launch::Module& module(const std::string& name) const;

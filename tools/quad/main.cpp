@@ -7,7 +7,9 @@
 #include <iostream>
 
 #include "fault_command.hpp"
+#include "campaign_command.hpp"
 #include "launch_command.hpp"
+#include "plan_command.hpp"
 #include "security_command.hpp"
 #include "bag_commands.hpp"
 #include "so3_command.hpp"
@@ -37,6 +39,7 @@ int main(int argc, char** argv)
   auto* realtime = launch->add_flag("--realtime", launch_options.realtime, "Sim time follows the wall clock");
   launch->add_flag("--lockstep", launch_options.lockstep, "Sim time waits for every module (reproducible)")
       ->excludes(realtime);
+  launch->add_option("--seed", launch_options.seed, "${seed} of the manifest (the plant's random draws)");
   launch->add_option("--domain", launch_options.domain, "DDS domain id (default: the manifest's, else $QUAD_DOMAIN_ID, else 0)")
       ->check(CLI::Range(0, 232));
   launch->add_option("--subnet", launch_options.subnet, "First three numbers of the /24 for network-namespace hosts");
@@ -47,6 +50,27 @@ int main(int argc, char** argv)
       ->check(CLI::NonNegativeNumber);
   launch->add_flag("-q,--quiet", launch_options.quiet, "Modules' output to their log files only");
   launch->add_flag("--check", launch_options.check, "Validate the manifest and exit");
+
+  quad::tools::PlanOptions plan_options;
+  plan_options.config = std::string(QUAD_SOURCE_DIR) + "/configs/planning.yaml";
+  auto* plan = app.add_subcommand("plan", "The known-map optimum: plan on the whole world, every obstacle known");
+  plan->add_option("--world", plan_options.world, "World file (default: the planning config's)");
+  plan->add_option("--config", plan_options.config, "Planning config (radius, margin, lattice)")->capture_default_str();
+  plan->add_flag("--no-land", plan_options.no_land, "The mission does not land at the goal");
+  plan->add_option("--json", plan_options.json, "Write the result as JSON to this file");
+
+  quad::tools::CampaignCommandOptions campaign_options;
+  campaign_options.manifest = std::string(QUAD_SOURCE_DIR) + "/bringup/demo.yaml";
+  auto* campaign = app.add_subcommand("campaign", "Fly worlds (and seeds) one after another; a table and JSON of the runs");
+  campaign->add_option("worlds", campaign_options.worlds, "World files")->required();
+  campaign->add_option("--seeds", campaign_options.seeds, "Fly each world with seeds 1 ... N")->check(CLI::Range(1, 1000));
+  campaign->add_option("--manifest", campaign_options.manifest, "Manifest flown in every world")->capture_default_str();
+  campaign->add_option("--domain", campaign_options.domain, "DDS domain id (default: $QUAD_DOMAIN_ID, else 0)")
+      ->check(CLI::Range(0, 232));
+  campaign->add_option("--json", campaign_options.json, "Write the runs as JSON here (default: in the campaign's folder)");
+  campaign->add_option("--log-dir", campaign_options.dir, "The campaign's folder (default: log/campaign-<time>-<pid>)");
+  campaign->add_option("--wall-timeout", campaign_options.wall_timeout_s, "A run still going after this many seconds fails")
+      ->check(CLI::PositiveNumber);
 
   quad::tools::FaultOptions fault_options;
   auto* fault = app.add_subcommand("fault", "Run a fault-injection scenario: launch, break the stack on its timeline, check the reactions");
@@ -224,6 +248,12 @@ int main(int argc, char** argv)
   try {
     if (launch->parsed()) {
       return quad::tools::launch(launch_options);
+    }
+    if (campaign->parsed()) {
+      return quad::tools::campaign(campaign_options);
+    }
+    if (plan->parsed()) {
+      return quad::tools::plan(plan_options);
     }
     if (fault->parsed()) {
       return quad::tools::fault(fault_options);

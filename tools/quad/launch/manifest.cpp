@@ -151,7 +151,7 @@ std::string expand(const std::string& text, const std::map<std::string, std::str
     out += text.substr(last, static_cast<std::size_t>(it->position()) - last);
     const auto found = vars.find((*it)[1].str());
     if (found == vars.end()) {
-      r.problem(key, node, "unknown variable ${" + (*it)[1].str() + "} (known: world, mode, root)");
+      r.problem(key, node, "unknown variable ${" + (*it)[1].str() + "} (known: world, mode, seed, root)");
     } else {
       out += found->second;
     }
@@ -347,7 +347,7 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
     r.problem("(top level)", root, "expected a map with 'modules'");
     r.throwIfAny();
   }
-  r.onlyKeys(root, "", {"name", "domain", "transport", "discovery", "subnet", "world", "mode", "grace", "env",
+  r.onlyKeys(root, "", {"name", "domain", "transport", "discovery", "subnet", "world", "mode", "seed", "grace", "env",
                         "security", "network", "hosts", "modules", "mission"});
   m.name = r.text(root["name"], "name", origin.stem().string()).value_or("run");
   if (overrides.domain) {
@@ -404,8 +404,15 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
     }
   }
   m.mode = overrides.mode ? *overrides.mode : r.choice(root["mode"], "mode", "lockstep", {"lockstep", "realtime"}).value_or("lockstep");
-  const std::map<std::string, std::string> vars{
-      {"world", m.world.string()}, {"mode", m.mode}, {"root", lookup.source_dir.string()}};
+  if (overrides.seed) {
+    m.seed = *overrides.seed;
+  } else if (root["seed"]) {
+    m.seed = static_cast<std::uint64_t>(r.number(root["seed"], "seed", 1, 0, 4294967295.0).value_or(1));
+  }
+  const std::map<std::string, std::string> vars{{"world", m.world.string()},
+                                                {"mode", m.mode},
+                                                {"seed", std::to_string(m.seed)},
+                                                {"root", lookup.source_dir.string()}};
   for (const auto& [k, v] : r.scalars(root["env"], "env")) {
     m.environment[k] = expand(v, vars, r, "env." + k, root["env"][k]);
   }

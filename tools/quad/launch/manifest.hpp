@@ -63,6 +63,7 @@ struct Manifest {
   std::string subnet = "10.77.0";   ///< netns hosts: <subnet>.1 the bridge, .2... the hosts
   std::filesystem::path world;      ///< ${world}; empty when the manifest names none
   std::string mode = "lockstep";    ///< ${mode}: lockstep | realtime
+  std::uint64_t seed = 1;           ///< ${seed}: for the modules' random draws (the plant's sim.seed)
   double grace_s = 5.0;             ///< SIGTERM to SIGKILL
   /// DDS Security for every process of the run (QUAD_SECURITY_DIR): the folder of
   /// `quad security init`; empty: off.
@@ -86,6 +87,7 @@ struct Manifest {
 struct ManifestOverrides {
   std::optional<std::filesystem::path> world;
   std::optional<std::string> mode;
+  std::optional<std::uint64_t> seed;
   std::optional<int> domain;
   std::optional<std::string> subnet;
 };
@@ -100,7 +102,7 @@ struct ProgramLookup {
 };
 
 /// Reads and validates a manifest. Relative paths are relative to the manifest's folder;
-/// `${world}`, `${mode}` and `${root}` are expanded in module args, sets and environment.
+/// `${world}`, `${mode}`, `${seed}` and `${root}` are expanded in module args, sets and environment.
 /// Throws common::ConfigError listing every problem.
 Manifest loadManifest(const std::filesystem::path& file, const ManifestOverrides& overrides,
                       const ProgramLookup& lookup);

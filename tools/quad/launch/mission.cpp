@@ -187,6 +187,9 @@ std::string toJson(const MissionSummary& s)
   j["wall_seconds"] = s.wall_s;
   j["path_length_m"] = s.path_length_m;
   j["straight_line_m"] = s.straight_line_m;
+  j["optimum_m"] = s.optimum_m ? nlohmann::ordered_json(*s.optimum_m) : nlohmann::ordered_json(nullptr);
+  j["flown_over_optimum"] = s.optimum_m && *s.optimum_m > 0.0 ? nlohmann::ordered_json(s.path_length_m / *s.optimum_m)
+                                                              : nlohmann::ordered_json(nullptr);
   j["paths"] = s.paths;
   j["min_clearance_m"] = s.min_clearance_m;
   j["mode_changes"] = s.mode_changes;
@@ -200,10 +203,13 @@ std::string toText(const MissionSummary& s)
   return fmt::format(
       "mission: {} ({})\n{}"
       "  sim {:.1f} s in {:.1f} s wall ({:.1f}x)\n"
-      "  flown {:.1f} m for a {:.1f} m straight line ({:.2f}x); {} paths from the planner\n"
+      "  flown {:.1f} m for a {:.1f} m straight line ({:.2f}x){}; {} paths from the planner\n"
       "  closest approach to an obstacle {:.2f} m; collisions {}; {} mode changes; ends {:.2f} m from the goal\n",
       s.success ? "SUCCESS" : "FAILED", s.outcome, s.failure.empty() ? "" : "  failure: " + s.failure + "\n", s.sim_s, s.wall_s, s.wall_s > 0 ? s.sim_s / s.wall_s : 0.0,
       s.path_length_m, s.straight_line_m, s.straight_line_m > 0 ? s.path_length_m / s.straight_line_m : 0.0,
+      s.optimum_m && *s.optimum_m > 0.0
+          ? fmt::format(", a {:.1f} m known-map optimum ({:.2f}x)", *s.optimum_m, s.path_length_m / *s.optimum_m)
+          : "",
       s.paths, s.min_clearance_m, s.collisions, s.mode_changes, s.goal_distance_m);
 }
 

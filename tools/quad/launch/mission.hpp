@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string_view>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,7 @@ struct MissionSummary {
   double wall_s = 0.0;
   double path_length_m = 0.0;   ///< flown, from the vehicle states
   double straight_line_m = 0.0; ///< start to goal
+  std::optional<double> optimum_m; ///< the known-map optimum (quad plan), when the run has a planner
   int paths = 0;                ///< path versions received (the planner's replans that changed the path)
   double min_clearance_m = 0.0; ///< closest the vehicle's bounding sphere came to an obstacle
   int mode_changes = 0;

@@ -1,0 +1,72 @@
+#include "plan_command.hpp"
+
+#include <cstdio>
+#include <fstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "launch_run.hpp"
+#include "quad/common/yaml_input.hpp"
+#include "quad/plan/known_map.hpp"
+#include "quad/plant/world_file.hpp"
+#include "quad/vehicle/vehicle.hpp"
+
+namespace quad::tools {
+
+int plan(const PlanOptions& options)
+{
+  try {
+    std::vector<common::ParamOverride> overrides;
+    if (options.world) {
+      overrides.push_back({"world", std::filesystem::absolute(*options.world).string()});
+    }
+    const common::Params params = common::parseParams(common::readTextFile(options.config), options.config,
+                                                      planning::planningSchema(), overrides);
+    const plant::World world = plant::loadWorld(planning::worldFileOf(params));
+    const double radius = vehicle::loadVehicle(planning::vehicleFileOf(params)).radius;
+    const planning::PlanningParams setup =
+        planning::planningParamsFrom(params, world.bounds().min, world.bounds().max, radius);
+    const plan::KnownMapPlan p = plan::planOnKnownMap(world, setup, !options.no_land);
+    const auto& g = world.goal();
+    std::printf("%s: %s\n", planning::worldFileOf(params).string().c_str(), std::string(toString(p.status)).c_str());
+    if (p.status == planning::PlanStatus::kOk) {
+      std::printf("optimum %.2f m: climb %.2f m to (%.1f, %.1f, %.1f), path %.2f m (%zu waypoints) to the goal "
+                  "(%.1f, %.1f, %.1f), landing %.2f m\n",
+                  p.optimum_m, p.climb_m, p.from.x(), p.from.y(), p.from.z(), p.path_m, p.waypoints.size(), g.x(),
+                  g.y(), g.z(), p.landing_m);
+    }
+    std::printf("%zu obstacle voxels at %.2f m, inflation %.2f m, %llu expansions\n", p.occupied_voxels,
+                setup.resolution, setup.planner.vehicle_radius, static_cast<unsigned long long>(p.expansions));
+    if (options.json) {
+      nlohmann::ordered_json j;
+      j["world"] = planning::worldFileOf(params).string();
+      j["status"] = std::string(toString(p.status));
+      j["optimum_m"] = p.status == planning::PlanStatus::kOk ? nlohmann::ordered_json(p.optimum_m) : nullptr;
+      j["path_m"] = p.path_m;
+      j["climb_m"] = p.climb_m;
+      j["landing_m"] = p.landing_m;
+      j["waypoints"] = nlohmann::ordered_json::array();
+      for (const auto& w : p.waypoints) {
+        j["waypoints"].push_back({w.x(), w.y(), w.z()});
+      }
+      std::ofstream out(*options.json);
+      out << j.dump(2) << "\n";
+      if (!out) {
+        std::fprintf(stderr, "plan: cannot write %s\n", options.json->c_str());
+        return kExitFailed;
+      }
+    }
+    return p.status == planning::PlanStatus::kOk ? 0 : kExitNoPath;
+  } catch (const common::ConfigError& e) {
+    for (const auto& problem : e.problems()) {
+      std::fprintf(stderr, "%s\n", problem.c_str());
+    }
+    return kExitInvalid;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "plan: %s\n", e.what());
+    return kExitInvalid;
+  }
+}
+
+}  // namespace quad::tools

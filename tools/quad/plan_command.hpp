@@ -1,0 +1,20 @@
+#pragma once
+/// @file
+/// `quad plan --world W`: the known-map optimum of a world with the planner's parameters.
+
+#include <optional>
+#include <string>
+
+namespace quad::tools {
+
+struct PlanOptions {
+  std::optional<std::string> world;  ///< replaces the planning config's world
+  std::string config;                ///< the planning config (configs/planning.yaml)
+  bool no_land = false;              ///< the mission does not land at the goal
+  std::optional<std::string> json;   ///< the result as JSON to this file
+};
+
+/// 0 with a path, 3 when none exists (as `quad launch`), 2 for bad input (named).
+int plan(const PlanOptions& options);
+
+}  // namespace quad::tools

@@ -14,9 +14,7 @@
 
 #include "launch/shm.hpp"
 #include "quad/common/time.hpp"
-#include "quad/common/yaml_input.hpp"
 #include "quad/plan/known_map.hpp"
-#include "quad/planning/planning_params.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/plant/world_file.hpp"
@@ -310,16 +308,8 @@ std::optional<double> LaunchRun::knownMapOptimum()
     for (const auto& [key, value] : planning->sets) {
       overrides.push_back({key, value});
     }
-    const common::Params params =
-        planning->config.empty()
-            ? common::defaultParams(planning::planningSchema())
-            : common::parseParams(common::readTextFile(planning->config), planning->config.string(),
-                                  planning::planningSchema(), overrides);
-    const plant::World world = plant::loadWorld(planning::worldFileOf(params));
-    const double radius = vehicle::loadVehicle(planning::vehicleFileOf(params)).radius;
-    const plan::KnownMapPlan best =
-        plan::planOnKnownMap(world, planning::planningParamsFrom(params, world.bounds().min, world.bounds().max, radius),
-                             m_.mission.land);
+    const plan::PlanningSetup setup = plan::loadPlanningSetup(planning->config, overrides);
+    const plan::KnownMapPlan best = plan::planOnKnownMap(setup.world, setup.params, m_.mission.land);
     if (best.status != planning::PlanStatus::kOk) {
       return std::nullopt;  // no optimum where no path exists
     }

@@ -7,10 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "launch_run.hpp"
-#include "quad/common/yaml_input.hpp"
 #include "quad/plan/known_map.hpp"
-#include "quad/plant/world_file.hpp"
-#include "quad/vehicle/vehicle.hpp"
 
 namespace quad::tools {
 
@@ -21,15 +18,10 @@ int plan(const PlanOptions& options)
     if (options.world) {
       overrides.push_back({"world", std::filesystem::absolute(*options.world).string()});
     }
-    const common::Params params = common::parseParams(common::readTextFile(options.config), options.config,
-                                                      planning::planningSchema(), overrides);
-    const plant::World world = plant::loadWorld(planning::worldFileOf(params));
-    const double radius = vehicle::loadVehicle(planning::vehicleFileOf(params)).radius;
-    const planning::PlanningParams setup =
-        planning::planningParamsFrom(params, world.bounds().min, world.bounds().max, radius);
-    const plan::KnownMapPlan p = plan::planOnKnownMap(world, setup, !options.no_land);
-    const auto& g = world.goal();
-    std::printf("%s: %s\n", planning::worldFileOf(params).string().c_str(), std::string(toString(p.status)).c_str());
+    const plan::PlanningSetup setup = plan::loadPlanningSetup(options.config, overrides);
+    const plan::KnownMapPlan p = plan::planOnKnownMap(setup.world, setup.params, !options.no_land);
+    const auto& g = setup.world.goal();
+    std::printf("%s: %s\n", setup.world_file.string().c_str(), std::string(toString(p.status)).c_str());
     if (p.status == planning::PlanStatus::kOk) {
       std::printf("optimum %.2f m: climb %.2f m to (%.1f, %.1f, %.1f), path %.2f m (%zu waypoints) to the goal "
                   "(%.1f, %.1f, %.1f), landing %.2f m\n",
@@ -37,10 +29,10 @@ int plan(const PlanOptions& options)
                   g.y(), g.z(), p.landing_m);
     }
     std::printf("%zu obstacle voxels at %.2f m, inflation %.2f m, %llu expansions\n", p.occupied_voxels,
-                setup.resolution, setup.planner.vehicle_radius, static_cast<unsigned long long>(p.expansions));
+                setup.params.resolution, setup.params.planner.vehicle_radius, static_cast<unsigned long long>(p.expansions));
     if (options.json) {
       nlohmann::ordered_json j;
-      j["world"] = planning::worldFileOf(params).string();
+      j["world"] = setup.world_file.string();
       j["status"] = std::string(toString(p.status));
       j["optimum_m"] = p.status == planning::PlanStatus::kOk ? nlohmann::ordered_json(p.optimum_m) : nullptr;
       j["path_m"] = p.path_m;

@@ -64,8 +64,7 @@ bool FlightController::onPath(const std::vector<Vector3>& waypoints, std::uint32
     return false;
   }
   path_t_ = t;
-  path_ok_ = ok;
-  path_unreachable_ = kind == PathKind::kUnreachable;
+  path_kind_ = kind;
   if (ok && (!path_version_ || version != *path_version_)) {
     path_ = waypoints;
     path_version_ = version;
@@ -174,8 +173,9 @@ FlightOutput FlightController::update(double t)
   in.command = pending_;
   pending_ = Command::kNone;
   in.state_fresh = state_ && t - state_t_ <= config_.state_timeout;
-  in.path_fresh = path_ok_ && path_version_ && t - path_t_ <= config_.path_timeout;
-  in.no_path = path_unreachable_ && t - path_t_ <= config_.path_timeout;
+  const bool path_heard = t - path_t_ <= config_.path_timeout;
+  in.path_fresh = path_kind_ == PathKind::kOk && path_version_ && path_heard;
+  in.no_path = path_kind_ == PathKind::kUnreachable && path_heard;
   in.landed = landed_;
   in.takeoff_altitude_reached = modes_.mode() == Mode::kTakeoff && state_ && follower_.finished() &&
                                 std::abs(state_->p_W.z() - takeoff_target_.z()) < 0.1;

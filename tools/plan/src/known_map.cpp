@@ -3,14 +3,24 @@
 #include <algorithm>
 #include <cmath>
 
+#include "quad/common/yaml_input.hpp"
 #include "quad/geometry/polyline.hpp"
 #include "quad/planning/shortcut.hpp"
+#include "quad/plant/world_file.hpp"
+#include "quad/vehicle/vehicle.hpp"
 
 namespace quad::plan {
 
 namespace {
 
 using geometry::VoxelIndex;
+
+/// The centres [m] of the lattice's first and last cells: the box its cells fill.
+std::pair<Vector3, Vector3> cellCentreRange(const planning::Lattice& lattice)
+{
+  return {lattice.grid().centre(lattice.origin()),
+          lattice.grid().centre(lattice.origin() + lattice.dims() - VoxelIndex::Ones())};
+}
 
 /// Marks the surface voxels of every obstacle occupied (those that can block a cell of the
 /// lattice: within `inflation` [m] of it); returns how many.
@@ -20,8 +30,9 @@ std::size_t giveObstacles(const plant::World& world, planning::DStarLite& planne
   const geometry::VoxelGrid& grid = lattice.grid();
   const double half_diagonal = 0.5 * std::sqrt(3.0) * grid.resolution();
   const Vector3 reach = Vector3::Constant(inflation + grid.resolution());
-  const Vector3 region_lo = grid.centre(lattice.origin()) - reach;
-  const Vector3 region_hi = grid.centre(lattice.origin() + lattice.dims() - VoxelIndex::Ones()) + reach;
+  const auto [first, last] = cellCentreRange(lattice);
+  const Vector3 region_lo = first - reach;
+  const Vector3 region_hi = last + reach;
   std::size_t marked = 0;
   for (const plant::Obstacle& o : world.obstacles()) {
     Vector3 lo;
@@ -52,6 +63,18 @@ std::size_t giveObstacles(const plant::World& world, planning::DStarLite& planne
 
 }  // namespace
 
+PlanningSetup loadPlanningSetup(const std::filesystem::path& config, const std::vector<common::ParamOverride>& overrides)
+{
+  const common::Params p = config.empty() ? common::defaultParams(planning::planningSchema())
+                                          : common::parseParams(common::readTextFile(config), config.string(),
+                                                                planning::planningSchema(), overrides);
+  const std::filesystem::path world_file = planning::worldFileOf(p);
+  plant::World world = plant::loadWorld(world_file);
+  const double radius = vehicle::loadVehicle(planning::vehicleFileOf(p)).radius;
+  planning::PlanningParams params = planning::planningParamsFrom(p, world.bounds().min, world.bounds().max, radius);
+  return {world_file, std::move(world), std::move(params)};
+}
+
 KnownMapPlan planOnKnownMap(const plant::World& world, const planning::PlanningParams& params, bool land)
 {
   planning::DStarLite planner(
@@ -59,11 +82,9 @@ KnownMapPlan planOnKnownMap(const plant::World& world, const planning::PlanningP
   KnownMapPlan out;
   out.occupied_voxels = giveObstacles(world, planner, params.planner.vehicle_radius);
   // Take-off: straight up from the start into the lattice's lowest layer (or down into its top).
-  const planning::Lattice& lattice = planner.lattice();
-  const double bottom = lattice.grid().centre(lattice.origin()).z();
-  const double top = lattice.grid().centre(lattice.origin() + lattice.dims() - VoxelIndex::Ones()).z();
+  const auto [first, last] = cellCentreRange(planner.lattice());
   out.from = world.start();
-  out.from.z() = std::clamp(out.from.z(), bottom, top);
+  out.from.z() = std::clamp(out.from.z(), first.z(), last.z());
   out.climb_m = (out.from - world.start()).norm();
   out.landing_m = land ? std::max(0.0, world.goal().z() - world.bounds().min.z()) : 0.0;
   const auto start = planner.lattice().cellAt(out.from);

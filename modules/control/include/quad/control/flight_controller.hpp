@@ -122,8 +122,7 @@ private:
   std::vector<Vector3> path_;
   std::optional<std::uint32_t> path_version_;
   double path_known_free_ = 0.0;  // [m] of path_ flown
-  bool path_ok_ = false;
-  bool path_unreachable_ = false;
+  PathKind path_kind_ = PathKind::kNone;  // of the last path heard
   CameraAim camera_;
   std::vector<Vector3> flown_;        // the flown path since take-off, a point every half metre
   std::vector<Vector3> return_path_;  // RETURN flies it: back along flown_

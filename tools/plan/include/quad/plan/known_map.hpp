@@ -5,8 +5,10 @@
 /// path is measured against it; `quad plan` prints it.
 
 #include <cstdint>
+#include <filesystem>
 #include <vector>
 
+#include "quad/common/params.hpp"
 #include "quad/planning/dstar_lite.hpp"
 #include "quad/planning/planning_params.hpp"
 #include "quad/plant/world.hpp"
@@ -32,5 +34,15 @@ struct KnownMapPlan {
 /// plans from the start, lifted into the lattice, to the goal. `land`: the mission lands at
 /// the goal, so the descent to the floor is part of the flight.
 KnownMapPlan planOnKnownMap(const plant::World& world, const planning::PlanningParams& params, bool land);
+
+/// A planning config (empty path: the schema's defaults) with `overrides` on top, and the world
+/// and vehicle files it names loaded: what the planner of a run would plan with.
+struct PlanningSetup {
+  std::filesystem::path world_file;
+  plant::World world;
+  planning::PlanningParams params;
+};
+/// Throws common::ConfigError naming the file, key or value.
+PlanningSetup loadPlanningSetup(const std::filesystem::path& config, const std::vector<common::ParamOverride>& overrides);
 
 }  // namespace quad::plan

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <queue>
 #include <stdexcept>
 
 #include "quad/geometry/inflation.hpp"
@@ -35,7 +36,12 @@ std::string_view toString(PlanStatus s)
 }
 
 DStarLite::DStarLite(Lattice lattice, PlannerConfig config)
-    : lattice_(std::move(lattice)), config_(config), dims_(lattice_.dims()), size_(lattice_.size())
+    : lattice_(std::move(lattice)),
+      config_(config),
+      dims_(lattice_.dims()),
+      size_(lattice_.size()),
+      pages_(static_cast<std::size_t>((size_ >> kPageBits) + 1)),
+      open_(VertexSlot{pages_.data()})
 {
   if (config_.connectivity != 6 && config_.connectivity != 18 && config_.connectivity != 26) {
     throw std::invalid_argument("planner connectivity " + std::to_string(config_.connectivity) + ": expected 6, 18 or 26");
@@ -60,7 +66,6 @@ DStarLite::DStarLite(Lattice lattice, PlannerConfig config)
   inflation_ = geometry::inflationOffsets(config_.vehicle_radius, res);
   blockers_.assign(static_cast<std::size_t>(lattice_.size()), 0);
   cell_state_.assign(static_cast<std::size_t>(lattice_.size()), Occupancy::kUnknown);
-  pages_.resize(static_cast<std::size_t>((lattice_.size() >> kPageBits) + 1));
 }
 
 Eigen::Vector3i DStarLite::coordinates(Cell c) const
@@ -166,7 +171,36 @@ double DStarLite::heuristic(Cell a, Cell b) const { return distance(coordinates(
 
 double DStarLite::distance(const Eigen::Vector3i& a, const Eigen::Vector3i& b) const
 {
-  return lattice_.grid().resolution() * (a - b).cast<double>().norm();
+  const double res = lattice_.grid().resolution();
+  if (config_.heuristic == Heuristic::kEuclidean) {
+    return res * (a - b).cast<double>().norm();
+  }
+  // The shortest path in the obstacle-free lattice: with the steps along the axes sorted,
+  // d1 >= d2 >= d3, as many of the longest moves as the displacement allows.
+  std::array<int, 3> d{std::abs(a.x() - b.x()), std::abs(a.y() - b.y()), std::abs(a.z() - b.z())};
+  if (d[0] < d[1]) {
+    std::swap(d[0], d[1]);
+  }
+  if (d[1] < d[2]) {
+    std::swap(d[1], d[2]);
+  }
+  if (d[0] < d[1]) {
+    std::swap(d[0], d[1]);
+  }
+  static const double kSqrt2 = std::sqrt(2.0);
+  static const double kSqrt3 = std::sqrt(3.0);
+  switch (config_.connectivity) {
+    case 6:
+      return res * (d[0] + d[1] + d[2]);
+    case 18: {
+      // Each diagonal move covers two axes; at most sum/2 of them, and d1 cannot pair with itself.
+      const int sum = d[0] + d[1] + d[2];
+      const int diagonals = std::min(sum / 2, sum - d[0]);
+      return res * (kSqrt2 * diagonals + (sum - 2 * diagonals));
+    }
+    default:
+      return res * (kSqrt3 * d[2] + kSqrt2 * (d[1] - d[2]) + (d[0] - d[1]));
+  }
 }
 
 double DStarLite::g(Cell c) const
@@ -183,8 +217,14 @@ double DStarLite::rhs(Cell c) const
 
 DStarLite::Key DStarLite::calculateKey(Cell c) const
 {
-  const double m = std::min(g(c), rhs(c));
-  return {m + distance(coordinates(c), start_coordinates_) + km_, m};
+  const Vertex* v = find(c);
+  return keyOf(v ? *v : Vertex{}, coordinates(c));
+}
+
+DStarLite::Key DStarLite::keyOf(const Vertex& v, const Eigen::Vector3i& p) const
+{
+  const double m = std::min(v.g, v.rhs);
+  return {m + distance(p, start_coordinates_) + km_, m};
 }
 
 double DStarLite::bestRhs(Cell u) const
@@ -210,42 +250,42 @@ void DStarLite::setRhs(Cell u, double value)
   }
 }
 
-void DStarLite::push(Cell u, Vertex& v, const Key& k)
+void DStarLite::queue(Cell u, const Key& k)
 {
-  ++v.stamp;
-  v.queued = true;
-  open_.push({k, u, v.stamp});
+  open_.set(u, k);
   ++pushes_;
 }
 
 void DStarLite::updateVertex(Cell u)
 {
-  // Lazy deletion: an entry whose stamp is no longer the cell's is skipped when it surfaces.
-  const Vertex* found = find(u);
-  if (found == nullptr) {
-    return;  // g = rhs = ∞: consistent, and never queued
+  if (const Vertex* v = find(u)) {
+    updateVertex(u, *v, coordinates(u));
   }
-  Vertex& v = vertex(u);
-  v.queued = false;
+  // else g = rhs = ∞: consistent, and never queued
+}
+
+void DStarLite::updateVertex(Cell u, const Vertex& v, const Eigen::Vector3i& p)
+{
   if (v.g != v.rhs) {
-    push(u, v, calculateKey(u));
+    queue(u, keyOf(v, p));
+  } else {
+    open_.remove(u);
   }
 }
 
 void DStarLite::reset()
 {
+  open_.clear();
   for (auto& page : pages_) {
     page.reset();
   }
   allocated_pages_ = 0;
-  open_ = {};
   km_ = 0.0;
   last_ = start_;
   if (goal_) {
-    Vertex& v = vertex(*goal_);
-    v.rhs = 0.0;
+    vertex(*goal_).rhs = 0.0;
     if (start_) {
-      push(*goal_, v, calculateKey(*goal_));
+      queue(*goal_, calculateKey(*goal_));
     }
   }
 }
@@ -378,14 +418,12 @@ PlanResult DStarLite::plan(std::uint64_t max_expansions)
   const std::uint64_t pushes_before = pushes_;
   // ComputeShortestPath, optimised version (Koenig & Likhachev 2002, Fig. 4).
   while (!open_.empty()) {
-    const Entry top = open_.top();
-    const Vertex* queued = find(top.cell);
-    if (queued == nullptr || !queued->queued || queued->stamp != top.stamp) {
-      open_.pop();  // stale entry
-      continue;
-    }
-    const Key k_start = calculateKey(*start_);
-    if (!(top.key < k_start) && rhs(*start_) <= g(*start_)) {
+    const Cell u = open_.top().cell;
+    const Key k_old = open_.top().key;
+    const Vertex* vstart = find(*start_);
+    const double m_start = vstart ? std::min(vstart->g, vstart->rhs) : kInfinity;
+    const Key k_start{m_start + km_, m_start};  // the heuristic from the start to itself is 0
+    if (!(k_old < k_start) && (vstart == nullptr || vstart->rhs <= vstart->g)) {
       break;
     }
     if (max_expansions != 0 && out.expansions + out.rekeys >= max_expansions) {
@@ -393,13 +431,12 @@ PlanResult DStarLite::plan(std::uint64_t max_expansions)
       out.heap_pushes = pushes_ - pushes_before;
       return out;
     }
-    const Cell u = top.cell;
     Vertex& vu = vertex(u);
-    const Key k_new = calculateKey(u);
-    open_.pop();
-    if (top.key < k_new) {
+    const Eigen::Vector3i pu = coordinates(u);
+    const Key k_new = keyOf(vu, pu);
+    if (k_old < k_new) {
       // Queued before the start moved (k_m grew): requeue with its key now; not an expansion.
-      push(u, vu, k_new);
+      queue(u, k_new);
       ++out.rekeys;
       continue;
     }
@@ -408,27 +445,29 @@ PlanResult DStarLite::plan(std::uint64_t max_expansions)
       // Overconsistent: settle g, and let predecessors improve through u.
       const double gu = vu.rhs;
       vu.g = gu;
-      vu.queued = false;
+      open_.remove(u);
       if (traversable(u)) {
         forEachNeighbour(u, [&](Cell s, double step) {
-          if (s != *goal_ && traversable(s) && step + gu < rhs(s)) {
-            setRhs(s, step + gu);
-            updateVertex(s);
+          const double through = step + gu;
+          if (s == *goal_ || !traversable(s) || !(through < rhs(s))) {
+            return;
           }
+          Vertex& vs = vertex(s);
+          vs.rhs = through;
+          updateVertex(s, vs, coordinates(s));
         });
       }
     } else {
       // Underconsistent: raise g to infinity; whoever went through u recomputes.
       const double g_old = vu.g;
       vu.g = kInfinity;
-      vu.queued = false;
       forEachNeighbour(u, [&](Cell s, double step) {
         if (s != *goal_ && rhs(s) == step + g_old) {
           setRhs(s, bestRhs(s));
         }
         updateVertex(s);
       });
-      updateVertex(u);  // rhs(u) does not depend on g(u): it stays, u is inconsistent now
+      updateVertex(u, vu, pu);  // rhs(u) does not depend on g(u): it stays, u is inconsistent now
     }
   }
   out.heap_pushes = pushes_ - pushes_before;

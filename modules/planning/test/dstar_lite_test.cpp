@@ -33,36 +33,70 @@ void expectCollisionFree(const DStarLite& p, const PlanResult& r)
 
 TEST(DStarLite, CostEqualsDijkstraAfterEveryBatchOfUpdatesWithAMovingStart)
 {
-  for (const int connectivity : {6, 18, 26}) {
-    std::mt19937_64 rng(2024 + static_cast<unsigned>(connectivity));
-    DStarLite planner(box(24, 24, 6), {connectivity, true, 0.0});
-    Cell start = at(planner, 0, 0, 0);
-    const Cell goal = at(planner, 23, 23, 5);
-    planner.setStart(start);
-    planner.setGoal(goal);
-    std::uniform_int_distribution<int> x(0, 23), z(0, 5);
-    for (int batch = 0; batch < 30; ++batch) {
-      for (int k = 0; k < 25; ++k) {
-        const VoxelIndex v(x(rng), x(rng), z(rng));
-        if (planner.lattice().cell(v) == goal || planner.lattice().cell(v) == start) {
+  for (const Heuristic heuristic : {Heuristic::kLattice, Heuristic::kEuclidean}) {
+    for (const int connectivity : {6, 18, 26}) {
+      std::mt19937_64 rng(2024 + static_cast<unsigned>(connectivity));
+      DStarLite planner(box(24, 24, 6), {connectivity, true, 0.0, heuristic});
+      Cell start = at(planner, 0, 0, 0);
+      const Cell goal = at(planner, 23, 23, 5);
+      planner.setStart(start);
+      planner.setGoal(goal);
+      std::uniform_int_distribution<int> x(0, 23), z(0, 5);
+      for (int batch = 0; batch < 30; ++batch) {
+        for (int k = 0; k < 25; ++k) {
+          const VoxelIndex v(x(rng), x(rng), z(rng));
+          if (planner.lattice().cell(v) == goal || planner.lattice().cell(v) == start) {
+            continue;
+          }
+          planner.updateVoxel(v, rng() % 5 == 0 ? Occupancy::kFree : Occupancy::kOccupied);
+        }
+        const PlanResult r = planner.plan();
+        const double reference = shortestPathCost(planner, start, goal);
+        if (reference == kInfinity) {
+          EXPECT_TRUE(r.status == PlanStatus::kGoalEnclosed || r.status == PlanStatus::kStartEnclosed)
+              << toString(r.status);
           continue;
         }
-        planner.updateVoxel(v, rng() % 5 == 0 ? Occupancy::kFree : Occupancy::kOccupied);
+        ASSERT_EQ(r.status, PlanStatus::kOk) << "connectivity " << connectivity << " batch " << batch;
+        EXPECT_NEAR(r.cost, reference, 1e-9) << "connectivity " << connectivity << " batch " << batch;
+        expectCollisionFree(planner, r);
+        // Move the start two cells along the path, as the vehicle would.
+        if (r.cells.size() > 3) {
+          start = r.cells[2];
+          planner.setStart(start);
+        }
       }
-      const PlanResult r = planner.plan();
-      const double reference = shortestPathCost(planner, start, goal);
-      if (reference == kInfinity) {
-        EXPECT_TRUE(r.status == PlanStatus::kGoalEnclosed || r.status == PlanStatus::kStartEnclosed)
-            << toString(r.status);
-        continue;
+    }
+  }
+}
+
+TEST(DStarLite, LatticeHeuristicIsTheObstacleFreeDistanceAndAConsistentLowerBound)
+{
+  for (const int connectivity : {6, 18, 26}) {
+    // GIVEN an empty lattice and the same lattice with seeded obstacles
+    DStarLite empty(box(7, 7, 7), {connectivity, true, 0.0});
+    DStarLite cluttered(box(7, 7, 7), {connectivity, true, 0.0});
+    DStarLite euclidean(box(7, 7, 7), {connectivity, true, 0.0, Heuristic::kEuclidean});
+    std::mt19937_64 rng(77 + static_cast<unsigned>(connectivity));
+    std::uniform_int_distribution<int> u(0, 6);
+    for (int k = 0; k < 60; ++k) {
+      cluttered.updateVoxel(VoxelIndex(u(rng), u(rng), u(rng)), Occupancy::kOccupied);
+    }
+    std::vector<std::pair<Cell, double>> around;
+    for (int k = 0; k < 200; ++k) {
+      const Cell a = at(empty, u(rng), u(rng), u(rng));
+      const Cell b = at(empty, u(rng), u(rng), u(rng));
+      // THEN it is the shortest path where nothing is in the way, never longer than one that
+      // has to go around, never shorter than the straight line's heuristic
+      EXPECT_NEAR(empty.heuristic(a, b), shortestPathCost(empty, a, b), 1e-9) << connectivity;
+      if (cluttered.traversable(a) && cluttered.traversable(b)) {
+        EXPECT_LE(cluttered.heuristic(a, b), shortestPathCost(cluttered, a, b) + 1e-9) << connectivity;
       }
-      ASSERT_EQ(r.status, PlanStatus::kOk) << "connectivity " << connectivity << " batch " << batch;
-      EXPECT_NEAR(r.cost, reference, 1e-9) << "connectivity " << connectivity << " batch " << batch;
-      expectCollisionFree(planner, r);
-      // Move the start two cells along the path, as the vehicle would.
-      if (r.cells.size() > 3) {
-        start = r.cells[2];
-        planner.setStart(start);
+      EXPECT_LE(euclidean.heuristic(a, b), empty.heuristic(a, b) + 1e-12) << connectivity;
+      // AND consistent: one step never lowers it by more than the step costs
+      empty.neighbours(a, around);
+      for (const auto& [n, step] : around) {
+        EXPECT_LE(empty.heuristic(a, b), step + empty.heuristic(n, b) + 1e-12) << connectivity;
       }
     }
   }

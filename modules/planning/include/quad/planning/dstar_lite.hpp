@@ -4,9 +4,10 @@
 /// Figure 4) on a 3D lattice of the quadcopter's C-space: a cell is blocked when an occupied
 /// voxel lies within the vehicle radius of its centre (the C-space obstacle of a sphere), so
 /// the vehicle's centre may go wherever a cell is free. Edge costs are Euclidean step
-/// lengths (6-, 18- or 26-connectivity), the heuristic is the Euclidean distance
-/// (consistent), the key modifier k_m follows the moving start, the queue uses lazy deletion
-/// with deterministic tie-breaking (key, then cell number). The search's g and rhs live in
+/// lengths (6-, 18- or 26-connectivity), the heuristic is the obstacle-free lattice distance
+/// (consistent; see Heuristic), the key modifier k_m follows the moving start, the queue holds each cell once
+/// and changes its key in place (IndexedHeap), with deterministic tie-breaking (key, then cell
+/// number). The search's g and rhs live in
 /// pages of 4,096 consecutive cells, allocated when the search first touches one of them:
 /// memory grows with the region searched, not with the box, and a lookup is two indexings.
 
@@ -14,12 +15,12 @@
 #include <limits>
 #include <memory>
 #include <optional>
-#include <queue>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
 #include "quad/geometry/grid.hpp"
+#include "quad/planning/indexed_heap.hpp"
 
 namespace quad::planning {
 
@@ -32,10 +33,17 @@ inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 enum class Occupancy : std::uint8_t { kUnknown, kFree, kOccupied };
 
+/// kLattice: the length of the shortest path in the obstacle-free lattice (for 26 neighbours
+/// √3·d3 + √2·(d2 − d3) + (d1 − d2) over the sorted axis steps), exact where nothing is in the
+/// way. kEuclidean: the straight line, up to 11 % shorter; kept to compare against.
+/// Both are consistent and obey the triangle inequality that k_m needs.
+enum class Heuristic { kLattice, kEuclidean };
+
 struct PlannerConfig {
   int connectivity = 26;            ///< 6, 18 or 26
   bool unknown_traversable = true;  ///< optimistic about unknown space
   double vehicle_radius = 0.35;     ///< [m] inflation
+  Heuristic heuristic = Heuristic::kLattice;
 };
 
 /// kGoalEnclosed and kStartEnclosed: the search ran out, so no chain of traversable cells
@@ -61,7 +69,7 @@ struct PlanResult {
   double cost = kInfinity;          ///< [m]
   std::uint64_t expansions = 0;     ///< vertices expanded (g settled or raised) by this replan
   std::uint64_t rekeys = 0;         ///< queue entries whose key was out of date, requeued
-  std::uint64_t heap_pushes = 0;
+  std::uint64_t heap_pushes = 0;    ///< cells queued or given a new key
 };
 
 class DStarLite {
@@ -98,9 +106,11 @@ public:
   double heuristic(Cell a, Cell b) const;
   /// A cell's position in the lattice (0 ... dims − 1 per axis); no bounds check.
   Eigen::Vector3i coordinates(Cell c) const;
-  /// The Euclidean distance [m] between two positions in the lattice: the heuristic.
+  /// The heuristic distance [m] between two positions in the lattice (PlannerConfig::heuristic).
   double distance(const Eigen::Vector3i& a, const Eigen::Vector3i& b) const;
 
+  /// Cells in the search's queue (inconsistent: g ≠ rhs).
+  std::size_t queued() const { return open_.size(); }
   /// Bytes of the search's per-cell state (g, rhs, queue bookkeeping) now allocated.
   std::size_t searchBytes() const;
 
@@ -110,6 +120,7 @@ private:
   /// arithmetic (a straight path and its heuristic, say) can differ in the last bit, and a
   /// strict comparison would then leave a cell of the optimal path unexpanded.
   static constexpr double kKeyTolerance = 1e-9;  // [m]
+  static constexpr int kPageBits = 12;            // 4,096 cells a page
   struct Key {
     double k1;
     double k2;
@@ -123,32 +134,23 @@ private:
       }
       return k2 < o.k2 - kKeyTolerance;
     }
-    /// Exact: identifies the key an entry was queued with.
-    bool operator==(const Key& o) const { return k1 == o.k1 && k2 == o.k2; }
-  };
-  struct Entry {
-    Key key;
-    Cell cell;
-    std::uint32_t stamp;  ///< the cell's queue stamp when pushed: older entries are stale
-    bool operator>(const Entry& o) const
-    {
-      if (o.key < key) {
-        return true;
-      }
-      if (key < o.key) {
-        return false;
-      }
-      return cell > o.cell;  // deterministic among equal keys
-    }
   };
   /// A cell's search state.
   struct Vertex {
     double g = kInfinity;
     double rhs = kInfinity;
-    std::uint32_t stamp = 0;  ///< bumped on every push of the cell
-    bool queued = false;      ///< its entry with the current stamp is live
+    std::uint32_t slot = kNotQueued;  ///< its place in the queue
   };
-  static constexpr int kPageBits = 12;  // 4,096 cells a page
+  /// Finds a queued cell's slot. Holds the pages' array, which is sized once at construction
+  /// and keeps its address when the planner is moved.
+  struct VertexSlot {
+    std::unique_ptr<Vertex[]>* pages;
+    std::uint32_t& operator()(Cell c) const
+    {
+      return pages[static_cast<std::size_t>(c >> kPageBits)][static_cast<std::size_t>(c & ((Cell{1} << kPageBits) - 1))]
+          .slot;
+    }
+  };
   /// A neighbour offset: steps along the axes, the cell-number difference, the step length.
   struct Step {
     int dx, dy, dz;
@@ -169,12 +171,14 @@ private:
   double g(Cell c) const;
   double rhs(Cell c) const;
   Key calculateKey(Cell c) const;
+  Key keyOf(const Vertex& v, const Eigen::Vector3i& p) const;  ///< p: v's coordinates
   /// rhs(u) from scratch: min over successors of c(u, s') + g(s').
   double bestRhs(Cell u) const;
   void setRhs(Cell u, double value);
-  void push(Cell u, Vertex& v, const Key& k);
+  void queue(Cell u, const Key& k);
   /// UpdateVertex of the optimised version: (re)queue u when inconsistent, drop it when not.
   void updateVertex(Cell u);
+  void updateVertex(Cell u, const Vertex& v, const Eigen::Vector3i& p);  ///< p: u's coordinates
   /// Every edge touching c changed (c became blocked or free): the paper's edge-update rules.
   void cellChanged(Cell c, bool blocked);
   void reset();
@@ -193,7 +197,7 @@ private:
   std::unordered_map<VoxelIndex, Occupancy, geometry::VoxelIndexHash> voxels_;
   std::vector<std::unique_ptr<Vertex[]>> pages_;
   std::size_t allocated_pages_ = 0;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open_;
+  IndexedHeap<Key, VertexSlot> open_;
   std::optional<Cell> start_;
   std::optional<Cell> goal_;
   std::optional<Cell> last_;

@@ -1,0 +1,155 @@
+#pragma once
+/// @file
+/// A priority queue of cells that holds each cell at most once and changes or removes a
+/// queued cell's key in place: the queue D* Lite's pseudocode assumes (U.Update, U.Remove;
+/// Koenig & Likhachev 2002) and the decrease-key of A*. Where a cell sits in the heap is kept
+/// by the caller, in the cell's own search state, and reached through a function, so the
+/// queue needs no hashing of its own. A queue with lazy deletion instead grows by every
+/// change of key, and most of a long search's time goes into popping what is out of date.
+///
+/// A 4-ary heap: half the depth of a binary one, and its children are neighbours in memory.
+
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+namespace quad::planning {
+
+/// A cell's slot when the cell is not in the queue.
+inline constexpr std::uint32_t kNotQueued = std::numeric_limits<std::uint32_t>::max();
+
+/// Key needs operator<; Slot is callable as `std::uint32_t& slot(std::int64_t cell)`, the
+/// caller's record of the cell's place, kNotQueued when the cell is not in the queue. Equal
+/// keys come out by cell number, smallest first, so a search's order does not depend on the
+/// queue's history.
+template <typename Key, typename Slot>
+class IndexedHeap {
+public:
+  using Cell = std::int64_t;
+  struct Entry {
+    Key key;
+    Cell cell;
+  };
+
+  explicit IndexedHeap(Slot slot) : slot_(std::move(slot)) {}
+
+  bool empty() const { return entries_.empty(); }
+  std::size_t size() const { return entries_.size(); }
+  const Entry& top() const { return entries_.front(); }
+
+  /// Queues `cell` with `key`, or changes its key when it is queued already.
+  void set(Cell cell, const Key& key)
+  {
+    std::uint32_t& at = slot_(cell);
+    if (at == kNotQueued) {
+      at = static_cast<std::uint32_t>(entries_.size());
+      entries_.push_back({key, cell});
+      up(at);
+      return;
+    }
+    const std::uint32_t i = at;
+    const bool lower = before({key, cell}, entries_[i]);
+    entries_[i].key = key;
+    if (lower) {
+      up(i);
+    } else {
+      down(i);
+    }
+  }
+
+  /// Takes `cell` out of the queue; nothing when it is not queued.
+  void remove(Cell cell)
+  {
+    std::uint32_t& at = slot_(cell);
+    if (at == kNotQueued) {
+      return;
+    }
+    const std::uint32_t i = at;
+    at = kNotQueued;
+    const Entry last = entries_.back();
+    entries_.pop_back();
+    if (last.cell == cell) {
+      return;
+    }
+    // The last entry fills the hole; it may belong above or below it.
+    place(i, last);
+    up(i);
+    down(slot_(last.cell));
+  }
+
+  void pop() { remove(entries_.front().cell); }
+
+  /// Empties the queue, marking every queued cell as not queued.
+  void clear()
+  {
+    for (const Entry& e : entries_) {
+      slot_(e.cell) = kNotQueued;
+    }
+    entries_.clear();
+  }
+
+private:
+  static constexpr std::uint32_t kArity = 4;
+
+  static bool before(const Entry& a, const Entry& b)
+  {
+    if (a.key < b.key) {
+      return true;
+    }
+    if (b.key < a.key) {
+      return false;
+    }
+    return a.cell < b.cell;
+  }
+
+  void place(std::uint32_t i, const Entry& e)
+  {
+    entries_[i] = e;
+    slot_(e.cell) = i;
+  }
+
+  void up(std::uint32_t i)
+  {
+    const Entry e = entries_[i];
+    while (i > 0) {
+      const std::uint32_t parent = (i - 1) / kArity;
+      if (!before(e, entries_[parent])) {
+        break;
+      }
+      place(i, entries_[parent]);
+      i = parent;
+    }
+    place(i, e);
+  }
+
+  void down(std::uint32_t i)
+  {
+    const Entry e = entries_[i];
+    const auto n = static_cast<std::uint32_t>(entries_.size());
+    for (;;) {
+      const std::uint32_t first = kArity * i + 1;
+      if (first >= n) {
+        break;
+      }
+      std::uint32_t best = first;
+      const std::uint32_t end = first + kArity < n ? first + kArity : n;
+      for (std::uint32_t c = first + 1; c < end; ++c) {
+        if (before(entries_[c], entries_[best])) {
+          best = c;
+        }
+      }
+      if (!before(entries_[best], e)) {
+        break;
+      }
+      place(i, entries_[best]);
+      i = best;
+    }
+    place(i, e);
+  }
+
+  Slot slot_;
+  std::vector<Entry> entries_;
+};
+
+}  // namespace quad::planning

@@ -1,10 +1,9 @@
-# quad_check_core(<target>)
+# quad_forbid_links(<target> REASON <text> PATTERNS <regex>...)
 #
-# A module's core holds the algorithm and must build without the middleware (STYLE: the
-# algorithm compiles without Fast DDS). Fails configure when the target links Fast DDS, the
-# generated message types or quad::dds, directly or through one of quad's own libraries.
-function(quad_check_core target)
-  set(forbidden fastrtps fastcdr quad_msgs quad::msgs quad_dds quad::dds)
+# Fails configure when <target> links a library whose name matches one of the patterns,
+# directly or through one of quad's own libraries. The layering rules are written with it.
+function(quad_forbid_links target)
+  cmake_parse_arguments(ARG "" "REASON" "PATTERNS" ${ARGN})
   set(pending ${target})
   set(seen)
   while(pending)
@@ -32,15 +31,27 @@ function(quad_check_core target)
     endif()
     foreach(lib IN LISTS libs)
       string(REGEX REPLACE "^\\$<LINK_ONLY:(.*)>$" "\\1" lib "${lib}")
-      if(lib IN_LIST forbidden)
-        message(FATAL_ERROR "quad: core library ${target} links ${lib} (through ${current}); "
-                            "DDS belongs in the module's node/")
-      endif()
+      foreach(pattern IN LISTS ARG_PATTERNS)
+        if(lib MATCHES "${pattern}")
+          message(FATAL_ERROR "quad: ${target} links ${lib} (through ${current}); ${ARG_REASON}")
+        endif()
+      endforeach()
       if(lib MATCHES "^quad")
         list(APPEND pending ${lib})
       endif()
     endforeach()
   endwhile()
+endfunction()
+
+# quad_check_core(<target>)
+#
+# A module's core holds the algorithm and must build without the middleware (STYLE: the
+# algorithm compiles without Fast DDS): it links neither Fast DDS, the generated message
+# types nor quad::dds, and no module's node.
+function(quad_check_core target)
+  quad_forbid_links(${target} REASON "DDS belongs in the module's node/"
+    PATTERNS "^fastrtps$" "^fastcdr$" "^quad(_|::)msgs$" "^quad(_|::)dds$")
+  quad_forbid_links(${target} REASON "a core never links a node" PATTERNS "_node_lib$")
 endfunction()
 
 # quad_add_core_library(<module> SOURCES <files...> [PUBLIC <libs...>] [PRIVATE <libs...>])

@@ -10,7 +10,7 @@
 #include "harness.hpp"
 #include "launch/manifest.hpp"
 #include "quad/common/params.hpp"
-#include "quad/plant/world_file.hpp"
+#include "quad/world/world_file.hpp"
 #include "quad/vehicle/vehicle.hpp"
 
 namespace {
@@ -25,7 +25,7 @@ void readAs(std::uint8_t reader, const std::string& text)
         (void)quad::common::parseParams(text, "fuzz.yaml", quad::vehicle::vehicleSchema());
         break;
       case 1:
-        (void)quad::plant::parseWorld(text, "fuzz.yaml");
+        (void)quad::world::parseWorld(text, "fuzz.yaml");
         break;
       default: {
         const quad::launch::ProgramLookup lookup{QUAD_BUILD_DIR, QUAD_SOURCE_DIR, {}};

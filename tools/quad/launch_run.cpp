@@ -17,7 +17,7 @@
 #include "quad/plan/known_map.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/topics.hpp"
-#include "quad/plant/world_file.hpp"
+#include "quad/world/world_file.hpp"
 #include "quad/vehicle/vehicle.hpp"
 
 namespace quad::tools {
@@ -366,9 +366,9 @@ int LaunchRun::execute(RunExtension* extension)
   po.observe_all = true;
   observer_ = std::make_unique<launch::Observer>(po);
 
-  std::optional<plant::World> world;
+  std::optional<world::World> world;
   if (m_.mission.enabled) {
-    world = plant::loadWorld(m_.world);
+    world = world::loadWorld(m_.world);
     const double radius = m_.mission.vehicle.empty() ? 0.0 : vehicle::loadVehicle(m_.mission.vehicle).radius;
     if (const auto problem = launch::goalProblem(*world, radius)) {
       say(fmt::format("{}: {}: refused", m_.world.string(), *problem));

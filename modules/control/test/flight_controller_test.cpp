@@ -16,7 +16,7 @@ namespace {
 struct Rig {
   vehicle::VehicleParams v = test::loadVehicle("x500");
   plant::Simulation sim{v,
-                        plant::World(plant::Bounds{Vector3(-50, -50, 0), Vector3(50, 50, 30)}, Vector3::Zero(),
+                        world::World(world::Bounds{Vector3(-50, -50, 0), Vector3(50, 50, 30)}, Vector3::Zero(),
                                      Vector3(10, 0, 2), {}),
                         plant::SimulationConfig{}};
   FlightController fc;

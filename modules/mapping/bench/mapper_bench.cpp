@@ -8,7 +8,7 @@
 #include "quad/common/yaml_input.hpp"
 #include "quad/mapping/mapper.hpp"
 #include "quad/plant/sensors.hpp"
-#include "quad/plant/world_file.hpp"
+#include "quad/world/world_file.hpp"
 
 namespace {
 
@@ -25,7 +25,7 @@ struct Scans {
 const Scans& scans()
 {
   static const Scans s = [] {
-    const plant::World world = plant::parseWorld(kForest, "forest");
+    const world::World world = world::parseWorld(kForest, "forest");
     plant::DepthCameraConfig config;
     config.width = 160;
     config.height = 120;

@@ -1,6 +1,6 @@
 #include "mapping_node.hpp"
 
-#include "quad/plant/world_file.hpp"
+#include "quad/world/world_file.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -46,7 +46,7 @@ MappingNodeConfig mappingConfigFrom(const common::Params& p)
   MappingNodeConfig c;
   c.map = mapperConfigFrom(p);
   if (const auto world = common::configPath(p, "world", QUAD_CONFIG_DIR); !world.empty()) {
-    const plant::Bounds b = plant::loadWorld(world).bounds();
+    const world::Bounds b = world::loadWorld(world).bounds();
     const Vector3 margin = Vector3::Constant(c.map.resolution);
     c.map.box = std::make_pair(Vector3(b.min - margin), Vector3(b.max + margin));
   }

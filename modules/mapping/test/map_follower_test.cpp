@@ -20,7 +20,7 @@ struct Flight {
 
   explicit Flight(int scans)
   {
-    const plant::World world = test::boxWorld();
+    const world::World world = test::boxWorld();
     std::mt19937_64 rng(5);
     for (int k = 0; k < scans; ++k) {
       const auto r = mapper.integrate(test::scanFrom(world, Vector3(-1.0 + 0.4 * k, 0.2 * k - 2.0, 1.5), 0.1 * k, rng));

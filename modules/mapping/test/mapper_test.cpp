@@ -19,7 +19,7 @@ VoxelIndex voxelAt(const Mapper& m, const Vector3& p) { return geometry::VoxelGr
 
 TEST(Mapper, AKnownBoxIsOccupiedOnItsFaceFreeInFrontUnknownBehind)
 {
-  const plant::World world = boxWorld();
+  const world::World world = boxWorld();
   std::mt19937_64 rng(1);
   Mapper mapper(MapperConfig{});
   const auto result = mapper.integrate(scanFrom(world, Vector3(0, 0, 1.5), 0.0, rng));
@@ -43,7 +43,7 @@ TEST(Mapper, AKnownBoxIsOccupiedOnItsFaceFreeInFrontUnknownBehind)
 
 TEST(Mapper, ChangeSetsReplayedInOrderReproduceTheMapExactly)
 {
-  const plant::World world = boxWorld();
+  const world::World world = boxWorld();
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   Mapper mapper(MapperConfig{});
@@ -82,7 +82,7 @@ std::vector<VoxelChange> differenceOf(const std::vector<VoxelChange>& before, co
 
 TEST(Mapper, BuildsTheTreeOctomapBuildsAndReportsExactlyTheReclassifiedVoxels)
 {
-  const plant::World world = boxWorld();
+  const world::World world = boxWorld();
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::normal_distribution<double> noise(0.0, 0.08);
@@ -124,7 +124,7 @@ TEST(Mapper, BuildsTheTreeOctomapBuildsAndReportsExactlyTheReclassifiedVoxels)
 
 TEST(Mapper, ALateJoinerCatchesUpFromASnapshotAndLaterChanges)
 {
-  const plant::World world = boxWorld();
+  const world::World world = boxWorld();
   std::mt19937_64 rng(11);
   Mapper mapper(MapperConfig{});
   VoxelMap from_start(mapper.resolution());
@@ -143,7 +143,7 @@ TEST(Mapper, ALateJoinerCatchesUpFromASnapshotAndLaterChanges)
 
 TEST(Mapper, SavedBtFilesLoadInOctomapWithTheSameClassification)
 {
-  const plant::World world = boxWorld();
+  const world::World world = boxWorld();
   std::mt19937_64 rng(3);
   Mapper mapper(MapperConfig{});
   mapper.integrate(scanFrom(world, Vector3(0, 0, 1.5), 0.0, rng));
@@ -162,7 +162,7 @@ TEST(Mapper, SavedBtFilesLoadInOctomapWithTheSameClassification)
 
 TEST(Mapper, BadCloudsAreRefusedWholeAndChangeNothing)
 {
-  const plant::World world = boxWorld();
+  const world::World world = boxWorld();
   std::mt19937_64 rng(5);
   MapperConfig config;
   config.max_points = 5000;
@@ -206,7 +206,7 @@ TEST(Mapper, ContradictoryConfigIsRefusedNamingTheKey)
 
 TEST(Mapper, HeightLimitsAndMinimumRangeDropPoints)
 {
-  const plant::World world = boxWorld();
+  const world::World world = boxWorld();
   std::mt19937_64 rng(5);
   MapperConfig config;
   config.max_z = 1.0;
@@ -222,7 +222,7 @@ TEST(Mapper, HeightLimitsAndMinimumRangeDropPoints)
 TEST(Mapper, ABoxedMapIsTheUnboundedMapCutToItsBox)
 {
   // GIVEN two mappers fed the same scans, one limited to x -1 ... 5.6, z 0 ... 2.4
-  const plant::World world = boxWorld();
+  const world::World world = boxWorld();
   MapperConfig boxed_config;
   boxed_config.box = std::make_pair(Vector3(-1.0, -20.0, 0.0), Vector3(5.6, 20.0, 2.4));
   Mapper free_mapper(MapperConfig{});

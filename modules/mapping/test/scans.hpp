@@ -14,14 +14,14 @@
 namespace quad::mapping::test {
 
 /// A world with one box (x 5..7, y −1..1, z 0..3) in an open field.
-inline plant::World boxWorld()
+inline world::World boxWorld()
 {
-  return plant::World(plant::Bounds{Vector3(-20, -20, 0), Vector3(40, 20, 20)}, Vector3::Zero(), Vector3(30, 0, 2),
-                      {plant::Obstacle::makeBox({Vector3(6, 0, 1.5), Vector3(2, 2, 3), 0.0})});
+  return world::World(world::Bounds{Vector3(-20, -20, 0), Vector3(40, 20, 20)}, Vector3::Zero(), Vector3(30, 0, 2),
+                      {world::Obstacle::makeBox({Vector3(6, 0, 1.5), Vector3(2, 2, 3), 0.0})});
 }
 
 /// What the plant's camera sees from `p` facing yaw, as a world-frame scan.
-inline Scan scanFrom(const plant::World& world, const Vector3& p, double yaw, std::mt19937_64& rng)
+inline Scan scanFrom(const world::World& world, const Vector3& p, double yaw, std::mt19937_64& rng)
 {
   plant::DepthCameraConfig config;
   config.width = 64;

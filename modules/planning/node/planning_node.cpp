@@ -5,7 +5,7 @@
 
 #include "quad/common/time.hpp"
 #include "quad/dds/geometry_messages.hpp"
-#include "quad/plant/world_file.hpp"
+#include "quad/world/world_file.hpp"
 #include "quad/geometry/polyline.hpp"
 #include "quad/planning/shortcut.hpp"
 #include "quad/vehicle/vehicle.hpp"
@@ -58,7 +58,7 @@ msg::PlanStatus toMessage(PlanStatus s)
 
 PlanningParams planningConfigFrom(const common::Params& p)
 {
-  const plant::World world = plant::loadWorld(worldFileOf(p));
+  const world::World world = world::loadWorld(worldFileOf(p));
   const vehicle::VehicleParams v = vehicle::loadVehicle(vehicleFileOf(p));
   PlanningParams c = planningParamsFrom(p, world.bounds().min, world.bounds().max, v.radius);
   // Readers judge the path stale after the contract's deadline: repeat it twice within it.

@@ -5,11 +5,12 @@
 #include "quad/common/yaml_input.hpp"
 #include "quad/plant/sensors.hpp"
 #include "quad/plant/simulation.hpp"
-#include "quad/plant/world_file.hpp"
+#include "quad/world/world_file.hpp"
 
 namespace {
 
 using namespace quad::plant;
+namespace world = quad::world;
 
 /// The benchmark world: configs/worlds/forest.yaml.
 const std::string kForest = quad::common::readTextFile(QUAD_CONFIG_DIR "/worlds/forest.yaml");
@@ -37,7 +38,7 @@ void BM_SimulationStepNoSensors(benchmark::State& state)
   config.state_rate_hz = 0;
   config.imu.rate_hz = 0;
   config.depth.rate_hz = 0;
-  Simulation sim({}, parseWorld(kForest, "forest"), config);
+  Simulation sim({}, world::parseWorld(kForest, "forest"), config);
   quad::plant::RigidBodyState s;
   s.p_W = {0, 0, 2};
   sim.setState(s);
@@ -52,7 +53,7 @@ void BM_SimulationStepNoSensors(benchmark::State& state)
 template <bool kBruteForce>
 void depthFrame(benchmark::State& state)
 {
-  const World world = parseWorld(kForest, "forest");
+  const world::World world = world::parseWorld(kForest, "forest");
   DepthCameraConfig config;
   config.width = 64;
   config.height = 48;
@@ -83,7 +84,7 @@ void BM_DepthFrame64x48_BruteForce(benchmark::State& state) { depthFrame<true>(s
 void BM_WorldGeneration1000Trees(benchmark::State& state)
 {
   for (auto _ : state) {
-    benchmark::DoNotOptimize(parseWorld(kForest, "forest"));
+    benchmark::DoNotOptimize(world::parseWorld(kForest, "forest"));
   }
 }
 

@@ -6,7 +6,7 @@
 #include "quad/dds/fault_messages.hpp"
 #include "quad/dds/geometry_messages.hpp"
 #include "quad/common/time.hpp"
-#include "quad/plant/world_file.hpp"
+#include "quad/world/world_file.hpp"
 
 namespace quad::plant {
 
@@ -36,7 +36,7 @@ PlantNode::PlantNode(PlantNodeConfig config, dds::ParticipantOptions options)
     : Node("plant", std::move(options)),
       config_(std::move(config)),
       sim_(std::make_unique<Simulation>(
-          vehicle::loadVehicle(config_.vehicle_file), loadWorld(config_.world_file),
+          vehicle::loadVehicle(config_.vehicle_file), world::loadWorld(config_.world_file),
           config_.simulation,
           config_.fault_schedule_file.empty() ? std::vector<Fault>{}
                                               : loadFaultSchedule(config_.fault_schedule_file))),

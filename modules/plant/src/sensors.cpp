@@ -32,13 +32,13 @@ geometry::Pose3 DepthCamera::sensorPose(const geometry::Pose3& body_W) const
   return body_W * geometry::Pose3{config_.position_B, q_BS_};
 }
 
-DepthScan DepthCamera::capture(const World& world, const geometry::Pose3& body_W,
+DepthScan DepthCamera::capture(const world::World& world, const geometry::Pose3& body_W,
                                std::mt19937_64& rng, double extra_noise_std) const
 {
   return captureFrom(world, sensorPose(body_W), rng, extra_noise_std);
 }
 
-DepthScan DepthCamera::captureFrom(const World& world, const geometry::Pose3& sensor_W,
+DepthScan DepthCamera::captureFrom(const world::World& world, const geometry::Pose3& sensor_W,
                                    std::mt19937_64& rng, double extra_noise_std) const
 {
   DepthScan scan;

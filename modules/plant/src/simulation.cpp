@@ -9,7 +9,7 @@
 
 namespace quad::plant {
 
-Simulation::Simulation(vehicle::VehicleParams vehicle, World world, SimulationConfig config,
+Simulation::Simulation(vehicle::VehicleParams vehicle, world::World world, SimulationConfig config,
                        std::vector<Fault> schedule)
     : dynamics_(vehicle),
       world_(std::move(world)),
@@ -168,7 +168,7 @@ StepOutputs Simulation::step()
     if (!std::binary_search(contacts_.begin(), contacts_.end(), id)) {
       ++collisions_;
       out.events.push_back({SimEventRecord::Kind::kCollision, t_ns_, state_.p_W, id,
-                            id == World::kBounds ? "left the bounds" : "hit obstacle " + std::to_string(id)});
+                            id == world::World::kBounds ? "left the bounds" : "hit obstacle " + std::to_string(id)});
     }
   }
   contacts_ = now;

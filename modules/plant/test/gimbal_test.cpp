@@ -12,6 +12,10 @@
 namespace quad::plant {
 namespace {
 
+using world::Bounds;
+using world::Obstacle;
+using world::World;
+
 using geometry::kPi;
 
 GimbalConfig gimbal(double rate = 3.0)

@@ -7,6 +7,10 @@
 namespace quad::plant {
 namespace {
 
+using world::Bounds;
+using world::Obstacle;
+using world::World;
+
 World wallAt(double x)
 {
   return World(Bounds{Vector3(-20, -50, 0), Vector3(50, 50, 50)}, Vector3::Zero(), Vector3(1, 0, 0),

@@ -9,6 +9,10 @@
 namespace quad::plant {
 namespace {
 
+using world::Bounds;
+using world::Obstacle;
+using world::World;
+
 vehicle::VehicleParams vehicle()
 {
   vehicle::VehicleParams v;

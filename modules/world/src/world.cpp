@@ -1,11 +1,11 @@
-#include "quad/plant/world.hpp"
+#include "quad/world/world.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
-namespace quad::plant {
+namespace quad::world {
 
 namespace {
 
@@ -348,4 +348,4 @@ std::optional<RayHit> World::raycast(const Vector3& o, const Vector3& d, double 
   return best;
 }
 
-}  // namespace quad::plant
+}  // namespace quad::world

@@ -1,4 +1,4 @@
-#include "quad/plant/world_file.hpp"
+#include "quad/world/world_file.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -12,7 +12,7 @@
 
 #include "quad/common/yaml_input.hpp"
 
-namespace quad::plant {
+namespace quad::world {
 
 namespace {
 
@@ -202,4 +202,4 @@ World loadWorld(const std::filesystem::path& file)
   return parseWorld(common::readTextFile(file), file.string());
 }
 
-}  // namespace quad::plant
+}  // namespace quad::world

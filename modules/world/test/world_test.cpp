@@ -1,13 +1,13 @@
-#include "quad/plant/world.hpp"
+#include "quad/world/world.hpp"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "quad/common/params.hpp"
-#include "quad/plant/world_file.hpp"
+#include "quad/world/world_file.hpp"
 
-namespace quad::plant {
+namespace quad::world {
 namespace {
 
 World single(const Obstacle& o)
@@ -179,4 +179,4 @@ TEST(WorldFile, BadInputNamesFileKeyAndValue)
 }
 
 }  // namespace
-}  // namespace quad::plant
+}  // namespace quad::world

@@ -6,7 +6,7 @@
 #include "quad/common/yaml_input.hpp"
 #include "quad/geometry/polyline.hpp"
 #include "quad/planning/shortcut.hpp"
-#include "quad/plant/world_file.hpp"
+#include "quad/world/world_file.hpp"
 #include "quad/vehicle/vehicle.hpp"
 
 namespace quad::plan {
@@ -24,7 +24,7 @@ std::pair<Vector3, Vector3> cellCentreRange(const planning::Lattice& lattice)
 
 /// Marks the surface voxels of every obstacle occupied (those that can block a cell of the
 /// lattice: within `inflation` [m] of it); returns how many.
-std::size_t giveObstacles(const plant::World& world, planning::DStarLite& planner, double inflation)
+std::size_t giveObstacles(const world::World& world, planning::DStarLite& planner, double inflation)
 {
   const planning::Lattice& lattice = planner.lattice();
   const geometry::VoxelGrid& grid = lattice.grid();
@@ -34,7 +34,7 @@ std::size_t giveObstacles(const plant::World& world, planning::DStarLite& planne
   const Vector3 region_lo = first - reach;
   const Vector3 region_hi = last + reach;
   std::size_t marked = 0;
-  for (const plant::Obstacle& o : world.obstacles()) {
+  for (const world::Obstacle& o : world.obstacles()) {
     Vector3 lo;
     Vector3 hi;
     o.bounds(lo, hi);
@@ -69,13 +69,13 @@ PlanningSetup loadPlanningSetup(const std::filesystem::path& config, const std::
                                           : common::parseParams(common::readTextFile(config), config.string(),
                                                                 planning::planningSchema(), overrides);
   const std::filesystem::path world_file = planning::worldFileOf(p);
-  plant::World world = plant::loadWorld(world_file);
+  world::World world = world::loadWorld(world_file);
   const double radius = vehicle::loadVehicle(planning::vehicleFileOf(p)).radius;
   planning::PlanningParams params = planning::planningParamsFrom(p, world.bounds().min, world.bounds().max, radius);
   return {world_file, std::move(world), std::move(params)};
 }
 
-KnownMapPlan planOnKnownMap(const plant::World& world, const planning::PlanningParams& params, bool land)
+KnownMapPlan planOnKnownMap(const world::World& world, const planning::PlanningParams& params, bool land)
 {
   planning::DStarLite planner(
       planning::Lattice(geometry::VoxelGrid(params.resolution), params.bounds_min, params.bounds_max), params.planner);

@@ -10,9 +10,9 @@
 namespace quad::plan {
 namespace {
 
-using plant::Bounds;
-using plant::Obstacle;
-using plant::World;
+using world::Bounds;
+using world::Obstacle;
+using world::World;
 
 /// The shipped planner's parameters in a world's box: x500 (0.35 m) plus the 0.3 m margin.
 planning::PlanningParams paramsFor(const World& w)

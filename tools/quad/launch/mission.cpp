@@ -9,7 +9,7 @@
 
 namespace quad::launch {
 
-MissionTracker::MissionTracker(Mission mission, const plant::World& world, double radius)
+MissionTracker::MissionTracker(Mission mission, const world::World& world, double radius)
     : mission_(std::move(mission)),
       world_(world),
       radius_(radius),
@@ -155,7 +155,7 @@ std::string_view toString(MissionEnd end)
   return "?";
 }
 
-std::optional<std::string> goalProblem(const plant::World& world, double radius)
+std::optional<std::string> goalProblem(const world::World& world, double radius)
 {
   const Eigen::Vector3d& g = world.goal();
   const std::string goal = fmt::format("the goal ({}, {}, {})", g.x(), g.y(), g.z());

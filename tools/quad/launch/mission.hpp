@@ -12,7 +12,7 @@
 #include <Eigen/Core>
 
 #include "manifest.hpp"
-#include "quad/plant/world.hpp"
+#include "quad/world/world.hpp"
 
 namespace quad::launch {
 
@@ -42,7 +42,7 @@ struct MissionSummary {
 class MissionTracker {
 public:
   /// `radius`: the vehicle's bounding sphere [m]; 0 measures clearance from its centre.
-  MissionTracker(Mission mission, const plant::World& world, double radius);
+  MissionTracker(Mission mission, const world::World& world, double radius);
 
   /// A vehicle state at sim time t [s].
   void onState(double t, const Eigen::Vector3d& p);
@@ -70,7 +70,7 @@ private:
   void finishAtGoal(const std::string& outcome);
 
   Mission mission_;
-  const plant::World& world_;
+  const world::World& world_;
   double radius_;
   Eigen::Vector3d goal_;
   double t_ = 0.0;
@@ -96,7 +96,7 @@ private:
 
 /// Why a mission to this world's goal cannot be flown at all, naming the goal: it lies outside
 /// the world's bounds, or inside an obstacle or within `radius` [m] of one. Nothing when it can.
-std::optional<std::string> goalProblem(const plant::World& world, double radius);
+std::optional<std::string> goalProblem(const world::World& world, double radius);
 
 /// The summary as one JSON object (the --summary file).
 std::string toJson(const MissionSummary& s);

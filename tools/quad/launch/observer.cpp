@@ -59,7 +59,7 @@ std::vector<std::string> Observer::missingWriters(const std::vector<std::string>
   return missing;
 }
 
-void Observer::startMission(const Mission& mission, const plant::World& world, double radius)
+void Observer::startMission(const Mission& mission, const world::World& world, double radius)
 {
   endpoints_ = std::make_unique<Endpoints>(participant_);
   tracker_ = std::make_unique<MissionTracker>(mission, world, radius);

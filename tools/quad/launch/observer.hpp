@@ -29,7 +29,7 @@ public:
   std::vector<std::string> missingWriters(const std::vector<std::string>& topics) const;
 
   /// Starts following a mission to `world`'s goal: publishes the goal (latched).
-  void startMission(const Mission& mission, const plant::World& world, double radius);
+  void startMission(const Mission& mission, const world::World& world, double radius);
   /// Takes what arrived, feeds the tracker, sends the land command when it asks.
   void update();
   /// Null until startMission.

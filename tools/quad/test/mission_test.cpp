@@ -8,12 +8,12 @@ namespace {
 
 using geometry::Vector3;
 
-plant::World world()
+world::World world()
 {
   // A 10 m flight along x past one sphere of radius 1 m at (5, 3, 2).
-  plant::Sphere s{Vector3(5, 3, 2), 1.0};
-  return plant::World({Vector3(-1, -5, 0), Vector3(12, 5, 5)}, Vector3(0, 0, 0), Vector3(10, 0, 2),
-                      {plant::Obstacle::makeSphere(s)});
+  world::Sphere s{Vector3(5, 3, 2), 1.0};
+  return world::World({Vector3(-1, -5, 0), Vector3(12, 5, 5)}, Vector3(0, 0, 0), Vector3(10, 0, 2),
+                      {world::Obstacle::makeSphere(s)});
 }
 
 Mission mission(bool land)

@@ -10,9 +10,11 @@
 #include <Eigen/Core>
 
 #include "quad/geometry/cspace.hpp"
-#include "quad/plant/world.hpp"
+#include "quad/world/world.hpp"
 
 namespace quad::plant {
+
+using geometry::Vector3;
 
 struct DepthCameraConfig {
   int width = 64;                       ///< pixels
@@ -48,10 +50,10 @@ public:
   geometry::Pose3 sensorPose(const geometry::Pose3& body_W) const;
 
   /// A frame from the camera on its fixed mount on a body at `body_W`.
-  DepthScan capture(const World& world, const geometry::Pose3& body_W, std::mt19937_64& rng,
+  DepthScan capture(const world::World& world, const geometry::Pose3& body_W, std::mt19937_64& rng,
                     double extra_noise_std = 0.0) const;
   /// A frame from a camera at `sensor_W` (on a gimbal, say): rays cast from its origin.
-  DepthScan captureFrom(const World& world, const geometry::Pose3& sensor_W, std::mt19937_64& rng,
+  DepthScan captureFrom(const world::World& world, const geometry::Pose3& sensor_W, std::mt19937_64& rng,
                         double extra_noise_std = 0.0) const;
 
 private:

@@ -16,9 +16,11 @@
 #include "quad/plant/faults.hpp"
 #include "quad/plant/gimbal.hpp"
 #include "quad/plant/sensors.hpp"
-#include "quad/plant/world.hpp"
+#include "quad/world/world.hpp"
 
 namespace quad::plant {
+
+using geometry::Vector3;
 
 struct SimulationConfig {
   std::int64_t step_ns = 1'000'000;            ///< integration step (1 ms)
@@ -36,7 +38,7 @@ struct SimEventRecord {
   Kind kind;
   std::int64_t t_ns = 0;
   Vector3 p_W = Vector3::Zero();
-  std::int64_t subject_id = -1;  ///< obstacle index (World::kBounds for the bounds) or fault id
+  std::int64_t subject_id = -1;  ///< obstacle index (world::World::kBounds for the bounds) or fault id
   std::string detail;
 };
 
@@ -67,12 +69,12 @@ struct StepOutputs {
 class Simulation {
 public:
   /// Starts at the world's start, level, at rest (landed when the start is on the ground).
-  Simulation(vehicle::VehicleParams vehicle, World world, SimulationConfig config,
+  Simulation(vehicle::VehicleParams vehicle, world::World world, SimulationConfig config,
              std::vector<Fault> schedule = {});
 
   std::int64_t timeNs() const { return t_ns_; }
   const RigidBodyState& state() const { return state_; }
-  const World& world() const { return world_; }
+  const world::World& world() const { return world_; }
   const QuadrotorDynamics& dynamics() const { return dynamics_; }
   const SimulationConfig& config() const { return config_; }
   CommandGuard& commands() { return guard_; }
@@ -112,7 +114,7 @@ private:
   static bool due(std::int64_t t_ns, std::int64_t& next_ns, double rate_hz);
 
   QuadrotorDynamics dynamics_;
-  World world_;
+  world::World world_;
   SimulationConfig config_;
   DepthCamera camera_;
   std::optional<Gimbal> gimbal_;

@@ -11,7 +11,7 @@
 
 #include "quad/geometry/so3.hpp"
 
-namespace quad::plant {
+namespace quad::world {
 
 using geometry::Vector3;
 
@@ -108,4 +108,4 @@ private:
   mutable std::uint32_t stamp_ = 0;
 };
 
-}  // namespace quad::plant
+}  // namespace quad::world

@@ -24,9 +24,9 @@
 #include <filesystem>
 #include <string_view>
 
-#include "quad/plant/world.hpp"
+#include "quad/world/world.hpp"
 
-namespace quad::plant {
+namespace quad::world {
 
 /// Parses and validates world YAML. Every problem is reported at once, as
 /// `origin:key: value: reason` lines of a common::ConfigError.
@@ -35,4 +35,4 @@ World parseWorld(std::string_view yaml_text, std::string_view origin);
 /// Reads a world file; an unreadable file is a ConfigError naming it.
 World loadWorld(const std::filesystem::path& file);
 
-}  // namespace quad::plant
+}  // namespace quad::world

@@ -11,7 +11,7 @@
 #include "quad/common/params.hpp"
 #include "quad/planning/dstar_lite.hpp"
 #include "quad/planning/planning_params.hpp"
-#include "quad/plant/world.hpp"
+#include "quad/world/world.hpp"
 
 namespace quad::plan {
 
@@ -33,13 +33,13 @@ struct KnownMapPlan {
 /// diagonal of it; the inside of an obstacle is a pocket no path enters) as occupied and
 /// plans from the start, lifted into the lattice, to the goal. `land`: the mission lands at
 /// the goal, so the descent to the floor is part of the flight.
-KnownMapPlan planOnKnownMap(const plant::World& world, const planning::PlanningParams& params, bool land);
+KnownMapPlan planOnKnownMap(const world::World& world, const planning::PlanningParams& params, bool land);
 
 /// A planning config (empty path: the schema's defaults) with `overrides` on top, and the world
 /// and vehicle files it names loaded: what the planner of a run would plan with.
 struct PlanningSetup {
   std::filesystem::path world_file;
-  plant::World world;
+  world::World world;
   planning::PlanningParams params;
 };
 /// Throws common::ConfigError naming the file, key or value.

@@ -1,11 +1,15 @@
 // The plant and control nodes flying together: the loop the stack is built around.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <regex>
+#include <sstream>
 #include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "process.hpp"
 
@@ -26,6 +30,20 @@ std::string writeFile(const std::string& name, const std::string& body)
   const auto path = dir / name;
   std::ofstream(path) << body;
   return path.string();
+}
+
+/// The samples a `quad topic echo --json` printed, one JSON object a line.
+std::vector<nlohmann::json> samples(const std::string& output)
+{
+  std::vector<nlohmann::json> out;
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    auto sample = nlohmann::json::parse(line, nullptr, false);
+    if (!sample.is_discarded()) {
+      out.push_back(std::move(sample));
+    }
+  }
+  return out;
 }
 
 TEST(Flight, LockstepMissionReachesItsGoalWithoutCollision)
@@ -54,19 +72,34 @@ TEST(Flight, LockstepMissionReachesItsGoalWithoutCollision)
                     env(domain));
   ASSERT_TRUE(goal.waitForOutput("published", 10s)) << goal.output();
   ASSERT_TRUE(path.waitForOutput("published", 10s)) << path.output();
+  // AND readers of the plant's events (the run's end carries the final position and the
+  // collision count) and of the controller's status
+  ChildProcess events({QUAD_TOOL, "topic", "echo", "quad/sim/events", "--json"}, env(domain));
+  ChildProcess status({QUAD_TOOL, "topic", "echo", "quad/control/status", "--json"}, env(domain));
   // WHEN the plant runs 25 s of lockstep sim time
   ChildProcess plant({QUAD_PLANT_NODE, "--config", plant_config}, env(domain));
   ASSERT_EQ(plant.wait(90s), 0) << plant.output();
   // THEN the vehicle took off, flew the mission, reached the goal, and hit nothing
-  EXPECT_TRUE(control.waitForOutput("MISSION -> HOVER: goal reached", 5s)) << control.output();
-  EXPECT_NE(plant.output().find("collisions 0,"), std::string::npos) << plant.output();
-  std::smatch m;
-  const std::string out = plant.output();
-  ASSERT_TRUE(std::regex_search(out, m, std::regex("final state t [0-9]+ ns p \\(([-0-9.e]+), ([-0-9.e]+), ([-0-9.e]+)\\)")))
-      << out;
-  EXPECT_NEAR(std::stod(m[1]), 20.0, 0.3);
-  EXPECT_NEAR(std::stod(m[2]), 5.0, 0.3);
-  EXPECT_NEAR(std::stod(m[3]), 3.0, 0.3);
+  ASSERT_TRUE(events.waitForOutput("SIM_EVENT_RUN_ENDED", 10s)) << events.output();
+  const std::vector<nlohmann::json> seen = samples(events.output());
+  const auto kind = [&](const char* k) {
+    return std::find_if(seen.begin(), seen.end(), [&](const nlohmann::json& e) { return e["kind"] == k; });
+  };
+  EXPECT_NE(kind("SIM_EVENT_TAKEOFF"), seen.end()) << events.output();
+  const auto ended = kind("SIM_EVENT_RUN_ENDED");
+  ASSERT_NE(ended, seen.end()) << events.output();
+  EXPECT_EQ((*ended)["subject_id"], 0) << "collisions: " << *ended;
+  EXPECT_NEAR((*ended)["p_W"]["x"].get<double>(), 20.0, 0.3) << *ended;
+  EXPECT_NEAR((*ended)["p_W"]["y"].get<double>(), 5.0, 0.3) << *ended;
+  EXPECT_NEAR((*ended)["p_W"]["z"].get<double>(), 3.0, 0.3) << *ended;
+  // AND the controller went from the mission to hovering at the goal, with no failsafe
+  const std::vector<nlohmann::json> modes = samples(status.output());
+  const auto mission = std::find_if(modes.begin(), modes.end(),
+                                    [](const nlohmann::json& m) { return m["mode"] == "CONTROL_MISSION"; });
+  ASSERT_NE(mission, modes.end()) << status.output();
+  const auto hover = std::find_if(mission, modes.end(), [](const nlohmann::json& m) { return m["mode"] == "CONTROL_HOVER"; });
+  ASSERT_NE(hover, modes.end()) << status.output();
+  EXPECT_EQ((*hover)["failsafe_reason"], "FAILSAFE_NONE") << *hover;
 }
 
 }  // namespace

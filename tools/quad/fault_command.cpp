@@ -23,6 +23,7 @@
 #include "quad/common/time.hpp"
 #include "quad/dds/fault_messages.hpp"
 #include "quad/dds/geometry_messages.hpp"
+#include "quad/dds/environment.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/raw_type.hpp"
@@ -653,7 +654,7 @@ int fault(const FaultOptions& options)
     }
     for (auto& m : manifest->modules) {
       if (m.name == step.action.module) {
-        m.environment["QUAD_FAULT_LAYER"] = "1";
+        m.environment[dds::environment::kFaultLayer] = "1";
       }
     }
   }

@@ -15,6 +15,7 @@
 #include "launch/shm.hpp"
 #include "quad/common/time.hpp"
 #include "quad/plan/known_map.hpp"
+#include "quad/dds/environment.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/world/world_file.hpp"
@@ -58,22 +59,22 @@ std::string commaList(const Strings& items)
 std::map<std::string, std::string> runEnvironment(const Manifest& m, int domain, const launch::HostNetwork& net)
 {
   std::map<std::string, std::string> env = m.environment;
-  env["QUAD_DOMAIN_ID"] = std::to_string(domain);
-  env["QUAD_TRANSPORT"] = m.transport;
+  env[dds::environment::kDomainId] = std::to_string(domain);
+  env[dds::environment::kTransport] = m.transport;
   if (!m.security_dir.empty()) {
-    env["QUAD_SECURITY_DIR"] = m.security_dir.string();
+    env[dds::environment::kSecurityDir] = m.security_dir.string();
   }
   if (m.restrict_interfaces) {
-    env["QUAD_INTERFACES"] = commaList(net.interfaces(""));  // the launcher's side; each module gets its host's
+    env[dds::environment::kInterfaces] = commaList(net.interfaces(""));  // the launcher's side; each module gets its host's
   }
   if (m.discovery == launch::Discovery::kInitialPeers) {
     std::set<std::string> peers;
     for (const auto& h : m.hosts) {
       peers.insert(net.address(h.name));
     }
-    env["QUAD_INITIAL_PEERS"] = commaList(peers);
+    env[dds::environment::kInitialPeers] = commaList(peers);
   } else if (m.discovery == launch::Discovery::kServer) {
-    env["QUAD_DISCOVERY_SERVER"] = net.address(m.discovery_host) + ":" + std::to_string(m.discovery_port);
+    env[dds::environment::kDiscoveryServer] = net.address(m.discovery_host) + ":" + std::to_string(m.discovery_port);
   }
   return env;
 }
@@ -115,7 +116,7 @@ void LaunchRun::startModule(const Module& mod)
 {
   std::map<std::string, std::string> env = env_;
   if (m_.restrict_interfaces) {
-    env["QUAD_INTERFACES"] = commaList(net_->interfaces(mod.host));
+    env[dds::environment::kInterfaces] = commaList(net_->interfaces(mod.host));
   }
   for (const auto& [k, v] : mod.environment) {
     env[k] = v;
@@ -354,7 +355,7 @@ int LaunchRun::execute(RunExtension* extension)
     const std::vector<std::string> argv{"fastdds", "discovery", "-i", "0", "-l", net_->address(host.name), "-p",
                                         std::to_string(m_.discovery_port)};
     supervisor_.start("discovery", net_->command(host, argv, {}), {});
-    say(fmt::format("started a discovery server on {} at {}", host.name, env_["QUAD_DISCOVERY_SERVER"]));
+    say(fmt::format("started a discovery server on {} at {}", host.name, env_[dds::environment::kDiscoveryServer]));
   }
 
   // The launcher's participant, set up like the modules': from the same environment, read by

@@ -20,23 +20,18 @@ ControlNode::ControlNode(ControlNodeConfig config, dds::ParticipantOptions optio
       path_(participant(), dds::topics::kPath, waker()),
       goal_(participant(), dds::topics::kGoal, waker()),
       command_(participant(), dds::topics::kVehicleCommand, waker()),
-      clock_(participant(), dds::topics::kSimClock, waker()),
       imu_(participant(), dds::topics::kSimImu, waker()),
       actuators_(participant(), dds::topics::kActuators),
       status_(participant(), dds::topics::kControlStatus),
       reference_(participant(), dds::topics::kControlReference)
 {
   setTickPeriod(kTickNs);
+  followSimClock();
   spdlog::info("control: vehicle {}, autostart {}", config_.vehicle_file.string(), config_.autostart);
 }
 
 void ControlNode::takeInputs()
 {
-  while (auto c = clock_.take()) {
-    setLockstep(c->lockstep());
-    clock_seen_ = true;
-    clock_ns_ = std::max(clock_ns_, c->sim_ns());
-  }
   while (auto m = imu_.take()) {
     counters().samples_in++;
     const double t = common::toSeconds(m->header().stamp_ns());
@@ -145,12 +140,12 @@ void ControlNode::onWake()
   for (const auto& s : state_.takeAll()) {
     counters().samples_in++;
     const double t = common::toSeconds(s.header().stamp_ns());
-    if (clock_seen_ && s.header().stamp_ns() > clock_ns_ + dds::topics::kStateAheadOfClockNs) {
+    if (simClock().seen() && !simClock().vouchesFor(s.header().stamp_ns())) {
       // Accepted, it would make every true state after it look out of order.
       counters().errors++;
       fc_.countRejected();
       spdlog::warn("quad/sim/state: sample seq {} rejected: stamped {:.3f} s, ahead of the sim clock ({:.3f} s)",
-                   s.header().seq(), t, common::toSeconds(clock_ns_));
+                   s.header().seq(), t, common::toSeconds(simClock().ns()));
       continue;
     }
     if (!fc_.onState(fromMessage(s), s.landed(), t)) {
@@ -170,7 +165,7 @@ void ControlNode::controlWithoutState()
   // When the states stop coming (in lockstep only a fault drops them, and the plant then does
   // not wait for us) the controller must still reach its failsafe and fly it: on the clock's
   // time in lockstep, on the IMU samples' in real time (which carry the dead reckoning).
-  const std::int64_t now_ns = lockstep() ? clock_ns_ : imu_ns_;
+  const std::int64_t now_ns = lockstep() ? simClock().ns() : imu_ns_;
   if (latest_t_ < 0.0 || now_ns <= last_stateless_ns_) {
     return;
   }
@@ -187,7 +182,7 @@ void ControlNode::onTick(std::int64_t steady_ns)
   // In real time a silent plant (or a lost link) must still reach the failsafe: advance the
   // controller's clock by the wall time since the plant was last heard (a state or an IMU
   // sample). In lockstep the plant waits.
-  if (!clock_seen_ || lockstep() || latest_t_ < 0.0) {
+  if (!simClock().seen() || lockstep() || latest_t_ < 0.0) {
     return;  // (until a clock says which, a quiet plant may be a lockstep one waiting for us)
   }
   const bool imu_newer = imu_wall_ns_ > latest_wall_ns_;

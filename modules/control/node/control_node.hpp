@@ -36,14 +36,11 @@ private:
   dds::Subscriber<msg::Path> path_;
   dds::Subscriber<msg::Goal> goal_;
   dds::Subscriber<msg::VehicleCommand> command_;
-  dds::Subscriber<msg::SimClock> clock_;
   dds::Subscriber<msg::Imu> imu_;
   dds::Publisher<msg::ActuatorCommand> actuators_;
   dds::Publisher<msg::ControlStatus> status_;
   dds::Publisher<msg::ControlReference> reference_;
 
-  bool clock_seen_ = false;                // lockstep() is known only once a clock arrived
-  std::int64_t clock_ns_ = 0;              // the newest sim time the clock told
   std::int64_t imu_ns_ = 0;                // the newest IMU sample's sim time
   std::int64_t imu_wall_ns_ = 0;           // steady time it arrived
   std::int64_t last_stateless_ns_ = 0;     // the sim time last commanded without a state

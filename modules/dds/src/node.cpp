@@ -183,6 +183,15 @@ void Node::onEvent(const EndpointEvent& event)
   }
 }
 
+void Node::followSimClock() { sim_clock_ = std::make_unique<SimClockFollower>(participant_, &waker_); }
+
+void Node::takeSimClock()
+{
+  if (sim_clock_ && sim_clock_->update()) {
+    setLockstep(sim_clock_->lockstep());
+  }
+}
+
 void Node::run()
 {
   onStart();
@@ -207,10 +216,12 @@ void Node::run()
       fault_layer_->take();
     }
     if (woken) {
+      takeSimClock();
       onWake();
     }
     const std::int64_t now = common::steadyTimeNs();
     if (tick_period_ns_ > 0 && now >= next_tick) {
+      takeSimClock();
       onTick(now);
       // Keep the phase; after an overrun, skip the missed ticks rather than bursting.
       next_tick += tick_period_ns_;

@@ -19,6 +19,7 @@
 #include <fastrtps/xmlparser/XMLProfileManager.h>
 
 #include "fault_transport.hpp"
+#include "quad/dds/environment.hpp"
 #include "quad/dds/security.hpp"
 #include "quad/dds/validating_transport.hpp"
 
@@ -169,7 +170,7 @@ Transport parseTransport(std::string_view text)
 
 std::filesystem::path defaultQosFile()
 {
-  if (const char* file = env("QUAD_QOS_FILE")) {
+  if (const char* file = env(environment::kQosFile)) {
     return file;
   }
   return std::filesystem::path(QUAD_CONFIG_DIR) / "dds" / "quad_qos.xml";
@@ -179,60 +180,61 @@ ParticipantOptions optionsFromEnvironment(std::string name)
 {
   ParticipantOptions options;
   options.name = std::move(name);
-  if (const char* v = env("QUAD_DOMAIN_ID")) {
-    options.domain_id = parseInt<int>(v, "QUAD_DOMAIN_ID", 0, kMaxDomainId);
+  if (const char* v = env(environment::kDomainId)) {
+    options.domain_id = parseInt<int>(v, environment::kDomainId, 0, kMaxDomainId);
   }
-  if (const char* v = env("QUAD_TRANSPORT")) {
+  if (const char* v = env(environment::kTransport)) {
     try {
       options.transport = parseTransport(v);
     } catch (const std::invalid_argument&) {
-      throw std::invalid_argument(std::string("QUAD_TRANSPORT: ") + v +
+      throw std::invalid_argument(std::string(environment::kTransport) + ": " + v +
                                   ": expected default, udp or shm");
     }
   }
-  if (const char* v = env("QUAD_INITIAL_PEERS")) {
+  if (const char* v = env(environment::kInitialPeers)) {
     std::stringstream list(v);
     for (std::string peer; std::getline(list, peer, ',');) {
       if (!peer.empty()) {
-        parseLocator(peer, "QUAD_INITIAL_PEERS", false);
+        parseLocator(peer, environment::kInitialPeers, false);
         options.initial_peers.push_back(peer);
       }
     }
   }
-  if (const char* v = env("QUAD_INTERFACES")) {
+  if (const char* v = env(environment::kInterfaces)) {
     std::stringstream list(v);
     for (std::string address; std::getline(list, address, ',');) {
       if (address.empty()) {
         continue;
       }
       if (address.find(':') != std::string::npos) {
-        throw std::invalid_argument("QUAD_INTERFACES: " + address + ": expected an IPv4 address, without a port");
+        throw std::invalid_argument(std::string(environment::kInterfaces) + ": " + address +
+                                    ": expected an IPv4 address, without a port");
       }
-      parseLocator(address, "QUAD_INTERFACES", false);
+      parseLocator(address, environment::kInterfaces, false);
       options.interfaces.push_back(address);
     }
   }
-  if (const char* v = env("QUAD_DISCOVERY_SERVER")) {
-    parseLocator(v, "QUAD_DISCOVERY_SERVER", true);
+  if (const char* v = env(environment::kDiscoveryServer)) {
+    parseLocator(v, environment::kDiscoveryServer, true);
     options.discovery_server = v;
   }
-  if (const char* v = env("QUAD_VEHICLE_ID")) {
-    options.vehicle_id = parseInt<std::uint32_t>(v, "QUAD_VEHICLE_ID", 0, 1'000'000);
+  if (const char* v = env(environment::kVehicleId)) {
+    options.vehicle_id = parseInt<std::uint32_t>(v, environment::kVehicleId, 0, 1'000'000);
   }
-  if (const char* v = env("QUAD_UDP_MAX_MESSAGE")) {
-    options.udp_max_message = parseInt<std::uint32_t>(v, "QUAD_UDP_MAX_MESSAGE", kMinUdpMessage, kMaxUdpMessage);
+  if (const char* v = env(environment::kUdpMaxMessage)) {
+    options.udp_max_message = parseInt<std::uint32_t>(v, environment::kUdpMaxMessage, kMinUdpMessage, kMaxUdpMessage);
   }
-  if (const char* v = env("QUAD_FAULT_LAYER")) {
-    options.fault_layer = parseInt<int>(v, "QUAD_FAULT_LAYER", 0, 1) == 1;
+  if (const char* v = env(environment::kFaultLayer)) {
+    options.fault_layer = parseInt<int>(v, environment::kFaultLayer, 0, 1) == 1;
   }
-  if (const char* v = env("QUAD_SECURITY_DIR")) {
+  if (const char* v = env(environment::kSecurityDir)) {
     options.security_dir = v;
   }
-  if (const char* v = env("QUAD_SECURITY_IDENTITY")) {
+  if (const char* v = env(environment::kSecurityIdentity)) {
     options.security_identity = v;
   }
-  if (const char* v = env("QUAD_VALIDATE_DATAGRAMS")) {
-    options.validate_datagrams = parseInt<int>(v, "QUAD_VALIDATE_DATAGRAMS", 0, 1) == 1;
+  if (const char* v = env(environment::kValidateDatagrams)) {
+    options.validate_datagrams = parseInt<int>(v, environment::kValidateDatagrams, 0, 1) == 1;
   }
   options.qos_file = defaultQosFile();
   return options;

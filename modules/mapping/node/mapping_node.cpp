@@ -66,13 +66,13 @@ MappingNode::MappingNode(MappingNodeConfig config, dds::ParticipantOptions optio
       config_(std::move(config)),
       mapper_(config_.map),
       depth_(participant(), dds::topics::kSimDepth, waker()),
-      clock_(participant(), dds::topics::kSimClock, waker()),
       commands_(participant(), dds::topics::kVehicleCommand, waker()),
       updates_(participant(), dds::topics::kMapUpdate),
       snapshots_(participant(), dds::topics::kMapSnapshot),
       stats_(participant(), dds::topics::kMapStats),
       lockstep_(participant(), "mapping")
 {
+  followSimClock();
   spdlog::info("mapping: resolution {} m, max range {} m", config_.map.resolution, config_.map.max_range);
 }
 
@@ -175,15 +175,15 @@ void MappingNode::onEvent(const dds::EndpointEvent& event)
 void MappingNode::reportLockstep()
 {
   // Done with time t once every depth frame published up to t is integrated.
-  if (!lockstep() || clock_ns_ <= reported_ns_) {
+  if (!lockstep() || simClock().ns() <= reported_ns_) {
     return;
   }
-  if (frames_taken_ < clock_frames_) {
-    lockstep_.holding(clock_ns_, [this] {
-      return fmt::format("{} of {} depth frames integrated", frames_taken_, clock_frames_);
+  if (frames_taken_ < simClock().depthFrames()) {
+    lockstep_.holding(simClock().ns(), [this] {
+      return fmt::format("{} of {} depth frames integrated", frames_taken_, simClock().depthFrames());
     });
-  } else if (lockstep_.reportDone(clock_ns_)) {
-    reported_ns_ = clock_ns_;
+  } else if (lockstep_.reportDone(simClock().ns())) {
+    reported_ns_ = simClock().ns();
   }
 }
 
@@ -201,11 +201,6 @@ void MappingNode::save()
 
 void MappingNode::onWake()
 {
-  while (auto c = clock_.take()) {
-    setLockstep(c->lockstep());
-    clock_ns_ = std::max(clock_ns_, c->sim_ns());
-    clock_frames_ = std::max(clock_frames_, c->depth_frames());
-  }
   while (auto c = commands_.take()) {
     if (c->kind() == msg::COMMAND_SAVE_MAP) {
       save();

@@ -44,15 +44,12 @@ private:
   MappingNodeConfig config_;
   Mapper mapper_;
   dds::Subscriber<msg::PointCloud> depth_;
-  dds::Subscriber<msg::SimClock> clock_;
   dds::Subscriber<msg::VehicleCommand> commands_;
   dds::Publisher<msg::MapUpdate> updates_;
   dds::Publisher<msg::MapSnapshot> snapshots_;
   dds::Publisher<msg::MapStats> stats_;
   dds::LockstepReporter lockstep_;
 
-  std::int64_t clock_ns_ = -1;             // newest clock time
-  std::uint64_t clock_frames_ = 0;         // depth frames the plant had published by then
   std::uint64_t frames_taken_ = 0;         // depth frames dealt with (integrated, refused or skipped)
   std::int64_t reported_ns_ = -1;
   std::uint64_t update_seq_ = 0;

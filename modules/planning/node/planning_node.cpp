@@ -81,12 +81,12 @@ PlanningNode::PlanningNode(PlanningParams config, dds::ParticipantOptions option
       snapshots_(participant(), dds::topics::kMapSnapshot, waker()),
       state_(participant(), dds::topics::kSimState, waker()),
       goal_(participant(), dds::topics::kGoal, waker()),
-      clock_(participant(), dds::topics::kSimClock, waker()),
       reports_(participant(), dds::topics::kLockstep),
       path_(participant(), dds::topics::kPath),
       mapper_(participant(), "mapping", waker()),
       lockstep_(participant(), "planning")
 {
+  followSimClock();
   spdlog::info("planning: lattice {} cells at {} m, inflation {} m", planner_.lattice().size(), config_.resolution,
                config_.planner.vehicle_radius);
 }
@@ -158,7 +158,7 @@ void PlanningNode::noticeLostUpdate()
   // delivery repairs a lost datagram within a few 100 ms heartbeats. An update still missing
   // a second after that report was corrupted past recognition (another vehicle's id, a wrong
   // count) and will not come: without this, lockstep would wait for it for ever.
-  if (!lockstep() || update_lost_ || frames_applied_ >= clock_frames_ || mapper_done_ns_ < clock_ns_) {
+  if (!lockstep() || update_lost_ || frames_applied_ >= simClock().depthFrames() || mapper_done_ns_ < simClock().ns()) {
     mapper_done_wall_ns_ = 0;
     return;
   }
@@ -170,7 +170,7 @@ void PlanningNode::noticeLostUpdate()
     counters().errors++;
     spdlog::warn("quad/mapping/update: the mapper was done up to {:.3f} s a second ago and the update for depth frame {} "
                  "never came: lost; a gap until the next snapshot",
-                 common::toSeconds(mapper_done_ns_), clock_frames_);
+                 common::toSeconds(mapper_done_ns_), simClock().depthFrames());
   }
 }
 
@@ -264,12 +264,6 @@ void PlanningNode::replan(std::int64_t t_ns)
 
 void PlanningNode::onWake()
 {
-  while (auto c = clock_.take()) {
-    setLockstep(c->lockstep());
-    clock_ns_ = std::max(clock_ns_, c->sim_ns());
-    clock_frames_ = std::max(clock_frames_, c->depth_frames());
-    clock_state_sent_ = c->state_sent();
-  }
   // Snapshots first: one sent with the updates it contains must not undo newer ones.
   while (auto s = snapshots_.take()) {
     applySnapshot(*s);
@@ -315,11 +309,11 @@ void PlanningNode::onWake()
     // the last, or not finite is a bad input (a time an hour ahead stopped every replan).
     const Vector3 p = dds::toVector(s.p_W());
     if (!p.allFinite() || s.header().stamp_ns() < now_ns_ ||
-        (clock_ns_ > 0 && s.header().stamp_ns() > clock_ns_ + dds::topics::kStateAheadOfClockNs)) {
+        (simClock().seen() && !simClock().vouchesFor(s.header().stamp_ns()))) {
       counters().errors++;
       spdlog::warn("quad/sim/state: sample seq {} rejected: position not finite, or stamp {:.3f} s out of order or "
                    "past the sim clock ({:.3f} s)",
-                   s.header().seq(), common::toSeconds(s.header().stamp_ns()), common::toSeconds(clock_ns_));
+                   s.header().seq(), common::toSeconds(s.header().stamp_ns()), common::toSeconds(simClock().ns()));
       continue;
     }
     position_ = p;
@@ -329,21 +323,21 @@ void PlanningNode::onWake()
   // repeat; the clock waits for this node's report. A lost update is not waited for (it
   // never comes, and the next one only comes once sim time moves on).
   noticeLostUpdate();
-  const bool caught_up = !lockstep() || frames_applied_ >= clock_frames_ || update_lost_;
+  const bool caught_up = !lockstep() || frames_applied_ >= simClock().depthFrames() || update_lost_;
   // A planner that joined late or missed an update plans nothing until a snapshot fills the
   // gap: a path through what it does not know the mapper saw could hit it. Without paths the
   // controller holds position.
   // A mapper that stopped (killed, stopped, starved) leaves the map behind what the camera
   // saw: flying it would meet what only the camera knows.
-  const bool map_whole = !follower_.gapOpen() && !update_lost_ && !(follower_.appliedSeq() == 0 && clock_frames_ > 0) &&
-                         clock_frames_ <= frames_applied_ + config_.map_frames_behind;
+  const bool map_whole = !follower_.gapOpen() && !update_lost_ && !(follower_.appliedSeq() == 0 && simClock().depthFrames() > 0) &&
+                         simClock().depthFrames() <= frames_applied_ + config_.map_frames_behind;
   if (map_whole != map_whole_) {
     map_whole_ = map_whole;
     if (map_whole) {
       spdlog::info("planning: the map is whole again; planning");
     } else {
       spdlog::warn("planning: the map lags the camera ({} of {} depth frames{}): no paths until it catches up",
-                   frames_applied_, clock_frames_,
+                   frames_applied_, simClock().depthFrames(),
                    follower_.gapOpen() || update_lost_ ? ", a gap in the updates" : "");
     }
   }
@@ -377,16 +371,16 @@ void PlanningNode::onWake()
     goal_changed_ = false;
     next_replan_ns_ = now_ns_ + common::toNanoseconds(config_.replan_period_s);
   }
-  if (lockstep() && clock_ns_ > reported_ns_) {
-    const bool state_seen = now_ns_ >= clock_ns_ || !clock_state_sent_;
+  if (lockstep() && simClock().ns() > reported_ns_) {
+    const bool state_seen = now_ns_ >= simClock().ns() || !simClock().stateSent();
     if (!caught_up || !state_seen) {
-      lockstep_.holding(clock_ns_, [&] {
+      lockstep_.holding(simClock().ns(), [&] {
         return caught_up ? fmt::format("no vehicle state of that time yet (the last at {:.3f} s)",
                                        common::toSeconds(now_ns_))
-                         : fmt::format("map updates cover {} of {} depth frames", frames_applied_, clock_frames_);
+                         : fmt::format("map updates cover {} of {} depth frames", frames_applied_, simClock().depthFrames());
       });
-    } else if (lockstep_.reportDone(clock_ns_)) {
-      reported_ns_ = clock_ns_;
+    } else if (lockstep_.reportDone(simClock().ns())) {
+      reported_ns_ = simClock().ns();
     }
   }
 }

@@ -45,7 +45,6 @@ private:
   dds::Subscriber<msg::MapSnapshot> snapshots_;
   dds::Subscriber<msg::VehicleState> state_;
   dds::Subscriber<msg::Goal> goal_;
-  dds::Subscriber<msg::SimClock> clock_;
   dds::Subscriber<msg::LockstepReport> reports_;  // polled: the mapper's tell a lost update from a late one
   dds::Publisher<msg::Path> path_;
   dds::ModuleWatch mapper_;
@@ -56,9 +55,6 @@ private:
   bool update_lost_ = false;            // one was refused or never came since the last update applied
   std::int64_t mapper_done_ns_ = 0;     // the mapper's newest lockstep report
   std::int64_t mapper_done_wall_ns_ = 0;  // steady time that report first covered the clock (0: not yet)
-  std::int64_t clock_ns_ = 0;           // lockstep: the sim time the clock is at
-  std::uint64_t clock_frames_ = 0;      // lockstep: depth clouds published up to then
-  bool clock_state_sent_ = true;        // lockstep: a state of the clock's time was published
   bool map_whole_ = true;               // last said in the log
   bool mapper_lost_ = false;            // last said in the log
   std::int64_t reported_ns_ = -1;

@@ -6,6 +6,7 @@
 #include "quad/common/time.hpp"
 #include "quad/dds/geometry_messages.hpp"
 #include "quad/dds/publisher.hpp"
+#include "quad/dds/sim_clock.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/introspection/idl.hpp"
@@ -16,9 +17,9 @@ namespace topics = dds::topics;
 
 /// The sim time and the vehicle's state, followed from the start.
 struct Observer::Sim {
-  explicit Sim(dds::Participant& p) : state(p, topics::kSimState), clock(p, topics::kSimClock) {}
+  explicit Sim(dds::Participant& p) : state(p, topics::kSimState), clock(p) {}
   dds::Subscriber<msg::VehicleState> state;
-  dds::Subscriber<msg::SimClock> clock;
+  dds::SimClockFollower clock;
 };
 
 /// What flying a mission needs besides.
@@ -120,16 +121,16 @@ std::vector<std::string> controlModeNames()
   return out;
 }
 
+std::int64_t Observer::simTimeNs() const { return sim_->clock.ns(); }
+
 void Observer::update()
 {
-  while (const auto c = sim_->clock.take()) {
-    clock_ns_ = std::max(clock_ns_, c->sim_ns());
-  }
+  sim_->clock.update();
   for (const auto& s : sim_->state.takeAll()) {
     // Only states the sim clock vouches for, in order: one stamped ahead of it (a bad input)
     // would end the mission by its timeout, an old one would teleport the vehicle.
     const Eigen::Vector3d p = dds::toVector(s.p_W());
-    if (s.header().stamp_ns() > clock_ns_ + topics::kStateAheadOfClockNs || s.header().stamp_ns() < state_ns_ ||
+    if (!sim_->clock.vouchesFor(s.header().stamp_ns()) || s.header().stamp_ns() < state_ns_ ||
         !p.allFinite()) {
       continue;
     }

@@ -39,7 +39,7 @@ public:
   /// For tools that act on the run through the launcher's participant (quad fault).
   dds::Participant& participant() { return participant_; }
   /// The newest sim time the plant's clock told [ns]; 0 before the first.
-  std::int64_t simTimeNs() const { return clock_ns_; }
+  std::int64_t simTimeNs() const;  ///< the newest sim time the plant's clock told
   /// The vehicle's position in the newest state the clock vouches for.
   const Eigen::Vector3d& position() const { return position_; }
 
@@ -51,7 +51,6 @@ private:
   std::unique_ptr<Endpoints> endpoints_;
   std::unique_ptr<MissionTracker> tracker_;
   std::int64_t last_state_ns_ = 0;
-  std::int64_t clock_ns_ = 0;  // the newest sim time the plant's clock told
   std::int64_t state_ns_ = 0;  // stamp of the newest state taken
   Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
 };

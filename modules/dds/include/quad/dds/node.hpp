@@ -19,6 +19,7 @@
 #include "quad/common/params.hpp"
 #include "quad/dds/participant.hpp"
 #include "quad/dds/publisher.hpp"
+#include "quad/dds/sim_clock.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/waker.hpp"
 
@@ -89,6 +90,11 @@ protected:
   /// and onEvent's default stops reporting them.
   void setLockstep(bool lockstep) { lockstep_ = lockstep; }
   bool lockstep() const { return lockstep_; }
+  /// Follows the plant's clock: run() takes its samples before every onWake() and onTick(),
+  /// and lockstep() follows the newest. Call once, from the constructor.
+  void followSimClock();
+  /// The clock followed (followSimClock() first).
+  const SimClockFollower& simClock() const { return *sim_clock_; }
 
   virtual void onStart() {}
   virtual void onWake() {}
@@ -104,6 +110,7 @@ private:
   /// Payloads refused for breaking their IDL (message_types.hpp) and datagrams the validating
   /// transport dropped count as rejected inputs.
   void countRejectedPayloads();
+  void takeSimClock();
 
   std::string module_name_;
   Participant participant_;
@@ -112,6 +119,7 @@ private:
   Publisher<msg::Heartbeat> heartbeat_;
   // With a fault layer only (ParticipantOptions::fault_layer).
   std::unique_ptr<FaultLayerControl> fault_layer_;
+  std::unique_ptr<SimClockFollower> sim_clock_;  // with followSimClock() only
   std::atomic<bool> stop_{false};
   // Asserts the heartbeat writer's liveliness (MANUAL_BY_TOPIC) from a thread of its own, so
   // that a node busy in a long computation stays alive and a killed or stopped one does not.

@@ -1,0 +1,33 @@
+#include "quad/dds/sim_clock.hpp"
+
+#include <algorithm>
+
+#include "quad/dds/topics.hpp"
+
+namespace quad::dds {
+
+SimClockFollower::SimClockFollower(Participant& participant, Waker* waker)
+    : clock_(participant, topics::kSimClock, waker)
+{
+}
+
+bool SimClockFollower::update()
+{
+  bool arrived = false;
+  while (const auto c = clock_.take()) {
+    arrived = true;
+    seen_ = true;
+    lockstep_ = c->lockstep();
+    ns_ = std::max(ns_, c->sim_ns());
+    depth_frames_ = std::max(depth_frames_, c->depth_frames());
+    state_sent_ = c->state_sent();
+  }
+  return arrived;
+}
+
+bool SimClockFollower::vouchesFor(std::int64_t stamp_ns) const
+{
+  return stamp_ns <= ns_ + topics::kStateAheadOfClockNs;
+}
+
+}  // namespace quad::dds

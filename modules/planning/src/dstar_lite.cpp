@@ -356,23 +356,23 @@ void DStarLite::cellChanged(Cell c, bool blocked)
 
 void DStarLite::updateVoxel(const VoxelIndex& voxel, Occupancy state)
 {
-  const auto it = voxels_.find(voxel);
-  const Occupancy before = it == voxels_.end() ? Occupancy::kUnknown : it->second;
+  // A voxel inside the lattice is its cell's own state; only those outside need the map.
+  const auto own = lattice_.cell(voxel);
+  const Occupancy before = voxelState(voxel);
   if (before == state) {
     return;
   }
-  if (state == Occupancy::kUnknown) {
-    voxels_.erase(voxel);
-  } else {
-    voxels_[voxel] = state;
-  }
   std::vector<Cell> changed;
-  if (const auto own = lattice_.cell(voxel)) {
+  if (own) {
     const bool was = traversable(*own);
     cell_state_[static_cast<std::size_t>(*own)] = state;
     if (was != traversable(*own)) {
       changed.push_back(*own);
     }
+  } else if (state == Occupancy::kUnknown) {
+    voxels_.erase(voxel);
+  } else {
+    voxels_[voxel] = state;
   }
   if ((before == Occupancy::kOccupied) != (state == Occupancy::kOccupied)) {
     const int delta = state == Occupancy::kOccupied ? 1 : -1;
@@ -462,10 +462,13 @@ PlanResult DStarLite::plan(std::uint64_t max_expansions)
       const double g_old = vu.g;
       vu.g = kInfinity;
       forEachNeighbour(u, [&](Cell s, double step) {
+        // The paper updates every predecessor; one whose rhs did not come through u keeps its
+        // g and rhs, so its queued key (a lower bound, refreshed when it reaches the top)
+        // stands and its consistency is unchanged.
         if (s != *goal_ && rhs(s) == step + g_old) {
           setRhs(s, bestRhs(s));
+          updateVertex(s);
         }
-        updateVertex(s);
       });
       updateVertex(u, vu, pu);  // rhs(u) does not depend on g(u): it stays, u is inconsistent now
     }
@@ -483,11 +486,13 @@ PlanResult DStarLite::plan(std::uint64_t max_expansions)
     return out;
   }
   // Follow the gradient: argmin over successors of c(s, s') + g(s'), ties by cell number.
-  // A cell met twice means g is not yet consistent along the way (it can happen beyond the
-  // start's consistency): report no path now rather than walk in a circle.
+  // Where g is consistent it falls by every step's cost along the way; a step whose g does
+  // not fall means it is not yet consistent there (it can happen beyond the start's
+  // consistency), and could lead round in a circle: report no path now. g falling strictly
+  // is what ends the walk, without remembering the cells visited.
   Cell s = *start_;
   out.cells.push_back(s);
-  std::unordered_map<Cell, bool> visited{{s, true}};
+  double value = out.cost;  // g(s), rhs for the start
   while (s != *goal_) {
     Cell best = -1;
     double best_cost = kInfinity;
@@ -498,12 +503,13 @@ PlanResult DStarLite::plan(std::uint64_t max_expansions)
         best = n;
       }
     });
-    if (best < 0 || best_cost == kInfinity || !visited.emplace(best, true).second) {
+    if (best < 0 || best_cost == kInfinity || !(g(best) < value)) {
       out.status = PlanStatus::kNoPath;
       out.cells.clear();
       return out;
     }
     s = best;
+    value = g(best);
     out.cells.push_back(s);
   }
   out.status = s == *goal_ ? PlanStatus::kOk : PlanStatus::kNoPath;

@@ -11,6 +11,7 @@
 /// pages of 4,096 consecutive cells, allocated when the search first touches one of them:
 /// memory grows with the region searched, not with the box, and a lookup is two indexings.
 
+#include <compare>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -124,15 +125,18 @@ private:
   struct Key {
     double k1;
     double k2;
-    bool operator<(const Key& o) const
+    std::weak_ordering operator<=>(const Key& o) const
     {
       if (k1 < o.k1 - kKeyTolerance) {
-        return true;
+        return std::weak_ordering::less;
       }
       if (k1 > o.k1 + kKeyTolerance) {
-        return false;
+        return std::weak_ordering::greater;
       }
-      return k2 < o.k2 - kKeyTolerance;
+      if (k2 < o.k2 - kKeyTolerance) {
+        return std::weak_ordering::less;
+      }
+      return k2 > o.k2 + kKeyTolerance ? std::weak_ordering::greater : std::weak_ordering::equivalent;
     }
   };
   /// A cell's search state.

@@ -9,6 +9,7 @@
 ///
 /// A 4-ary heap: half the depth of a binary one, and its children are neighbours in memory.
 
+#include <compare>
 #include <cstdint>
 #include <limits>
 #include <utility>
@@ -19,7 +20,7 @@ namespace quad::planning {
 /// A cell's slot when the cell is not in the queue.
 inline constexpr std::uint32_t kNotQueued = std::numeric_limits<std::uint32_t>::max();
 
-/// Key needs operator<; Slot is callable as `std::uint32_t& slot(std::int64_t cell)`, the
+/// Key needs operator<=> (a weak or partial order); Slot is callable as `std::uint32_t& slot(std::int64_t cell)`, the
 /// caller's record of the cell's place, kNotQueued when the cell is not in the queue. Equal
 /// keys come out by cell number, smallest first, so a search's order does not depend on the
 /// queue's history.
@@ -94,13 +95,8 @@ private:
 
   static bool before(const Entry& a, const Entry& b)
   {
-    if (a.key < b.key) {
-      return true;
-    }
-    if (b.key < a.key) {
-      return false;
-    }
-    return a.cell < b.cell;
+    const auto order = a.key <=> b.key;  // one comparison of the keys, not two
+    return order != 0 ? order < 0 : a.cell < b.cell;
   }
 
   void place(std::uint32_t i, const Entry& e)

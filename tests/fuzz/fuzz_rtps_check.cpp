@@ -3,23 +3,23 @@
 // count guard lowering those that leap. Whatever the bytes, it reads inside them and
 // returns. Corpus: tests/fixtures/datagrams.
 #include "harness.hpp"
-#include "quad/dds/count_guard.hpp"
-#include "quad/dds/rtps_check.hpp"
+#include "quad/wire/count_guard.hpp"
+#include "quad/wire/rtps_check.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
   // The datagram in a buffer of exactly its size, so that a read past it is caught.
   std::vector<std::uint8_t> datagram(data, data + size);
-  std::vector<quad::dds::RtpsCount> counts;
-  if (quad::dds::checkRtpsDatagram(datagram.data(), datagram.size(), &counts)) {
+  std::vector<quad::wire::RtpsCount> counts;
+  if (quad::wire::checkRtpsDatagram(datagram.data(), datagram.size(), &counts)) {
     return 0;
   }
   // One guard across inputs, as one participant keeps it across datagrams.
-  static quad::dds::CountGuard guard;
+  static quad::wire::CountGuard guard;
   static std::int64_t now_ns = 0;
   now_ns += 1'000'000;
   const auto tamings = guard.admit(counts, now_ns);
-  quad::dds::CountGuard::apply(tamings, datagram.data());
+  quad::wire::CountGuard::apply(tamings, datagram.data());
   return 0;
 }
 

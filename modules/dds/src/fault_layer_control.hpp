@@ -10,7 +10,7 @@
 #include <quad/msg/FaultCommand.h>
 #include <quad/msg/SimEvent.h>
 
-#include "quad/dds/datagram_faults.hpp"
+#include "quad/wire/datagram_faults.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
 
@@ -33,7 +33,7 @@ public:
 private:
   void acknowledge(const msg::FaultCommand& command, msg::SimEventKind kind, const std::string& detail);
 
-  DatagramFaults& layer_;
+  wire::DatagramFaults& layer_;
   std::string module_name_;
   Subscriber<msg::FaultCommand> commands_;
   Publisher<msg::SimEvent> events_;

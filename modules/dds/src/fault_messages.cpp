@@ -5,14 +5,14 @@ namespace quad::dds {
 namespace {
 struct KindPair {
   msg::FaultKind message;
-  DatagramFaultKind core;
+  wire::DatagramFaultKind core;
 };
 constexpr KindPair kKinds[] = {
-    {msg::FAULT_DATAGRAM_LOSS, DatagramFaultKind::kLoss},
-    {msg::FAULT_DATAGRAM_DELAY, DatagramFaultKind::kDelay},
-    {msg::FAULT_DATAGRAM_DUPLICATE, DatagramFaultKind::kDuplicate},
-    {msg::FAULT_DATAGRAM_REORDER, DatagramFaultKind::kReorder},
-    {msg::FAULT_DATAGRAM_CORRUPT, DatagramFaultKind::kCorrupt},
+    {msg::FAULT_DATAGRAM_LOSS, wire::DatagramFaultKind::kLoss},
+    {msg::FAULT_DATAGRAM_DELAY, wire::DatagramFaultKind::kDelay},
+    {msg::FAULT_DATAGRAM_DUPLICATE, wire::DatagramFaultKind::kDuplicate},
+    {msg::FAULT_DATAGRAM_REORDER, wire::DatagramFaultKind::kReorder},
+    {msg::FAULT_DATAGRAM_CORRUPT, wire::DatagramFaultKind::kCorrupt},
 };
 }  // namespace
 
@@ -26,7 +26,7 @@ bool isDatagramFault(msg::FaultKind kind)
   return false;
 }
 
-msg::FaultCommand toCommand(const DatagramFault& fault, const std::string& module)
+msg::FaultCommand toCommand(const wire::DatagramFault& fault, const std::string& module)
 {
   msg::FaultCommand c;
   c.fault_id(fault.id);
@@ -44,9 +44,9 @@ msg::FaultCommand toCommand(const DatagramFault& fault, const std::string& modul
   return c;
 }
 
-std::optional<DatagramFault> datagramFaultFrom(const msg::FaultCommand& command, std::string& why_not)
+std::optional<wire::DatagramFault> datagramFaultFrom(const msg::FaultCommand& command, std::string& why_not)
 {
-  DatagramFault f;
+  wire::DatagramFault f;
   bool known = false;
   for (const auto& k : kKinds) {
     if (k.message == command.kind()) {

@@ -14,7 +14,7 @@
 #include "quad/common/yaml_input.hpp"
 #include "quad/dds/message_types.hpp"
 #include "quad/dds/topics.hpp"
-#include "quad/dds/validating_transport.hpp"
+#include "quad/wire/validating_transport.hpp"
 #include "fault_layer_control.hpp"
 
 namespace quad::dds {
@@ -125,7 +125,7 @@ void Node::countRejectedPayloads()
     rejected_payloads_ = r.count;
   }
   // The validating transport logs each itself (at most once a second).
-  const std::uint64_t malformed = malformedDatagramCount();
+  const std::uint64_t malformed = wire::malformedDatagramCount();
   if (malformed > malformed_datagrams_) {
     counters_.errors += malformed - malformed_datagrams_;
     malformed_datagrams_ = malformed;

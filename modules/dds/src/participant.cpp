@@ -18,10 +18,10 @@
 #include <fastrtps/utils/IPLocator.h>
 #include <fastrtps/xmlparser/XMLProfileManager.h>
 
-#include "fault_transport.hpp"
+#include "quad/wire/fault_transport.hpp"
 #include "quad/dds/environment.hpp"
 #include "quad/dds/security.hpp"
-#include "quad/dds/validating_transport.hpp"
+#include "quad/wire/validating_transport.hpp"
 
 namespace quad::dds {
 
@@ -275,7 +275,7 @@ public:
     const bool alive = info.status == frtps::ParticipantDiscoveryInfo::DISCOVERED_PARTICIPANT ||
                        info.status == frtps::ParticipantDiscoveryInfo::CHANGED_QOS_PARTICIPANT;
     if (auto* faults = owner_.datagramFaults(); faults != nullptr && alive) {
-      DatagramFaults::GuidPrefix prefix;
+      wire::DatagramFaults::GuidPrefix prefix;
       std::copy_n(d.m_guid.guidPrefix.value, prefix.size(), prefix.begin());
       faults->learnSender(prefix, d.m_participantName.to_string());
     }
@@ -321,7 +321,7 @@ Participant::Participant(ParticipantOptions options)
 
   using TransportDescriptor = std::shared_ptr<eprosima::fastdds::rtps::TransportDescriptorInterface>;
   const auto checked = [this](TransportDescriptor udp) {
-    return options_.validate_datagrams ? validatingTransport(std::move(udp)) : udp;
+    return options_.validate_datagrams ? wire::validatingTransport(std::move(udp)) : udp;
   };
   if (options_.udp_max_message != 0 && options_.transport != Transport::kUdp && !options_.fault_layer) {
     throw std::invalid_argument("participant '" + options_.name + "': a UDP datagram size of " +
@@ -339,10 +339,10 @@ Participant::Participant(ParticipantOptions options)
     options_.transport = Transport::kUdp;  // data-sharing off too (profileQos)
     // Endpoints of one process would otherwise talk through memory, around any transport.
     intraprocessDeliveryOff();
-    datagram_faults_ = std::make_shared<DatagramFaults>();
+    datagram_faults_ = std::make_shared<wire::DatagramFaults>();
     qos.transport().use_builtin_transports = false;
     qos.transport().user_transports.push_back(
-        checked(faultyUdpTransport(datagram_faults_, udpDescriptor(options_.udp_max_message, options_.interfaces))));
+        checked(wire::faultyUdpTransport(datagram_faults_, udpDescriptor(options_.udp_max_message, options_.interfaces))));
   } else {
     switch (options_.transport) {
       case Transport::kDefault:

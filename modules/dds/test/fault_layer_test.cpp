@@ -32,8 +32,8 @@ ParticipantOptions options(const std::string& name, bool fault_layer, int domain
 
 /// Sends kSamples events from "talker" to a faulty "listener" and returns their ids in the
 /// order they were taken.
-std::vector<std::int64_t> sendThrough(int domain, const std::vector<DatagramFault>& faults,
-                                      DatagramFaults::Counts* counts)
+std::vector<std::int64_t> sendThrough(int domain, const std::vector<wire::DatagramFault>& faults,
+                                      wire::DatagramFaults::Counts* counts)
 {
   Participant talker(options("talker", false, domain));
   Participant listener(options("listener", true, domain));
@@ -74,8 +74,8 @@ std::vector<std::int64_t> oneToN()
 
 TEST(FaultLayer, AReliableTopicComesThroughThirtyPercentLossWholeAndInOrder)
 {
-  DatagramFaults::Counts counts;
-  const auto got = sendThrough(kLossDomain, {{1, DatagramFaultKind::kLoss, 0.3, "talker", 5}}, &counts);
+  wire::DatagramFaults::Counts counts;
+  const auto got = sendThrough(kLossDomain, {{1, wire::DatagramFaultKind::kLoss, 0.3, "talker", 5}}, &counts);
   EXPECT_EQ(got, oneToN());
   // Every sample crossed the layer (nothing went around it through memory), and it dropped
   // about 30 % of the datagrams: the topic repaired that.
@@ -85,11 +85,11 @@ TEST(FaultLayer, AReliableTopicComesThroughThirtyPercentLossWholeAndInOrder)
 
 TEST(FaultLayer, DuplicatedReorderedAndDelayedDatagramsDeliverEachSampleOnceInOrder)
 {
-  DatagramFaults::Counts counts;
+  wire::DatagramFaults::Counts counts;
   const auto got = sendThrough(kReorderDomain,
-                               {{1, DatagramFaultKind::kDuplicate, 0.3, "talker", 5},
-                                {2, DatagramFaultKind::kReorder, 0.3, "talker", 6},
-                                {3, DatagramFaultKind::kDelay, 0.005, "talker", 7}},
+                               {{1, wire::DatagramFaultKind::kDuplicate, 0.3, "talker", 5},
+                                {2, wire::DatagramFaultKind::kReorder, 0.3, "talker", 6},
+                                {3, wire::DatagramFaultKind::kDelay, 0.005, "talker", 7}},
                                &counts);
   EXPECT_EQ(got, oneToN());
   EXPECT_GE(counts.seen, static_cast<std::uint64_t>(kSamples));
@@ -121,8 +121,8 @@ TEST(FaultLayer, ANodeAppliesRefusesAndClearsCommandedFaultsAndAcknowledgesEach)
     test::waitFor([&] { return (e = acks.take()).has_value(); });
     return e;
   };
-  send(toCommand({41, DatagramFaultKind::kLoss, 0.5, "elsewhere", 3}, "layer_test_node"));
-  send(toCommand({42, DatagramFaultKind::kLoss, 0.5, "", 3}, "another_module"));  // not this node's
+  send(toCommand({41, wire::DatagramFaultKind::kLoss, 0.5, "elsewhere", 3}, "layer_test_node"));
+  send(toCommand({42, wire::DatagramFaultKind::kLoss, 0.5, "", 3}, "another_module"));  // not this node's
   auto ack = nextAck();
   ASSERT_TRUE(ack);
   EXPECT_EQ(ack->kind(), msg::SIM_EVENT_FAULT_APPLIED);
@@ -132,7 +132,7 @@ TEST(FaultLayer, ANodeAppliesRefusesAndClearsCommandedFaultsAndAcknowledgesEach)
   EXPECT_TRUE(node.isDatagramFaultId(41));
   EXPECT_FALSE(node.isDatagramFaultId(42));
 
-  msg::FaultCommand bad = toCommand({43, DatagramFaultKind::kCorrupt, 2.0, "", 3}, "layer_test_node");
+  msg::FaultCommand bad = toCommand({43, wire::DatagramFaultKind::kCorrupt, 2.0, "", 3}, "layer_test_node");
   send(bad);
   ack = nextAck();
   ASSERT_TRUE(ack);

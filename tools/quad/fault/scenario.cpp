@@ -52,9 +52,9 @@ std::string joined(const std::vector<std::string>& names)
 
 constexpr const char* kFaultNames = "kill, pause, resume, restart, plant, publish, dds, link";
 
-constexpr dds::DatagramFaultKind kDatagramKinds[] = {
-    dds::DatagramFaultKind::kLoss, dds::DatagramFaultKind::kDelay, dds::DatagramFaultKind::kDuplicate,
-    dds::DatagramFaultKind::kReorder, dds::DatagramFaultKind::kCorrupt};
+constexpr wire::DatagramFaultKind kDatagramKinds[] = {
+    wire::DatagramFaultKind::kLoss, wire::DatagramFaultKind::kDelay, wire::DatagramFaultKind::kDuplicate,
+    wire::DatagramFaultKind::kReorder, wire::DatagramFaultKind::kCorrupt};
 
 bool isName(const YAML::Node& node)
 {
@@ -273,7 +273,7 @@ private:
     std::uint32_t k = 0;
     for (const auto kind : kDatagramKinds) {
       ++k;
-      const std::string name = dds::toString(kind);
+      const std::string name = wire::toString(kind);
       if (!node[name].IsDefined()) {
         continue;
       }
@@ -282,7 +282,7 @@ private:
         ok = false;
         continue;
       }
-      dds::DatagramFault f{kDatagramIdBase * number + k, kind, *magnitude, from,
+      wire::DatagramFault f{kDatagramIdBase * number + k, kind, *magnitude, from,
                            static_cast<std::uint64_t>(*seed)};
       if (const std::string why = f.invalidReason(); !why.empty()) {
         r_.problem(key + "." + name, node[name], why);
@@ -360,7 +360,7 @@ private:
   {
     std::vector<std::string> keys;
     for (const auto kind : kDatagramKinds) {
-      keys.push_back(dds::toString(kind));
+      keys.push_back(wire::toString(kind));
     }
     return keys;
   }
@@ -552,8 +552,8 @@ std::string Action::describe() const
       const std::string& from = datagrams.front().from;
       std::string out = "dds " + module + " <- " + (from.empty() ? "every sender" : from) + ":";
       for (const auto& d : datagrams) {
-        out += fmt::format("{} {} {:g}{}", &d == &datagrams.front() ? "" : ",", dds::toString(d.kind), d.magnitude,
-                           d.kind == dds::DatagramFaultKind::kDelay ? " s" : "");
+        out += fmt::format("{} {} {:g}{}", &d == &datagrams.front() ? "" : ",", wire::toString(d.kind), d.magnitude,
+                           d.kind == wire::DatagramFaultKind::kDelay ? " s" : "");
       }
       out += fmt::format(" (seed {})", datagrams.front().seed);
       return duration_s ? out + fmt::format(" for {:g} s", *duration_s) : out;

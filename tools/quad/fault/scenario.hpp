@@ -13,7 +13,7 @@
 #include <string_view>
 #include <vector>
 
-#include "quad/dds/datagram_faults.hpp"
+#include "quad/wire/datagram_faults.hpp"
 #include "launch/link_faults.hpp"
 #include "quad/plant/faults.hpp"
 
@@ -42,7 +42,7 @@ struct Action {
   int count = 1;                   ///< kPublish: how many samples
   double rate_hz = 10.0;           ///< kPublish: at this rate
   /// kDds: the faults on what `module` receives, ids `kDatagramIdBase * step + 1..5`.
-  std::vector<dds::DatagramFault> datagrams;
+  std::vector<wire::DatagramFault> datagrams;
   launch::LinkFault link;            ///< kLink
   /// kDds, kLink: cleared (healed) this long after; absent: when the run ends.
   std::optional<double> duration_s;

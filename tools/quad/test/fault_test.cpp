@@ -165,7 +165,7 @@ steps:
   EXPECT_EQ(a.module, "control");
   ASSERT_EQ(a.datagrams.size(), 3U);
   EXPECT_EQ(a.datagrams[0].id, 2001U);
-  EXPECT_EQ(a.datagrams[0].kind, dds::DatagramFaultKind::kLoss);
+  EXPECT_EQ(a.datagrams[0].kind, wire::DatagramFaultKind::kLoss);
   EXPECT_EQ(a.datagrams[1].id, 2002U);
   EXPECT_DOUBLE_EQ(a.datagrams[1].magnitude, 0.02);
   EXPECT_EQ(a.datagrams[2].id, 2005U);
@@ -436,7 +436,7 @@ Scenario linkScenario(std::optional<double> duration)
   st.at_s = 2.0;
   st.action.kind = Action::Kind::kDds;
   st.action.module = "planning";
-  st.action.datagrams = {{1001, dds::DatagramFaultKind::kLoss, 0.2, "mapping", 7}};
+  st.action.datagrams = {{1001, wire::DatagramFaultKind::kLoss, 0.2, "mapping", 7}};
   st.action.duration_s = duration;
   s.steps.push_back(st);
   s.outcome.zero_loss = false;

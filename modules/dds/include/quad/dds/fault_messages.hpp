@@ -8,7 +8,7 @@
 
 #include <quad/msg/FaultCommand.h>
 
-#include "quad/dds/datagram_faults.hpp"
+#include "quad/wire/datagram_faults.hpp"
 
 namespace quad::dds {
 
@@ -16,9 +16,9 @@ namespace quad::dds {
 bool isDatagramFault(msg::FaultKind kind);
 
 /// The command that asks `module`'s fault layer to apply `fault` (target: the sender's name).
-msg::FaultCommand toCommand(const DatagramFault& fault, const std::string& module);
+msg::FaultCommand toCommand(const wire::DatagramFault& fault, const std::string& module);
 
 /// The fault a command asks for; nullopt with `why_not` set when it cannot be applied.
-std::optional<DatagramFault> datagramFaultFrom(const msg::FaultCommand& command, std::string& why_not);
+std::optional<wire::DatagramFault> datagramFaultFrom(const msg::FaultCommand& command, std::string& why_not);
 
 }  // namespace quad::dds

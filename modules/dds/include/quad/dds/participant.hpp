@@ -16,7 +16,7 @@
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
-#include "quad/dds/datagram_faults.hpp"
+#include "quad/wire/datagram_faults.hpp"
 #include "quad/dds/events.hpp"
 #include "quad/dds/topic.hpp"
 
@@ -110,8 +110,8 @@ public:
   const ParticipantOptions& options() const { return options_; }
   EventQueue& events() { return events_; }
   /// The faults on received datagrams; null without ParticipantOptions::fault_layer.
-  DatagramFaults* datagramFaults() { return datagram_faults_.get(); }
-  const DatagramFaults* datagramFaults() const { return datagram_faults_.get(); }
+  wire::DatagramFaults* datagramFaults() { return datagram_faults_.get(); }
+  const wire::DatagramFaults* datagramFaults() const { return datagram_faults_.get(); }
 
   /// Registers the type (once) and returns the topic (created once per name).
   eprosima::fastdds::dds::Topic* topic(const TopicInfo& info,
@@ -159,7 +159,7 @@ private:
 
   ParticipantOptions options_;
   EventQueue events_;
-  std::shared_ptr<DatagramFaults> datagram_faults_;
+  std::shared_ptr<wire::DatagramFaults> datagram_faults_;
   std::unique_ptr<Listener> listener_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;

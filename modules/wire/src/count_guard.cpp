@@ -1,8 +1,8 @@
-#include "quad/dds/count_guard.hpp"
+#include "quad/wire/count_guard.hpp"
 
 #include <algorithm>
 
-namespace quad::dds {
+namespace quad::wire {
 
 std::vector<CountGuard::Taming> CountGuard::admit(const std::vector<RtpsCount>& counts, std::int64_t now_ns)
 {
@@ -44,4 +44,4 @@ void CountGuard::apply(const std::vector<Taming>& tamings, std::uint8_t* datagra
   }
 }
 
-}  // namespace quad::dds
+}  // namespace quad::wire

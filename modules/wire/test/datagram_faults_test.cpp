@@ -5,9 +5,9 @@
 #include <cmath>
 #include <vector>
 
-#include "quad/dds/datagram_faults.hpp"
+#include "quad/wire/datagram_faults.hpp"
 
-namespace quad::dds {
+namespace quad::wire {
 namespace {
 
 constexpr int kDatagrams = 20000;
@@ -150,4 +150,4 @@ TEST(DatagramFaults, InvalidFaultsAndReusedIdsAreRefusedAndClearingEndsAFault)
 }
 
 }  // namespace
-}  // namespace quad::dds
+}  // namespace quad::wire

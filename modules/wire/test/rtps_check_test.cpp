@@ -12,10 +12,10 @@
 
 #include <gtest/gtest.h>
 
-#include "quad/dds/rtps_check.hpp"
+#include "quad/wire/rtps_check.hpp"
 #include "rtps_builder.hpp"
 
-namespace quad::dds {
+namespace quad::wire {
 namespace {
 
 using Bytes = std::vector<std::uint8_t>;
@@ -210,4 +210,4 @@ TEST(RtpsCheck, RandomBytesNeverReadPastTheDatagram)
 }
 
 }  // namespace
-}  // namespace quad::dds
+}  // namespace quad::wire

@@ -1,5 +1,5 @@
 // Counts a receiver only lets grow: read from datagrams, and leaps refused unless confirmed.
-#include "quad/dds/count_guard.hpp"
+#include "quad/wire/count_guard.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 
 #include "rtps_builder.hpp"
 
-namespace quad::dds {
+namespace quad::wire {
 namespace {
 
 using Bytes = std::vector<std::uint8_t>;
@@ -130,4 +130,4 @@ TEST(CountGuard, TheAllowedLeapGrowsWithTheTimeSinceTheSendersLastCount)
 }
 
 }  // namespace
-}  // namespace quad::dds
+}  // namespace quad::wire

@@ -20,14 +20,21 @@
 #include "quad/common/time.hpp"
 #include "wait.hpp"
 #include "quad/dds/publisher.hpp"
-#include "quad/dds/rtps_check.hpp"
+#include "quad/wire/rtps_check.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
-#include "quad/dds/validating_transport.hpp"
+#include "quad/wire/validating_transport.hpp"
 #include "datagram_mutator.hpp"
 
-namespace quad::dds {
+namespace quad::wire {
 namespace {
+
+using dds::Participant;
+using dds::ParticipantOptions;
+using dds::Publisher;
+using dds::Subscriber;
+using dds::Transport;
+namespace topics = dds::topics;
 
 // ctest runs each case alone and in parallel with others: each has a domain of its own.
 constexpr int kHostileDomain = 171;
@@ -228,4 +235,4 @@ TEST(HostileDatagrams, RealTrafficPassesTheCheckWhole)
 }
 
 }  // namespace
-}  // namespace quad::dds
+}  // namespace quad::wire

@@ -7,7 +7,7 @@
 #include <fastdds/rtps/transport/ChainingTransport.h>
 #include <fastdds/rtps/transport/ChainingTransportDescriptor.h>
 
-namespace quad::dds {
+namespace quad::wire {
 
 class ReceiveLayer : public eprosima::fastdds::rtps::ChainingTransport {
 public:
@@ -24,4 +24,4 @@ public:
   }
 };
 
-}  // namespace quad::dds
+}  // namespace quad::wire

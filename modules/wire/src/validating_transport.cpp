@@ -1,4 +1,4 @@
-#include "quad/dds/validating_transport.hpp"
+#include "quad/wire/validating_transport.hpp"
 
 #include <atomic>
 #include <mutex>
@@ -8,11 +8,11 @@
 #include <spdlog/spdlog.h>
 
 #include "quad/common/time.hpp"
-#include "quad/dds/count_guard.hpp"
-#include "quad/dds/rtps_check.hpp"
+#include "quad/wire/count_guard.hpp"
+#include "quad/wire/rtps_check.hpp"
 #include "receive_layer.hpp"
 
-namespace quad::dds {
+namespace quad::wire {
 
 namespace frtps = eprosima::fastrtps::rtps;
 namespace fdrtps = eprosima::fastdds::rtps;
@@ -137,4 +137,4 @@ std::uint64_t malformedDatagramCount()
   return malformed_count.load(std::memory_order_relaxed);
 }
 
-}  // namespace quad::dds
+}  // namespace quad::wire

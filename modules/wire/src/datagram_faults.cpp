@@ -1,4 +1,4 @@
-#include "quad/dds/datagram_faults.hpp"
+#include "quad/wire/datagram_faults.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-namespace quad::dds {
+namespace quad::wire {
 
 namespace {
 constexpr double kMaxDelayS = 10.0;
@@ -189,4 +189,4 @@ DatagramFaults::Counts DatagramFaults::counts() const
   return counts_;
 }
 
-}  // namespace quad::dds
+}  // namespace quad::wire

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-namespace quad::dds {
+namespace quad::wire {
 
 enum class DatagramFaultKind { kLoss, kDelay, kDuplicate, kReorder, kCorrupt };
 
@@ -103,4 +103,4 @@ private:
   Counts counts_;
 };
 
-}  // namespace quad::dds
+}  // namespace quad::wire

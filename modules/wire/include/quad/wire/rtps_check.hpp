@@ -28,7 +28,7 @@
 #include <string>
 #include <vector>
 
-namespace quad::dds {
+namespace quad::wire {
 
 /// The largest sample a DATA_FRAG may announce: Fast DDS reserves that much memory for its
 /// reassembly when the first fragment arrives. Four times the largest message quad sends
@@ -61,4 +61,4 @@ struct RtpsCount {
 std::optional<RtpsDefect> checkRtpsDatagram(const std::uint8_t* data, std::size_t size,
                                             std::vector<RtpsCount>* counts = nullptr);
 
-}  // namespace quad::dds
+}  // namespace quad::wire

@@ -22,9 +22,9 @@
 #include <tuple>
 #include <vector>
 
-#include "quad/dds/rtps_check.hpp"
+#include "quad/wire/rtps_check.hpp"
 
-namespace quad::dds {
+namespace quad::wire {
 
 class CountGuard {
 public:
@@ -57,4 +57,4 @@ private:
   std::map<Key, Track> tracks_;
 };
 
-}  // namespace quad::dds
+}  // namespace quad::wire

@@ -11,7 +11,7 @@
 
 #include <fastdds/rtps/transport/TransportDescriptorInterface.h>
 
-namespace quad::dds {
+namespace quad::wire {
 
 /// The descriptor to put in a participant's user transports in place of `inner` (UDPv4, or a
 /// layer in front of it).
@@ -29,4 +29,4 @@ MalformedDatagrams malformedDatagrams();
 /// malformedDatagrams().count without a lock or a copy: cheap enough to poll in a loop.
 std::uint64_t malformedDatagramCount();
 
-}  // namespace quad::dds
+}  // namespace quad::wire

@@ -1,11 +1,11 @@
-#include "quad/dds/rtps_check.hpp"
+#include "quad/wire/rtps_check.hpp"
 
 #include <array>
 #include <cstring>
 
 #include <fmt/format.h>
 
-namespace quad::dds {
+namespace quad::wire {
 
 namespace {
 
@@ -621,4 +621,4 @@ std::optional<RtpsDefect> checkRtpsDatagram(const std::uint8_t* data, std::size_
   return std::nullopt;
 }
 
-}  // namespace quad::dds
+}  // namespace quad::wire

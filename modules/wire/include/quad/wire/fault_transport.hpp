@@ -7,13 +7,13 @@
 
 #include <fastdds/rtps/transport/TransportDescriptorInterface.h>
 
-#include "quad/dds/datagram_faults.hpp"
+#include "quad/wire/datagram_faults.hpp"
 
-namespace quad::dds {
+namespace quad::wire {
 
 /// The descriptor to put in a participant's user transports (builtin transports off, so that
 /// no datagram goes around the layer).
 std::shared_ptr<eprosima::fastdds::rtps::TransportDescriptorInterface> faultyUdpTransport(
     std::shared_ptr<DatagramFaults> faults, std::shared_ptr<eprosima::fastdds::rtps::TransportDescriptorInterface> udp);
 
-}  // namespace quad::dds
+}  // namespace quad::wire

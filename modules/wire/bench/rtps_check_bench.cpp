@@ -7,7 +7,7 @@
 #include <cstring>
 #include <vector>
 
-#include "quad/dds/rtps_check.hpp"
+#include "quad/wire/rtps_check.hpp"
 #include "rtps_builder.hpp"
 
 namespace {
@@ -52,14 +52,14 @@ Bytes discoveryData(int parameters)
 
 void run(benchmark::State& state, const Bytes& datagram, bool check)
 {
-  if (const auto defect = quad::dds::checkRtpsDatagram(datagram.data(), datagram.size())) {
+  if (const auto defect = quad::wire::checkRtpsDatagram(datagram.data(), datagram.size())) {
     state.SkipWithError(("the benchmark's datagram is malformed: " + defect->what).c_str());
     return;
   }
   Bytes copy(datagram.size());
   for (auto _ : state) {
     if (check) {
-      benchmark::DoNotOptimize(quad::dds::checkRtpsDatagram(datagram.data(), datagram.size()));
+      benchmark::DoNotOptimize(quad::wire::checkRtpsDatagram(datagram.data(), datagram.size()));
     } else {
       std::memcpy(copy.data(), datagram.data(), datagram.size());
       benchmark::DoNotOptimize(copy.data());

@@ -1,4 +1,4 @@
-#include "fault_transport.hpp"
+#include "quad/wire/fault_transport.hpp"
 
 #include <algorithm>
 #include <condition_variable>
@@ -14,7 +14,7 @@
 #include "quad/common/time.hpp"
 #include "receive_layer.hpp"
 
-namespace quad::dds {
+namespace quad::wire {
 
 namespace frtps = eprosima::fastrtps::rtps;
 namespace fdrtps = eprosima::fastdds::rtps;
@@ -178,4 +178,4 @@ std::shared_ptr<fdrtps::TransportDescriptorInterface> faultyUdpTransport(
   return std::make_shared<FaultyTransportDescriptor>(std::move(faults), std::move(udp));
 }
 
-}  // namespace quad::dds
+}  // namespace quad::wire

@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "harness.hpp"
-#include "launch/manifest.hpp"
+#include "quad/launch/manifest.hpp"
 #include "quad/common/params.hpp"
 #include "quad/world/world_file.hpp"
 #include "quad/vehicle/vehicle.hpp"

@@ -8,25 +8,13 @@
 #include <string>
 #include <vector>
 
+#include "quad/record/recorder.hpp"
 #include "topic_commands.hpp"
 
 namespace quad::tools {
 
-struct RecordOptions {
-  ConnectionOptions connection;
-  std::string output;                 ///< empty: quad-<time>.mcap
-  std::vector<std::string> topics;    ///< names or globs; empty: every quad topic
-  std::vector<std::string> exclude;   ///< globs
-  double duration_s = 0.0;            ///< 0: until Ctrl-C
-  bool quiet = false;                 ///< no progress line
-  std::size_t chunk_size = 1 << 20;   ///< bytes of messages per chunk
-  std::string compression = "zstd";   ///< of chunks: "zstd" or "" (none)
-  double split_size_mb = 0.0;         ///< start a new file past this size; 0: never
-  double split_duration_s = 0.0;      ///< start a new file after this long; 0: never
-};
-
 struct ReplayOptions {
-  ConnectionOptions connection;
+  topic::ConnectionOptions connection;
   std::string file;
   std::vector<std::string> topics;   ///< names or globs; empty: every recorded quad topic
   std::vector<std::string> exclude;
@@ -42,7 +30,7 @@ struct ReplayOptions {
 int replay(const ReplayOptions& options);
 
 /// Records until Ctrl-C, SIGTERM or the duration; returns the exit status.
-int record(const RecordOptions& options);
+int record(const record::RecordOptions& options);
 
 /// Prints topics, types, counts, rates, time span and loss figures of a recording.
 int bagInfo(const std::string& file);

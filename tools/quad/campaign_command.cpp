@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "launch_run.hpp"
+#include "quad/launch/run.hpp"
 #include "quad/campaign/campaign.hpp"
 #include "quad/dds/participant.hpp"
 
@@ -22,7 +22,7 @@ int campaign(const CampaignCommandOptions& options)
   for (const auto& w : options.worlds) {
     if (!fs::is_regular_file(w)) {
       std::fprintf(stderr, "campaign: %s: no such world file\n", w.c_str());
-      return kExitInvalid;
+      return launch::kExitInvalid;
     }
     c.worlds.push_back(fs::absolute(w));
   }
@@ -30,9 +30,9 @@ int campaign(const CampaignCommandOptions& options)
     c.domain = options.domain ? *options.domain : dds::optionsFromEnvironment("quad_campaign").domain_id;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "campaign: %s\n", e.what());
-    return kExitInvalid;
+    return launch::kExitInvalid;
   }
-  c.dir = fs::absolute(options.dir ? fs::path(*options.dir) : fs::path("log") / runFolderName("campaign"));
+  c.dir = fs::absolute(options.dir ? fs::path(*options.dir) : fs::path("log") / launch::runFolderName("campaign"));
   c.wall_timeout_s = options.wall_timeout_s;
   fs::create_directories(c.dir);
   std::printf("campaign: %zu worlds x %d seeds, runs in %s\n", c.worlds.size(), c.seeds, c.dir.string().c_str());
@@ -48,11 +48,11 @@ int campaign(const CampaignCommandOptions& options)
   out << campaign::toJson(runs);
   if (!out) {
     std::fprintf(stderr, "campaign: cannot write %s\n", json.string().c_str());
-    return kExitFailed;
+    return launch::kExitFailed;
   }
   std::printf("campaign: %s\n", json.string().c_str());
   const bool all = std::all_of(runs.begin(), runs.end(), [](const campaign::CampaignRun& r) { return r.success; });
-  return all ? 0 : kExitFailed;
+  return all ? 0 : launch::kExitFailed;
 }
 
 }  // namespace quad::tools

@@ -12,12 +12,12 @@
 #include "plan_command.hpp"
 #include "security_command.hpp"
 #include "bag_commands.hpp"
-#include "so3_command.hpp"
+#include "quad/so3/so3.hpp"
 #include "topic_commands.hpp"
 
 namespace {
 
-void addConnectionOptions(CLI::App* command, quad::tools::ConnectionOptions& connection)
+void addConnectionOptions(CLI::App* command, quad::topic::ConnectionOptions& connection)
 {
   command->add_option("--domain", connection.domain_id,
                       "DDS domain id (default: $QUAD_DOMAIN_ID, else 0)")
@@ -32,7 +32,7 @@ int main(int argc, char** argv)
   app.require_subcommand(1);
   app.set_version_flag("--version", "quad 0.1.0");
 
-  quad::tools::LaunchOptions launch_options;
+  quad::launch::LaunchOptions launch_options;
   auto* launch = app.add_subcommand("launch", "Start a manifest's modules on their hosts, supervise them, fly its mission");
   launch->add_option("manifest", launch_options.manifest, "Manifest, e.g. bringup/demo.yaml")->required();
   launch->add_option("--world", launch_options.world, "Fly this world instead of the manifest's");
@@ -72,7 +72,7 @@ int main(int argc, char** argv)
   campaign->add_option("--wall-timeout", campaign_options.wall_timeout_s, "A run still going after this many seconds fails")
       ->check(CLI::PositiveNumber);
 
-  quad::tools::FaultOptions fault_options;
+  quad::fault::FaultOptions fault_options;
   auto* fault = app.add_subcommand("fault", "Run a fault-injection scenario: launch, break the stack on its timeline, check the reactions");
   fault->add_option("scenario", fault_options.scenario, "Scenario, e.g. tests/scenarios/kill_planning.yaml")->required();
   fault->add_option("--domain", fault_options.domain, "DDS domain id (default: the manifest's, else $QUAD_DOMAIN_ID, else 0)")
@@ -83,7 +83,7 @@ int main(int argc, char** argv)
   fault->add_flag("-q,--quiet", fault_options.quiet, "Modules' output to their log files only");
   fault->add_flag("--check", fault_options.check, "Validate the scenario and its manifest and exit");
 
-  quad::tools::RecordOptions record_options;
+  quad::record::RecordOptions record_options;
   auto* record = app.add_subcommand("record", "Record topic traffic to an MCAP file (Ctrl-C stops)");
   addConnectionOptions(record, record_options.connection);
   record->add_option("topics", record_options.topics, "Topics or globs (default: every quad topic)");
@@ -193,7 +193,7 @@ int main(int argc, char** argv)
 
   auto* so3 = app.add_subcommand("so3", "Rotations for students: convert, distance, sample");
   so3->require_subcommand(1);
-  quad::tools::So3Options so3_options;
+  quad::so3::So3Options so3_options;
   const auto addSo3Options = [&so3_options](CLI::App* command) {
     command->add_flag("--degrees", so3_options.degrees, "Angles in and out in degrees");
     command->add_option("--tolerance", so3_options.tolerance,
@@ -229,18 +229,18 @@ int main(int argc, char** argv)
 
   try {
     if (convert->parsed()) {
-      quad::tools::so3Convert(convert->remaining(), so3_options, std::cout);
+      quad::so3::so3Convert(convert->remaining(), so3_options, std::cout);
       return 0;
     }
     if (distance->parsed()) {
-      quad::tools::so3Distance(distance->remaining(), so3_options, std::cout);
+      quad::so3::so3Distance(distance->remaining(), so3_options, std::cout);
       return 0;
     }
     if (sample->parsed()) {
-      quad::tools::so3Sample(sample_count, sample_seed, sample_as, so3_options, std::cout);
+      quad::so3::so3Sample(sample_count, sample_seed, sample_as, so3_options, std::cout);
       return 0;
     }
-  } catch (const quad::tools::UsageError& e) {
+  } catch (const quad::so3::UsageError& e) {
     std::fprintf(stderr, "quad so3: %s\n", e.what());
     return 2;
   }

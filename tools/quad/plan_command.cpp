@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "launch_run.hpp"
+#include "quad/launch/run.hpp"
 #include "quad/plan/known_map.hpp"
 
 namespace quad::tools {
@@ -46,18 +46,18 @@ int plan(const PlanOptions& options)
       out << j.dump(2) << "\n";
       if (!out) {
         std::fprintf(stderr, "plan: cannot write %s\n", options.json->c_str());
-        return kExitFailed;
+        return launch::kExitFailed;
       }
     }
-    return p.status == planning::PlanStatus::kOk ? 0 : kExitNoPath;
+    return p.status == planning::PlanStatus::kOk ? 0 : launch::kExitNoPath;
   } catch (const common::ConfigError& e) {
     for (const auto& problem : e.problems()) {
       std::fprintf(stderr, "%s\n", problem.c_str());
     }
-    return kExitInvalid;
+    return launch::kExitInvalid;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "plan: %s\n", e.what());
-    return kExitInvalid;
+    return launch::kExitInvalid;
   }
 }
 

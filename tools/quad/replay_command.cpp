@@ -5,7 +5,7 @@
 #include <memory>
 #include <thread>
 
-#include "connection.hpp"
+#include "quad/topic/connection.hpp"
 #include "quad/bag/mcap.hpp"
 #include "quad/common/time.hpp"
 #include "quad/dds/node.hpp"
@@ -29,12 +29,12 @@ int replay(const ReplayOptions& options)
                  c.problem.c_str());
   }
   dds::SignalWatcher signals;
-  dds::Participant participant(participantOptions("quad_replay", options.connection));
+  dds::Participant participant(topic::participantOptions("quad_replay", options.connection));
 
   // The channels to publish: selected, and with a quad contract to publish them under.
   std::map<std::uint16_t, std::unique_ptr<dds::RawPublisher>> publishers;
   for (const auto& ch : c.channels) {
-    if ((!options.topics.empty() && !matchesAnyGlob(ch.topic, options.topics)) || matchesAnyGlob(ch.topic, options.exclude)) {
+    if ((!options.topics.empty() && !topic::matchesAnyGlob(ch.topic, options.topics)) || topic::matchesAnyGlob(ch.topic, options.exclude)) {
       continue;
     }
     const auto contract = dds::topics::find(ch.topic);

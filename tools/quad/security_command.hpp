@@ -2,19 +2,9 @@
 /// @file
 /// `quad security init`.
 
-#include <string>
-#include <vector>
-
-#include "security/init.hpp"
+#include "quad/security/roles.hpp"
 
 namespace quad::tools {
-
-/// Every identity of quad and what it may do, from the topic contracts' owners: a module
-/// publishes the topics it owns (and every module's heartbeat, lockstep and fault
-/// acknowledgements); the launcher what the operator owns and the fault tool's topics; the
-/// fault tool's bad-input publisher, replay and `topic pub` any quad topic; the recorder and
-/// the other topic tools nothing. Every identity reads every quad topic.
-std::vector<security::Role> securityRoles();
 
 /// Prints the files written; returns the exit status.
 int securityInit(const security::InitOptions& options);

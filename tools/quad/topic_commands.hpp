@@ -5,22 +5,18 @@
 #include <optional>
 #include <string>
 
+#include "quad/topic/connection.hpp"
+
 namespace quad::tools {
 
-/// What every quad command shares: the domain and discovery of the running stack. Unset
-/// fields come from the environment (QUAD_DOMAIN_ID, ...), as for every module.
-struct ConnectionOptions {
-  std::optional<int> domain_id;
-};
-
 struct TopicListOptions {
-  ConnectionOptions connection;
+  topic::ConnectionOptions connection;
   double wait_s = 2.0;      ///< how long to listen to discovery
   bool contracts = false;   ///< print the declared contracts instead
 };
 
 struct TopicEchoOptions {
-  ConnectionOptions connection;
+  topic::ConnectionOptions connection;
   std::string topic;
   int count = 0;            ///< stop after this many samples; 0 = until Ctrl-C
   double timeout_s = 0.0;   ///< give up (exit 1) after this long without `count` samples; 0 = never
@@ -29,7 +25,7 @@ struct TopicEchoOptions {
 };
 
 struct TopicPubOptions {
-  ConnectionOptions connection;
+  topic::ConnectionOptions connection;
   std::string topic;
   std::string values;       ///< YAML, e.g. "{kind: COMMAND_HOLD}"
   int count = 1;
@@ -38,13 +34,13 @@ struct TopicPubOptions {
 };
 
 struct TopicInfoOptions {
-  ConnectionOptions connection;
+  topic::ConnectionOptions connection;
   std::string topic;
   double wait_s = 2.0;      ///< how long to listen to discovery
 };
 
 struct TopicHzOptions {
-  ConnectionOptions connection;
+  topic::ConnectionOptions connection;
   std::string topic;
   double duration_s = 0.0;  ///< 0: until Ctrl-C
   double window_s = 1.0;    ///< a line per window

@@ -1,21 +1,21 @@
 #include <cstdio>
 #include <iostream>
 
-#include "connection.hpp"
+#include "quad/topic/connection.hpp"
 #include "quad/common/time.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/raw_type.hpp"
 #include "quad/introspection/cdr.hpp"
-#include "text_format.hpp"
+#include "quad/topic/text_format.hpp"
 #include "topic_commands.hpp"
 
 namespace quad::tools {
 
 int topicEcho(const TopicEchoOptions& options)
 {
-  const dds::TopicInfo info = requireTopic(options.topic);
+  const dds::TopicInfo info = topic::requireTopic(options.topic);
   dds::SignalWatcher signals;
-  dds::Participant participant(participantOptions("quad_topic_echo", options.connection));
+  dds::Participant participant(topic::participantOptions("quad_topic_echo", options.connection));
   dds::Waker waker;
   signals.onSignal([&waker](int) { waker.notify(); });
   participant.events().setNotifier([&waker] { waker.notify(); });
@@ -51,7 +51,7 @@ int topicEcho(const TopicEchoOptions& options)
         if (options.json) {
           std::cout << value.dump() << "\n";
         } else {
-          std::cout << toYaml(value) << "---\n";
+          std::cout << topic::toYaml(value) << "---\n";
         }
         std::cout.flush();
         ++printed;

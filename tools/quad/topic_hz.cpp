@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <limits>
 
-#include "connection.hpp"
+#include "quad/topic/connection.hpp"
 #include "quad/common/time.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/raw_type.hpp"
@@ -14,9 +14,9 @@ namespace quad::tools {
 
 int topicHz(const TopicHzOptions& options)
 {
-  const dds::TopicInfo info = requireTopic(options.topic);
+  const dds::TopicInfo info = topic::requireTopic(options.topic);
   dds::SignalWatcher signals;
-  dds::Participant participant(participantOptions("quad_topic_hz", options.connection));
+  dds::Participant participant(topic::participantOptions("quad_topic_hz", options.connection));
   dds::Waker waker;
   dds::RawSubscriber subscriber(participant, info, &waker);
   const std::string expected = info.rate_hz > 0 ? std::to_string(static_cast<int>(info.rate_hz)) + " Hz" : "event";

@@ -2,7 +2,7 @@
 #include <cstdio>
 #include <thread>
 
-#include "connection.hpp"
+#include "quad/topic/connection.hpp"
 #include "quad/common/params.hpp"
 #include "quad/dds/topics.hpp"
 #include "topic_commands.hpp"
@@ -11,7 +11,7 @@ namespace quad::tools {
 
 int topicInfo(const TopicInfoOptions& options)
 {
-  const dds::TopicInfo info = requireTopic(options.topic);
+  const dds::TopicInfo info = topic::requireTopic(options.topic);
   std::printf("topic:       %s\n", std::string(info.name).c_str());
   std::printf("type:        %s (idl/%s)\n", std::string(info.type_name).c_str(), std::string(info.idl_file).c_str());
   std::printf("qos:         %s (configs/dds/quad_qos.xml)\n", std::string(info.qos_profile).c_str());
@@ -22,7 +22,7 @@ int topicInfo(const TopicInfoOptions& options)
   std::printf("written by:  %s\n", std::string(dds::toString(info.owner)).c_str());
   std::printf("what:        %s\n", std::string(info.description).c_str());
 
-  dds::Participant participant(participantOptions("quad_topic_info", options.connection));
+  dds::Participant participant(topic::participantOptions("quad_topic_info", options.connection));
   std::this_thread::sleep_for(std::chrono::duration<double>(options.wait_s));
   int writers = 0;
   int readers = 0;

@@ -3,7 +3,7 @@
 #include <map>
 #include <thread>
 
-#include "connection.hpp"
+#include "quad/topic/connection.hpp"
 #include "quad/common/params.hpp"
 #include "quad/dds/topics.hpp"
 #include "topic_commands.hpp"
@@ -35,7 +35,7 @@ int topicList(const TopicListOptions& options)
     printContracts();
     return 0;
   }
-  dds::Participant participant(participantOptions("quad_topic_list", options.connection));
+  dds::Participant participant(topic::participantOptions("quad_topic_list", options.connection));
   std::this_thread::sleep_for(std::chrono::duration<double>(options.wait_s));
 
   struct Row {

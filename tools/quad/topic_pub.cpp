@@ -3,12 +3,13 @@
 #include <stdexcept>
 #include <thread>
 
-#include "connection.hpp"
+#include "quad/topic/connection.hpp"
+#include "quad/topic/samples.hpp"
 #include "quad/common/time.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/raw_type.hpp"
 #include "quad/introspection/cdr.hpp"
-#include "text_format.hpp"
+#include "quad/topic/text_format.hpp"
 #include "topic_commands.hpp"
 
 namespace quad::tools {
@@ -17,56 +18,17 @@ namespace {
 constexpr auto kReaderMatchSettle = std::chrono::milliseconds(300);
 }  // namespace
 
-nlohmann::ordered_json sampleValues(const dds::TopicInfo& info, const std::string& values)
-{
-  nlohmann::ordered_json value;
-  try {
-    value = yamlToJson(values);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument("values '" + values + "': " + e.what());
-  }
-  if (!value.is_object()) {
-    throw std::invalid_argument("values '" + values + "': expected a map of fields");
-  }
-  // Encoded once before any DDS work, so a typo costs nothing.
-  try {
-    introspection::encodeCdr(introspection::quadSchema(), info.type_name, value);
-  } catch (const introspection::EncodeError& e) {
-    throw std::invalid_argument(std::string(info.name) + ": " + e.what());
-  }
-  return value;
-}
-
-dds::RawSample encodeSample(const dds::TopicInfo& info, nlohmann::ordered_json sample, std::int64_t stamp_ns,
-                            std::uint64_t seq, std::uint32_t vehicle_id, bool enforce_bounds)
-{
-  // The header is the publisher's to fill, as Publisher<T> does for the modules, except what
-  // the values set on purpose.
-  auto& header = sample["header"];
-  const auto fill = [&](const char* key, auto v) {
-    if (!header.contains(key)) {
-      header[key] = v;
-    }
-  };
-  fill("stamp_ns", stamp_ns);
-  fill("publish_ns", common::wallTimeNs());
-  fill("seq", seq);
-  fill("vehicle_id", vehicle_id);
-  return dds::RawSample{
-      introspection::encodeCdr(introspection::quadSchema(), info.type_name, sample, {.enforce_bounds = enforce_bounds})};
-}
-
 int topicPub(const TopicPubOptions& options)
 {
-  const dds::TopicInfo info = requireTopic(options.topic);
+  const dds::TopicInfo info = topic::requireTopic(options.topic);
   if (options.count < 1 || !(options.rate_hz > 0.0)) {
     throw std::invalid_argument("--count must be >= 1 and --rate > 0");
   }
-  const nlohmann::ordered_json value = sampleValues(info, options.values);
+  const nlohmann::ordered_json value = topic::sampleValues(info, options.values);
 
   dds::SignalWatcher signals;
   const dds::ParticipantOptions participant_options =
-      participantOptions("quad_topic_pub", options.connection);
+      topic::participantOptions("quad_topic_pub", options.connection);
   dds::Participant participant(participant_options);
   dds::RawPublisher publisher(participant, info);
 
@@ -89,7 +51,7 @@ int topicPub(const TopicPubOptions& options)
   auto next = std::chrono::steady_clock::now();
   for (int i = 1; i <= options.count && signals.received() == 0; ++i) {
     dds::RawSample raw =
-        encodeSample(info, value, common::wallTimeNs(), static_cast<std::uint64_t>(i), participant_options.vehicle_id);
+        topic::encodeSample(info, value, common::wallTimeNs(), static_cast<std::uint64_t>(i), participant_options.vehicle_id);
     if (!publisher.write(raw)) {
       std::fprintf(stderr, "quad topic pub: %s: write %d refused\n", options.topic.c_str(), i);
       return 1;

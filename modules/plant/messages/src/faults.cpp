@@ -1,0 +1,110 @@
+#include "quad/plant_messages/faults.hpp"
+
+#include <cmath>
+
+#include "quad/common/time.hpp"
+#include "quad/dds/geometry_messages.hpp"
+
+namespace quad::plant {
+
+using dds::toMessage;
+
+std::optional<Fault> faultFrom(const msg::FaultCommand& c, std::int64_t now_ns, std::string& why_not)
+{
+  Fault f;
+  f.id = c.fault_id();
+  f.start_ns = now_ns;
+  f.duration_ns = c.duration_s() > 0.0 && std::isfinite(c.duration_s()) ? common::toNanoseconds(c.duration_s()) : 0;
+  if (f.id == 0) {
+    why_not = "fault_id 0 is invalid";
+    return std::nullopt;
+  }
+  if (!std::isfinite(c.magnitude())) {
+    why_not = "magnitude is not finite";
+    return std::nullopt;
+  }
+  const auto sensor = [&]() -> bool {
+    const auto s = parseSensor(c.target().to_string());
+    if (!s) {
+      why_not = "target '" + c.target().to_string() + "' is not a plant sensor (depth, imu, state)";
+      return false;
+    }
+    f.sensor = *s;
+    return true;
+  };
+  switch (c.kind()) {
+    case msg::FAULT_MOTOR_FAILURE:
+      if (c.index() < 0 || c.index() > 3 || c.magnitude() < 0.0 || c.magnitude() > 1.0) {
+        why_not = "motor faults need index 0..3 and a remaining efficiency in [0, 1]";
+        return std::nullopt;
+      }
+      f.kind = Fault::Kind::kMotor;
+      f.rotor = c.index();
+      f.magnitude = c.magnitude();
+      return f;
+    case msg::FAULT_SENSOR_DROPOUT:
+      f.kind = Fault::Kind::kSensorDropout;
+      return sensor() ? std::optional(f) : std::nullopt;
+    case msg::FAULT_SENSOR_STUCK:
+      f.kind = Fault::Kind::kSensorStuck;
+      return sensor() ? std::optional(f) : std::nullopt;
+    case msg::FAULT_SENSOR_NOISE:
+      if (c.magnitude() < 0.0) {
+        why_not = "noise std dev must be >= 0";
+        return std::nullopt;
+      }
+      f.kind = Fault::Kind::kSensorNoise;
+      f.magnitude = c.magnitude();
+      return sensor() ? std::optional(f) : std::nullopt;
+    case msg::FAULT_WIND_GUST: {
+      const Eigen::Vector3d w(c.vector_W().x(), c.vector_W().y(), c.vector_W().z());
+      if (!w.allFinite()) {
+        why_not = "wind vector is not finite";
+        return std::nullopt;
+      }
+      f.kind = Fault::Kind::kWindGust;
+      f.wind_W = w;
+      return f;
+    }
+    default:
+      why_not = "this kind is not applied by the plant (datagram faults need its fault layer: QUAD_FAULT_LAYER=1)";
+      return std::nullopt;
+  }
+}
+
+msg::FaultCommand toCommand(const Fault& f)
+{
+  msg::FaultCommand c;
+  c.fault_id(f.id);
+  c.module_name("plant");
+  c.index(-1);
+  c.duration_s(common::toSeconds(f.duration_ns));
+  switch (f.kind) {
+    case Fault::Kind::kMotor:
+      c.kind(msg::FAULT_MOTOR_FAILURE);
+      c.index(f.rotor);
+      c.magnitude(f.magnitude);
+      break;
+    case Fault::Kind::kSensorDropout:
+      c.kind(msg::FAULT_SENSOR_DROPOUT);
+      break;
+    case Fault::Kind::kSensorStuck:
+      c.kind(msg::FAULT_SENSOR_STUCK);
+      break;
+    case Fault::Kind::kSensorNoise:
+      c.kind(msg::FAULT_SENSOR_NOISE);
+      c.magnitude(f.magnitude);
+      break;
+    case Fault::Kind::kWindGust:
+      c.kind(msg::FAULT_WIND_GUST);
+      c.vector_W(toMessage(f.wind_W));
+      break;
+  }
+  if (f.kind == Fault::Kind::kSensorDropout || f.kind == Fault::Kind::kSensorStuck ||
+      f.kind == Fault::Kind::kSensorNoise) {
+    c.target(std::string(toString(f.sensor)));
+  }
+  return c;
+}
+
+}  // namespace quad::plant

@@ -1,0 +1,133 @@
+#pragma once
+/// @file
+/// A fault-injection scenario (tests/scenarios/*.yaml): the manifest to launch, a timeline of
+/// faults in sim time, what the stack must do after each, and how the run must end. No DDS:
+/// `quad fault` applies it; docs/fault-injection.md describes the format.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "quad/wire/datagram_faults.hpp"
+#include "quad/launch/link_faults.hpp"
+#include "quad/plant/faults.hpp"
+
+namespace quad::fault {
+
+/// What a step does to the running stack.
+struct Action {
+  enum class Kind {
+    kKill,     ///< SIGKILL to a module's process group
+    kPause,    ///< SIGSTOP
+    kResume,   ///< SIGCONT
+    kRestart,  ///< stop (SIGTERM, then SIGKILL) and start again
+    kPlant,    ///< a plant fault, applied by the plant node (quad/system/fault)
+    kPublish,  ///< samples published on a topic (bad inputs)
+    kDds,      ///< datagram faults in a module's DDS fault layer (quad/system/fault)
+    kLink,     ///< a fault on a network-namespace host's link (iptables, ip link)
+  };
+  Kind kind = Kind::kKill;
+  std::string module;              ///< process actions
+  plant::Fault plant;              ///< kPlant (its id is the step's number)
+  std::string topic;               ///< kPublish
+  std::string values;              ///< kPublish: the sample's fields in YAML, as `quad topic pub` takes them
+  /// kPublish: list fields repeated to these lengths, past their IDL bounds if so (the
+  /// sample is then encoded as given: an oversized sequence).
+  std::map<std::string, std::size_t> lengths;
+  int count = 1;                   ///< kPublish: how many samples
+  double rate_hz = 10.0;           ///< kPublish: at this rate
+  /// kDds: the faults on what `module` receives, ids `kDatagramIdBase * step + 1..5`.
+  std::vector<wire::DatagramFault> datagrams;
+  launch::LinkFault link;            ///< kLink
+  /// kDds, kLink: cleared (healed) this long after; absent: when the run ends.
+  std::optional<double> duration_s;
+
+  /// A fault that lasts until it is cleared, and whose clearing the report shows.
+  bool lasts() const { return kind == Kind::kDds || kind == Kind::kLink; }
+
+  /// "kill planning", "plant: fault 3 motor: rotor 2 at 0.5 efficiency", ...
+  std::string describe() const;
+};
+
+/// Datagram fault ids are `kDatagramIdBase * step + k`: apart from step numbers, which
+/// name the fault tool's own events and plant faults.
+inline constexpr std::uint32_t kDatagramIdBase = 1000;
+inline constexpr std::size_t kMaxSteps = 999;
+
+/// What must follow a step, and how soon.
+struct Expectation {
+  enum class Kind {
+    kMode,      ///< the controller reports `mode` within `within_s` of sim time
+    kNoticed,   ///< the launcher's readers see `module` lose liveliness within `within_s` wall seconds
+    kBack,      ///< `module` runs again (a heartbeat from a new process) within `within_s` wall seconds
+    kRejected,  ///< `module`'s count of rejected inputs (its heartbeat's errors) grows within `within_s` wall seconds
+  };
+  /// Where a kMode bound is measured from.
+  enum class Since {
+    kFault,     ///< the moment the step's fault took effect
+    kLastPath,  ///< the stamp of the last path a controller would fly (PLAN_OK, finite waypoints):
+                ///< a reaction to the path going stale, its timeout included in `within_s`
+  };
+  Kind kind = Kind::kMode;
+  std::string mode;    ///< kMode: a ControlMode name without its prefix ("HOVER")
+  std::string module;  ///< the others
+  double within_s = 1.0;
+  Since since = Since::kFault;
+
+  bool simTime() const { return kind == Kind::kMode; }
+  /// "mode HOVER", "noticed planning", ...
+  std::string describe() const;
+};
+
+struct Step {
+  double at_s = 0.0;  ///< sim time it is due
+  Action action;
+  std::vector<Expectation> expect;
+};
+
+/// How the run must end.
+struct Outcome {
+  enum class Mission { kSuccess, kFailure, kAny };
+  Mission mission = Mission::kSuccess;
+  int max_collisions = 0;
+  bool finite_actuators = true;   ///< no actuator command with a non-finite rotor speed
+  bool zero_loss = true;          ///< the recording lost nothing on reliable topics
+};
+
+struct Scenario {
+  std::filesystem::path file;
+  std::string name;
+  std::string description;
+  std::filesystem::path manifest;             ///< absolute
+  std::optional<std::filesystem::path> world; ///< absolute; replaces the manifest's
+  std::optional<std::string> mode;            ///< "realtime" | "lockstep"; replaces the manifest's
+  std::optional<double> end_s;                ///< sim time to end the run at (before the mission ends)
+  std::vector<Step> steps;                    ///< in time order
+  Outcome outcome;
+};
+
+/// What a scenario can name, checked against the manifest and the IDL by the caller.
+struct ScenarioLookup {
+  std::vector<std::string> modes;  ///< ControlMode names ("HOVER", ...)
+  /// Why `values` (YAML) cannot be published on `topic`; empty when it can.
+  std::function<std::string(const std::string& topic, const std::string& values)> check_sample;
+};
+
+/// Every problem as `file:key: value: reason` in a common::ConfigError.
+Scenario parseScenario(std::string_view yaml_text, const std::filesystem::path& file, const ScenarioLookup& lookup);
+Scenario loadScenario(const std::filesystem::path& file, const ScenarioLookup& lookup);
+
+/// Problems of a scenario against the manifest it launches (modules or hosts it names that
+/// the manifest lacks; a plant fault without a plant; a link fault on a host that is not a
+/// network namespace), as `file:key: value: reason`. `hosts`: each host, and whether it is
+/// a network namespace.
+std::vector<std::string> checkAgainstModules(const Scenario& scenario, const std::vector<std::string>& modules,
+                                             const std::vector<std::string>& kinds,
+                                             const std::map<std::string, bool>& hosts = {});
+
+}  // namespace quad::fault

@@ -1,0 +1,106 @@
+#pragma once
+/// @file
+/// Follows a mission from what the stack publishes (vehicle state, controller mode, paths,
+/// collisions) and says when it is over and how it went. No DDS: the launcher feeds it.
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "quad/launch/manifest.hpp"
+#include "quad/world/world.hpp"
+
+namespace quad::launch {
+
+/// How a mission ended, for the exit status: each kind its own (docs/launch.md).
+enum class MissionEnd { kUnfinished, kSuccess, kFailed, kNoPath };
+/// "unfinished", "success", "failed", "no_path": the summary's `end`.
+std::string_view toString(MissionEnd end);
+
+struct MissionSummary {
+  bool success = false;
+  MissionEnd end = MissionEnd::kUnfinished;
+  std::string outcome;          ///< "landed at the goal", "timed out 3.2 m from the goal", ...
+  std::string failure;          ///< why it failed, in words ("" when it succeeded)
+  int collisions = 0;
+  double sim_s = 0.0;           ///< sim time when the mission ended
+  double wall_s = 0.0;
+  double path_length_m = 0.0;   ///< flown, from the vehicle states
+  double straight_line_m = 0.0; ///< start to goal
+  std::optional<double> optimum_m; ///< the known-map optimum (quad plan), when the run has a planner
+  int paths = 0;                ///< path versions received (the planner's replans that changed the path)
+  double min_clearance_m = 0.0; ///< closest the vehicle's bounding sphere came to an obstacle
+  int mode_changes = 0;
+  std::vector<std::string> modes;  ///< "t MODE" in order
+  double goal_distance_m = 0.0; ///< at the end
+};
+
+class MissionTracker {
+public:
+  /// `radius`: the vehicle's bounding sphere [m]; 0 measures clearance from its centre.
+  MissionTracker(Mission mission, const world::World& world, double radius);
+
+  /// A vehicle state at sim time t [s].
+  void onState(double t, const Eigen::Vector3d& p);
+  /// The controller's mode (its name) at sim time t; repeats are ignored.
+  void onMode(double t, const std::string& mode);
+  /// A path of this version was published. `no_path`: the planner said the goal cannot be
+  /// reached, and why (in words); empty when it has a path or is merely waiting.
+  void onPath(std::uint32_t version, const std::string& no_path = {});
+  /// The plant reported a collision.
+  void onCollision(double t);
+
+  /// True once, when the goal was reached and the mission asks to land there: the caller
+  /// sends the land command.
+  bool takeLandRequest();
+  /// Lines worth printing while the mission flies ("t = 12.3 s: MISSION -> HOVER"), once each.
+  std::vector<std::string> takeProgress();
+
+  bool finished() const { return finished_; }
+  double simTime() const { return t_; }
+  MissionSummary summary(double wall_s) const;
+
+private:
+  void finish(MissionEnd end, std::string outcome, std::string failure = {});
+  /// At the goal: a success unless the vehicle collided on the way.
+  void finishAtGoal(const std::string& outcome);
+
+  Mission mission_;
+  const world::World& world_;
+  double radius_;
+  Eigen::Vector3d goal_;
+  double t_ = 0.0;
+  std::optional<Eigen::Vector3d> last_p_;
+  double length_ = 0.0;
+  double min_clearance_;
+  std::string mode_;
+  std::vector<std::string> modes_;
+  std::uint32_t last_version_ = 0;
+  int paths_ = 0;
+  int collisions_ = 0;
+  bool goal_reached_ = false;
+  bool land_requested_ = false;
+  bool land_taken_ = false;
+  bool finished_ = false;
+  MissionEnd end_ = MissionEnd::kUnfinished;
+  std::string outcome_;
+  std::string failure_;
+  std::string no_path_;  // the planner's last word that the goal cannot be reached
+  std::vector<std::string> progress_;
+  double next_progress_t_ = 10.0;
+};
+
+/// Why a mission to this world's goal cannot be flown at all, naming the goal: it lies outside
+/// the world's bounds, or inside an obstacle or within `radius` [m] of one. Nothing when it can.
+std::optional<std::string> goalProblem(const world::World& world, double radius);
+
+/// The summary as one JSON object (the --summary file).
+std::string toJson(const MissionSummary& s);
+/// The summary for people, a few lines.
+std::string toText(const MissionSummary& s);
+
+}  // namespace quad::launch

@@ -1,0 +1,58 @@
+#pragma once
+/// @file
+/// The launcher's own DDS participant: tells whether topics are live (a writer was
+/// discovered), and plays the operator of a mission (gives the goal, commands the landing)
+/// while feeding a MissionTracker with what the stack publishes.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "quad/launch/mission.hpp"
+#include "quad/dds/participant.hpp"
+
+namespace quad::launch {
+
+/// Why a path status means the goal cannot be reached, in words; empty when it does not.
+std::string noPathReason(int status);
+/// "HOVER" for CONTROL_HOVER: a ControlMode's name from the IDL, without its prefix.
+std::string controlModeName(int mode);
+/// Every ControlMode's name, in that form.
+std::vector<std::string> controlModeNames();
+
+class Observer {
+public:
+  explicit Observer(dds::ParticipantOptions options);
+  ~Observer();
+
+  /// The topics of `topics` with no writer discovered yet.
+  std::vector<std::string> missingWriters(const std::vector<std::string>& topics) const;
+
+  /// Starts following a mission to `world`'s goal: publishes the goal (latched).
+  void startMission(const Mission& mission, const world::World& world, double radius);
+  /// Takes what arrived, feeds the tracker, sends the land command when it asks.
+  void update();
+  /// Null until startMission.
+  MissionTracker* mission() { return tracker_.get(); }
+  /// Wall time [ns, steady] of the last vehicle state; 0 before the first.
+  std::int64_t lastStateNs() const { return last_state_ns_; }
+  /// For tools that act on the run through the launcher's participant (quad fault).
+  dds::Participant& participant() { return participant_; }
+  /// The newest sim time the plant's clock told [ns]; 0 before the first.
+  std::int64_t simTimeNs() const;  ///< the newest sim time the plant's clock told
+  /// The vehicle's position in the newest state the clock vouches for.
+  const Eigen::Vector3d& position() const { return position_; }
+
+private:
+  struct Sim;
+  struct Endpoints;
+  dds::Participant participant_;
+  std::unique_ptr<Sim> sim_;
+  std::unique_ptr<Endpoints> endpoints_;
+  std::unique_ptr<MissionTracker> tracker_;
+  std::int64_t last_state_ns_ = 0;
+  std::int64_t state_ns_ = 0;  // stamp of the newest state taken
+  Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
+};
+
+}  // namespace quad::launch

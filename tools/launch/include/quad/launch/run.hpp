@@ -1,0 +1,154 @@
+#pragma once
+/// @file
+/// One run of a manifest: sets up its hosts, starts its modules in order (each once the
+/// topics it needs have a writer), supervises them (respawn, failure), flies the mission with
+/// the launcher's observer, and stops everything in reverse order. `quad launch` runs it as
+/// it is; `quad fault` drives it through a RunExtension to break the stack on purpose.
+
+#include <sys/types.h>
+
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "quad/launch/hosts.hpp"
+#include "quad/launch/manifest.hpp"
+#include "quad/launch/mission.hpp"
+#include "quad/launch/observer.hpp"
+#include "quad/launch/supervisor.hpp"
+
+namespace quad::launch {
+
+/// How to run a manifest: `quad launch`'s options, which `quad fault` and `quad campaign`
+/// fill too.
+struct LaunchOptions {
+  std::string manifest;
+  std::optional<std::string> world;    ///< replaces the manifest's world
+  bool realtime = false;               ///< mode realtime instead of the manifest's
+  bool lockstep = false;               ///< mode lockstep instead of the manifest's
+  std::optional<std::uint64_t> seed;   ///< ${seed} instead of the manifest's
+  std::optional<int> domain;           ///< replaces the manifest's and the environment's
+  std::optional<std::string> subnet;   ///< replaces the manifest's netns subnet
+  std::optional<std::string> summary;  ///< JSON summary of the mission to this file
+  std::optional<std::string> log_dir;  ///< the run's folder; default log/<name>-<time>
+  std::optional<std::string> record;   ///< record every topic of the run to this MCAP file
+  double wall_timeout_s = 0.0;         ///< stop and fail after this long; 0 = never
+  bool quiet = false;                  ///< modules' output to their logs only
+  bool check = false;                  ///< validate the manifest and exit
+};
+
+class LaunchRun;
+
+/// `quad launch`'s exit status (docs/launch.md): 0 when every module ran as it should and the
+/// mission, if any, succeeded.
+inline constexpr int kExitFailed = 1;   ///< a module failed, or the mission did
+inline constexpr int kExitInvalid = 2;  ///< an invalid manifest or command line, or a goal refused at once
+inline constexpr int kExitNoPath = 3;   ///< the planner found the goal cannot be reached; the vehicle landed
+
+/// Something that acts on a run while it flies.
+class RunExtension {
+public:
+  virtual ~RunExtension() = default;
+  /// Every pass of the run's loop (about every 50 ms) once all modules have started.
+  virtual void tick(LaunchRun& run) = 0;
+  /// True to end the run (stopping its modules as Ctrl-C would, without failing it).
+  virtual bool done() const { return false; }
+  /// The run is about to stop its modules, which still run: the last moment to ask them for
+  /// anything (call run.service() to wait for answers).
+  virtual void ending(LaunchRun& /*run*/) {}
+  /// After the modules stopped: the exit code the extension's verdict makes of `code`.
+  virtual int finish(LaunchRun& run, int code) = 0;
+};
+
+class LaunchRun {
+public:
+  /// `dir`: the run's folder for logs and the summary.
+  LaunchRun(const launch::Manifest& manifest, const LaunchOptions& options, std::filesystem::path dir, int domain);
+  ~LaunchRun();
+
+  /// Runs to the end; 0 when nothing failed and the mission (if any) succeeded, else 1.
+  int execute(RunExtension* extension = nullptr);
+
+  // What an extension may do and see.
+  /// Pumps output, handles exits and pending restarts; false once the run must end.
+  bool service(int timeout_ms);
+  const launch::Manifest& manifest() const { return m_; }
+  launch::Observer& observer() { return *observer_; }
+  const launch::HostNetwork& network() const { return *net_; }
+  const std::filesystem::path& logDir() const { return supervisor_.logDir(); }
+  int domain() const { return domain_; }
+  bool running(const std::string& module) const { return supervisor_.running(module); }
+  std::optional<pid_t> pid(const std::string& module) const { return supervisor_.pid(module); }
+  /// Sends `signal` to a module's process group; when `exit_expected` its exit does not fail
+  /// the run (supervision still respawns it as the manifest says). False if it is not running.
+  bool signalModule(const std::string& module, int signal, bool exit_expected);
+  /// Stops a running module (SIGTERM, then SIGKILL after the grace period) and starts it again;
+  /// starts it now if it is not running.
+  void restartModule(const std::string& module);
+  /// A line of the launcher's, on the console and in launch.log.
+  void say(const std::string& line) { supervisor_.say(line); }
+  /// Why the run failed (a module, the recorder, a timeout); empty while nothing failed.
+  const std::string& failure() const { return failure_; }
+  /// The mission summary, once the run ended (nothing without a mission).
+  const std::optional<launch::MissionSummary>& summary() const { return summary_; }
+
+  /// Set by the signal handler `quad launch` and `quad fault` install.
+  static std::atomic<int> received_signal;
+
+private:
+  struct State {
+    int restarts = 0;
+    std::int64_t restart_at_ns = 0;  // 0: none pending
+    bool started = false;
+    bool exit_expected = false;      // a fault stops it: its exit is not a failure
+    std::optional<int> last_status;
+  };
+
+  void startModule(const launch::Module& mod);
+  void handleExit(const launch::Supervisor::Exit& e);
+  std::string whoWrites(const std::string& topic) const;
+  /// Says, for each module, the last line its log has about lockstep ("lockstep: ...").
+  void reportStall();
+  /// The known-map optimum of the run's world, with its planning module's parameters; nothing
+  /// when the run has no planner or no path exists.
+  std::optional<double> knownMapOptimum();
+  void stopAll();
+  bool waitForNeeds(const launch::Module& mod);
+  const launch::Module& module(const std::string& name) const;
+  bool interrupted() const { return received_signal.load() != 0; }
+
+  const launch::Manifest& m_;
+  const LaunchOptions& options_;
+  int domain_;
+  launch::Supervisor supervisor_;
+  std::unique_ptr<launch::HostNetwork> net_;
+  std::unique_ptr<launch::Observer> observer_;
+  std::map<std::string, std::string> env_;
+  std::map<std::string, State> states_;
+  std::vector<std::string> started_order_;
+  bool failed_ = false;
+  bool ended_ = false;  // a module that ends the run exited normally
+  std::string failure_;
+  std::int64_t start_ns_;
+  std::optional<launch::MissionSummary> summary_;
+};
+
+/// Loads and validates `options.manifest` with the options' overrides (world, mode, domain,
+/// subnet); every problem goes to stderr as `file:key: value: reason`. Nothing when invalid.
+std::optional<launch::Manifest> loadRunManifest(const LaunchOptions& options);
+
+/// Runs a loaded manifest (in its own log folder unless `options.log_dir`); the exit code.
+int runManifest(const launch::Manifest& manifest, const LaunchOptions& options, RunExtension* extension);
+
+/// The build tree this quad binary belongs to (<build>/tools/quad/quad).
+std::filesystem::path buildDir();
+
+/// "demo-20261122-101500-4242": a run folder's name.
+std::string runFolderName(const std::string& name);
+
+}  // namespace quad::launch

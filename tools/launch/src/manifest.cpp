@@ -1,0 +1,454 @@
+#include "quad/launch/manifest.hpp"
+
+#include <arpa/inet.h>
+
+#include <algorithm>
+#include <regex>
+#include <set>
+#include <stdexcept>
+
+#include "quad/common/params.hpp"
+#include "quad/common/yaml_input.hpp"
+
+namespace quad::launch {
+
+namespace fs = std::filesystem;
+
+const Host& Manifest::host(const std::string& host_name) const
+{
+  for (const auto& h : hosts) {
+    if (h.name == host_name) {
+      return h;
+    }
+  }
+  throw std::out_of_range("no host '" + host_name + "' in " + file.string());
+}
+
+bool Manifest::usesNamespaces() const
+{
+  return std::any_of(hosts.begin(), hosts.end(), [](const Host& h) { return h.kind == HostKind::kNetns; });
+}
+
+namespace {
+
+/// The modules quad builds, by the name a manifest gives them.
+const std::map<std::string, std::string> kBuiltModules{
+    {"plant", "modules/plant/node/quad_plant_node"},
+    {"mapping", "modules/mapping/node/quad_mapping_node"},
+    {"planning", "modules/planning/node/quad_planning_node"},
+    {"control", "modules/control/node/quad_control_node"},
+    {"quad", "tools/quad/quad"},
+};
+
+class Reader : public common::YamlReader {
+public:
+  Reader(std::string_view origin, fs::path dir) : YamlReader(origin), dir_(std::move(dir)) {}
+
+  std::optional<std::string> text(const YAML::Node& node, const std::string& key,
+                                  std::optional<std::string> fallback)
+  {
+    if (!node) {
+      if (!fallback) {
+        problem(key, node, "required key not set");
+      }
+      return fallback;
+    }
+    if (!node.IsScalar()) {
+      problem(key, node, "expected a string");
+      return std::nullopt;
+    }
+    return node.as<std::string>();
+  }
+
+  std::optional<bool> flag(const YAML::Node& node, const std::string& key, bool fallback)
+  {
+    if (!node) {
+      return fallback;
+    }
+    const std::string t = node.IsScalar() ? node.as<std::string>() : "";
+    if (t == "true") {
+      return true;
+    }
+    if (t == "false") {
+      return false;
+    }
+    problem(key, node, "expected bool (true or false)");
+    return std::nullopt;
+  }
+
+  std::optional<std::string> choice(const YAML::Node& node, const std::string& key, const std::string& fallback,
+                                    const std::set<std::string>& allowed)
+  {
+    auto t = text(node, key, fallback);
+    if (t && !allowed.contains(*t)) {
+      std::string list;
+      for (const auto& a : allowed) {
+        list += (list.empty() ? "" : ", ") + a;
+      }
+      problem(key, node, "expected one of: " + list);
+      return std::nullopt;
+    }
+    return t;
+  }
+
+  std::vector<std::string> strings(const YAML::Node& node, const std::string& key)
+  {
+    std::vector<std::string> out;
+    if (!node) {
+      return out;
+    }
+    if (!node.IsSequence()) {
+      problem(key, node, "expected a list");
+      return out;
+    }
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      if (auto t = text(node[i], key + "[" + std::to_string(i) + "]", std::nullopt)) {
+        out.push_back(*t);
+      }
+    }
+    return out;
+  }
+
+  /// A map of scalars, in the order written.
+  std::vector<std::pair<std::string, std::string>> scalars(const YAML::Node& node, const std::string& key)
+  {
+    std::vector<std::pair<std::string, std::string>> out;
+    if (!node) {
+      return out;
+    }
+    if (!node.IsMap()) {
+      problem(key, node, "expected a map");
+      return out;
+    }
+    for (const auto& kv : node) {
+      const auto k = kv.first.as<std::string>();
+      if (auto v = text(kv.second, key + "." + k, std::nullopt)) {
+        out.emplace_back(k, *v);
+      }
+    }
+    return out;
+  }
+
+  fs::path path(const std::string& written) const
+  {
+    const fs::path p(written);
+    return p.is_absolute() ? p : (dir_ / p).lexically_normal();
+  }
+
+private:
+  fs::path dir_;
+};
+
+/// Replaces ${name} with its value; an unknown name is a problem.
+std::string expand(const std::string& text, const std::map<std::string, std::string>& vars, Reader& r,
+                   const std::string& key, const YAML::Node& node)
+{
+  static const std::regex var(R"(\$\{([A-Za-z_]+)\})");
+  std::string out;
+  auto begin = std::sregex_iterator(text.begin(), text.end(), var);
+  std::size_t last = 0;
+  for (auto it = begin; it != std::sregex_iterator(); ++it) {
+    out += text.substr(last, static_cast<std::size_t>(it->position()) - last);
+    const auto found = vars.find((*it)[1].str());
+    if (found == vars.end()) {
+      r.problem(key, node, "unknown variable ${" + (*it)[1].str() + "} (known: world, mode, seed, root)");
+    } else {
+      out += found->second;
+    }
+    last = static_cast<std::size_t>(it->position() + it->length());
+  }
+  return out + text.substr(last);
+}
+
+bool isIpv4(const std::string& text)
+{
+  in_addr addr{};
+  return inet_pton(AF_INET, text.c_str(), &addr) == 1;
+}
+
+bool validName(const std::string& name)
+{
+  static const std::regex re("[a-z][a-z0-9_]{0,14}");
+  return std::regex_match(name, re);
+}
+
+void readHosts(YAML::Node node, Reader& r, Manifest& m)
+{
+  if (!node) {
+    m.hosts.push_back(Host{"local", HostKind::kLocal, "", 22, "", {}});
+    return;
+  }
+  if (!node.IsMap() || node.size() == 0) {
+    r.problem("hosts", node, "expected a map of host names to hosts");
+    return;
+  }
+  for (auto kv : node) {
+    Host h;
+    h.name = kv.first.as<std::string>();
+    const std::string key = "hosts." + h.name;
+    YAML::Node spec = kv.second;
+    if (!validName(h.name)) {
+      r.problem(key, kv.first, "a host name is lower case letters, digits and _, at most 15");
+    }
+    if (!spec.IsMap()) {
+      r.problem(key, spec, "expected a map with 'type'");
+      continue;
+    }
+    r.onlyKeys(spec, key + ".", {"type", "address", "port", "root", "options", "interfaces"});
+    const auto type = r.choice(spec["type"], key + ".type", "local", {"local", "netns", "ssh"});
+    if (type == "netns") {
+      h.kind = HostKind::kNetns;
+    } else if (type == "ssh") {
+      h.kind = HostKind::kSsh;
+      h.address = r.text(spec["address"], key + ".address", std::nullopt).value_or("");
+      h.ssh_port = static_cast<int>(r.number(spec["port"], key + ".port", 22, 1, 65535).value_or(22));
+      h.root = r.text(spec["root"], key + ".root", std::string()).value_or("");
+      h.ssh_options = r.strings(spec["options"], key + ".options");
+    }
+    h.interfaces = r.strings(spec["interfaces"], key + ".interfaces");
+    for (std::size_t i = 0; i < h.interfaces.size(); ++i) {
+      if (!isIpv4(h.interfaces[i])) {
+        r.problem(key + ".interfaces[" + std::to_string(i) + "]", spec["interfaces"][i], "not an IPv4 address");
+      }
+    }
+    if (h.kind != HostKind::kSsh) {
+      for (const char* k : {"address", "port", "root", "options"}) {
+        if (spec[k]) {
+          r.problem(key + "." + k, spec[k], "only an ssh host takes this key");
+        }
+      }
+    }
+    m.hosts.push_back(h);
+  }
+}
+
+/// `network:` what DDS may use on each host, and the firewall quad launch installs.
+void readNetwork(const YAML::Node& node, Reader& r, Manifest& m)
+{
+  if (!node) {
+    return;
+  }
+  if (!node.IsMap()) {
+    r.problem("network", node, "expected a map with interfaces and/or firewall");
+    return;
+  }
+  r.onlyKeys(node, "network.", {"interfaces", "firewall"});
+  m.restrict_interfaces = r.choice(node["interfaces"], "network.interfaces", "any", {"any", "hosts"}) == "hosts";
+  m.firewall = r.flag(node["firewall"], "network.firewall", false).value_or(false);
+  if (m.restrict_interfaces) {
+    if (m.transport == "shm") {
+      r.problem("network.interfaces", node["interfaces"], "restricts UDP, and the transport is shm");
+    }
+    for (const auto& h : m.hosts) {
+      const std::string address = h.address.substr(h.address.find('@') + 1);
+      if (h.kind == HostKind::kSsh && h.interfaces.empty() && !isIpv4(address)) {
+        r.problem("hosts." + h.name + ".interfaces", node["interfaces"],
+                  "network.interfaces: hosts needs this ssh host's IPv4 addresses (its address " + h.address +
+                      " is a name)");
+      }
+    }
+  }
+  if (m.firewall && std::none_of(m.hosts.begin(), m.hosts.end(), [](const Host& h) { return h.kind != HostKind::kLocal; })) {
+    r.problem("network.firewall", node["firewall"],
+              "no netns or ssh host to install it on (quad launch leaves this machine's own firewall alone)");
+  }
+}
+
+void readModule(const std::string& name, YAML::Node spec, Reader& r, const ProgramLookup& lookup,
+                const std::map<std::string, std::string>& vars, Manifest& m)
+{
+  const std::string key = "modules." + name;
+  Module mod;
+  mod.name = name;
+  if (!validName(name)) {
+    r.problem(key, YAML::Node(name), "a module name is lower case letters, digits and _, at most 15");
+  }
+  if (!spec.IsMap()) {
+    r.problem(key, spec, "expected a map");
+    return;
+  }
+  r.onlyKeys(spec, key + ".", {"module", "program", "host", "config", "set", "args", "env", "needs",
+                         "ready_timeout", "respawn", "backoff", "ends_run"});
+  // The program: a module quad builds, or any program by path.
+  if (spec["program"] && spec["module"]) {
+    r.problem(key + ".program", spec["program"], "give 'module' or 'program', not both");
+  } else if (spec["program"]) {
+    mod.program = r.path(expand(r.text(spec["program"], key + ".program", "").value_or(""), vars, r,
+                                key + ".program", spec["program"]));
+    if (!fs::exists(mod.program)) {
+      r.problem(key + ".program", spec["program"], "no such program (" + mod.program.string() + ")");
+    }
+  } else {
+    const std::string which = r.text(spec["module"], key + ".module", name).value_or(name);
+    const auto built = kBuiltModules.find(which);
+    if (built == kBuiltModules.end()) {
+      std::string list;
+      for (const auto& [n, p] : kBuiltModules) {
+        list += (list.empty() ? "" : ", ") + n;
+      }
+      r.problem(key + ".module", spec["module"] ? spec["module"] : YAML::Node(which),
+                "module not found: quad builds " + list + " (or give 'program')");
+    } else {
+      mod.kind = which;
+      mod.program = lookup.build_dir / built->second;
+      if (!fs::exists(mod.program)) {
+        r.problem(key + ".module", YAML::Node(which), "module not built: no " + mod.program.string());
+      }
+    }
+  }
+  const std::string host = r.text(spec["host"], key + ".host", m.hosts.front().name).value_or("");
+  if (std::none_of(m.hosts.begin(), m.hosts.end(), [&](const Host& h) { return h.name == host; })) {
+    std::string list;
+    for (const auto& h : m.hosts) {
+      list += (list.empty() ? "" : ", ") + h.name;
+    }
+    r.problem(key + ".host", spec["host"], "unknown host (hosts: " + list + ")");
+  }
+  mod.host = host;
+  if (spec["config"]) {
+    mod.config = r.path(expand(r.text(spec["config"], key + ".config", "").value_or(""), vars, r, key + ".config",
+                               spec["config"]));
+    if (!fs::is_regular_file(mod.config)) {
+      r.problem(key + ".config", spec["config"], "no such file (" + mod.config.string() + ")");
+    }
+  }
+  for (const auto& [k, v] : r.scalars(spec["set"], key + ".set")) {
+    mod.sets.emplace_back(k, expand(v, vars, r, key + ".set." + k, spec["set"][k]));
+  }
+  for (const auto& a : r.strings(spec["args"], key + ".args")) {
+    mod.args.push_back(expand(a, vars, r, key + ".args", spec["args"]));
+  }
+  for (const auto& [k, v] : r.scalars(spec["env"], key + ".env")) {
+    mod.environment[k] = expand(v, vars, r, key + ".env." + k, spec["env"][k]);
+  }
+  mod.needs = r.strings(spec["needs"], key + ".needs");
+  for (std::size_t i = 0; i < mod.needs.size(); ++i) {
+    if (lookup.known_topic && !lookup.known_topic(mod.needs[i])) {
+      r.problem(key + ".needs[" + std::to_string(i) + "]", spec["needs"][i], "no such topic (see quad topic list --contracts)");
+    }
+  }
+  mod.ready_timeout_s = r.number(spec["ready_timeout"], key + ".ready_timeout", 20.0, 0.1, 3600.0).value_or(20.0);
+  mod.respawn = static_cast<int>(r.number(spec["respawn"], key + ".respawn", 0, 0, 100).value_or(0));
+  mod.backoff_s = r.number(spec["backoff"], key + ".backoff", 1.0, 0.0, 600.0).value_or(1.0);
+  mod.ends_run = r.flag(spec["ends_run"], key + ".ends_run", false).value_or(false);
+  m.modules.push_back(std::move(mod));
+}
+
+}  // namespace
+
+Manifest parseManifest(const std::string& text, const fs::path& origin, const ManifestOverrides& overrides,
+                       const ProgramLookup& lookup)
+{
+  YAML::Node root = common::parseYaml(text, origin.string());
+  Reader r(origin.string(), origin.parent_path());
+  Manifest m;
+  m.file = origin;
+  if (!root.IsMap()) {
+    r.problem("(top level)", root, "expected a map with 'modules'");
+    r.throwIfAny();
+  }
+  r.onlyKeys(root, "", {"name", "domain", "transport", "discovery", "subnet", "world", "mode", "seed", "grace", "env",
+                        "security", "network", "hosts", "modules", "mission"});
+  m.name = r.text(root["name"], "name", origin.stem().string()).value_or("run");
+  if (overrides.domain) {
+    m.domain = overrides.domain;
+  } else if (root["domain"]) {
+    m.domain = static_cast<int>(r.number(root["domain"], "domain", 0, 0, 232).value_or(0));
+  }
+  m.transport = r.choice(root["transport"], "transport", "udp", {"udp", "shm", "default"}).value_or("udp");
+  m.grace_s = r.number(root["grace"], "grace", 5.0, 0.1, 600.0).value_or(5.0);
+  m.subnet = overrides.subnet ? *overrides.subnet : r.text(root["subnet"], "subnet", "10.77.0").value_or("10.77.0");
+  if (!std::regex_match(m.subnet, std::regex(R"((\d{1,3})\.(\d{1,3})\.(\d{1,3}))"))) {
+    r.problem("subnet", root["subnet"], "expected the first three numbers of an IPv4 /24, e.g. 10.77.0");
+  }
+  readHosts(root["hosts"], r, m);
+
+  // Discovery.
+  if (YAML::Node d = root["discovery"]; d) {
+    r.onlyKeys(d, "discovery.", {"kind", "host", "port"});
+    const auto kind = r.choice(d["kind"], "discovery.kind", "multicast", {"multicast", "initial_peers", "server"});
+    m.discovery = kind == "server" ? Discovery::kServer
+                  : kind == "initial_peers" ? Discovery::kInitialPeers
+                                            : Discovery::kMulticast;
+    m.discovery_port = static_cast<int>(r.number(d["port"], "discovery.port", 11811, 1024, 65535).value_or(11811));
+    if (m.discovery == Discovery::kServer && !m.hosts.empty()) {
+      m.discovery_host = r.text(d["host"], "discovery.host", m.hosts.front().name).value_or("");
+      if (std::none_of(m.hosts.begin(), m.hosts.end(), [&](const Host& h) { return h.name == m.discovery_host; })) {
+        r.problem("discovery.host", d["host"], "unknown host");
+      }
+    } else if (d["host"]) {
+      r.problem("discovery.host", d["host"], "only a discovery server has a host");
+    }
+  }
+
+  readNetwork(root["network"], r, m);
+
+  // Variables, then modules.
+  if (overrides.world) {
+    m.world = fs::absolute(*overrides.world).lexically_normal();
+  } else if (root["world"]) {
+    m.world = r.path(r.text(root["world"], "world", "").value_or(""));
+  }
+  if (!m.world.empty() && !fs::is_regular_file(m.world)) {
+    r.problem("world", root["world"] ? root["world"] : YAML::Node(m.world.string()), "no such file");
+  }
+  if (root["security"]) {
+    m.security_dir = r.path(r.text(root["security"], "security", "").value_or(""));
+    for (const char* file : {"ca.pem", "governance.p7s"}) {
+      if (!fs::is_regular_file(m.security_dir / file)) {
+        r.problem("security", root["security"],
+                  "no " + std::string(file) + " in " + m.security_dir.string() + ": make it with quad security init " +
+                      m.security_dir.string());
+        break;
+      }
+    }
+  }
+  m.mode = overrides.mode ? *overrides.mode : r.choice(root["mode"], "mode", "lockstep", {"lockstep", "realtime"}).value_or("lockstep");
+  if (overrides.seed) {
+    m.seed = *overrides.seed;
+  } else if (root["seed"]) {
+    m.seed = static_cast<std::uint64_t>(r.number(root["seed"], "seed", 1, 0, 4294967295.0).value_or(1));
+  }
+  const std::map<std::string, std::string> vars{{"world", m.world.string()},
+                                                {"mode", m.mode},
+                                                {"seed", std::to_string(m.seed)},
+                                                {"root", lookup.source_dir.string()}};
+  for (const auto& [k, v] : r.scalars(root["env"], "env")) {
+    m.environment[k] = expand(v, vars, r, "env." + k, root["env"][k]);
+  }
+  YAML::Node modules = root["modules"];
+  if (!modules || !modules.IsMap() || modules.size() == 0) {
+    r.problem("modules", modules, "expected a map of module names to modules, in start order");
+  } else if (!m.hosts.empty()) {
+    for (auto kv : modules) {
+      readModule(kv.first.as<std::string>(), kv.second, r, lookup, vars, m);
+    }
+  }
+
+  if (YAML::Node mission = root["mission"]; mission) {
+    r.onlyKeys(mission, "mission.", {"tolerance", "land", "timeout", "vehicle"});
+    m.mission.enabled = true;
+    m.mission.tolerance_m = r.number(mission["tolerance"], "mission.tolerance", 0.4, 0.01, 100.0).value_or(0.4);
+    m.mission.land = r.flag(mission["land"], "mission.land", true).value_or(true);
+    m.mission.timeout_s = r.number(mission["timeout"], "mission.timeout", 180.0, 1.0, 86400.0).value_or(180.0);
+    if (mission["vehicle"]) {
+      m.mission.vehicle = r.path(r.text(mission["vehicle"], "mission.vehicle", "").value_or(""));
+      if (!fs::is_regular_file(m.mission.vehicle)) {
+        r.problem("mission.vehicle", mission["vehicle"], "no such file");
+      }
+    }
+    if (m.world.empty()) {
+      r.problem("mission", mission, "a mission flies to the world's goal: give 'world'");
+    }
+  }
+  r.throwIfAny();
+  return m;
+}
+
+Manifest loadManifest(const fs::path& file, const ManifestOverrides& overrides, const ProgramLookup& lookup)
+{
+  const fs::path absolute = fs::absolute(file).lexically_normal();
+  return parseManifest(common::readTextFile(absolute), absolute, overrides, lookup);
+}
+
+}  // namespace quad::launch

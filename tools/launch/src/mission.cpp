@@ -1,0 +1,216 @@
+#include "quad/launch/mission.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace quad::launch {
+
+MissionTracker::MissionTracker(Mission mission, const world::World& world, double radius)
+    : mission_(std::move(mission)),
+      world_(world),
+      radius_(radius),
+      goal_(world.goal()),
+      min_clearance_(std::numeric_limits<double>::infinity())
+{
+}
+
+void MissionTracker::onState(double t, const Eigen::Vector3d& p)
+{
+  if (finished_ || !p.allFinite()) {
+    return;
+  }
+  t_ = std::max(t_, t);
+  if (last_p_) {
+    length_ += (p - *last_p_).norm();
+  }
+  last_p_ = p;
+  for (const auto& o : world_.obstacles()) {
+    min_clearance_ = std::min(min_clearance_, o.signedDistance(p) - radius_);
+  }
+  const double to_goal = (p - goal_).norm();
+  if (!goal_reached_ && to_goal <= mission_.tolerance_m) {
+    goal_reached_ = true;
+    progress_.push_back(fmt::format("t = {:.1f} s: goal reached ({:.2f} m from it)", t, to_goal));
+    land_requested_ = mission_.land;
+    if (!mission_.land) {
+      finishAtGoal("reached the goal");
+    }
+  }
+  if (t >= next_progress_t_) {
+    progress_.push_back(fmt::format("t = {:.0f} s: at ({:.1f}, {:.1f}, {:.1f}), {:.1f} m to the goal, {} paths, mode {}",
+                                    t, p.x(), p.y(), p.z(), to_goal, paths_, mode_.empty() ? "?" : mode_));
+    next_progress_t_ += 10.0;
+  }
+  if (!finished_ && t >= mission_.timeout_s) {
+    finish(MissionEnd::kFailed, fmt::format("timed out after {:.0f} s of sim time, {:.2f} m from the goal", t, to_goal),
+           no_path_.empty() ? "timed out" : "timed out; " + no_path_);
+  }
+}
+
+void MissionTracker::onMode(double t, const std::string& mode)
+{
+  if (mode == mode_ || finished_) {
+    return;
+  }
+  progress_.push_back(fmt::format("t = {:.1f} s: {} -> {}", t, mode_.empty() ? "start" : mode_, mode));
+  modes_.push_back(fmt::format("{:.2f} {}", t, mode));
+  const bool was_landing = mode_ == "LAND" || mode_ == "FAILSAFE_LAND";
+  mode_ = mode;
+  if (was_landing && mode == "IDLE") {
+    const double to_goal = last_p_ ? (last_p_->head<2>() - goal_.head<2>()).norm() : 0.0;
+    if (goal_reached_ && to_goal <= mission_.tolerance_m + 0.5) {
+      finishAtGoal("landed at the goal");
+    } else if (!no_path_.empty()) {
+      finish(MissionEnd::kNoPath, fmt::format("landed {:.2f} m from the goal: {}", to_goal, no_path_), no_path_);
+    } else {
+      finish(MissionEnd::kFailed, fmt::format("landed {:.2f} m from the goal", to_goal), "landed short of the goal");
+    }
+  }
+}
+
+void MissionTracker::onPath(std::uint32_t version, const std::string& no_path)
+{
+  if (no_path != no_path_ && !finished_) {
+    progress_.push_back(no_path.empty() ? fmt::format("t = {:.1f} s: the planner has a path again", t_)
+                                        : fmt::format("t = {:.1f} s: {}", t_, no_path));
+  }
+  no_path_ = no_path;
+  if (version != last_version_) {
+    last_version_ = version;
+    ++paths_;
+  }
+}
+
+void MissionTracker::onCollision(double t)
+{
+  ++collisions_;
+  progress_.push_back(fmt::format("t = {:.1f} s: COLLISION", t));
+}
+
+bool MissionTracker::takeLandRequest()
+{
+  if (land_requested_ && !land_taken_ && !finished_) {
+    land_taken_ = true;
+    return true;
+  }
+  return false;
+}
+
+std::vector<std::string> MissionTracker::takeProgress() { return std::exchange(progress_, {}); }
+
+void MissionTracker::finishAtGoal(const std::string& outcome)
+{
+  if (collisions_ == 0) {
+    finish(MissionEnd::kSuccess, outcome);
+  } else {
+    finish(MissionEnd::kFailed, fmt::format("{} after {} collisions", outcome, collisions_),
+           fmt::format("{} collisions", collisions_));
+  }
+}
+
+void MissionTracker::finish(MissionEnd end, std::string outcome, std::string failure)
+{
+  finished_ = true;
+  end_ = end;
+  outcome_ = std::move(outcome);
+  failure_ = std::move(failure);
+}
+
+MissionSummary MissionTracker::summary(double wall_s) const
+{
+  MissionSummary s;
+  s.success = finished_ && end_ == MissionEnd::kSuccess;
+  s.end = end_;
+  s.outcome = finished_ ? outcome_ : "not finished";
+  s.failure = s.success ? "" : (finished_ ? failure_ : "not finished");
+  s.collisions = collisions_;
+  s.sim_s = t_;
+  s.wall_s = wall_s;
+  s.path_length_m = length_;
+  s.straight_line_m = (goal_ - world_.start()).norm();
+  s.paths = paths_;
+  s.min_clearance_m = std::isfinite(min_clearance_) ? min_clearance_ : 0.0;
+  s.mode_changes = static_cast<int>(modes_.size());
+  s.modes = modes_;
+  s.goal_distance_m = last_p_ ? (*last_p_ - goal_).norm() : s.straight_line_m;
+  return s;
+}
+
+std::string_view toString(MissionEnd end)
+{
+  switch (end) {
+    case MissionEnd::kUnfinished:
+      return "unfinished";
+    case MissionEnd::kSuccess:
+      return "success";
+    case MissionEnd::kFailed:
+      return "failed";
+    case MissionEnd::kNoPath:
+      return "no_path";
+  }
+  return "?";
+}
+
+std::optional<std::string> goalProblem(const world::World& world, double radius)
+{
+  const Eigen::Vector3d& g = world.goal();
+  const std::string goal = fmt::format("the goal ({}, {}, {})", g.x(), g.y(), g.z());
+  if (!world.bounds().contains(g)) {
+    const auto& b = world.bounds();
+    return fmt::format("{} is outside the world's bounds ({}, {}, {}) ... ({}, {}, {})", goal, b.min.x(), b.min.y(),
+                       b.min.z(), b.max.x(), b.max.y(), b.max.z());
+  }
+  for (std::size_t i = 0; i < world.obstacles().size(); ++i) {
+    const double d = world.obstacles()[i].signedDistance(g);
+    if (d < radius) {
+      return d < 0.0 ? fmt::format("{} lies inside obstacle {}", goal, i)
+                     : fmt::format("{} lies {:.2f} m from obstacle {}, within the vehicle's radius ({} m)", goal, d, i,
+                                   radius);
+    }
+  }
+  return std::nullopt;
+}
+
+std::string toJson(const MissionSummary& s)
+{
+  nlohmann::ordered_json j;
+  j["success"] = s.success;
+  j["outcome"] = s.outcome;
+  j["end"] = toString(s.end);
+  j["failure"] = s.failure;
+  j["collisions"] = s.collisions;
+  j["sim_seconds"] = s.sim_s;
+  j["wall_seconds"] = s.wall_s;
+  j["path_length_m"] = s.path_length_m;
+  j["straight_line_m"] = s.straight_line_m;
+  j["optimum_m"] = s.optimum_m ? nlohmann::ordered_json(*s.optimum_m) : nlohmann::ordered_json(nullptr);
+  j["flown_over_optimum"] = s.optimum_m && *s.optimum_m > 0.0 ? nlohmann::ordered_json(s.path_length_m / *s.optimum_m)
+                                                              : nlohmann::ordered_json(nullptr);
+  j["paths"] = s.paths;
+  j["min_clearance_m"] = s.min_clearance_m;
+  j["mode_changes"] = s.mode_changes;
+  j["modes"] = s.modes;
+  j["goal_distance_m"] = s.goal_distance_m;
+  return j.dump(2) + "\n";
+}
+
+std::string toText(const MissionSummary& s)
+{
+  return fmt::format(
+      "mission: {} ({})\n{}"
+      "  sim {:.1f} s in {:.1f} s wall ({:.1f}x)\n"
+      "  flown {:.1f} m for a {:.1f} m straight line ({:.2f}x){}; {} paths from the planner\n"
+      "  closest approach to an obstacle {:.2f} m; collisions {}; {} mode changes; ends {:.2f} m from the goal\n",
+      s.success ? "SUCCESS" : "FAILED", s.outcome, s.failure.empty() ? "" : "  failure: " + s.failure + "\n", s.sim_s, s.wall_s, s.wall_s > 0 ? s.sim_s / s.wall_s : 0.0,
+      s.path_length_m, s.straight_line_m, s.straight_line_m > 0 ? s.path_length_m / s.straight_line_m : 0.0,
+      s.optimum_m && *s.optimum_m > 0.0
+          ? fmt::format(", a {:.1f} m known-map optimum ({:.2f}x)", *s.optimum_m, s.path_length_m / *s.optimum_m)
+          : "",
+      s.paths, s.min_clearance_m, s.collisions, s.mode_changes, s.goal_distance_m);
+}
+
+}  // namespace quad::launch

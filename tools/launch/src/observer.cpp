@@ -1,0 +1,167 @@
+#include "quad/launch/observer.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "quad/common/time.hpp"
+#include "quad/dds/geometry_messages.hpp"
+#include "quad/dds/publisher.hpp"
+#include "quad/dds/sim_clock.hpp"
+#include "quad/dds/subscriber.hpp"
+#include "quad/dds/topics.hpp"
+#include "quad/introspection/idl.hpp"
+
+namespace quad::launch {
+
+namespace topics = dds::topics;
+
+/// The sim time and the vehicle's state, followed from the start.
+struct Observer::Sim {
+  explicit Sim(dds::Participant& p) : state(p, topics::kSimState), clock(p) {}
+  dds::Subscriber<msg::VehicleState> state;
+  dds::SimClockFollower clock;
+};
+
+/// What flying a mission needs besides.
+struct Observer::Endpoints {
+  explicit Endpoints(dds::Participant& p)
+      : goal(p, topics::kGoal),
+        command(p, topics::kVehicleCommand),
+        status(p, topics::kControlStatus),
+        path(p, topics::kPath),
+        events(p, topics::kSimEvents)
+  {
+  }
+  dds::Publisher<msg::Goal> goal;
+  dds::Publisher<msg::VehicleCommand> command;
+  dds::Subscriber<msg::ControlStatus> status;
+  dds::Subscriber<msg::Path> path;
+  dds::Subscriber<msg::SimEvent> events;
+};
+
+Observer::Observer(dds::ParticipantOptions options)
+    : participant_(std::move(options)), sim_(std::make_unique<Sim>(participant_))
+{
+}
+
+Observer::~Observer() = default;
+
+std::vector<std::string> Observer::missingWriters(const std::vector<std::string>& wanted) const
+{
+  const auto seen = participant_.remoteEndpoints();
+  std::vector<std::string> missing;
+  for (const auto& topic : wanted) {
+    const bool live = std::any_of(seen.begin(), seen.end(),
+                                  [&](const dds::RemoteEndpoint& e) { return e.writer && e.topic == topic; });
+    if (!live) {
+      missing.push_back(topic);
+    }
+  }
+  return missing;
+}
+
+void Observer::startMission(const Mission& mission, const world::World& world, double radius)
+{
+  endpoints_ = std::make_unique<Endpoints>(participant_);
+  tracker_ = std::make_unique<MissionTracker>(mission, world, radius);
+  msg::Goal goal;
+  goal.goal_id(1);
+  goal.p_W(dds::toMessage(world.goal()));
+  goal.yaw(std::numeric_limits<double>::quiet_NaN());
+  goal.tolerance(mission.tolerance_m);
+  endpoints_->goal.write(goal);
+}
+
+namespace {
+const introspection::EnumDef* controlModes()
+{
+  static const introspection::EnumDef* modes = introspection::quadSchema().findEnum("quad::msg::ControlMode");
+  return modes;
+}
+std::string withoutPrefix(const std::string& name)
+{
+  return name.starts_with("CONTROL_") ? name.substr(8) : name;
+}
+}  // namespace
+
+std::string noPathReason(int status)
+{
+  switch (status) {
+    case msg::PLAN_GOAL_ENCLOSED:
+      return "no path: known-occupied space seals the goal off";
+    case msg::PLAN_START_ENCLOSED:
+      return "no path: known-occupied space seals the vehicle in";
+    case msg::PLAN_GOAL_BLOCKED:
+      return "no path: the goal lies in an obstacle (or within the vehicle's radius and margin of one)";
+    case msg::PLAN_OUT_OF_BOUNDS:
+      return "no path: the goal is outside the planning bounds";
+    default:
+      return "";
+  }
+}
+
+std::string controlModeName(int mode)
+{
+  const auto* modes = controlModes();
+  const auto i = static_cast<std::size_t>(mode);
+  if (modes == nullptr || mode < 0 || i >= modes->enumerators.size()) {
+    return "MODE_" + std::to_string(mode);
+  }
+  return withoutPrefix(modes->enumerators[i]);
+}
+
+std::vector<std::string> controlModeNames()
+{
+  std::vector<std::string> out;
+  if (const auto* modes = controlModes()) {
+    for (const auto& e : modes->enumerators) {
+      out.push_back(withoutPrefix(e));
+    }
+  }
+  return out;
+}
+
+std::int64_t Observer::simTimeNs() const { return sim_->clock.ns(); }
+
+void Observer::update()
+{
+  sim_->clock.update();
+  for (const auto& s : sim_->state.takeAll()) {
+    // Only states the sim clock vouches for, in order: one stamped ahead of it (a bad input)
+    // would end the mission by its timeout, an old one would teleport the vehicle.
+    const Eigen::Vector3d p = dds::toVector(s.p_W());
+    if (!sim_->clock.vouchesFor(s.header().stamp_ns()) || s.header().stamp_ns() < state_ns_ ||
+        !p.allFinite()) {
+      continue;
+    }
+    state_ns_ = s.header().stamp_ns();
+    position_ = p;
+    last_state_ns_ = common::steadyTimeNs();
+    if (tracker_) {
+      tracker_->onState(common::toSeconds(s.header().stamp_ns()), p);
+    }
+  }
+  if (!tracker_) {
+    return;
+  }
+  for (const auto& s : endpoints_->status.takeAll()) {
+    tracker_->onMode(common::toSeconds(s.header().stamp_ns()), controlModeName(static_cast<int>(s.mode())));
+  }
+  for (const auto& p : endpoints_->path.takeAll()) {
+    tracker_->onPath(p.version(), noPathReason(p.status()));
+  }
+  for (const auto& e : endpoints_->events.takeAll()) {
+    if (e.kind() == msg::SIM_EVENT_COLLISION) {
+      tracker_->onCollision(common::toSeconds(e.header().stamp_ns()));
+    }
+  }
+  if (tracker_->takeLandRequest()) {
+    msg::VehicleCommand land;
+    land.command_id(1);
+    land.kind(msg::COMMAND_LAND);
+    land.header().stamp_ns(static_cast<std::int64_t>(tracker_->simTime() * 1e9));
+    endpoints_->command.write(land);
+  }
+}
+
+}  // namespace quad::launch

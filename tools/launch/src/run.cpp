@@ -1,0 +1,514 @@
+#include "quad/launch/run.hpp"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <set>
+
+#include <fmt/chrono.h>
+#include <fmt/format.h>
+
+#include "quad/launch/shm.hpp"
+#include "quad/common/params.hpp"
+#include "quad/common/time.hpp"
+#include "quad/plan/known_map.hpp"
+#include "quad/dds/environment.hpp"
+#include "quad/dds/node.hpp"
+#include "quad/dds/topics.hpp"
+#include "quad/world/world_file.hpp"
+#include "quad/vehicle/vehicle.hpp"
+
+namespace quad::launch {
+
+namespace fs = std::filesystem;
+
+std::atomic<int> LaunchRun::received_signal{0};
+
+fs::path buildDir()
+{
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? fs::current_path() : self.parent_path().parent_path().parent_path();
+}
+
+std::string runFolderName(const std::string& name)
+{
+  const std::time_t now = std::time(nullptr);
+  return fmt::format("{}-{:%Y%m%d-%H%M%S}-{}", name, fmt::localtime(now), getpid());
+}
+
+namespace {
+
+/// "a,b,c": a list as the QUAD_* variables take it.
+template <class Strings>
+std::string commaList(const Strings& items)
+{
+  std::string list;
+  for (const auto& item : items) {
+    list += (list.empty() ? "" : ",") + item;
+  }
+  return list;
+}
+
+/// What a run's processes get in their environment, before a module's own entries.
+std::map<std::string, std::string> runEnvironment(const Manifest& m, int domain, const launch::HostNetwork& net)
+{
+  std::map<std::string, std::string> env = m.environment;
+  env[dds::environment::kDomainId] = std::to_string(domain);
+  env[dds::environment::kTransport] = m.transport;
+  if (!m.security_dir.empty()) {
+    env[dds::environment::kSecurityDir] = m.security_dir.string();
+  }
+  if (m.restrict_interfaces) {
+    env[dds::environment::kInterfaces] = commaList(net.interfaces(""));  // the launcher's side; each module gets its host's
+  }
+  if (m.discovery == launch::Discovery::kInitialPeers) {
+    std::set<std::string> peers;
+    for (const auto& h : m.hosts) {
+      peers.insert(net.address(h.name));
+    }
+    env[dds::environment::kInitialPeers] = commaList(peers);
+  } else if (m.discovery == launch::Discovery::kServer) {
+    env[dds::environment::kDiscoveryServer] = net.address(m.discovery_host) + ":" + std::to_string(m.discovery_port);
+  }
+  return env;
+}
+
+/// The module's command line: program, --config, --set, then its own arguments.
+std::vector<std::string> commandLine(const Module& mod)
+{
+  std::vector<std::string> argv{mod.program.string()};
+  if (!mod.config.empty()) {
+    argv.insert(argv.end(), {"--config", mod.config.string()});
+  }
+  for (const auto& [k, v] : mod.sets) {
+    argv.insert(argv.end(), {"--set", k + "=" + v});
+  }
+  argv.insert(argv.end(), mod.args.begin(), mod.args.end());
+  return argv;
+}
+
+}  // namespace
+
+LaunchRun::LaunchRun(const Manifest& m, const LaunchOptions& o, fs::path dir, int domain)
+    : m_(m), options_(o), domain_(domain), supervisor_(std::move(dir), stdout, !o.quiet),
+      start_ns_(common::steadyTimeNs())
+{
+}
+
+LaunchRun::~LaunchRun() = default;
+
+const Module& LaunchRun::module(const std::string& name) const
+{
+  const auto it = std::find_if(m_.modules.begin(), m_.modules.end(), [&](const Module& x) { return x.name == name; });
+  if (it == m_.modules.end()) {
+    throw std::invalid_argument("no module '" + name + "' in " + m_.file.string());
+  }
+  return *it;
+}
+
+void LaunchRun::startModule(const Module& mod)
+{
+  std::map<std::string, std::string> env = env_;
+  if (m_.restrict_interfaces) {
+    env[dds::environment::kInterfaces] = commaList(net_->interfaces(mod.host));
+  }
+  for (const auto& [k, v] : mod.environment) {
+    env[k] = v;
+  }
+  const auto& host = m_.host(mod.host);
+  supervisor_.start(mod.name, net_->command(host, commandLine(mod), env), env);
+  State& st = states_[mod.name];
+  if (!st.started) {
+    started_order_.push_back(mod.name);
+  }
+  st.started = true;
+  st.restart_at_ns = 0;
+  st.exit_expected = false;
+  say(fmt::format("started {} on {} (pid {})", mod.name, mod.host, *supervisor_.pid(mod.name)));
+}
+
+bool LaunchRun::signalModule(const std::string& name, int signal, bool exit_expected)
+{
+  module(name);  // throws for a name the manifest does not have
+  if (!supervisor_.running(name)) {
+    return false;
+  }
+  states_[name].exit_expected = states_[name].exit_expected || exit_expected;
+  return supervisor_.signal(name, signal);
+}
+
+void LaunchRun::restartModule(const std::string& name)
+{
+  const Module& mod = module(name);
+  if (supervisor_.running(name)) {
+    states_[name].exit_expected = true;
+    supervisor_.stop(name, m_.grace_s);
+  }
+  startModule(mod);
+}
+
+void LaunchRun::handleExit(const launch::Supervisor::Exit& e)
+{
+  State& st = states_[e.name];
+  st.last_status = e.status;
+  const std::string what = process::describeStatus(e.status);
+  if (e.name == "discovery" || e.name == "record") {
+    failed_ = true;
+    failure_ = (e.name == "record" ? "the recorder" : "the discovery server") + std::string(" ended (") + what + ")";
+    say(failure_);
+    return;
+  }
+  const auto it = std::find_if(m_.modules.begin(), m_.modules.end(), [&](const Module& x) { return x.name == e.name; });
+  if (it == m_.modules.end()) {
+    return;
+  }
+  if (it->ends_run && e.status == 0) {
+    say(fmt::format("{} finished ({}): ending the run", e.name, what));
+    ended_ = true;
+    return;
+  }
+  if (st.restarts < it->respawn) {
+    const double delay = it->backoff_s * std::pow(2.0, st.restarts);
+    ++st.restarts;
+    st.restart_at_ns = common::steadyTimeNs() + common::toNanoseconds(delay);
+    say(fmt::format("{} exited ({}): restarting in {:.1f} s ({} of {})", e.name, what, delay, st.restarts,
+                    it->respawn));
+    return;
+  }
+  if (st.exit_expected) {
+    say(fmt::format("{} exited ({}), as the fault meant it to", e.name, what));
+    return;
+  }
+  failed_ = true;
+  failure_ = fmt::format("{} failed ({}){}", e.name, what,
+                         it->respawn > 0 ? fmt::format(" after {} restarts", st.restarts) : "");
+  say(failure_ + ": stopping the run");
+}
+
+bool LaunchRun::service(int timeout_ms)
+{
+  for (const auto& e : supervisor_.pump(timeout_ms)) {
+    handleExit(e);
+  }
+  const std::int64_t now = common::steadyTimeNs();
+  for (const auto& mod : m_.modules) {
+    State& st = states_[mod.name];
+    if (st.restart_at_ns != 0 && now >= st.restart_at_ns && !failed_ && !interrupted()) {
+      startModule(mod);
+    }
+  }
+  if (observer_) {
+    observer_->update();
+    if (auto* mission = observer_->mission()) {
+      for (const auto& line : mission->takeProgress()) {
+        say(line);
+      }
+    }
+  }
+  if (options_.wall_timeout_s > 0 && now - start_ns_ > common::toNanoseconds(options_.wall_timeout_s)) {
+    failed_ = true;
+    failure_ = fmt::format("the run took longer than --wall-timeout {:.0f} s", options_.wall_timeout_s);
+    say(failure_);
+  }
+  return !failed_ && !ended_ && !interrupted();
+}
+
+void LaunchRun::reportStall()
+{
+  say("no vehicle state for 30 s; what the modules last said of lockstep:");
+  for (const auto& name : started_order_) {
+    std::ifstream log(supervisor_.logDir() / (name + ".log"));
+    std::string line;
+    std::string last;
+    while (std::getline(log, line)) {
+      if (line.find("lockstep:") != std::string::npos) {
+        last = line;
+      }
+    }
+    say(fmt::format("  {}: {}", name, last.empty() ? "(nothing)" : last));
+  }
+}
+
+std::string LaunchRun::whoWrites(const std::string& topic) const
+{
+  const auto contract = dds::topics::find(topic);
+  if (!contract) {
+    return "no module declares it";
+  }
+  const std::string owner(dds::toString(contract->owner));
+  std::string who;
+  for (const auto& mod : m_.modules) {
+    if (mod.kind != owner) {
+      continue;
+    }
+    const auto st = states_.find(mod.name);
+    std::string state = "not started yet";
+    if (supervisor_.running(mod.name)) {
+      state = "running";
+    } else if (st != states_.end() && st->second.last_status) {
+      state = process::describeStatus(*st->second.last_status);
+    }
+    who += (who.empty() ? "" : ", ") + mod.name + " (" + state + ")";
+  }
+  return who.empty() ? "written by " + owner + ", which this manifest does not start"
+                     : "written by " + who;
+}
+
+bool LaunchRun::waitForNeeds(const Module& mod)
+{
+  if (mod.needs.empty()) {
+    return true;
+  }
+  const std::int64_t deadline = common::steadyTimeNs() + common::toNanoseconds(mod.ready_timeout_s);
+  while (service(50)) {
+    const auto missing = observer_->missingWriters(mod.needs);
+    if (missing.empty()) {
+      return true;
+    }
+    if (common::steadyTimeNs() >= deadline) {
+      std::string list;
+      for (const auto& t : missing) {
+        list += (list.empty() ? "" : "; ") + t + " (" + whoWrites(t) + ")";
+      }
+      failed_ = true;
+      failure_ = fmt::format("{} not started: after {:.1f} s no writer on {}", mod.name, mod.ready_timeout_s, list);
+      say(failure_);
+      return false;
+    }
+  }
+  return false;
+}
+
+void LaunchRun::stopAll()
+{
+  // Reverse start order; the discovery server last of all. A paused process must be resumed
+  // to see its SIGTERM.
+  for (auto it = started_order_.rbegin(); it != started_order_.rend(); ++it) {
+    supervisor_.signal(*it, SIGCONT);
+    if (const auto status = supervisor_.stop(*it, m_.grace_s)) {
+      say(fmt::format("stopped {} ({})", *it, process::describeStatus(*status)));
+    }
+  }
+  supervisor_.stop("discovery", m_.grace_s);
+}
+
+std::optional<double> LaunchRun::knownMapOptimum()
+{
+  const auto planning = std::find_if(m_.modules.begin(), m_.modules.end(), [](const Module& x) { return x.kind == "planning"; });
+  if (planning == m_.modules.end()) {
+    return std::nullopt;
+  }
+  try {
+    std::vector<common::ParamOverride> overrides;
+    for (const auto& [key, value] : planning->sets) {
+      overrides.push_back({key, value});
+    }
+    const plan::PlanningSetup setup = plan::loadPlanningSetup(planning->config, overrides);
+    const plan::KnownMapPlan best = plan::planOnKnownMap(setup.world, setup.params, m_.mission.land);
+    if (best.status != planning::PlanStatus::kOk) {
+      return std::nullopt;  // no optimum where no path exists
+    }
+    return best.optimum_m;
+  } catch (const std::exception& e) {
+    say(std::string("no known-map optimum: ") + e.what());
+    return std::nullopt;
+  }
+}
+
+int LaunchRun::execute(RunExtension* extension)
+{
+  say(fmt::format("{}: domain {}, {} hosts, {} modules, mode {}, logs in {}", m_.file.string(), domain_,
+                  m_.hosts.size(), m_.modules.size(), m_.mode, supervisor_.logDir().string()));
+  if (const auto cleaned = launch::cleanStaleSharedMemory(); cleaned.files > 0) {
+    say(fmt::format("removed {} stale Fast DDS shared-memory files ({} KiB)", cleaned.files, cleaned.bytes / 1024));
+  }
+  try {
+    net_ = std::make_unique<launch::HostNetwork>(m_, fmt::format("{:x}", getpid()));
+    if (m_.firewall) {
+      std::vector<int> extra;
+      if (m_.discovery == launch::Discovery::kServer) {
+        extra.push_back(m_.discovery_port);
+      }
+      net_->installFirewall(domain_, extra);
+      const auto ports = launch::ddsPorts(domain_);
+      say(fmt::format("firewall: UDP {}-{}{} on the netns and ssh hosts admits the manifest's hosts only", ports.first,
+                      ports.last, extra.empty() ? "" : fmt::format(" and {}", extra.front())));
+    }
+  } catch (const std::exception& e) {
+    say(std::string("cannot set up the hosts: ") + e.what());
+    return 1;
+  }
+  for (const auto& h : m_.hosts) {
+    if (h.kind == launch::HostKind::kNetns) {
+      say(fmt::format("host {}: network namespace {} at {}", h.name, net_->namespaceOf(h.name), net_->address(h.name)));
+    }
+  }
+  env_ = runEnvironment(m_, domain_, *net_);
+  if (m_.discovery == launch::Discovery::kServer) {
+    const auto& host = m_.host(m_.discovery_host);
+    const std::vector<std::string> argv{"fastdds", "discovery", "-i", "0", "-l", net_->address(host.name), "-p",
+                                        std::to_string(m_.discovery_port)};
+    supervisor_.start("discovery", net_->command(host, argv, {}), {});
+    say(fmt::format("started a discovery server on {} at {}", host.name, env_[dds::environment::kDiscoveryServer]));
+  }
+
+  // The launcher's participant, set up like the modules': from the same environment, read by
+  // the same parser.
+  for (const auto& [key, value] : env_) {
+    ::setenv(key.c_str(), value.c_str(), 1);
+  }
+  dds::ParticipantOptions po = dds::optionsFromEnvironment("quad_launch");
+  po.observe_all = true;
+  observer_ = std::make_unique<launch::Observer>(po);
+
+  std::optional<world::World> world;
+  if (m_.mission.enabled) {
+    world = world::loadWorld(m_.world);
+    const double radius = m_.mission.vehicle.empty() ? 0.0 : vehicle::loadVehicle(m_.mission.vehicle).radius;
+    if (const auto problem = launch::goalProblem(*world, radius)) {
+      say(fmt::format("{}: {}: refused", m_.world.string(), *problem));
+      return kExitInvalid;
+    }
+    observer_->startMission(m_.mission, *world, radius);
+    const auto& g = world->goal();
+    say(fmt::format("mission: fly from ({:.1f}, {:.1f}, {:.1f}) to the goal ({:.1f}, {:.1f}, {:.1f}) of {}",
+                    world->start().x(), world->start().y(), world->start().z(), g.x(), g.y(), g.z(),
+                    m_.world.filename().string()));
+  }
+
+  if (options_.record) {
+    // Started first, so stopped last: it sees every module's last samples.
+    const std::vector<std::string> argv{(buildDir() / "tools/quad/quad").string(), "record", "-q", "-o",
+                                        fs::absolute(*options_.record).string()};
+    supervisor_.start("record", argv, env_);
+    started_order_.push_back("record");
+    say("recording every topic to " + *options_.record);
+  }
+  bool all_started = true;
+  for (const auto& mod : m_.modules) {
+    if (!waitForNeeds(mod)) {
+      all_started = false;
+      break;
+    }
+    startModule(mod);
+  }
+  std::int64_t stall_reported_ns = 0;
+  constexpr std::int64_t kStallNs = 30 * common::kNanosecondsPerSecond;
+  while (all_started && service(50)) {
+    if (auto* mission = observer_->mission(); mission != nullptr && mission->finished()) {
+      break;
+    }
+    if (extension != nullptr) {
+      extension->tick(*this);
+      if (extension->done()) {
+        break;
+      }
+    }
+    // A mission whose vehicle state stopped coming is stuck, whoever is at fault.
+    const std::int64_t last = observer_->lastStateNs();
+    if (m_.mission.enabled && last > 0 && common::steadyTimeNs() - last > kStallNs && stall_reported_ns != last) {
+      stall_reported_ns = last;
+      reportStall();
+      if (m_.mode == "lockstep") {
+        // Sim time waits for everyone: a lockstep run that stopped this long does not resume.
+        failed_ = true;
+        failure_ = "no vehicle state for 30 s: the lockstep run stalled";
+        break;
+      }
+    }
+  }
+  if (interrupted()) {
+    say(fmt::format("{}: stopping", received_signal.load() == SIGINT ? "interrupted" : "terminated"));
+  }
+  if (extension != nullptr && all_started) {
+    extension->ending(*this);
+  }
+  stopAll();
+  if (const auto cleaned = launch::cleanStaleSharedMemory("/dev/shm", std::chrono::seconds(1)); cleaned.files > 0) {
+    say(fmt::format("removed {} Fast DDS shared-memory files left by stopped processes", cleaned.files));
+  }
+  net_.reset();
+
+  // Stopped by a signal with nothing failed is a clean end; an unfinished mission is not.
+  int code = failed_ ? 1 : 0;
+  if (auto* mission = observer_->mission()) {
+    summary_ = mission->summary(common::toSeconds(common::steadyTimeNs() - start_ns_));
+    summary_->optimum_m = knownMapOptimum();
+    const std::string json = launch::toJson(*summary_);
+    std::ofstream(supervisor_.logDir() / "summary.json") << json;
+    if (options_.summary) {
+      std::ofstream out(*options_.summary);
+      out << json;
+      if (!out) {
+        say("cannot write the summary to " + *options_.summary);
+        code = 1;
+      }
+    }
+    std::printf("%s", launch::toText(*summary_).c_str());
+    if (!summary_->success && code == 0 && extension == nullptr) {
+      code = summary_->end == launch::MissionEnd::kNoPath ? kExitNoPath : 1;
+    }
+  }
+  if (failed_) {
+    std::printf("launch: FAILED: %s\n", failure_.c_str());
+  }
+  if (extension != nullptr) {
+    code = extension->finish(*this, code);
+  }
+  std::printf("launch: logs in %s\n", supervisor_.logDir().string().c_str());
+  std::fflush(stdout);
+  return code;
+}
+
+std::optional<launch::Manifest> loadRunManifest(const LaunchOptions& options)
+{
+  launch::ManifestOverrides overrides;
+  if (options.world) {
+    overrides.world = *options.world;
+  }
+  if (options.realtime) {
+    overrides.mode = "realtime";
+  } else if (options.lockstep) {
+    overrides.mode = "lockstep";
+  }
+  overrides.seed = options.seed;
+  overrides.domain = options.domain;
+  overrides.subnet = options.subnet;
+  launch::ProgramLookup lookup{buildDir(), QUAD_SOURCE_DIR,
+                               [](const std::string& t) { return dds::topics::find(t).has_value(); }};
+  try {
+    return launch::loadManifest(options.manifest, overrides, lookup);
+  } catch (const common::ConfigError& e) {
+    for (const auto& p : e.problems()) {
+      std::fprintf(stderr, "%s\n", p.c_str());
+    }
+    return std::nullopt;
+  }
+}
+
+int runManifest(const launch::Manifest& manifest, const LaunchOptions& options, RunExtension* extension)
+{
+  int domain = 0;
+  try {
+    domain = manifest.domain ? *manifest.domain : dds::optionsFromEnvironment("quad_launch").domain_id;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "launch: %s\n", e.what());
+    return kExitInvalid;
+  }
+  const fs::path dir = options.log_dir ? fs::path(*options.log_dir) : fs::path("log") / runFolderName(manifest.name);
+  try {
+    LaunchRun run(manifest, options, dir, domain);
+    return run.execute(extension);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "launch: %s\n", e.what());
+    return kExitFailed;
+  }
+}
+
+}  // namespace quad::launch

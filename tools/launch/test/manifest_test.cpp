@@ -1,0 +1,208 @@
+// Launch manifests: what a valid one gives, and how each kind of mistake is refused.
+#include "quad/launch/manifest.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "quad/common/params.hpp"
+
+namespace quad::launch {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A scratch project: bringup/ for manifests, a build tree with fake module programs.
+class ManifestTest : public ::testing::Test {
+protected:
+  void SetUp() override
+  {
+    root_ = fs::temp_directory_path() / ("quad_manifest_test_" + std::to_string(::getpid()));
+    fs::create_directories(root_ / "bringup");
+    fs::create_directories(root_ / "configs/worlds");
+    for (const char* m : {"plant", "mapping", "planning", "control"}) {
+      const fs::path p = root_ / "build/modules" / m / "node" / (std::string("quad_") + m + "_node");
+      fs::create_directories(p.parent_path());
+      std::ofstream(p) << "#!/bin/sh\n";
+    }
+    std::ofstream(root_ / "configs/plant.yaml") << "sim: {mode: realtime}\n";
+    std::ofstream(root_ / "configs/worlds/w.yaml") << "bounds: {min: [0, 0, 0], max: [1, 1, 1]}\n";
+    lookup_ = {root_ / "build", root_, [](const std::string& t) { return t.starts_with("quad/"); }};
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  Manifest parse(const std::string& yaml, ManifestOverrides overrides = {})
+  {
+    return parseManifest(yaml, root_ / "bringup/m.yaml", overrides, lookup_);
+  }
+
+  /// The problems a manifest is refused with.
+  std::vector<std::string> problems(const std::string& yaml)
+  {
+    try {
+      parse(yaml);
+    } catch (const common::ConfigError& e) {
+      return e.problems();
+    }
+    ADD_FAILURE() << "accepted:\n" << yaml;
+    return {};
+  }
+
+  fs::path root_;
+  ProgramLookup lookup_;
+};
+
+TEST_F(ManifestTest, AValidManifestResolvesProgramsPathsAndVariables)
+{
+  const Manifest m = parse(R"(
+world: ../configs/worlds/w.yaml
+hosts:
+  a: {type: local}
+  b: {type: netns}
+modules:
+  plant:
+    host: b
+    config: ../configs/plant.yaml
+    set: {world: "${world}", sim.mode: "${mode}"}
+    needs: [quad/control/actuators]
+    respawn: 2
+    ends_run: true
+  control: {}
+)");
+  ASSERT_EQ(m.modules.size(), 2U);
+  const Module& plant = m.modules[0];
+  EXPECT_EQ(plant.kind, "plant");
+  EXPECT_EQ(plant.host, "b");
+  EXPECT_EQ(plant.program, root_ / "build/modules/plant/node/quad_plant_node");
+  EXPECT_EQ(plant.config, root_ / "configs/plant.yaml");
+  ASSERT_EQ(plant.sets.size(), 2U);
+  EXPECT_EQ(plant.sets[0].second, (root_ / "configs/worlds/w.yaml").string());
+  EXPECT_EQ(plant.sets[1].second, "lockstep");
+  EXPECT_EQ(plant.respawn, 2);
+  EXPECT_TRUE(plant.ends_run);
+  EXPECT_EQ(m.modules[1].host, "a");  // the first host by default
+  EXPECT_TRUE(m.usesNamespaces());
+  EXPECT_EQ(m.discovery, Discovery::kMulticast);
+}
+
+TEST_F(ManifestTest, CommandLineOverridesWin)
+{
+  ManifestOverrides o;
+  o.mode = "realtime";
+  o.domain = 17;
+  o.subnet = "10.99.1";
+  const Manifest m = parse("domain: 3\nmodules: {control: {}}\n", o);
+  EXPECT_EQ(m.mode, "realtime");
+  EXPECT_EQ(*m.domain, 17);
+  EXPECT_EQ(m.subnet, "10.99.1");
+}
+
+TEST_F(ManifestTest, UnknownKeyIsRefusedWithFileAndKey)
+{
+  const auto p = problems("modules:\n  control: {respawns: 2}\n");
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_EQ(p[0].rfind((root_ / "bringup/m.yaml").string() + ":modules.control.respawns: 2: unknown key", 0), 0U)
+      << p[0];
+}
+
+TEST_F(ManifestTest, UnknownHostIsRefused)
+{
+  const auto p = problems("hosts: {a: {type: local}}\nmodules:\n  control: {host: b}\n");
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find(":modules.control.host: b: unknown host (hosts: a)"), std::string::npos) << p[0];
+}
+
+TEST_F(ManifestTest, ModuleNotFoundIsRefused)
+{
+  auto p = problems("modules:\n  autopilot: {}\n");
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find(":modules.autopilot.module: autopilot: module not found"), std::string::npos) << p[0];
+  fs::remove(root_ / "build/modules/control/node/quad_control_node");
+  p = problems("modules:\n  control: {}\n");
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find("module not built"), std::string::npos) << p[0];
+}
+
+TEST_F(ManifestTest, EveryProblemIsListedAtOnce)
+{
+  const auto p = problems(R"(
+transport: carrier-pigeon
+hosts: {a: {type: netns, address: 1.2.3.4}}
+modules:
+  control: {config: missing.yaml, needs: [not/a/topic], set: {x: "${nope}"}}
+)");
+  EXPECT_EQ(p.size(), 5U);
+  for (const char* key : {":transport: carrier-pigeon", ":hosts.a.address: 1.2.3.4", ":modules.control.config: missing.yaml",
+                          ":modules.control.needs[0]: not/a/topic", ":modules.control.set.x: ${nope}: unknown variable"}) {
+    EXPECT_TRUE(std::any_of(p.begin(), p.end(), [&](const std::string& s) { return s.find(key) != std::string::npos; }))
+        << key;
+  }
+}
+
+TEST_F(ManifestTest, SecurityNamesAnInitialisedFolder)
+{
+  auto p = problems("security: ../keys\nmodules: {control: {}}\n");
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find(":security: ../keys: no ca.pem in "), std::string::npos) << p[0];
+  EXPECT_NE(p[0].find("quad security init"), std::string::npos) << p[0];
+  fs::create_directories(root_ / "keys");
+  std::ofstream(root_ / "keys/ca.pem") << "certificate\n";
+  std::ofstream(root_ / "keys/governance.p7s") << "signed\n";
+  const Manifest m = parse("security: ../keys\nmodules: {control: {}}\n");
+  EXPECT_EQ(m.security_dir.lexically_normal(), (root_ / "keys").lexically_normal());
+}
+
+TEST_F(ManifestTest, NetworkRestrictionsAndFirewallAreReadAndChecked)
+{
+  const Manifest m = parse(R"(
+network: {interfaces: hosts, firewall: true}
+hosts:
+  a: {type: netns}
+  b: {type: ssh, address: pilot@192.168.1.20}
+  c: {type: local, interfaces: [192.168.1.10]}
+modules: {control: {host: a}}
+)");
+  EXPECT_TRUE(m.restrict_interfaces);
+  EXPECT_TRUE(m.firewall);
+  EXPECT_EQ(m.host("c").interfaces, std::vector<std::string>{"192.168.1.10"});
+  EXPECT_FALSE(parse("modules: {control: {}}\n").restrict_interfaces);
+
+  const auto p = problems(R"(
+network: {interfaces: some, firewall: yes}
+hosts: {a: {type: local, interfaces: [eth0]}}
+modules: {control: {}}
+)");
+  EXPECT_EQ(p.size(), 3U);
+  for (const char* key : {":network.interfaces: some: expected one of: any, hosts", ":network.firewall: yes: expected bool",
+                          ":hosts.a.interfaces[0]: eth0: not an IPv4 address"}) {
+    EXPECT_TRUE(std::any_of(p.begin(), p.end(), [&](const std::string& s) { return s.find(key) != std::string::npos; }))
+        << key;
+  }
+  // An ssh host known by name needs its addresses; a firewall needs a host to go on.
+  auto q = problems("network: {interfaces: hosts}\nhosts: {b: {type: ssh, address: pilot@uav1}}\nmodules: {control: {host: b}}\n");
+  ASSERT_EQ(q.size(), 1U);
+  EXPECT_NE(q[0].find(":hosts.b.interfaces: hosts: network.interfaces: hosts needs this ssh host's IPv4 addresses"),
+            std::string::npos)
+      << q[0];
+  q = problems("network: {firewall: true}\nmodules: {control: {}}\n");
+  ASSERT_EQ(q.size(), 1U);
+  EXPECT_NE(q[0].find(":network.firewall: true: no netns or ssh host to install it on"), std::string::npos) << q[0];
+}
+
+TEST_F(ManifestTest, AMissionNeedsAWorld)
+{
+  const auto p = problems("modules: {control: {}}\nmission: {tolerance: 0.5}\n");
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find(":mission: "), std::string::npos) << p[0];
+}
+
+TEST_F(ManifestTest, TheShippedManifestsAreValid)
+{
+  ProgramLookup shipped{QUAD_BUILD_DIR, QUAD_SOURCE_DIR, {}};
+  for (const char* name : {"demo.yaml", "three_hosts.yaml"}) {
+    EXPECT_NO_THROW(loadManifest(fs::path(QUAD_SOURCE_DIR) / "bringup" / name, {}, shipped)) << name;
+  }
+}
+
+}  // namespace
+}  // namespace quad::launch

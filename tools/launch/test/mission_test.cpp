@@ -1,0 +1,108 @@
+// The mission tracker: success, failure and the figures of the summary.
+#include "quad/launch/mission.hpp"
+
+#include <gtest/gtest.h>
+
+namespace quad::launch {
+namespace {
+
+using geometry::Vector3;
+
+world::World world()
+{
+  // A 10 m flight along x past one sphere of radius 1 m at (5, 3, 2).
+  world::Sphere s{Vector3(5, 3, 2), 1.0};
+  return world::World({Vector3(-1, -5, 0), Vector3(12, 5, 5)}, Vector3(0, 0, 0), Vector3(10, 0, 2),
+                      {world::Obstacle::makeSphere(s)});
+}
+
+Mission mission(bool land)
+{
+  Mission m;
+  m.enabled = true;
+  m.tolerance_m = 0.3;
+  m.land = land;
+  m.timeout_s = 30.0;
+  return m;
+}
+
+/// Flies the straight line from start to goal at 1 m/s, 10 states a second.
+void fly(MissionTracker& t, double t0, Eigen::Vector3d from, Eigen::Vector3d to)
+{
+  const double length = (to - from).norm();
+  for (double s = 0; s <= length + 1e-9; s += 0.1) {
+    t.onState(t0 + s, from + (to - from) * (s / length));
+  }
+}
+
+TEST(MissionTracker, LandingAtTheGoalWithoutCollisionIsASuccess)
+{
+  const auto w = world();
+  MissionTracker t(mission(true), w, 0.25);
+  t.onMode(0.0, "TAKEOFF");
+  fly(t, 0.0, {0, 0, 0}, {0, 0, 2});
+  t.onMode(2.0, "MISSION");
+  t.onPath(1);
+  t.onPath(1);  // a repeat is not a new path
+  t.onPath(2);
+  fly(t, 2.0, {0, 0, 2}, {10, 0, 2});
+  EXPECT_TRUE(t.takeLandRequest());
+  EXPECT_FALSE(t.takeLandRequest());  // once
+  EXPECT_FALSE(t.finished());
+  t.onMode(12.0, "LAND");
+  fly(t, 12.0, {10, 0, 2}, {10, 0, 0});
+  t.onMode(14.0, "IDLE");
+  ASSERT_TRUE(t.finished());
+  const MissionSummary s = t.summary(7.0);
+  EXPECT_TRUE(s.success) << s.outcome;
+  EXPECT_EQ(s.outcome, "landed at the goal");
+  EXPECT_NEAR(s.path_length_m, 14.0, 1e-6);
+  EXPECT_NEAR(s.straight_line_m, std::hypot(10.0, 2.0), 1e-12);
+  EXPECT_EQ(s.paths, 2);
+  EXPECT_EQ(s.mode_changes, 4);
+  // Closest to the sphere: the point (5, 0, 2), 3 m from its centre: 3 − 1 − 0.25.
+  EXPECT_NEAR(s.min_clearance_m, 1.75, 1e-9);
+  EXPECT_NE(toJson(s).find("\"success\": true"), std::string::npos);
+}
+
+TEST(MissionTracker, ACollisionFailsTheMissionEvenAtTheGoal)
+{
+  const auto w = world();
+  MissionTracker t(mission(false), w, 0.25);
+  fly(t, 0.0, {0, 0, 2}, {5, 0, 2});
+  t.onCollision(5.0);
+  fly(t, 5.0, {5, 0, 2}, {10, 0, 2});
+  ASSERT_TRUE(t.finished());
+  const auto s = t.summary(1.0);
+  EXPECT_FALSE(s.success);
+  EXPECT_EQ(s.collisions, 1);
+}
+
+TEST(MissionTracker, NotReachingTheGoalInTimeFails)
+{
+  const auto w = world();
+  MissionTracker t(mission(true), w, 0.0);
+  for (double time = 0; time <= 31.0; time += 0.5) {
+    t.onState(time, {1, 0, 2});
+  }
+  ASSERT_TRUE(t.finished());
+  const auto s = t.summary(1.0);
+  EXPECT_FALSE(s.success);
+  EXPECT_NE(s.outcome.find("timed out"), std::string::npos) << s.outcome;
+}
+
+TEST(MissionTracker, LandingAwayFromTheGoalFails)
+{
+  const auto w = world();
+  MissionTracker t(mission(true), w, 0.0);
+  t.onMode(0.0, "MISSION");
+  fly(t, 0.0, {0, 0, 2}, {4, 0, 2});
+  t.onMode(4.0, "FAILSAFE_LAND");
+  fly(t, 4.0, {4, 0, 2}, {4, 0, 0});
+  t.onMode(6.0, "IDLE");
+  ASSERT_TRUE(t.finished());
+  EXPECT_FALSE(t.summary(1.0).success);
+}
+
+}  // namespace
+}  // namespace quad::launch

@@ -1,0 +1,115 @@
+// The launcher's process side: supervision, stale shared memory, commands for remote hosts.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "quad/launch/hosts.hpp"
+#include "scratch.hpp"
+#include "quad/launch/shm.hpp"
+#include "quad/launch/supervisor.hpp"
+
+namespace quad::launch {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Pumps until `name` exits or 5 s pass; its status, or -1.
+int waitExit(Supervisor& s, const std::string& name)
+{
+  for (int i = 0; i < 100; ++i) {
+    for (const auto& e : s.pump(50)) {
+      if (e.name == name) {
+        return e.status;
+      }
+    }
+  }
+  return -1;
+}
+
+TEST(Supervisor, OutputIsKeptPerProcessAndExitsAreReported)
+{
+  const fs::path dir = quad::test::scratchDir("quad_supervisor_output");
+  Supervisor s(dir, nullptr, false);
+  s.start("talker", {"sh", "-c", "echo one; echo two >&2; printf three; exit 3"}, {});
+  EXPECT_EQ(waitExit(s, "talker"), 3);
+  EXPECT_FALSE(s.running("talker"));
+  const std::string log = quad::test::readFile(dir / "talker.log");
+  for (const char* line : {"\none\n", "\ntwo\n", "\nthree\n", "ended: exit 3"}) {
+    EXPECT_NE(log.find(line), std::string::npos) << line << " in\n" << log;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(Supervisor, EnvironmentIsPassed)
+{
+  const fs::path dir = quad::test::scratchDir("quad_supervisor_env");
+  Supervisor s(dir, nullptr, false);
+  s.start("env", {"sh", "-c", "echo domain=$QUAD_DOMAIN_ID"}, {{"QUAD_DOMAIN_ID", "77"}});
+  EXPECT_EQ(waitExit(s, "env"), 0);
+  EXPECT_NE(quad::test::readFile(dir / "env.log").find("domain=77"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST(Supervisor, StopEscalatesToSigkillAfterTheGracePeriod)
+{
+  const fs::path dir = quad::test::scratchDir("quad_supervisor_stop");
+  Supervisor s(dir, nullptr, false);
+  s.start("stubborn", {"sh", "-c", "trap '' TERM; echo ready; while true; do sleep 0.05; done"}, {});
+  for (int i = 0; i < 100 && quad::test::readFile(dir / "stubborn.log").find("\nready\n") == std::string::npos; ++i) {
+    s.pump(50);
+  }
+  const auto status = s.stop("stubborn", 0.3);
+  ASSERT_TRUE(status);
+  EXPECT_EQ(*status, 128 + SIGKILL);
+  s.start("polite", {"sleep", "30"}, {});
+  const auto polite = s.stop("polite", 5.0);
+  ASSERT_TRUE(polite);
+  EXPECT_EQ(*polite, 128 + SIGTERM);
+  fs::remove_all(dir);
+}
+
+TEST(SharedMemory, OnlyUnheldOldFastDdsFilesAreStale)
+{
+  const fs::path dir = quad::test::scratchDir("quad_shm");
+  for (const char* f : {"fastrtps_aaaa", "fastrtps_aaaa_el", "fastrtps_bbbb", "fastrtps_bbbb_el", "other_file"}) {
+    std::ofstream(dir / f) << "x";
+  }
+  // bbbb is held open, like a running participant's segment.
+  std::ifstream held(dir / "fastrtps_bbbb");
+  const auto old = fs::file_time_type::clock::now() - std::chrono::minutes(1);
+  for (const auto& e : fs::directory_iterator(dir)) {
+    fs::last_write_time(e.path(), old);
+  }
+  std::ofstream(dir / "fastrtps_cccc") << "new";  // too young to judge
+  auto stale = staleSharedMemory(dir, std::chrono::seconds(5));
+  std::sort(stale.begin(), stale.end());
+  ASSERT_EQ(stale.size(), 2U);
+  EXPECT_EQ(stale[0].filename(), "fastrtps_aaaa");
+  EXPECT_EQ(stale[1].filename(), "fastrtps_aaaa_el");
+  const auto cleaned = cleanStaleSharedMemory(dir, std::chrono::seconds(5));
+  EXPECT_EQ(cleaned.files, 2);
+  EXPECT_TRUE(fs::exists(dir / "fastrtps_bbbb_el"));
+  EXPECT_TRUE(fs::exists(dir / "other_file"));
+  fs::remove_all(dir);
+}
+
+TEST(HostNetwork, SshCommandsCarryTheEnvironmentQuotedAndMoveTheCheckout)
+{
+  Manifest m;
+  m.file = "/src/quad/bringup/m.yaml";
+  m.hosts = {Host{"far", HostKind::kSsh, "pilot@10.1.2.3", 2222, "/opt/quad", {"-i", "/k"}}};
+  HostNetwork net(m, "1");
+  EXPECT_EQ(net.address("far"), "10.1.2.3");
+  const auto argv = net.command(m.hosts[0], {"/src/quad/build/x", "--set", "name=it's"}, {{"QUAD_DOMAIN_ID", "5"}});
+  const std::vector<std::string> expected{
+      "ssh", "-tt", "-o", "BatchMode=yes", "-p", "2222", "-i", "/k", "pilot@10.1.2.3", "--", "env", "'QUAD_DOMAIN_ID=5'",
+      "'/opt/quad/build/x'", "'--set'", "'name=it'\\''s'"};
+  EXPECT_EQ(argv, expected);
+}
+
+}  // namespace
+}  // namespace quad::launch

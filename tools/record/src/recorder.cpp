@@ -1,0 +1,191 @@
+#include "quad/record/recorder.hpp"
+
+#include <signal.h>
+
+#include <atomic>
+#include <cstdio>
+#include <ctime>
+#include <map>
+#include <memory>
+#include <set>
+
+#include <fmt/chrono.h>
+#include <fmt/format.h>
+
+#include "quad/topic/connection.hpp"
+#include "quad/bag/audit.hpp"
+#include "quad/bag/mcap.hpp"
+#include "recording_files.hpp"
+#include "quad/common/payload_header.hpp"
+#include "quad/common/time.hpp"
+#include "quad/dds/node.hpp"
+#include "quad/dds/raw_type.hpp"
+#include "quad/dds/topics.hpp"
+#include "quad/dds/waker.hpp"
+#include "quad/introspection/idl.hpp"
+
+namespace quad::record {
+
+namespace {
+
+/// One recorded topic.
+struct Recorded {
+  std::unique_ptr<dds::RawSubscriber> subscriber;
+  std::uint16_t channel = 0;
+  bag::SequenceAudit audit;
+};
+
+}  // namespace
+
+int record(const RecordOptions& options, const std::atomic<int>& stop)
+{
+  dds::Participant participant(topic::participantOptions("quad_record", options.connection));
+  std::unique_ptr<RecordingFiles> files;
+  try {
+    files = std::make_unique<RecordingFiles>(options, std::map<std::string, std::string>{
+        {"domain", std::to_string(participant.options().domain_id)},
+        {"started_ns", std::to_string(common::wallTimeNs())},
+        {"recorder", "quad record"}});
+  } catch (const bag::BagError& e) {
+    std::fprintf(stderr, "record: %s\n", e.what());
+    return 1;
+  }
+  dds::Waker waker;
+  const auto& schema = introspection::quadSchema();
+  std::map<std::string, std::uint16_t> schemas;  // type -> schema id
+  std::map<std::string, Recorded> recorded;      // topic -> its reader and channel
+  std::set<std::string> refused;
+  std::fprintf(stderr, "record: domain %d to %s\n", participant.options().domain_id, files->current().c_str());
+
+  // Subscribes with the QoS of the topic's contract (the writers' own, so reliable writers
+  // are recorded reliably) and a deep history: a "newest only" topic keeps one sample per
+  // instance, and a recorder that falls a few samples behind must not lose them.
+  const auto subscribe = [&](const dds::TopicInfo& contract) {
+    const std::string topic(contract.name);
+    const std::string type(contract.type_name);
+    auto qos = participant.readerQos(contract.qos_profile);
+    if (qos.history().kind == eprosima::fastdds::dds::KEEP_LAST_HISTORY_QOS && qos.history().depth < 4096) {
+      qos.history().depth = 4096;
+      auto& limits = qos.resource_limits();
+      if (limits.max_samples_per_instance > 0 && limits.max_samples_per_instance < 4096) {
+        limits.max_samples_per_instance = 4096;
+      }
+      const std::int32_t needed = limits.max_samples_per_instance * std::max(1, limits.max_instances);
+      if (limits.max_samples > 0 && limits.max_samples < needed) {
+        limits.max_samples = needed;
+      }
+    }
+    std::unique_ptr<dds::RawSubscriber> subscriber;
+    try {
+      subscriber = std::make_unique<dds::RawSubscriber>(participant, contract, &waker, qos);
+    } catch (const std::exception& ex) {
+      refused.insert(topic);
+      std::fprintf(stderr, "record: not recording %s: %s\n", topic.c_str(), ex.what());
+      return;
+    }
+    if (!schemas.contains(type)) {
+      schemas[type] = files->addSchema(type, schema.flattenedIdl(type));
+    }
+    Recorded& r = recorded[topic];
+    r.subscriber = std::move(subscriber);
+    r.channel = files->addChannel(
+        schemas[type], topic,
+        {{"qos_profile", std::string(contract.qos_profile)},
+         {"reliable", qos.reliability().kind == eprosima::fastdds::dds::RELIABLE_RELIABILITY_QOS ? "true" : "false"},
+         {"transient_local", qos.durability().kind != eprosima::fastdds::dds::VOLATILE_DURABILITY_QOS ? "true" : "false"},
+         {"rate_hz", fmt::format("{}", contract.rate_hz)}});
+  };
+  // Topics named outright are subscribed to at once, so that no first sample is missed.
+  for (const auto& t : options.topics) {
+    const auto contract = dds::topics::find(t);
+    if (contract && t.find_first_of("*?[") == std::string::npos && !topic::matchesAnyGlob(t, options.exclude)) {
+      subscribe(*contract);
+    }
+  }
+
+  const std::int64_t start = common::steadyTimeNs();
+  std::int64_t next_discovery = 0;
+  std::int64_t next_progress = start + common::kNanosecondsPerSecond;
+  std::uint64_t bytes = 0;
+  dds::RawSample sample;  // one buffer for every take: a 1 MiB payload is not allocated anew each time
+  // Writes every sample the readers hold.
+  const auto takeAll = [&] {
+    for (auto& [topic, r] : recorded) {
+      std::uint64_t writer_id = 0;
+      while (r.subscriber->take(sample, writer_id)) {
+        const auto log_time = static_cast<std::uint64_t>(common::wallTimeNs());
+        const auto header = common::payloadHeader(sample.payload);
+        const std::uint64_t publish = header && header->publish_ns > 0 ? static_cast<std::uint64_t>(header->publish_ns)
+                                                                        : log_time;
+        if (header) {
+          r.audit.add(writer_id, header->seq);
+        }
+        files->write(r.channel, header ? static_cast<std::uint32_t>(header->seq) : 0, log_time, publish,
+                     sample.payload);
+        bytes += sample.payload.size();
+      }
+    }
+  };
+  int code = 0;
+  try {
+    while (stop.load() == 0) {
+      const std::int64_t now = common::steadyTimeNs();
+      if (options.duration_s > 0 && now - start >= common::toNanoseconds(options.duration_s)) {
+        break;
+      }
+      if (now >= next_discovery) {
+        // Subscribe to every selected topic a writer appeared on, with the QoS of its
+        // contract (the writers' own, so reliable writers are recorded reliably).
+        for (const auto& e : participant.remoteEndpoints()) {
+          if (!e.writer || recorded.contains(e.topic) || refused.contains(e.topic)) {
+            continue;
+          }
+          if ((!options.topics.empty() && !topic::matchesAnyGlob(e.topic, options.topics)) || topic::matchesAnyGlob(e.topic, options.exclude)) {
+            continue;
+          }
+          const auto contract = dds::topics::find(e.topic);
+          if (!contract || contract->type_name != e.type_name) {
+            refused.insert(e.topic);
+            std::fprintf(stderr, "record: not recording %s (type %s): %s\n", e.topic.c_str(), e.type_name.c_str(),
+                         contract ? "its type differs from the contract's" : "no quad topic contract names it");
+            continue;
+          }
+          subscribe(*contract);
+        }
+        next_discovery = now + 200'000'000;
+      }
+      takeAll();
+      if (now >= next_progress) {
+        if (!options.quiet) {
+          const double seconds = common::toSeconds(now - start);
+          std::fprintf(stderr, "\rrecord: %zu topics, %llu messages, %.1f MB, %.0f msg/s   ", recorded.size(),
+                       static_cast<unsigned long long>(files->messages()), static_cast<double>(bytes) / 1e6,
+                       static_cast<double>(files->messages()) / std::max(seconds, 1e-9));
+        }
+        next_progress = now + common::kNanosecondsPerSecond;  // also quiet: it bounds the wait below
+      }
+      waker.waitUntil(std::min(next_discovery, next_progress));
+    }
+    takeAll();  // on a stop, what the readers already hold is written, not dropped
+  } catch (const bag::BagError& e) {
+    std::fprintf(stderr, "\nrecord: %s: stopping\n", e.what());
+    code = 1;
+  }
+  // Loss figures of the recording, for quad bag info.
+  std::map<std::string, std::string> loss;
+  for (const auto& [topic, r] : recorded) {
+    loss[topic] = bag::toText(r.audit.figures(), r.audit.writers());
+  }
+  try {
+    files->finish(loss);
+  } catch (const bag::BagError& e) {
+    std::fprintf(stderr, "\nrecord: %s\n", e.what());
+    return 1;
+  }
+  std::fprintf(stderr, "\nrecord: %llu messages on %zu topics in %s%s\n",
+               static_cast<unsigned long long>(files->messages()), recorded.size(), files->current().c_str(),
+               files->parts() > 1 ? fmt::format(" (the last of {} parts)", files->parts()).c_str() : "");
+  return code;
+}
+
+}  // namespace quad::record

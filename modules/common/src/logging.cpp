@@ -8,6 +8,8 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include "quad/common/param_table.hpp"
+
 namespace quad::common {
 namespace {
 
@@ -26,19 +28,43 @@ spdlog::level::level_enum parseLevel(const std::string& text, std::string_view s
 
 }  // namespace
 
+namespace {
+
+/// The log keys as a module's config writes them.
+struct LogParams {
+  std::string level = "info";
+  std::string directory;  ///< empty: console only
+};
+
+const ParamTable<LogParams>& logTable()
+{
+  static const ParamTable<LogParams> table = [] {
+    ParamTable<LogParams> t;
+    t.text("log.level", [](LogParams& p) -> std::string& { return p.level; }, kLevels,
+           "Log level; QUAD_LOG_LEVEL overrides it")
+        .text("log.directory", [](LogParams& p) -> std::string& { return p.directory; }, {},
+              "Folder for <module>.log; empty: console only. QUAD_LOG_DIR overrides it");
+    return t;
+  }();
+  return table;
+}
+
+}  // namespace
+
 void addLoggingParams(ParamSchema& schema)
 {
-  schema.addString("log.level", "info", kLevels, "Log level; QUAD_LOG_LEVEL overrides it");
-  schema.addString("log.directory", "", {},
-                   "Folder for <module>.log; empty: console only. QUAD_LOG_DIR overrides it");
+  for (const ParamSpec& spec : logTable().schema().specs()) {
+    schema.add(spec);
+  }
 }
 
 LogOptions logOptionsFrom(const Params& params)
 {
+  const LogParams p = logTable().read(params);
   LogOptions options;
-  options.level = params.getString("log.level");
-  if (const auto& dir = params.getString("log.directory"); !dir.empty()) {
-    options.directory = dir;
+  options.level = p.level;
+  if (!p.directory.empty()) {
+    options.directory = p.directory;
   }
   return options;
 }

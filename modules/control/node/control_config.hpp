@@ -4,18 +4,26 @@
 
 #include <filesystem>
 
-#include "quad/common/params.hpp"
+#include "quad/common/param_table.hpp"
 #include "quad/control/flight_controller.hpp"
 
 namespace quad::control {
 
+/// The controller as configs/control.yaml's defaults fly it: gains tuned for the x500 (the
+/// core's own defaults are Lee et al.'s, for their vehicle) and the staleness timeouts of the
+/// quad/sim/state and quad/planning/path contracts.
+FlightControllerConfig nodeFlightDefaults();
+
 struct ControlNodeConfig {
-  std::filesystem::path vehicle_file;
-  FlightControllerConfig flight;
+  std::filesystem::path vehicle_file = "vehicles/x500.yaml";
+  FlightControllerConfig flight = nodeFlightDefaults();
   bool autostart = false;     ///< arm and take off by itself once the state is fresh
   double status_rate = 20.0;  ///< [Hz]
 };
 
+/// configs/control.yaml: each key with its unit, range and the field it fills; the defaults
+/// are ControlNodeConfig's own.
+const common::ParamTable<ControlNodeConfig>& controlTable();
 common::ParamSchema controlSchema();
 ControlNodeConfig controlConfigFrom(const common::Params& params);
 

@@ -30,34 +30,39 @@ msg::VoxelState toMessage(VoxelState s)
 }
 }  // namespace
 
-common::ParamSchema mappingSchema()
+const common::ParamTable<MappingParams>& mappingTable()
 {
-  common::ParamSchema s;
-  addMapperParams(s);
-  s.addString("world", "", {}, "world file whose box the map covers (one voxel beyond); empty: unbounded")
-      .addString("frames", "depth_front", {}, "comma-separated sensor frames accepted")
-      .addDouble("snapshot.period", 1.0, 0.05, 3600.0, "s", "sim time between map snapshots")
-      .addString("save_path", "", {}, ".bt file written on shutdown and on COMMAND_SAVE_MAP; empty: never");
-  return s;
+  using P = MappingParams;
+  static const common::ParamTable<P> table = [] {
+    common::ParamTable<P> t;
+    t.include(mapperTable(), [](P& p) -> MapperParams& { return p.mapper; })
+        .path("world", [](P& p) -> std::filesystem::path& { return p.world_file; },
+              "world file whose box the map covers (one voxel beyond); empty: unbounded")
+        .list("frames", [](P& p) -> std::set<std::string>& { return p.frames; }, "comma-separated sensor frames accepted")
+        .number("snapshot.period", [](P& p) -> double& { return p.snapshot_period_s; }, {0.05, 3600.0}, "s",
+                "sim time between map snapshots")
+        .text("save_path", [](P& p) -> std::string& { return p.save_path; }, {},
+              ".bt file written on shutdown and on COMMAND_SAVE_MAP; empty: never");
+    return t;
+  }();
+  return table;
 }
+
+common::ParamSchema mappingSchema() { return mappingTable().schema(); }
 
 MappingNodeConfig mappingConfigFrom(const common::Params& p)
 {
+  const MappingParams m = mappingTable().read(p, QUAD_CONFIG_DIR);
   MappingNodeConfig c;
-  c.map = mapperConfigFrom(p);
-  if (const auto world = common::configPath(p, "world", QUAD_CONFIG_DIR); !world.empty()) {
-    const world::Bounds b = world::loadWorld(world).bounds();
+  c.map = mapperConfigFrom(m.mapper, p.origin());
+  if (!m.world_file.empty()) {
+    const world::Bounds b = world::loadWorld(m.world_file).bounds();
     const Vector3 margin = Vector3::Constant(c.map.resolution);
     c.map.box = std::make_pair(Vector3(b.min - margin), Vector3(b.max + margin));
   }
-  std::stringstream list(p.getString("frames"));
-  for (std::string f; std::getline(list, f, ',');) {
-    if (!f.empty()) {
-      c.frames.insert(f);
-    }
-  }
-  c.snapshot_period_s = p.getDouble("snapshot.period");
-  c.save_path = p.getString("save_path");
+  c.frames = m.frames;
+  c.snapshot_period_s = m.snapshot_period_s;
+  c.save_path = m.save_path;
   return c;
 }
 

@@ -24,6 +24,17 @@ struct MappingNodeConfig {
   std::filesystem::path save_path;   ///< .bt written on shutdown and on COMMAND_SAVE_MAP; empty: never
 };
 
+/// configs/mapping.yaml as written.
+struct MappingParams {
+  MapperParams mapper;
+  std::filesystem::path world_file;                      ///< empty: the map is unbounded
+  std::set<std::string> frames{"depth_front"};           ///< sensor frames accepted
+  double snapshot_period_s = 1.0;                        ///< [s] of sim time between snapshots
+  std::string save_path;                                 ///< .bt file; empty: never saved
+};
+
+/// Each key with its unit, range and the field it fills; the defaults are MappingParams'.
+const common::ParamTable<MappingParams>& mappingTable();
 common::ParamSchema mappingSchema();
 MappingNodeConfig mappingConfigFrom(const common::Params& params);
 

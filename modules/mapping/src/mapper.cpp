@@ -51,43 +51,54 @@ bool indexLess(const VoxelIndex& a, const VoxelIndex& b)
   return std::tie(a.x(), a.y(), a.z()) < std::tie(b.x(), b.y(), b.z());
 }
 
-void addMapperParams(common::ParamSchema& s)
+const common::ParamTable<MapperParams>& mapperTable()
 {
-  s.addDouble("map.resolution", 0.2, 0.01, 10.0, "m", "voxel edge (the planner's lattice too)")
-      .addDouble("map.min_range", 0.0, 0.0, 100.0, "m", "closer points are dropped")
-      .addDouble("map.max_range", 20.0, 0.1, 500.0, "m", "farther points only clear space")
-      .addDouble("map.prob_hit", 0.7, 0.0, 1.0, "", "occupancy probability of a hit")
-      .addDouble("map.prob_miss", 0.4, 0.0, 1.0, "", "occupancy probability of a miss")
-      .addDouble("map.clamp_min", 0.12, 0.0, 1.0, "", "lower clamping of a voxel's probability")
-      .addDouble("map.clamp_max", 0.97, 0.0, 1.0, "", "upper clamping of a voxel's probability")
-      .addDouble("map.occupancy_threshold", 0.5, 0.0, 1.0, "", "occupied above this probability")
-      .addBool("map.height_limits", false, "drop points outside [map.min_z, map.max_z]")
-      .addDouble("map.min_z", -1.0, -1e4, 1e4, "m", "lowest point kept (with height_limits)")
-      .addDouble("map.max_z", 50.0, -1e4, 1e4, "m", "highest point kept (with height_limits)")
-      .addInt("map.max_points", 65536, 1, 10'000'000, "", "clouds with more points are refused");
+  using P = MapperParams;
+  static const common::ParamTable<P> table = [] {
+    common::ParamTable<P> t;
+    t.number("map.resolution", [](P& p) -> double& { return p.map.resolution; }, {0.01, 10.0}, "m",
+             "voxel edge (the planner's lattice too)")
+        .number("map.min_range", [](P& p) -> double& { return p.map.min_range; }, {0.0, 100.0}, "m",
+                "closer points are dropped")
+        .number("map.max_range", [](P& p) -> double& { return p.map.max_range; }, {0.1, 500.0}, "m",
+                "farther points only clear space")
+        .number("map.prob_hit", [](P& p) -> double& { return p.map.prob_hit; }, {0.0, 1.0}, "",
+                "occupancy probability of a hit")
+        .number("map.prob_miss", [](P& p) -> double& { return p.map.prob_miss; }, {0.0, 1.0}, "",
+                "occupancy probability of a miss")
+        .number("map.clamp_min", [](P& p) -> double& { return p.map.clamp_min; }, {0.0, 1.0}, "",
+                "lower clamping of a voxel's probability")
+        .number("map.clamp_max", [](P& p) -> double& { return p.map.clamp_max; }, {0.0, 1.0}, "",
+                "upper clamping of a voxel's probability")
+        .number("map.occupancy_threshold", [](P& p) -> double& { return p.map.occupancy_threshold; }, {0.0, 1.0}, "",
+                "occupied above this probability")
+        .flag("map.height_limits", [](P& p) -> bool& { return p.height_limits; },
+              "drop points outside [map.min_z, map.max_z]")
+        .number("map.min_z", [](P& p) -> double& { return p.min_z; }, {-1e4, 1e4}, "m",
+                "lowest point kept (with height_limits)")
+        .number("map.max_z", [](P& p) -> double& { return p.max_z; }, {-1e4, 1e4}, "m",
+                "highest point kept (with height_limits)")
+        .number("map.max_points", [](P& p) -> std::size_t& { return p.map.max_points; }, {1, 10'000'000}, "",
+                "clouds with more points are refused");
+    return t;
+  }();
+  return table;
 }
 
-MapperConfig mapperConfigFrom(const common::Params& p)
+MapperConfig mapperConfigFrom(const MapperParams& p, const std::string& origin)
 {
-  MapperConfig c;
-  c.resolution = p.getDouble("map.resolution");
-  c.min_range = p.getDouble("map.min_range");
-  c.max_range = p.getDouble("map.max_range");
-  c.prob_hit = p.getDouble("map.prob_hit");
-  c.prob_miss = p.getDouble("map.prob_miss");
-  c.clamp_min = p.getDouble("map.clamp_min");
-  c.clamp_max = p.getDouble("map.clamp_max");
-  c.occupancy_threshold = p.getDouble("map.occupancy_threshold");
-  if (p.getBool("map.height_limits")) {
-    c.min_z = p.getDouble("map.min_z");
-    c.max_z = p.getDouble("map.max_z");
+  MapperConfig c = p.map;
+  if (p.height_limits) {
+    c.min_z = p.min_z;
+    c.max_z = p.max_z;
   }
-  c.max_points = static_cast<std::size_t>(p.getInt("map.max_points"));
-  if (auto problems = problemsOf(c, p.origin()); !problems.empty()) {
+  if (auto problems = problemsOf(c, origin); !problems.empty()) {
     throw common::ConfigError(std::move(problems));
   }
   return c;
 }
+
+MapperConfig mapperConfigFrom(const common::Params& p) { return mapperConfigFrom(mapperTable().read(p), p.origin()); }
 
 Mapper::Mapper(MapperConfig config) : config_(config), tree_(config.resolution), grid_(config.resolution)
 {

@@ -184,8 +184,7 @@ TEST(Mapper, BadCloudsAreRefusedWholeAndChangeNothing)
 
 TEST(Mapper, ContradictoryConfigIsRefusedNamingTheKey)
 {
-  common::ParamSchema schema;
-  addMapperParams(schema);
+  const common::ParamSchema& schema = mapperTable().schema();
   const auto problems = [&](const std::string& yaml) {
     try {
       mapperConfigFrom(common::parseParams(yaml, "mapping.yaml", schema));

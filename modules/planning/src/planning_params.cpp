@@ -4,82 +4,88 @@
 
 namespace quad::planning {
 
-common::ParamSchema planningSchema()
+const common::ParamTable<PlanningParams>& planningTable()
 {
-  common::ParamSchema s;
-  s.addString("world", "worlds/demo.yaml", {}, "world file whose bounds the lattice covers")
-      .addString("vehicle", "vehicles/x500.yaml", {}, "vehicle file (its radius inflates obstacles)")
-      .addDouble("safety_margin", 0.3, 0.0, 10.0, "m", "added to the vehicle radius")
-      .addDouble("ground_clearance", 1.0, 0.0, 1e3, "m", "lowest cell centres above the world's floor")
-      .addDouble("altitude.min", -1e4, -1e4, 1e4, "m", "an optional band: lowest cell centres planned through")
-      .addDouble("altitude.max", 1e4, -1e4, 1e4, "m", "an optional band: highest cell centres planned through")
-      .addDouble("known_free.radius", 0.2, 0.0, 10.0, "m",
-                 "around the path's centre line, every voxel must be known free for the follower to fly it")
-      .addDouble("known_free.horizon", 8.0, 0.0, 1e3, "m",
-                 "path length checked for known-free space; 0: fly unknown space like free space")
-      .addDouble("resolution", 0.2, 0.01, 10.0, "m", "lattice cell: the mapper's map.resolution")
-      .addInt("connectivity", 26, 6, 26, "", "6, 18 or 26 neighbours")
-      .addBool("unknown_traversable", true, "plan through unknown space")
-      .addDouble("replan_period", 0.2, 0.01, 60.0, "s", "sim time between replans")
-      .addDouble("republish_period", 0.5, 0.01, 60.0, "s",
-                 "sim time between repeats of an unchanged path (at most half the path contract's deadline)")
-      .addInt("max_expansions", 200000, 1, 100000000, "", "replan budget per cycle")
-      .addInt("map_frames_behind", 5, 1, 1000, "",
-              "depth frames the map may lag the camera before paths stop (a stalled mapper)");
-  return s;
+  using P = PlanningParams;
+  static const common::ParamTable<P> table = [] {
+    common::ParamTable<P> t;
+    t.path("world", [](P& p) -> std::filesystem::path& { return p.world_file; },
+           "world file whose bounds the lattice covers")
+        .path("vehicle", [](P& p) -> std::filesystem::path& { return p.vehicle_file; },
+              "vehicle file (its radius inflates obstacles)")
+        .number("safety_margin", [](P& p) -> double& { return p.safety_margin; }, {0.0, 10.0}, "m",
+                "added to the vehicle radius")
+        .number("ground_clearance", [](P& p) -> double& { return p.ground_clearance; }, {0.0, 1e3}, "m",
+                "lowest cell centres above the world's floor")
+        .number("altitude.min", [](P& p) -> double& { return p.altitude_min; }, {-1e4, 1e4}, "m",
+                "an optional band: lowest cell centres planned through")
+        .number("altitude.max", [](P& p) -> double& { return p.altitude_max; }, {-1e4, 1e4}, "m",
+                "an optional band: highest cell centres planned through")
+        .number("known_free.radius", [](P& p) -> double& { return p.known_space.radius; }, {0.0, 10.0}, "m",
+                "around the path's centre line, every voxel must be known free for the follower to fly it")
+        .number("known_free.horizon", [](P& p) -> double& { return p.known_space.horizon; }, {0.0, 1e3}, "m",
+                "path length checked for known-free space; 0: fly unknown space like free space")
+        .number("resolution", [](P& p) -> double& { return p.resolution; }, {0.01, 10.0}, "m",
+                "lattice cell: the mapper's map.resolution")
+        .number("connectivity", [](P& p) -> int& { return p.planner.connectivity; }, {6, 26}, "",
+                "6, 18 or 26 neighbours")
+        .flag("unknown_traversable", [](P& p) -> bool& { return p.planner.unknown_traversable; },
+              "plan through unknown space")
+        .number("replan_period", [](P& p) -> double& { return p.replan_period_s; }, {0.01, 60.0}, "s",
+                "sim time between replans")
+        .number("republish_period", [](P& p) -> double& { return p.republish_period_s; }, {0.01, 60.0}, "s",
+                "sim time between repeats of an unchanged path (at most half the path contract's deadline)")
+        .number("max_expansions", [](P& p) -> std::uint64_t& { return p.max_expansions; }, {1, 100000000}, "",
+                "replan budget per cycle")
+        .number("map_frames_behind", [](P& p) -> std::uint64_t& { return p.map_frames_behind; }, {1, 1000}, "",
+                "depth frames the map may lag the camera before paths stop (a stalled mapper)");
+    return t;
+  }();
+  return table;
 }
+
+common::ParamSchema planningSchema() { return planningTable().schema(); }
 
 std::filesystem::path worldFileOf(const common::Params& params)
 {
-  return common::configPath(params, "world", QUAD_CONFIG_DIR);
+  return planningTable().read(params, QUAD_CONFIG_DIR).world_file;
 }
 
 std::filesystem::path vehicleFileOf(const common::Params& params)
 {
-  return common::configPath(params, "vehicle", QUAD_CONFIG_DIR);
+  return planningTable().read(params, QUAD_CONFIG_DIR).vehicle_file;
 }
 
 PlanningParams planningParamsFrom(const common::Params& p, const Vector3& world_min, const Vector3& world_max,
                                   double vehicle_radius)
 {
-  PlanningParams c;
-  c.resolution = p.getDouble("resolution");
-  c.planner.vehicle_radius = vehicle_radius + p.getDouble("safety_margin");
+  PlanningParams c = planningTable().read(p, QUAD_CONFIG_DIR);
+  c.planner.vehicle_radius = vehicle_radius + c.safety_margin;
   // The whole volume the vehicle may fly in: the world's box less the inflation radius at the
   // sides and the top, from the ground clearance up; an altitude band clips it further.
   const Vector3 inset = Vector3::Constant(c.planner.vehicle_radius);
   c.bounds_min = world_min + inset;
   c.bounds_max = world_max - inset;
-  c.bounds_min.z() = world_min.z() + p.getDouble("ground_clearance");
-  const double lo = p.getDouble("altitude.min");
-  const double hi = p.getDouble("altitude.max");
-  if (lo > hi) {
-    throw common::ConfigError({common::configProblem(p.origin(), "altitude.min", lo, "above altitude.max")});
+  c.bounds_min.z() = world_min.z() + c.ground_clearance;
+  if (c.altitude_min > c.altitude_max) {
+    throw common::ConfigError({common::configProblem(p.origin(), "altitude.min", c.altitude_min, "above altitude.max")});
   }
-  c.bounds_min.z() = std::max(c.bounds_min.z(), lo);
-  c.bounds_max.z() = std::min(c.bounds_max.z(), hi);
+  c.bounds_min.z() = std::max(c.bounds_min.z(), c.altitude_min);
+  c.bounds_max.z() = std::min(c.bounds_max.z(), c.altitude_max);
   for (int axis = 0; axis < 3; ++axis) {
     if (c.bounds_min[axis] + c.resolution > c.bounds_max[axis]) {
-      const char* key = axis == 2 ? "ground_clearance" : "safety_margin";
+      const bool vertical = axis == 2;
       throw common::ConfigError({common::configProblem(
-          p.origin(), key, p.getDouble(key),
+          p.origin(), vertical ? "ground_clearance" : "safety_margin", vertical ? c.ground_clearance : c.safety_margin,
           "leaves less than a cell of the world's bounds to plan in (with the altitude band, if any)")});
     }
   }
-  c.known_space.radius = p.getDouble("known_free.radius");
-  c.known_space.horizon = p.getDouble("known_free.horizon");
   // The vehicle's own volume is free (it is there) but partly behind its camera.
   c.known_space.own_radius = vehicle_radius + c.resolution;
-  c.planner.connectivity = static_cast<int>(p.getInt("connectivity"));
   if (c.planner.connectivity != 6 && c.planner.connectivity != 18 && c.planner.connectivity != 26) {
     throw common::ConfigError({common::configProblem(p.origin(), "connectivity", std::int64_t{c.planner.connectivity},
                                                      "expected 6, 18 or 26")});
   }
-  c.planner.unknown_traversable = p.getBool("unknown_traversable");
-  c.replan_period_s = p.getDouble("replan_period");
-  c.republish_period_s = p.getDouble("republish_period");
-  c.max_expansions = static_cast<std::uint64_t>(p.getInt("max_expansions"));
-  c.map_frames_behind = static_cast<std::uint64_t>(p.getInt("map_frames_behind"));
   return c;
 }
 

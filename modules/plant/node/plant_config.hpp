@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "quad/common/params.hpp"
+#include "quad/common/param_table.hpp"
 #include "quad/plant/simulation.hpp"
 
 namespace quad::plant {
@@ -20,12 +20,15 @@ struct PlantNodeConfig {
   bool lockstep_wait_for_command = true;
   double lockstep_timeout_s = 5.0;              ///< [s] wall time before a lockstep wait is reported
   std::int64_t lockstep_period_ns = 4'000'000;  ///< sim time between lockstep rounds
-  std::filesystem::path vehicle_file;
-  std::filesystem::path world_file;
+  std::filesystem::path vehicle_file = "vehicles/x500.yaml";
+  std::filesystem::path world_file = "worlds/demo.yaml";
   std::filesystem::path fault_schedule_file;    ///< empty: none
   SimulationConfig simulation;
 };
 
+/// configs/plant.yaml: each key with its unit, range and the field it fills; the defaults are
+/// PlantNodeConfig's own.
+const common::ParamTable<PlantNodeConfig>& plantTable();
 common::ParamSchema plantSchema();
 
 /// Relative file paths resolve against the directory of the config file (or configs/ for

@@ -32,49 +32,45 @@ double VehicleParams::hoverRotorSpeed(double gravity) const
   return std::sqrt(mass * gravity / (kRotorCount * thrust_coefficient));
 }
 
-common::ParamSchema vehicleSchema()
+const common::ParamTable<VehicleParams>& vehicleTable()
 {
-  common::ParamSchema s;
-  s.addDouble("mass", std::nullopt, 0.01, 1000.0, "kg", "vehicle mass")
-      .addVector("inertia", std::nullopt, 3, 1e-6, 1000.0, "kg m^2",
-                 "principal moments of inertia about body x, y, z")
-      .addDouble("arm_length", std::nullopt, 0.01, 10.0, "m", "centre to rotor axis")
-      .addDouble("rotor.thrust_coefficient", std::nullopt, 1e-12, 1.0, "N s^2/rad^2",
-                 "k_f: thrust = k_f w^2")
-      .addDouble("rotor.torque_coefficient", std::nullopt, 0.0, 1.0, "N m s^2/rad^2",
-                 "k_m: reaction torque = k_m w^2")
-      .addDouble("rotor.speed_min", 0.0, 0.0, 1e5, "rad/s", "lowest rotor speed")
-      .addDouble("rotor.speed_max", std::nullopt, 1.0, 1e5, "rad/s", "highest rotor speed")
-      .addDouble("motor.time_constant_up", 0.02, 1e-4, 10.0, "s", "first-order lag, speeding up")
-      .addDouble("motor.time_constant_down", 0.04, 1e-4, 10.0, "s",
-                 "first-order lag, slowing down")
-      .addVector("drag.linear", std::vector<double>{0.0, 0.0, 0.0}, 3, 0.0, 1e3, "N s/m",
-                 "linear drag per body axis")
-      .addVector("drag.quadratic", std::vector<double>{0.0, 0.0, 0.0}, 3, 0.0, 1e3, "N s^2/m^2",
-                 "quadratic drag per body axis")
-      .addDouble("radius", std::nullopt, 0.01, 10.0, "m", "bounding sphere radius");
-  return s;
+  using common::Need;
+  using V = VehicleParams;
+  static const common::ParamTable<V> table = [] {
+    common::ParamTable<V> t;
+    t.number("mass", [](V& v) -> double& { return v.mass; }, {0.01, 1000.0}, "kg", "vehicle mass", Need::kRequired)
+        .vector("inertia", [](V& v) -> Eigen::Vector3d& { return v.inertia; }, {1e-6, 1000.0}, "kg m^2",
+                "principal moments of inertia about body x, y, z", Need::kRequired)
+        .number("arm_length", [](V& v) -> double& { return v.arm_length; }, {0.01, 10.0}, "m",
+                "centre to rotor axis", Need::kRequired)
+        .number("rotor.thrust_coefficient", [](V& v) -> double& { return v.thrust_coefficient; }, {1e-12, 1.0},
+                "N s^2/rad^2", "k_f: thrust = k_f w^2", Need::kRequired)
+        .number("rotor.torque_coefficient", [](V& v) -> double& { return v.torque_coefficient; }, {0.0, 1.0},
+                "N m s^2/rad^2", "k_m: reaction torque = k_m w^2", Need::kRequired)
+        .number("rotor.speed_min", [](V& v) -> double& { return v.rotor_speed_min; }, {0.0, 1e5}, "rad/s",
+                "lowest rotor speed")
+        .number("rotor.speed_max", [](V& v) -> double& { return v.rotor_speed_max; }, {1.0, 1e5}, "rad/s",
+                "highest rotor speed", Need::kRequired)
+        .number("motor.time_constant_up", [](V& v) -> double& { return v.motor_time_constant_up; }, {1e-4, 10.0},
+                "s", "first-order lag, speeding up")
+        .number("motor.time_constant_down", [](V& v) -> double& { return v.motor_time_constant_down; },
+                {1e-4, 10.0}, "s", "first-order lag, slowing down")
+        .vector("drag.linear", [](V& v) -> Eigen::Vector3d& { return v.drag_linear; }, {0.0, 1e3}, "N s/m",
+                "linear drag per body axis")
+        .vector("drag.quadratic", [](V& v) -> Eigen::Vector3d& { return v.drag_quadratic; }, {0.0, 1e3},
+                "N s^2/m^2", "quadratic drag per body axis")
+        .number("radius", [](V& v) -> double& { return v.radius; }, {0.01, 10.0}, "m", "bounding sphere radius",
+                Need::kRequired);
+    return t;
+  }();
+  return table;
 }
+
+common::ParamSchema vehicleSchema() { return vehicleTable().schema(); }
 
 VehicleParams vehicleFromParams(const common::Params& p)
 {
-  const auto vec = [&p](const char* key) {
-    const auto& v = p.getVector(key);
-    return Eigen::Vector3d(v[0], v[1], v[2]);
-  };
-  VehicleParams v;
-  v.mass = p.getDouble("mass");
-  v.inertia = vec("inertia");
-  v.arm_length = p.getDouble("arm_length");
-  v.thrust_coefficient = p.getDouble("rotor.thrust_coefficient");
-  v.torque_coefficient = p.getDouble("rotor.torque_coefficient");
-  v.rotor_speed_min = p.getDouble("rotor.speed_min");
-  v.rotor_speed_max = p.getDouble("rotor.speed_max");
-  v.motor_time_constant_up = p.getDouble("motor.time_constant_up");
-  v.motor_time_constant_down = p.getDouble("motor.time_constant_down");
-  v.drag_linear = vec("drag.linear");
-  v.drag_quadratic = vec("drag.quadratic");
-  v.radius = p.getDouble("radius");
+  const VehicleParams v = vehicleTable().read(p);
 
   std::vector<std::string> problems;
   const std::string& origin = p.origin();

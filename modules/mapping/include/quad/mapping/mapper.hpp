@@ -17,7 +17,7 @@
 
 #include <octomap/OcTree.h>
 
-#include "quad/common/params.hpp"
+#include "quad/common/param_table.hpp"
 #include "quad/geometry/grid.hpp"
 #include "quad/mapping/map_tree.hpp"
 
@@ -50,10 +50,21 @@ struct MapperConfig {
   std::optional<std::pair<Vector3, Vector3>> box;
 };
 
-/// The schema of the mapper's parameters (`map.*` keys of configs/mapping.yaml).
-void addMapperParams(common::ParamSchema& schema);
-/// Reads them, refusing contradictions (hit <= 0.5, clamp_min >= threshold, ...) with
-/// `file:key: value: reason`.
+/// The mapper's parameters as configs/mapping.yaml writes them (its `map.*` keys):
+/// MapperConfig's fields, and the height band as a switch with its limits.
+struct MapperParams {
+  MapperConfig map;
+  bool height_limits = false;  ///< keep only points within [min_z, max_z]
+  double min_z = -1.0;         ///< [m]
+  double max_z = 50.0;         ///< [m]
+};
+
+/// Each `map.*` key with its unit, range and the field it fills; defaults are MapperParams'.
+const common::ParamTable<MapperParams>& mapperTable();
+/// The config they make, refusing contradictions (hit <= 0.5, clamp_min >= threshold, ...)
+/// with `origin:key: value: reason`.
+MapperConfig mapperConfigFrom(const MapperParams& params, const std::string& origin);
+/// mapperTable()'s values of validated `params`, then the above.
 MapperConfig mapperConfigFrom(const common::Params& params);
 
 /// One depth scan in the world frame.

@@ -7,15 +7,21 @@
 #include <cstdint>
 #include <filesystem>
 
-#include "quad/common/params.hpp"
+#include "quad/common/param_table.hpp"
 #include "quad/planning/dstar_lite.hpp"
 #include "quad/planning/known_space.hpp"
 
 namespace quad::planning {
 
 struct PlanningParams {
-  Vector3 bounds_min;                   ///< [m] the lattice's box: cell centres within it
-  Vector3 bounds_max;
+  std::filesystem::path world_file = "worlds/demo.yaml";    ///< its box is the lattice's
+  std::filesystem::path vehicle_file = "vehicles/x500.yaml";  ///< its radius inflates obstacles
+  double safety_margin = 0.3;           ///< [m] added to the vehicle radius
+  double ground_clearance = 1.0;        ///< [m] lowest cell centres above the world's floor
+  double altitude_min = -1e4;           ///< [m] an optional band of cell centres' altitudes
+  double altitude_max = 1e4;            ///< [m]
+  Vector3 bounds_min = Vector3::Zero();  ///< [m] the lattice's box (cell centres within it), from the above
+  Vector3 bounds_max = Vector3::Zero();
   double resolution = 0.2;              ///< [m]
   PlannerConfig planner;                ///< vehicle_radius: the vehicle's plus the safety margin
   KnownSpaceCheck known_space;          ///< horizon 0: unknown space is flown like free space
@@ -25,6 +31,9 @@ struct PlanningParams {
   std::uint64_t map_frames_behind = 5;  ///< depth frames the map may lag the camera before paths stop
 };
 
+/// configs/planning.yaml: each key with its unit, range and the field it fills; the defaults
+/// are PlanningParams' own.
+const common::ParamTable<PlanningParams>& planningTable();
 common::ParamSchema planningSchema();
 
 /// The world and vehicle files the parameters name (`world`, `vehicle`).

@@ -13,7 +13,7 @@
 
 #include <Eigen/Core>
 
-#include "quad/common/params.hpp"
+#include "quad/common/param_table.hpp"
 
 namespace quad::vehicle {
 
@@ -29,8 +29,8 @@ struct VehicleParams {
   double rotor_speed_max = 1000.0;                      ///< [rad/s]
   double motor_time_constant_up = 0.02;                 ///< [s] first-order lag when speeding up
   double motor_time_constant_down = 0.04;               ///< [s] ... when slowing down
-  Eigen::Vector3d drag_linear = {0.1, 0.1, 0.15};       ///< [N s/m] per body axis
-  Eigen::Vector3d drag_quadratic = {0.01, 0.01, 0.02};  ///< [N s²/m²] per body axis
+  Eigen::Vector3d drag_linear = {0.0, 0.0, 0.0};        ///< [N s/m] per body axis
+  Eigen::Vector3d drag_quadratic = {0.0, 0.0, 0.0};     ///< [N s²/m²] per body axis
   double radius = 0.3;                                  ///< [m] bounding sphere, for collisions and planning
 
   /// Rotor positions in the body frame [m].
@@ -45,7 +45,9 @@ struct VehicleParams {
   double hoverRotorSpeed(double gravity = 9.81) const;
 };
 
-/// The schema of configs/vehicles/*.yaml: every key with its unit and range.
+/// configs/vehicles/*.yaml: every key with its unit, range and the field it fills; the
+/// defaults are VehicleParams' own (the rest are required).
+const common::ParamTable<VehicleParams>& vehicleTable();
 common::ParamSchema vehicleSchema();
 
 /// Reads validated params into VehicleParams; throws common::ConfigError (naming the

@@ -37,7 +37,7 @@ void ControlNode::takeInputs()
     const double t = common::toSeconds(m->header().stamp_ns());
     if (!fc_.onImu({dds::toVector(m->specific_force_B()), dds::toVector(m->angular_rate_B())}, t)) {
       counters().errors++;
-      spdlog::warn("quad/sim/imu: sample seq {} rejected: non-finite", m->header().seq());
+      spdlog::warn("{}: sample seq {} rejected: non-finite", dds::topics::kSimImu.info.name, m->header().seq());
       continue;
     }
     imu_ns_ = std::max(imu_ns_, m->header().stamp_ns());
@@ -53,7 +53,7 @@ void ControlNode::takeInputs()
     counters().samples_in++;
     if (!fc_.onGoal(dds::toVector(g->p_W()), g->tolerance())) {
       counters().errors++;
-      spdlog::warn("quad/planning/goal: goal {} rejected: non-finite", g->goal_id());
+      spdlog::warn("{}: goal {} rejected: non-finite", dds::topics::kGoal.info.name, g->goal_id());
     }
   }
   while (auto p = path_.take()) {
@@ -144,13 +144,15 @@ void ControlNode::onWake()
       // Accepted, it would make every true state after it look out of order.
       counters().errors++;
       fc_.countRejected();
-      spdlog::warn("quad/sim/state: sample seq {} rejected: stamped {:.3f} s, ahead of the sim clock ({:.3f} s)",
+      spdlog::warn("{}: sample seq {} rejected: stamped {:.3f} s, ahead of the sim clock ({:.3f} s)",
+                   dds::topics::kSimState.info.name,
                    s.header().seq(), t, common::toSeconds(simClock().ns()));
       continue;
     }
     if (!fc_.onState(fromMessage(s), s.landed(), t)) {
       counters().errors++;
-      spdlog::warn("quad/sim/state: sample seq {} rejected: invalid or out of order", s.header().seq());
+      spdlog::warn("{}: sample seq {} rejected: invalid or out of order",
+                   dds::topics::kSimState.info.name, s.header().seq());
       continue;
     }
     latest_t_ = t;

@@ -41,7 +41,7 @@ void FaultLayerControl::take()
       why_not = "fault id " + std::to_string(fault->id) + " already in use";
     }
     if (!why_not.empty()) {
-      spdlog::warn("quad/system/fault: fault {} rejected: {}", command->fault_id(), why_not);
+      spdlog::warn("{}: fault {} rejected: {}", dds::topics::kFault.info.name, command->fault_id(), why_not);
       acknowledge(*command, msg::SIM_EVENT_FAULT_REJECTED,
                   "fault " + std::to_string(command->fault_id()) + " rejected: " + why_not);
       continue;

@@ -109,7 +109,8 @@ void MappingNode::integrate(const msg::PointCloud& cloud)
   if (!result.accepted) {
     ++rejected_;
     counters().errors++;
-    spdlog::warn("quad/sim/depth: cloud seq {} rejected: {}", cloud.header().seq(), result.rejection);
+    spdlog::warn("{}: cloud seq {} rejected: {}",
+                 dds::topics::kSimDepth.info.name, cloud.header().seq(), result.rejection);
     // Still one (empty) update below: consumers count clouds through them.
   }
   // The change set, in as many messages as its bound needs, each with its own number.

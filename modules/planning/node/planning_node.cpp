@@ -97,7 +97,8 @@ void PlanningNode::applySnapshot(const msg::MapSnapshot& snapshot)
   const auto diff = follower_.snapshot(snapshot.update_seq(), snapshot.octree(), &bad);
   if (bad) {
     counters().errors++;
-    spdlog::warn("quad/mapping/octomap: snapshot {} is not a map at {} m; ignored", snapshot.update_seq(), config_.resolution);
+    spdlog::warn("{}: snapshot {} is not a map at {} m; ignored",
+                 dds::topics::kMapSnapshot.info.name, snapshot.update_seq(), config_.resolution);
   }
   if (!diff) {
     return;
@@ -113,16 +114,19 @@ void PlanningNode::applyUpdate(const msg::MapUpdate& update)
 {
   if (std::abs(update.resolution() - config_.resolution) > 1e-9) {
     counters().errors++;
-    spdlog::warn("quad/mapping/update: resolution {} m, the lattice's is {} m; ignored", update.resolution(),
+    spdlog::warn("{}: resolution {} m, the lattice's is {} m; ignored",
+                 dds::topics::kMapUpdate.info.name, update.resolution(),
                  config_.resolution);
     return;
   }
   const std::uint64_t before = follower_.appliedSeq();
   if (update.update_seq() > before + 1) {
     if (before == 0) {
-      spdlog::info("quad/mapping/update: joined at update {}; the rest comes with the next snapshot", update.update_seq());
+      spdlog::info("{}: joined at update {}; the rest comes with the next snapshot",
+                   dds::topics::kMapUpdate.info.name, update.update_seq());
     } else {
-      spdlog::warn("quad/mapping/update: {} follows {}: a gap until the next snapshot", update.update_seq(), before);
+      spdlog::warn("{}: {} follows {}: a gap until the next snapshot",
+                   dds::topics::kMapUpdate.info.name, update.update_seq(), before);
     }
   }
   std::vector<mapping::VoxelChange> changes;
@@ -137,7 +141,8 @@ void PlanningNode::applyUpdate(const msg::MapUpdate& update)
   }
   if (bad) {
     counters().errors++;
-    spdlog::warn("quad/mapping/octomap: a snapshot kept for a gap is not a map at {} m; ignored", config_.resolution);
+    spdlog::warn("{}: a snapshot kept for a gap is not a map at {} m; ignored",
+                 dds::topics::kMapSnapshot.info.name, config_.resolution);
   } else if (follower_.gaps() > gaps && !follower_.gapOpen()) {
     spdlog::info("planning: the gap before update {} filled from a snapshot that came ahead of it",
                  update.update_seq());
@@ -168,8 +173,8 @@ void PlanningNode::noticeLostUpdate()
   } else if (now - mapper_done_wall_ns_ > kLostUpdateGraceNs) {
     update_lost_ = true;
     counters().errors++;
-    spdlog::warn("quad/mapping/update: the mapper was done up to {:.3f} s a second ago and the update for depth frame {} "
-                 "never came: lost; a gap until the next snapshot",
+    spdlog::warn("{}: the mapper was done up to {:.3f} s a second ago and the update for depth frame {} "
+                 "never came: lost; a gap until the next snapshot", dds::topics::kMapUpdate.info.name,
                  common::toSeconds(mapper_done_ns_), simClock().depthFrames());
   }
 }
@@ -279,7 +284,8 @@ void PlanningNode::onWake()
   if (refused > refused_updates_) {
     refused_updates_ = refused;
     update_lost_ = true;
-    spdlog::warn("quad/mapping/update: an update was refused on receipt: a gap until the next snapshot");
+    spdlog::warn("{}: an update was refused on receipt: a gap until the next snapshot",
+                 dds::topics::kMapUpdate.info.name);
   }
   while (auto g = goal_.take()) {
     counters().samples_in++;
@@ -287,7 +293,8 @@ void PlanningNode::onWake()
     const auto cell = p.allFinite() ? planner_.lattice().cellAt(p) : std::nullopt;
     if (!cell) {
       counters().errors++;
-      spdlog::error("quad/planning/goal: goal {} at ({}, {}, {}) is outside the planning bounds; refused{}",
+      spdlog::error("{}: goal {} at ({}, {}, {}) is outside the planning bounds; refused{}",
+                    dds::topics::kGoal.info.name,
                     g->goal_id(), p.x(), p.y(), p.z(),
                     goal_id_ ? fmt::format(" (still flying to goal {})", *goal_id_) : "");
       if (goal_id_) {
@@ -311,8 +318,8 @@ void PlanningNode::onWake()
     if (!p.allFinite() || s.header().stamp_ns() < now_ns_ ||
         (simClock().seen() && !simClock().vouchesFor(s.header().stamp_ns()))) {
       counters().errors++;
-      spdlog::warn("quad/sim/state: sample seq {} rejected: position not finite, or stamp {:.3f} s out of order or "
-                   "past the sim clock ({:.3f} s)",
+      spdlog::warn("{}: sample seq {} rejected: position not finite, or stamp {:.3f} s out of order or "
+                   "past the sim clock ({:.3f} s)", dds::topics::kSimState.info.name,
                    s.header().seq(), common::toSeconds(s.header().stamp_ns()), common::toSeconds(simClock().ns()));
       continue;
     }

@@ -98,7 +98,7 @@ void PlantNode::takeInputs()
     }
     if (verdict != CommandGuard::Verdict::kAccepted) {
       counters().errors++;
-      spdlog::warn("quad/control/actuators: command seq {} stamped {} ns {}", cmd->header().seq(),
+      spdlog::warn("{}: command seq {} stamped {} ns {}", dds::topics::kActuators.info.name, cmd->header().seq(),
                    cmd->header().stamp_ns(), verdictText(verdict));
     }
   }
@@ -119,7 +119,7 @@ void PlantNode::takeInputs()
     const auto core = faultFrom(*fault, sim_->timeNs(), why_not);
     if (!core || !sim_->injectFault(*core)) {
       const std::string reason = core ? "fault id already in use" : why_not;
-      spdlog::warn("quad/system/fault: fault {} rejected: {}", fault->fault_id(), reason);
+      spdlog::warn("{}: fault {} rejected: {}", dds::topics::kFault.info.name, fault->fault_id(), reason);
       event(msg::SIM_EVENT_FAULT_REJECTED, fault->fault_id(), "fault " + std::to_string(fault->fault_id()) + " rejected: " + reason);
     }
   }

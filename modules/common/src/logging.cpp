@@ -72,11 +72,11 @@ LogOptions logOptionsFrom(const Params& params)
 std::shared_ptr<spdlog::logger> setupLogging(std::string_view module_name, const LogOptions& options)
 {
   auto level = parseLevel(options.level, "log.level");
-  if (const char* env = std::getenv("QUAD_LOG_LEVEL"); env != nullptr && *env != '\0') {
-    level = parseLevel(env, "QUAD_LOG_LEVEL");
+  if (const char* env = std::getenv(kLogLevelVariable); env != nullptr && *env != '\0') {
+    level = parseLevel(env, kLogLevelVariable);
   }
   std::optional<std::filesystem::path> directory = options.directory;
-  if (const char* env = std::getenv("QUAD_LOG_DIR"); env != nullptr && *env != '\0') {
+  if (const char* env = std::getenv(kLogDirVariable); env != nullptr && *env != '\0') {
     directory = env;
   }
 

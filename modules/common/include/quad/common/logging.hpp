@@ -18,6 +18,10 @@
 
 namespace quad::common {
 
+/// The environment variables that override a module's log options, declared once.
+inline constexpr const char* kLogLevelVariable = "QUAD_LOG_LEVEL";
+inline constexpr const char* kLogDirVariable = "QUAD_LOG_DIR";
+
 struct LogOptions {
   std::string level = "info";  ///< trace, debug, info, warn, error, critical, off
   /// Folder of the log file; none: console only (unless QUAD_LOG_DIR is set).

@@ -3,10 +3,6 @@
 
 int main(int argc, char** argv)
 {
-  return quad::dds::runNodeMain(argc, argv, "control", quad::control::controlSchema(),
-                                [](const quad::common::Params& params) {
-                                  return std::make_unique<quad::control::ControlNode>(
-                                      quad::control::controlConfigFrom(params),
-                                      quad::dds::optionsFromEnvironment("control"));
-                                });
+  using namespace quad::control;
+  return quad::dds::runNode<ControlNode>(argc, argv, "control", controlSchema(), controlConfigFrom);
 }

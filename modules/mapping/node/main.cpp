@@ -3,10 +3,6 @@
 
 int main(int argc, char** argv)
 {
-  return quad::dds::runNodeMain(argc, argv, "mapping", quad::mapping::mappingSchema(),
-                                [](const quad::common::Params& params) {
-                                  return std::make_unique<quad::mapping::MappingNode>(
-                                      quad::mapping::mappingConfigFrom(params),
-                                      quad::dds::optionsFromEnvironment("mapping"));
-                                });
+  using namespace quad::mapping;
+  return quad::dds::runNode<MappingNode>(argc, argv, "mapping", mappingSchema(), mappingConfigFrom);
 }

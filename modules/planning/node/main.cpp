@@ -3,10 +3,6 @@
 
 int main(int argc, char** argv)
 {
-  return quad::dds::runNodeMain(argc, argv, "planning", quad::planning::planningSchema(),
-                                [](const quad::common::Params& params) {
-                                  return std::make_unique<quad::planning::PlanningNode>(
-                                      quad::planning::planningConfigFrom(params),
-                                      quad::dds::optionsFromEnvironment("planning"));
-                                });
+  using namespace quad::planning;
+  return quad::dds::runNode<PlanningNode>(argc, argv, "planning", planningSchema(), planningConfigFrom);
 }

@@ -3,10 +3,6 @@
 
 int main(int argc, char** argv)
 {
-  return quad::dds::runNodeMain(argc, argv, "plant", quad::plant::plantSchema(),
-                                [](const quad::common::Params& params) {
-                                  return std::make_unique<quad::plant::PlantNode>(
-                                      quad::plant::plantConfigFrom(params),
-                                      quad::dds::optionsFromEnvironment("plant"));
-                                });
+  using namespace quad::plant;
+  return quad::dds::runNode<PlantNode>(argc, argv, "plant", plantSchema(), plantConfigFrom);
 }

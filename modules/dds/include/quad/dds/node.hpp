@@ -146,4 +146,15 @@ int runNode(std::string_view module_name, const std::function<std::unique_ptr<No
 int runNodeMain(int argc, char** argv, std::string_view module_name, common::ParamSchema schema,
                 const std::function<std::unique_ptr<Node>(const common::Params&)>& make);
 
+/// runNodeMain for the usual node: built from its config, which `config_from` makes of the
+/// params (`Config config_from(const common::Params&)`), and the participant options of the
+/// environment. A module's main is this one call.
+template <typename NodeType, typename ConfigFrom>
+int runNode(int argc, char** argv, std::string_view module_name, common::ParamSchema schema, ConfigFrom config_from)
+{
+  return runNodeMain(argc, argv, module_name, std::move(schema), [&](const common::Params& params) {
+    return std::make_unique<NodeType>(config_from(params), optionsFromEnvironment(std::string(module_name)));
+  });
+}
+
 }  // namespace quad::dds

@@ -57,6 +57,10 @@ fi
 export CCACHE_DIR=${CCACHE_DIR:-$HOME/.cache/ccache}
 # Paths below the checkout are hashed relative to it, so another clone reuses the cache.
 export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$root}
+# The ci preset compiles with debug information, for which ccache also hashes the working
+# directory unless told not to: every new clone would then rebuild from scratch. Its objects'
+# debug information may name the clone they were first built in.
+export CCACHE_NOHASHDIR=${CCACHE_NOHASHDIR:-1}
 
 if [[ $job == test ]]; then
   cmake --preset ci

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "json_lines.hpp"
 #include "process.hpp"
 
 namespace {
@@ -33,19 +34,6 @@ std::string writeFile(const std::string& name, const std::string& body)
 }
 
 /// The samples a `quad topic echo --json` printed, one JSON object a line.
-std::vector<nlohmann::json> samples(const std::string& output)
-{
-  std::vector<nlohmann::json> out;
-  std::istringstream lines(output);
-  for (std::string line; std::getline(lines, line);) {
-    auto sample = nlohmann::json::parse(line, nullptr, false);
-    if (!sample.is_discarded()) {
-      out.push_back(std::move(sample));
-    }
-  }
-  return out;
-}
-
 TEST(Flight, LockstepMissionReachesItsGoalWithoutCollision)
 {
   const int domain = 150;
@@ -81,7 +69,7 @@ TEST(Flight, LockstepMissionReachesItsGoalWithoutCollision)
   ASSERT_EQ(plant.wait(90s), 0) << plant.output();
   // THEN the vehicle took off, flew the mission, reached the goal, and hit nothing
   ASSERT_TRUE(events.waitForOutput("SIM_EVENT_RUN_ENDED", 10s)) << events.output();
-  const std::vector<nlohmann::json> seen = samples(events.output());
+  const std::vector<nlohmann::json> seen = quad::test::jsonLines(events.output());
   const auto kind = [&](const char* k) {
     return std::find_if(seen.begin(), seen.end(), [&](const nlohmann::json& e) { return e["kind"] == k; });
   };
@@ -93,7 +81,7 @@ TEST(Flight, LockstepMissionReachesItsGoalWithoutCollision)
   EXPECT_NEAR((*ended)["p_W"]["y"].get<double>(), 5.0, 0.3) << *ended;
   EXPECT_NEAR((*ended)["p_W"]["z"].get<double>(), 3.0, 0.3) << *ended;
   // AND the controller went from the mission to hovering at the goal, with no failsafe
-  const std::vector<nlohmann::json> modes = samples(status.output());
+  const std::vector<nlohmann::json> modes = quad::test::jsonLines(status.output());
   const auto mission = std::find_if(modes.begin(), modes.end(),
                                     [](const nlohmann::json& m) { return m["mode"] == "CONTROL_MISSION"; });
   ASSERT_NE(mission, modes.end()) << status.output();

@@ -4,9 +4,11 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
+#include "json_lines.hpp"
 #include "process.hpp"
 
 namespace {
@@ -35,45 +37,59 @@ std::string config(const std::string& name, const std::string& body)
 // x500: sqrt(m g / (4 k_f)) = sqrt(2 * 9.81 / (4 * 8.54858e-6))
 const std::string kHover = "757.5";
 
-std::string finalState(const std::string& log)
+/// The plant's SIM_EVENT_RUN_ENDED event as `quad topic echo --json` printed it (its stamp is
+/// the final sim time, its p_W the final position, at full precision); null when none came.
+nlohmann::json runEnded(ChildProcess& events)
 {
-  std::smatch m;
-  const std::regex line("final state t [0-9]+ ns p \\([^)]*\\) q \\([^)]*\\)");
-  return std::regex_search(log, m, line) ? m.str() : "";
+  events.waitForOutput("SIM_EVENT_RUN_ENDED", 10s);
+  for (const auto& e : quad::test::jsonLines(events.output())) {
+    if (e["kind"] == "SIM_EVENT_RUN_ENDED") {
+      return e;
+    }
+  }
+  return nullptr;
 }
 
 TEST(PlantNode, RealTimeRunPublishesStateAndStopsAtItsDuration)
 {
+  ChildProcess events({QUAD_TOOL, "topic", "echo", "quad/sim/events", "--json"}, env(140));
   ChildProcess plant({QUAD_PLANT_NODE, "--config", config("realtime.yaml", "sim: {duration: 3.0}\n")}, env(140));
   ChildProcess echo({QUAD_TOOL, "topic", "echo", "quad/sim/state", "-n", "3", "--timeout", "10"}, env(140));
   EXPECT_EQ(echo.wait(15s), 0) << echo.output();
   EXPECT_NE(echo.output().find("landed: true"), std::string::npos) << echo.output();
   EXPECT_EQ(plant.wait(15s), 0) << plant.output();
-  EXPECT_NE(plant.output().find("reached its duration"), std::string::npos) << plant.output();
-  EXPECT_NE(plant.output().find("final state t 3000000000 ns"), std::string::npos) << plant.output();
+  // The run ends at its duration of sim time, and says so on its events topic
+  const nlohmann::json ended = runEnded(events);
+  ASSERT_FALSE(ended.is_null()) << events.output();
+  EXPECT_EQ(ended["header"]["stamp_ns"], 3'000'000'000LL) << ended;
 }
 
-std::string lockstepRun(int domain)
+nlohmann::json lockstepRun(int domain)
 {
   ChildProcess controller({QUAD_ALTITUDE_CONTROLLER, kHover, "2.0"}, env(domain));
   EXPECT_TRUE(controller.waitForOutput("ready", 10s)) << controller.output();
+  ChildProcess events({QUAD_TOOL, "topic", "echo", "quad/sim/events", "--json"}, env(domain));
   ChildProcess plant({QUAD_PLANT_NODE, "--config",
                       config("lockstep.yaml", "sim: {mode: lockstep, duration: 4.0, seed: 5}\n")},
                      env(domain));
   EXPECT_EQ(plant.wait(60s), 0) << plant.output();
-  return finalState(plant.output());
+  return runEnded(events);
 }
 
 TEST(PlantNode, TwoLockstepRunsWithOneSeedAreBitIdentical)
 {
   // GIVEN a controller whose commands depend on the state they answer
   // WHEN two lockstep runs of 4 s fly it (their wall-clock timing differs)
-  const std::string a = lockstepRun(141);
-  const std::string b = lockstepRun(142);
-  // THEN the final states agree to the last bit, and the vehicle did climb
-  ASSERT_FALSE(a.empty());
-  EXPECT_EQ(a, b);
-  EXPECT_EQ(a.find("p (0, 0, 0)"), std::string::npos) << a;
+  const nlohmann::json a = lockstepRun(141);
+  const nlohmann::json b = lockstepRun(142);
+  // THEN they end at the same sim time at the same position, to the last bit, and the
+  // vehicle did climb
+  ASSERT_FALSE(a.is_null());
+  ASSERT_FALSE(b.is_null());
+  EXPECT_EQ(a["header"]["stamp_ns"], 4'000'000'000LL) << a;
+  EXPECT_EQ(a["header"]["stamp_ns"], b["header"]["stamp_ns"]);
+  EXPECT_EQ(a["p_W"].dump(17), b["p_W"].dump(17));
+  EXPECT_GT(a["p_W"]["z"].get<double>(), 1.0) << a;
 }
 
 TEST(PlantNode, FaultCommandIsAcknowledgedOnTheEventsTopic)

@@ -1,0 +1,27 @@
+#pragma once
+/// @file
+/// Samples printed by `quad topic echo --json`, one JSON object a line, as a test reads them.
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace quad::test {
+
+/// Every line of `output` that parses as JSON, in order; other lines are skipped.
+inline std::vector<nlohmann::json> jsonLines(const std::string& output)
+{
+  std::vector<nlohmann::json> out;
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    auto sample = nlohmann::json::parse(line, nullptr, false);
+    if (!sample.is_discarded()) {
+      out.push_back(std::move(sample));
+    }
+  }
+  return out;
+}
+
+}  // namespace quad::test

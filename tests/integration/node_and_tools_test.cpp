@@ -118,6 +118,41 @@ TEST(NodeAndTools, NodeRefusesToStartOnABadConfigNamingFileKeyAndValue)
   EXPECT_EQ(out.find("running on domain"), std::string::npos) << out;
 }
 
+TEST(NodeAndTools, NodeAnswersHelpAndVersionAndRefusesAnUnknownArgumentWithExitCodeTwo)
+{
+  // --help lists every parameter the config takes, the logging keys included
+  ChildProcess help({QUAD_TEST_NODE, "--help"});
+  EXPECT_EQ(help.wait(10s), 0) << help.output();
+  EXPECT_NE(help.output().find("greeting: string"), std::string::npos) << help.output();
+  EXPECT_NE(help.output().find("log.level: string = info"), std::string::npos) << help.output();
+  ChildProcess version({QUAD_TEST_NODE, "--version"});
+  EXPECT_EQ(version.wait(10s), 0) << version.output();
+  EXPECT_NE(version.output().find("quad_test_node 0."), std::string::npos) << version.output();
+  ChildProcess bad({QUAD_TEST_NODE, "--bogus"});
+  EXPECT_EQ(bad.wait(10s), 2) << bad.output();
+  EXPECT_NE(bad.output().find("'--bogus'"), std::string::npos) << bad.output();
+}
+
+TEST(NodeAndTools, QuadRefusesAnUnknownSubcommandEvenWithHelpNamingIt)
+{
+  for (const std::vector<std::string>& words : {std::vector<std::string>{"bridge", "--help"},
+                                                std::vector<std::string>{"bridge"},
+                                                std::vector<std::string>{"topic", "lst"}}) {
+    std::vector<std::string> argv{QUAD_TOOL};
+    argv.insert(argv.end(), words.begin(), words.end());
+    ChildProcess quad(argv);
+    EXPECT_EQ(quad.wait(10s), 2) << quad.output();
+    EXPECT_NE(quad.output().find("unknown subcommand '" + std::string(words.front() == "topic" ? "topic lst" : "bridge")),
+              std::string::npos)
+        << quad.output();
+  }
+  ChildProcess help({QUAD_TOOL, "topic", "list", "--help"});
+  EXPECT_EQ(help.wait(10s), 0) << help.output();
+  ChildProcess version({QUAD_TOOL, "--version"});
+  EXPECT_EQ(version.wait(10s), 0) << version.output();
+  EXPECT_NE(version.output().find("quad 0."), std::string::npos) << version.output();
+}
+
 TEST(NodeAndTools, NodeRefusesAMissingConfigFile)
 {
   ChildProcess node({QUAD_TEST_NODE, "--config", "/nonexistent/test_node.yaml"}, env(139));

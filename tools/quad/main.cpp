@@ -1,6 +1,9 @@
 // The `quad` command. The only translation unit that includes CLI11 (it costs ~9 s each).
+#include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -24,13 +27,38 @@ void addConnectionOptions(CLI::App* command, quad::topic::ConnectionOptions& con
       ->check(CLI::Range(0, 232));
 }
 
+/// The word where a subcommand is expected that names none ("bridge" in `quad bridge --help`,
+/// "topic lst" in `quad topic lst`); empty when there is none. CLI11 reads --help first and
+/// would print the main help and succeed.
+std::string unknownSubcommand(CLI::App& app, int argc, char** argv)
+{
+  CLI::App* at = &app;
+  for (int i = 1; i < argc; ++i) {
+    const std::string word = argv[i];
+    if (word.empty() || word.front() == '-') {
+      continue;
+    }
+    const std::vector<CLI::App*> subcommands = at->get_subcommands([](CLI::App*) { return true; });
+    if (subcommands.empty()) {
+      return "";  // a positional argument of the subcommand reached
+    }
+    const auto named = std::find_if(subcommands.begin(), subcommands.end(),
+                                    [&](CLI::App* s) { return s->check_name(word); });
+    if (named == subcommands.end()) {
+      return (at == &app ? "" : at->get_name() + " ") + word;
+    }
+    at = *named;
+  }
+  return "";
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
 {
   CLI::App app{"quad: run, inspect and test the quad flight stack"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "quad 0.1.0");
+  app.set_version_flag("--version", "quad " QUAD_VERSION);
 
   quad::launch::LaunchOptions launch_options;
   auto* launch = app.add_subcommand("launch", "Start a manifest's modules on their hosts, supervise them, fly its mission");
@@ -220,6 +248,10 @@ int main(int argc, char** argv)
   sample->add_option("--seed", sample_seed, "Seed of the generator (same seed, same rotations)");
   sample->add_option("--as", sample_as, "quat (w x y z), matrix (9, row by row), axis-angle or ypr");
 
+  if (const std::string unknown = unknownSubcommand(app, argc, argv); !unknown.empty()) {
+    std::fprintf(stderr, "quad: unknown subcommand '%s' (quad --help lists them)\n", unknown.c_str());
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

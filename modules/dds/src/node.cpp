@@ -1,6 +1,8 @@
 #include "quad/dds/node.hpp"
 
 #include <csignal>
+#include <cstdio>
+#include <filesystem>
 #include <optional>
 #include <vector>
 #include <ctime>
@@ -268,9 +270,39 @@ int runNode(std::string_view module_name, const std::function<std::unique_ptr<No
   return status;
 }
 
+namespace {
+
+/// `--help`: how to run a module's program, and every parameter its config takes.
+std::string nodeHelp(const std::string& program, std::string_view module_name, const common::ParamSchema& schema)
+{
+  std::string out = fmt::format(
+      "usage: {} [--config FILE] [--set KEY=VALUE]... | --help | --version\n\n"
+      "quad's {} module, a DDS participant. Its parameters come from FILE (YAML) and --set\n"
+      "(YAML values under dotted keys), checked against the list below; the participant's\n"
+      "domain and transport come from the environment (QUAD_DOMAIN_ID, ...).\n\nparameters:\n",
+      program, module_name);
+  for (const common::ParamSpec& p : schema.specs()) {
+    std::string line = fmt::format("  {}: {}", p.key, common::toString(p.type));
+    if (p.default_value) {
+      line += " = " + common::formatValue(*p.default_value);
+    } else {
+      line += " (required)";
+    }
+    if (!p.unit.empty()) {
+      line += " [" + p.unit + "]";
+    }
+    out += fmt::format("{:<48} {}\n", line, p.description);
+  }
+  return out;
+}
+
+}  // namespace
+
 int runNodeMain(int argc, char** argv, std::string_view module_name, common::ParamSchema schema,
                 const std::function<std::unique_ptr<Node>(const common::Params&)>& make)
 {
+  common::addLoggingParams(schema);
+  const std::string program = std::filesystem::path(argv[0]).filename().string();
   std::optional<std::string> config;
   std::vector<std::string> sets;
   for (int i = 1; i < argc; ++i) {
@@ -279,14 +311,20 @@ int runNodeMain(int argc, char** argv, std::string_view module_name, common::Par
       config = argv[++i];
     } else if (arg == "--set" && i + 1 < argc) {
       sets.emplace_back(argv[++i]);
+    } else if (arg == "--help" || arg == "-h") {
+      std::fputs(nodeHelp(program, module_name, schema).c_str(), stdout);
+      return 0;
+    } else if (arg == "--version") {
+      std::printf("%s %s\n", program.c_str(), QUAD_VERSION);
+      return 0;
     } else {
+      // A usage error, like a bad argument to any quad program: exit status 2.
       common::setupLogging(module_name);
-      spdlog::critical("{}: unexpected argument '{}'; usage: {} [--config FILE] [--set KEY=VALUE]...",
-                       module_name, arg, argv[0]);
-      return 1;
+      spdlog::critical("{}: unexpected argument '{}'; usage: {} [--config FILE] [--set KEY=VALUE]... (--help)",
+                       module_name, arg, program);
+      return 2;
     }
   }
-  common::addLoggingParams(schema);
   common::Params params;
   try {
     std::vector<common::ParamOverride> overrides;

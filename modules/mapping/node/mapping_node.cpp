@@ -5,7 +5,6 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
-#include <sstream>
 
 #include "quad/common/time.hpp"
 #include "quad/dds/geometry_messages.hpp"

@@ -58,9 +58,9 @@ msg::PlanStatus toMessage(PlanStatus s)
 
 PlanningParams planningConfigFrom(const common::Params& p)
 {
-  const world::World world = world::loadWorld(worldFileOf(p));
-  const vehicle::VehicleParams v = vehicle::loadVehicle(vehicleFileOf(p));
-  PlanningParams c = planningParamsFrom(p, world.bounds().min, world.bounds().max, v.radius);
+  PlanningParams c = planningParamsOf(p);
+  const world::World world = world::loadWorld(c.world_file);
+  fitToWorld(c, world.bounds().min, world.bounds().max, vehicle::loadVehicle(c.vehicle_file).radius, p.origin());
   // Readers judge the path stale after the contract's deadline: repeat it twice within it.
   const double deadline = dds::topics::kPath.info.stale_after_s;
   if (c.republish_period_s > deadline / 2.0) {

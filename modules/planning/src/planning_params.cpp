@@ -46,20 +46,11 @@ const common::ParamTable<PlanningParams>& planningTable()
 
 common::ParamSchema planningSchema() { return planningTable().schema(); }
 
-std::filesystem::path worldFileOf(const common::Params& params)
-{
-  return planningTable().read(params, QUAD_CONFIG_DIR).world_file;
-}
+PlanningParams planningParamsOf(const common::Params& params) { return planningTable().read(params, QUAD_CONFIG_DIR); }
 
-std::filesystem::path vehicleFileOf(const common::Params& params)
+void fitToWorld(PlanningParams& c, const Vector3& world_min, const Vector3& world_max, double vehicle_radius,
+                const std::string& origin)
 {
-  return planningTable().read(params, QUAD_CONFIG_DIR).vehicle_file;
-}
-
-PlanningParams planningParamsFrom(const common::Params& p, const Vector3& world_min, const Vector3& world_max,
-                                  double vehicle_radius)
-{
-  PlanningParams c = planningTable().read(p, QUAD_CONFIG_DIR);
   c.planner.vehicle_radius = vehicle_radius + c.safety_margin;
   // The whole volume the vehicle may fly in: the world's box less the inflation radius at the
   // sides and the top, from the ground clearance up; an altitude band clips it further.
@@ -68,7 +59,7 @@ PlanningParams planningParamsFrom(const common::Params& p, const Vector3& world_
   c.bounds_max = world_max - inset;
   c.bounds_min.z() = world_min.z() + c.ground_clearance;
   if (c.altitude_min > c.altitude_max) {
-    throw common::ConfigError({common::configProblem(p.origin(), "altitude.min", c.altitude_min, "above altitude.max")});
+    throw common::ConfigError({common::configProblem(origin, "altitude.min", c.altitude_min, "above altitude.max")});
   }
   c.bounds_min.z() = std::max(c.bounds_min.z(), c.altitude_min);
   c.bounds_max.z() = std::min(c.bounds_max.z(), c.altitude_max);
@@ -76,16 +67,23 @@ PlanningParams planningParamsFrom(const common::Params& p, const Vector3& world_
     if (c.bounds_min[axis] + c.resolution > c.bounds_max[axis]) {
       const bool vertical = axis == 2;
       throw common::ConfigError({common::configProblem(
-          p.origin(), vertical ? "ground_clearance" : "safety_margin", vertical ? c.ground_clearance : c.safety_margin,
+          origin, vertical ? "ground_clearance" : "safety_margin", vertical ? c.ground_clearance : c.safety_margin,
           "leaves less than a cell of the world's bounds to plan in (with the altitude band, if any)")});
     }
   }
   // The vehicle's own volume is free (it is there) but partly behind its camera.
   c.known_space.own_radius = vehicle_radius + c.resolution;
   if (c.planner.connectivity != 6 && c.planner.connectivity != 18 && c.planner.connectivity != 26) {
-    throw common::ConfigError({common::configProblem(p.origin(), "connectivity", std::int64_t{c.planner.connectivity},
+    throw common::ConfigError({common::configProblem(origin, "connectivity", std::int64_t{c.planner.connectivity},
                                                      "expected 6, 18 or 26")});
   }
+}
+
+PlanningParams planningParamsFrom(const common::Params& p, const Vector3& world_min, const Vector3& world_max,
+                                  double vehicle_radius)
+{
+  PlanningParams c = planningParamsOf(p);
+  fitToWorld(c, world_min, world_max, vehicle_radius, p.origin());
   return c;
 }
 

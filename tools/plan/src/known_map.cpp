@@ -68,11 +68,11 @@ PlanningSetup loadPlanningSetup(const std::filesystem::path& config, const std::
   const common::Params p = config.empty() ? common::defaultParams(planning::planningSchema())
                                           : common::parseParams(common::readTextFile(config), config.string(),
                                                                 planning::planningSchema(), overrides);
-  const std::filesystem::path world_file = planning::worldFileOf(p);
-  world::World world = world::loadWorld(world_file);
-  const double radius = vehicle::loadVehicle(planning::vehicleFileOf(p)).radius;
-  planning::PlanningParams params = planning::planningParamsFrom(p, world.bounds().min, world.bounds().max, radius);
-  return {world_file, std::move(world), std::move(params)};
+  planning::PlanningParams params = planning::planningParamsOf(p);
+  world::World world = world::loadWorld(params.world_file);
+  planning::fitToWorld(params, world.bounds().min, world.bounds().max, vehicle::loadVehicle(params.vehicle_file).radius,
+                       p.origin());
+  return {params.world_file, std::move(world), std::move(params)};
 }
 
 KnownMapPlan planOnKnownMap(const world::World& world, const planning::PlanningParams& params, bool land)

@@ -36,15 +36,20 @@ struct PlanningParams {
 const common::ParamTable<PlanningParams>& planningTable();
 common::ParamSchema planningSchema();
 
-/// The world and vehicle files the parameters name (`world`, `vehicle`).
-std::filesystem::path worldFileOf(const common::Params& params);
-std::filesystem::path vehicleFileOf(const common::Params& params);
+/// The parameters as a file gives them, the world and vehicle files resolved; the lattice's
+/// box is still to be fitted to the world (fitToWorld).
+PlanningParams planningParamsOf(const common::Params& params);
 
-/// The parameters, with the lattice's box made from the world's box (`world_min`,
-/// `world_max` [m]): less the inflation radius at the sides and the top (leaving the box is a
-/// collision), from `ground_clearance` above its floor, clipped to the optional altitude band.
-/// `vehicle_radius` [m] is the vehicle's own. Throws common::ConfigError naming the key when
-/// the band is inverted or leaves less than a cell, or the connectivity is not 6, 18 or 26.
+/// Makes the lattice's box from the world's box (`world_min`, `world_max` [m]): less the
+/// inflation radius at the sides and the top (leaving the box is a collision), from
+/// `ground_clearance` above its floor, clipped to the optional altitude band.
+/// `vehicle_radius` [m] is the vehicle's own. Throws common::ConfigError naming `origin` and
+/// the key when the band is inverted or leaves less than a cell, or the connectivity is not
+/// 6, 18 or 26.
+void fitToWorld(PlanningParams& params, const Vector3& world_min, const Vector3& world_max, double vehicle_radius,
+                const std::string& origin);
+
+/// planningParamsOf, then fitToWorld.
 PlanningParams planningParamsFrom(const common::Params& params, const Vector3& world_min, const Vector3& world_max,
                                   double vehicle_radius);
 

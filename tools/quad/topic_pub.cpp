@@ -8,8 +8,6 @@
 #include "quad/common/time.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/raw_type.hpp"
-#include "quad/introspection/cdr.hpp"
-#include "quad/topic/text_format.hpp"
 #include "topic_commands.hpp"
 
 namespace quad::tools {

@@ -13,6 +13,7 @@
 
 #include "json_lines.hpp"
 #include "process.hpp"
+#include "wait.hpp"
 
 namespace {
 
@@ -80,14 +81,22 @@ TEST(Flight, LockstepMissionReachesItsGoalWithoutCollision)
   EXPECT_NEAR((*ended)["p_W"]["x"].get<double>(), 20.0, 0.3) << *ended;
   EXPECT_NEAR((*ended)["p_W"]["y"].get<double>(), 5.0, 0.3) << *ended;
   EXPECT_NEAR((*ended)["p_W"]["z"].get<double>(), 3.0, 0.3) << *ended;
-  // AND the controller went from the mission to hovering at the goal, with no failsafe
-  const std::vector<nlohmann::json> modes = quad::test::jsonLines(status.output());
-  const auto mission = std::find_if(modes.begin(), modes.end(),
-                                    [](const nlohmann::json& m) { return m["mode"] == "CONTROL_MISSION"; });
-  ASSERT_NE(mission, modes.end()) << status.output();
-  const auto hover = std::find_if(mission, modes.end(), [](const nlohmann::json& m) { return m["mode"] == "CONTROL_HOVER"; });
-  ASSERT_NE(hover, modes.end()) << status.output();
-  EXPECT_EQ((*hover)["failsafe_reason"], "FAILSAFE_NONE") << *hover;
+  // AND the controller went from the mission to hovering at the goal, with no failsafe (the
+  // status reader may still be printing the run's last samples when the run has ended)
+  nlohmann::json hover;
+  const auto hoverAfterMission = [&] {
+    const std::vector<nlohmann::json> modes = quad::test::jsonLines(status.output());
+    const auto mission = std::find_if(modes.begin(), modes.end(),
+                                      [](const nlohmann::json& m) { return m["mode"] == "CONTROL_MISSION"; });
+    const auto found =
+        std::find_if(mission, modes.end(), [](const nlohmann::json& m) { return m["mode"] == "CONTROL_HOVER"; });
+    if (found != modes.end()) {
+      hover = *found;
+    }
+    return found != modes.end();
+  };
+  ASSERT_TRUE(quad::test::waitFor(hoverAfterMission, 10s)) << status.output();
+  EXPECT_EQ(hover["failsafe_reason"], "FAILSAFE_NONE") << hover;
 }
 
 }  // namespace

@@ -267,6 +267,10 @@ void PlantNode::onTick(std::int64_t steady_ns)
   }
 }
 
+namespace {
+constexpr std::chrono::milliseconds kFinalEventWait{2000};
+}  // namespace
+
 void PlantNode::onStop()
 {
   const auto& c = sim_->commands().counters();
@@ -282,6 +286,12 @@ void PlantNode::onStop()
   spdlog::info("plant: final state t {} ns p ({:.17g}, {:.17g}, {:.17g}) q ({:.17g}, {:.17g}, {:.17g}, {:.17g})",
                sim_->timeNs(), st.p_W.x(), st.p_W.y(), st.p_W.z(), st.q_WB.w, st.q_WB.x, st.q_WB.y, st.q_WB.z);
   event(msg::SIM_EVENT_RUN_ENDED, static_cast<std::int64_t>(sim_->collisionCount()), summary);
+  // The run's last word (its final position and collisions) must reach the readers before
+  // the participant goes: a reliable sample still unacknowledged at exit is lost.
+  if (!events_.waitForAcknowledgments(kFinalEventWait)) {
+    spdlog::warn("plant: {}: the run's end was not acknowledged by every reader within {} ms",
+                 dds::topics::kSimEvents.info.name, kFinalEventWait.count());
+  }
 }
 
 }  // namespace quad::plant

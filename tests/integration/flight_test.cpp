@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "json_lines.hpp"
+#include "module_wait.hpp"
 #include "process.hpp"
 #include "wait.hpp"
 
@@ -50,7 +51,7 @@ TEST(Flight, LockstepMissionReachesItsGoalWithoutCollision)
   // GIVEN the control node (autostart, auto mission) and an operator's goal and path, which
   // the operator vouches is free all along (known_free_m: the controller flies no further)
   ChildProcess control({QUAD_CONTROL_NODE, "--config", control_config}, env(domain));
-  ASSERT_TRUE(control.waitForOutput("running on domain", 10s)) << control.output();
+  ASSERT_TRUE(quad::test::waitForRunningModule(domain, "control", 10s)) << control.output();
   ChildProcess goal({QUAD_TOOL, "topic", "pub", "quad/planning/goal",
                      "{goal_id: 1, p_W: {x: 20, y: 5, z: 3}, tolerance: 0.3}", "--wait-match", "5"},
                     env(domain));

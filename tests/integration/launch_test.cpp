@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <algorithm>
 #include <fstream>
+#include <functional>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -16,6 +17,7 @@
 
 #include "process.hpp"
 #include "scratch.hpp"
+#include "wait.hpp"
 
 namespace {
 
@@ -28,6 +30,36 @@ fs::path writeManifest(const fs::path& dir, const std::string& text)
   const fs::path file = dir / "m.yaml";
   std::ofstream(file) << text;
   return file;
+}
+
+/// The run's run.json; null until the launcher wrote it.
+nlohmann::json runRecord(const fs::path& run_dir)
+{
+  const auto j = nlohmann::json::parse(quad::test::readFile(run_dir / "run.json"), nullptr, false);
+  return j.is_discarded() ? nlohmann::json() : j;
+}
+
+/// Waits up to `timeout` for the run's run.json to satisfy `holds`; the last one read.
+nlohmann::json waitForRecord(const fs::path& run_dir, const std::function<bool(const nlohmann::json&)>& holds,
+                             std::chrono::milliseconds timeout)
+{
+  nlohmann::json last;
+  quad::test::waitFor(
+      [&] {
+        last = runRecord(run_dir);
+        return !last.is_null() && holds(last);
+      },
+      timeout);
+  return last;
+}
+
+/// Whether `module` of a run.json is running (its heartbeat came) after its `starts`-th start.
+auto runningAfterStart(const std::string& module, int starts = 1)
+{
+  return [=](const nlohmann::json& r) {
+    const auto& m = r["modules"][module];
+    return m["phase"] == "running" && m["starts"] == starts;
+  };
 }
 
 /// Flies a shipped manifest's mission and checks the summary and the run folder.
@@ -49,6 +81,11 @@ void flyMission(const std::string& manifest, int domain, const std::vector<std::
   EXPECT_EQ(summary["collisions"], 0) << summary;
   for (const char* log : {"launch.log", "plant.log", "control.log", "mapping.log", "planning.log", "summary.json"}) {
     EXPECT_TRUE(fs::exists(dir / "run" / log)) << log;
+  }
+  const auto record = runRecord(dir / "run");
+  EXPECT_EQ(record["exit_code"], 0) << record;
+  for (const char* module : {"plant", "control", "mapping", "planning"}) {
+    EXPECT_EQ(record["modules"][module]["starts"], 1) << record;  // nothing died on the way
   }
   // The controller flew the planner's paths: it took off, followed a mission, landed.
   EXPECT_GT(summary["paths"].get<int>(), 0) << summary;
@@ -136,16 +173,14 @@ modules:
 )");
     ChildProcess launch({QUAD_TOOL, "launch", manifest.string(), "--domain", std::to_string(domain), "--subnet", subnet,
                          "--log-dir", (dir / "run").string()});
-    ASSERT_TRUE(launch.waitForOutput("started plant on sim", 30s)) << launch.output();
-    const std::smatch m = [&] {
-      std::smatch found;
-      const std::string& out = launch.output();
-      std::regex_search(out, found, std::regex(R"(network namespace quad-([0-9a-f]+)-sim at)"));
-      return found;
-    }();
-    ASSERT_EQ(m.size(), 2U) << launch.output();
-    const std::string run = m[1].str();
-    EXPECT_EQ(launch.output().find("firewall: UDP") != std::string::npos, firewall) << launch.output();
+    const auto record = waitForRecord(dir / "run", runningAfterStart("plant"), 30s);
+    ASSERT_TRUE(runningAfterStart("plant")(record)) << record << launch.output();
+    EXPECT_EQ(record["hosts"]["sim"]["kind"], "netns") << record;
+    EXPECT_EQ(record["firewall"], firewall) << record;
+    // The namespaces are quad-<run>-<host>, on the bridge qb<run>.
+    const std::string ns = record["hosts"]["sim"]["namespace"];
+    ASSERT_TRUE(ns.starts_with("quad-") && ns.ends_with("-sim")) << record;
+    const std::string run = ns.substr(5, ns.size() - 9);
     const std::string rogue = "qrogue" + std::to_string(::getpid());
     const std::string veth = "qr" + std::to_string(::getpid());
     ASSERT_EQ(sh("ip netns add " + rogue + " && ip link add " + veth + "a type veth peer name " + veth + "b && ip link set " +
@@ -180,29 +215,11 @@ modules:
   }
 }
 
-/// The pid a launcher's output gives for the `n`-th start (from 1) of `module`; 0 if none yet.
-int startedPid(const std::string& output, const std::string& module, int n)
+/// Waits up to 20 s for `module` to run after its `n`-th start (from 1); its pid, 0 if it did not.
+int waitForRunning(const fs::path& run_dir, const std::string& module, int n)
 {
-  const std::regex re("started " + module + R"( on local \(pid (\d+)\))");
-  int seen = 0;
-  for (auto it = std::sregex_iterator(output.begin(), output.end(), re); it != std::sregex_iterator(); ++it) {
-    if (++seen == n) {
-      return std::stoi((*it)[1].str());
-    }
-  }
-  return 0;
-}
-
-/// Waits up to 20 s for the `n`-th start of `module`; its pid.
-int waitForStart(ChildProcess& launch, const std::string& module, int n)
-{
-  for (int i = 0; i < 200; ++i) {
-    if (const int pid = startedPid(launch.output(), module, n); pid != 0) {
-      return pid;
-    }
-    launch.waitForOutput("\n\n", 100ms);  // never comes: just waits and reads
-  }
-  return 0;
+  const auto record = waitForRecord(run_dir, runningAfterStart(module, n), 20s);
+  return runningAfterStart(module, n)(record) ? record["modules"][module]["pid"].get<int>() : 0;
 }
 
 TEST(Launch, AKilledModuleIsRespawnedUntilItsLimitThenTheRunFails)
@@ -212,24 +229,26 @@ TEST(Launch, AKilledModuleIsRespawnedUntilItsLimitThenTheRunFails)
 modules:
   mapping: {respawn: 1, backoff: 0.2}
 )");
-  ChildProcess launch({QUAD_TOOL, "launch", manifest.string(), "--domain", "182", "--log-dir", (dir / "run").string()});
-  const int first = waitForStart(launch, "mapping", 1);
-  ASSERT_NE(first, 0) << launch.output();
-  ASSERT_TRUE(launch.waitForOutput("mapping running on domain 182", 20s)) << launch.output();
+  const fs::path run = dir / "run";
+  ChildProcess launch({QUAD_TOOL, "launch", manifest.string(), "--domain", "182", "--log-dir", run.string()});
+  const int first = waitForRunning(run, "mapping", 1);
+  ASSERT_NE(first, 0) << runRecord(run) << launch.output();
   ASSERT_EQ(::kill(first, SIGKILL), 0);
-  EXPECT_TRUE(launch.waitForOutput("mapping exited (killed by SIGKILL): restarting in 0.2 s (1 of 1)", 10s))
-      << launch.output();
-  const int second = waitForStart(launch, "mapping", 2);
-  ASSERT_NE(second, 0) << launch.output();
+  const int second = waitForRunning(run, "mapping", 2);
+  ASSERT_NE(second, 0) << runRecord(run) << launch.output();
   EXPECT_NE(second, first);
+  EXPECT_EQ(runRecord(run)["modules"]["mapping"]["restarts"], 1);
+  EXPECT_EQ(runRecord(run)["modules"]["mapping"]["last_exit"], "killed by SIGKILL");
   // Over the limit: the run fails, naming the module.
   ASSERT_EQ(::kill(second, SIGKILL), 0);
   const auto status = launch.wait(20s);
   ASSERT_TRUE(status) << launch.output();
   EXPECT_EQ(*status, 1) << launch.output();
-  EXPECT_NE(launch.output().find("launch: FAILED: mapping failed (killed by SIGKILL) after 1 restarts"),
-            std::string::npos)
-      << launch.output();
+  const auto record = runRecord(run);
+  EXPECT_EQ(record["phase"], "ended") << record;
+  EXPECT_EQ(record["exit_code"], 1) << record;
+  EXPECT_EQ(record["failure"], "mapping failed (killed by SIGKILL) after 1 restarts") << record;
+  EXPECT_EQ(record["modules"]["mapping"]["phase"], "failed") << record;
   fs::remove_all(dir);
 }
 
@@ -241,23 +260,26 @@ modules:
   mapping: {}
   planning: {needs: [quad/mapping/update]}
 )");
-  ChildProcess launch({QUAD_TOOL, "launch", manifest.string(), "--domain", "185", "--log-dir", (dir / "run").string()});
-  ASSERT_TRUE(launch.waitForOutput("planning running on domain 185", 30s)) << launch.output();
+  const fs::path run = dir / "run";
+  ChildProcess launch({QUAD_TOOL, "launch", manifest.string(), "--domain", "185", "--log-dir", run.string()});
+  ASSERT_NE(waitForRunning(run, "planning", 1), 0) << runRecord(run) << launch.output();
   launch.signal(SIGINT);
   const auto status = launch.wait(30s);
   ASSERT_TRUE(status) << launch.output();
   EXPECT_EQ(*status, 0) << launch.output();
-  const std::string out = launch.output();
-  const auto planning = out.find("stopped planning (exit 0)");
-  const auto mapping = out.find("stopped mapping (exit 0)");
-  ASSERT_NE(planning, std::string::npos) << out;
-  ASSERT_NE(mapping, std::string::npos) << out;
-  EXPECT_LT(planning, mapping) << out;
+  const auto record = runRecord(run);
+  EXPECT_EQ(record["stopped_order"], nlohmann::json::array({"planning", "mapping"})) << record;
+  for (const char* module : {"planning", "mapping"}) {
+    EXPECT_EQ(record["modules"][module]["phase"], "stopped") << record;
+    EXPECT_EQ(record["modules"][module]["last_exit"], "exit 0") << record;
+  }
+  EXPECT_EQ(record["exit_code"], 0) << record;
+  EXPECT_EQ(record["failure"], "") << record;
   fs::remove_all(dir);
 }
 
 /// A module that needs another's topic starts only if discovery works the manifest's way.
-void startsWithDiscovery(const std::string& discovery, int domain, const std::string& expected_line)
+void startsWithDiscovery(const std::string& discovery, int domain, const std::string& server)
 {
   const fs::path dir = quad::test::scratchDir("quad_launch_discovery_" + std::to_string(domain));
   const auto manifest = writeManifest(dir, "discovery: " + discovery + R"(
@@ -265,10 +287,11 @@ modules:
   mapping: {}
   planning: {needs: [quad/mapping/update], ready_timeout: 15}
 )");
+  const fs::path run = dir / "run";
   ChildProcess launch({QUAD_TOOL, "launch", manifest.string(), "--domain", std::to_string(domain), "--log-dir",
-                       (dir / "run").string()});
-  ASSERT_TRUE(launch.waitForOutput("planning running on domain " + std::to_string(domain), 30s)) << launch.output();
-  EXPECT_NE(launch.output().find(expected_line), std::string::npos) << launch.output();
+                       run.string()});
+  ASSERT_NE(waitForRunning(run, "planning", 1), 0) << runRecord(run) << launch.output();
+  EXPECT_EQ(runRecord(run)["discovery_server"], server) << runRecord(run);
   launch.signal(SIGTERM);
   const auto status = launch.wait(30s);
   ASSERT_TRUE(status) << launch.output();
@@ -278,12 +301,12 @@ modules:
 
 TEST(Launch, ADiscoveryServerTheLauncherStartsConnectsTheModules)
 {
-  startsWithDiscovery("{kind: server, port: 11861}", 186, "started a discovery server on local at 127.0.0.1:11861");
+  startsWithDiscovery("{kind: server, port: 11861}", 186, "127.0.0.1:11861");
 }
 
 TEST(Launch, InitialPeersConnectTheModules)
 {
-  startsWithDiscovery("{kind: initial_peers}", 187, "started planning on local");
+  startsWithDiscovery("{kind: initial_peers}", 187, "");
 }
 
 TEST(Launch, AMissingModuleFailsStartUpNamingIt)
@@ -297,10 +320,12 @@ modules:
   const auto status = launch.wait(30s);
   ASSERT_TRUE(status) << launch.output();
   EXPECT_EQ(*status, 1) << launch.output();
-  EXPECT_NE(launch.output().find("control not started: after 1.0 s no writer on quad/planning/path (written by "
-                                 "planning, which this manifest does not start)"),
-            std::string::npos)
-      << launch.output();
+  const auto record = runRecord(dir / "run");
+  EXPECT_EQ(record["failure"], "control not started: after 1.0 s no writer on quad/planning/path (written by "
+                               "planning, which this manifest does not start)")
+      << record;
+  EXPECT_EQ(record["modules"]["control"]["phase"], "waiting") << record;
+  EXPECT_EQ(record["modules"]["control"]["starts"], 0) << record;
   fs::remove_all(dir);
 }
 
@@ -352,16 +377,18 @@ TEST(Launch, AnSshHostRunsItsModuleWithTheRunsEnvironmentAndStopsIt)
                                            "UserKnownHostsFile=/dev/null]}\n"
                                            "modules:\n  mapping: {host: far}\n"
                                            "  planning: {needs: [quad/mapping/update], ready_timeout: 20}\n");
-  ChildProcess launch({QUAD_TOOL, "launch", manifest.string(), "--domain", "188", "--log-dir", (dir / "run").string()});
-  // The mapper, started over ssh, got the run's domain and is seen by the launcher.
-  ASSERT_TRUE(launch.waitForOutput("planning running on domain 188", 40s)) << launch.output();
-  EXPECT_NE(quad::test::readFile(dir / "run/mapping.log").find("mapping running on domain 188"), std::string::npos)
-      << launch.output();
+  const fs::path run = dir / "run";
+  ChildProcess launch({QUAD_TOOL, "launch", manifest.string(), "--domain", "188", "--log-dir", run.string()});
+  // The mapper, started over ssh, got the run's domain: its heartbeat reached the launcher,
+  // and the planner, which needs its map, started.
+  ASSERT_NE(waitForRunning(run, "planning", 1), 0) << runRecord(run) << launch.output();
+  EXPECT_EQ(runRecord(run)["modules"]["mapping"]["phase"], "running") << runRecord(run);
+  EXPECT_EQ(runRecord(run)["hosts"]["far"]["kind"], "ssh") << runRecord(run);
   launch.signal(SIGTERM);
   const auto status = launch.wait(30s);
   ASSERT_TRUE(status) << launch.output();
   EXPECT_EQ(*status, 0) << launch.output();
-  EXPECT_NE(launch.output().find("stopped mapping"), std::string::npos) << launch.output();
+  EXPECT_EQ(runRecord(run)["modules"]["mapping"]["phase"], "stopped") << runRecord(run);
   sshd.signal(SIGTERM);
   sshd.wait(10s);  // it removes its pid file on the way out
   std::error_code ignored;

@@ -6,6 +6,7 @@
 #include <regex>
 #include <string>
 
+#include "module_wait.hpp"
 #include "process.hpp"
 
 namespace {
@@ -21,7 +22,7 @@ std::map<std::string, std::string> env(int domain)
 TEST(NodeAndTools, EchoPrintsTheHeartbeatAnotherProcessPublished)
 {
   ChildProcess node({QUAD_TEST_NODE}, env(130));
-  ASSERT_TRUE(node.waitForOutput("running on domain 130", 10s)) << node.output();
+  ASSERT_TRUE(quad::test::waitForRunningModule(130, "test_node", 10s)) << node.output();
   ChildProcess echo({QUAD_TOOL, "topic", "echo", "quad/system/heartbeat", "-n", "1", "--timeout",
                      "15"},
                     env(130));
@@ -33,7 +34,7 @@ TEST(NodeAndTools, EchoPrintsTheHeartbeatAnotherProcessPublished)
 TEST(NodeAndTools, PublishedCommandReachesTheNode)
 {
   ChildProcess node({QUAD_TEST_NODE}, env(131));
-  ASSERT_TRUE(node.waitForOutput("running on domain 131", 10s)) << node.output();
+  ASSERT_TRUE(quad::test::waitForRunningModule(131, "test_node", 10s)) << node.output();
   ChildProcess pub({QUAD_TOOL, "topic", "pub", "quad/system/command",
                     "{kind: COMMAND_HOLD, command_id: 1}"},
                    env(131));
@@ -44,10 +45,9 @@ TEST(NodeAndTools, PublishedCommandReachesTheNode)
 void stopsCleanlyOn(int signal_number, int domain)
 {
   ChildProcess node({QUAD_TEST_NODE}, env(domain));
-  ASSERT_TRUE(node.waitForOutput("running on domain", 10s)) << node.output();
+  ASSERT_TRUE(quad::test::waitForRunningModule(domain, "test_node", 10s)) << node.output();
   node.signal(signal_number);
   EXPECT_EQ(node.wait(5s), 0) << node.output();
-  EXPECT_NE(node.output().find("stopped cleanly"), std::string::npos) << node.output();
 }
 
 TEST(NodeAndTools, NodeStopsCleanlyOnSigterm) { stopsCleanlyOn(SIGTERM, 132); }
@@ -57,7 +57,7 @@ TEST(NodeAndTools, NodeStopsCleanlyOnSigint) { stopsCleanlyOn(SIGINT, 133); }
 TEST(NodeAndTools, TopicListShowsWritersAndReadersOfTheNode)
 {
   ChildProcess node({QUAD_TEST_NODE}, env(134));
-  ASSERT_TRUE(node.waitForOutput("running on domain 134", 10s)) << node.output();
+  ASSERT_TRUE(quad::test::waitForRunningModule(134, "test_node", 10s)) << node.output();
   ChildProcess list({QUAD_TOOL, "topic", "list", "--wait", "3"}, env(134));
   ASSERT_EQ(list.wait(20s), 0) << list.output();
   const std::string& out = list.output();
@@ -100,7 +100,7 @@ TEST(NodeAndTools, NodeStartsWithAValidConfig)
 {
   ChildProcess node({QUAD_TEST_NODE, "--config", QUAD_FIXTURES "/test_node_ok.yaml"}, env(137));
   EXPECT_TRUE(node.waitForOutput("greeting: from the fixture", 10s)) << node.output();
-  EXPECT_TRUE(node.waitForOutput("running on domain 137", 10s)) << node.output();
+  EXPECT_TRUE(quad::test::waitForRunningModule(137, "test_node", 10s)) << node.output();
 }
 
 TEST(NodeAndTools, NodeRefusesToStartOnABadConfigNamingFileKeyAndValue)
@@ -190,7 +190,7 @@ namespace {
 TEST(NodeAndTools, TopicHzMeasuresTheHeartbeatAgainstItsContract)
 {
   ChildProcess node({QUAD_TEST_NODE}, {{"QUAD_DOMAIN_ID", "194"}, {"QUAD_TRANSPORT", "udp"}});
-  ASSERT_TRUE(node.waitForOutput("running on domain 194", 10s)) << node.output();
+  ASSERT_TRUE(quad::test::waitForRunningModule(194, "test_node", 10s)) << node.output();
   ChildProcess hz({QUAD_TOOL, "topic", "hz", "quad/system/heartbeat", "--duration", "4.2", "--window", "2"},
                   {{"QUAD_DOMAIN_ID", "194"}, {"QUAD_TRANSPORT", "udp"}});
   ASSERT_EQ(hz.wait(20s), 0) << hz.output();

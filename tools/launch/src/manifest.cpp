@@ -12,6 +12,19 @@
 
 namespace quad::launch {
 
+std::string_view toString(HostKind kind)
+{
+  switch (kind) {
+    case HostKind::kLocal:
+      return "local";
+    case HostKind::kNetns:
+      return "netns";
+    case HostKind::kSsh:
+      return "ssh";
+  }
+  return "?";
+}
+
 namespace fs = std::filesystem;
 
 const Host& Manifest::host(const std::string& host_name) const
@@ -195,10 +208,12 @@ void readHosts(YAML::Node node, Reader& r, Manifest& m)
       continue;
     }
     r.onlyKeys(spec, key + ".", {"type", "address", "port", "root", "options", "interfaces"});
-    const auto type = r.choice(spec["type"], key + ".type", "local", {"local", "netns", "ssh"});
-    if (type == "netns") {
+    const auto type = r.choice(spec["type"], key + ".type", "local",
+                                      {std::string(toString(HostKind::kLocal)), std::string(toString(HostKind::kNetns)),
+                                       std::string(toString(HostKind::kSsh))});
+    if (type == toString(HostKind::kNetns)) {
       h.kind = HostKind::kNetns;
-    } else if (type == "ssh") {
+    } else if (type == toString(HostKind::kSsh)) {
       h.kind = HostKind::kSsh;
       h.address = r.text(spec["address"], key + ".address", std::nullopt).value_or("");
       h.ssh_port = static_cast<int>(r.number(spec["port"], key + ".port", 22, 1, 65535).value_or(22));

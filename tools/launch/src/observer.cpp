@@ -15,11 +15,13 @@ namespace quad::launch {
 
 namespace topics = dds::topics;
 
-/// The sim time and the vehicle's state, followed from the start.
+/// What the launcher follows from the start: the sim time, the vehicle's state, the modules'
+/// heartbeats.
 struct Observer::Sim {
-  explicit Sim(dds::Participant& p) : state(p, topics::kSimState), clock(p) {}
+  explicit Sim(dds::Participant& p) : state(p, topics::kSimState), clock(p), heartbeats(p, topics::kHeartbeat) {}
   dds::Subscriber<msg::VehicleState> state;
   dds::SimClockFollower clock;
+  dds::Subscriber<msg::Heartbeat> heartbeats;
 };
 
 /// What flying a mission needs besides.
@@ -119,6 +121,16 @@ std::vector<std::string> controlModeNames()
     }
   }
   return out;
+}
+
+std::vector<ModuleBeat> Observer::takeHeartbeats()
+{
+  std::vector<ModuleBeat> beats;
+  for (const auto& hb : sim_->heartbeats.takeAll()) {
+    const bool running = hb.state() == msg::MODULE_RUNNING || hb.state() == msg::MODULE_DEGRADED;
+    beats.push_back({hb.module_name().to_string(), hb.pid(), running, hb.header().stamp_ns()});
+  }
+  return beats;
 }
 
 std::int64_t Observer::simTimeNs() const { return sim_->clock.ns(); }

@@ -99,6 +99,28 @@ LaunchRun::LaunchRun(const Manifest& m, const LaunchOptions& o, fs::path dir, in
     : m_(m), options_(o), domain_(domain), supervisor_(std::move(dir), stdout, !o.quiet),
       start_ns_(common::steadyTimeNs())
 {
+  record_.manifest = m.file.string();
+  record_.domain = domain;
+  for (const auto& mod : m.modules) {
+    record_.order.push_back(mod.name);
+    record_.modules[mod.name] = {mod.kind, mod.host};
+  }
+}
+
+int LaunchRun::endedBeforeStart(int code)
+{
+  record_.phase = RunPhase::kEnded;
+  record_.exit_code = code;
+  saveRecord();
+  return code;
+}
+
+void LaunchRun::saveRecord()
+{
+  record_.failure = failure_;
+  if (!launch::writeRunRecord(supervisor_.logDir() / "run.json", record_)) {
+    say("cannot write " + (supervisor_.logDir() / "run.json").string());
+  }
 }
 
 LaunchRun::~LaunchRun() = default;
@@ -130,7 +152,34 @@ void LaunchRun::startModule(const Module& mod)
   st.started = true;
   st.restart_at_ns = 0;
   st.exit_expected = false;
-  say(fmt::format("started {} on {} (pid {})", mod.name, mod.host, *supervisor_.pid(mod.name)));
+  const pid_t pid = *supervisor_.pid(mod.name);
+  say(fmt::format("started {} on {} (pid {})", mod.name, mod.host, pid));
+  ModuleRecord& rec = record_.modules[mod.name];
+  rec.phase = ModulePhase::kStarting;
+  rec.pid = static_cast<int>(pid);
+  ++rec.starts;
+  rec.restarts = st.restarts;
+  rec.started_ns = common::wallTimeNs();
+  saveRecord();
+}
+
+void LaunchRun::onHeartbeat(const launch::ModuleBeat& beat)
+{
+  for (const auto& mod : m_.modules) {
+    ModuleRecord& rec = record_.modules[mod.name];
+    if (mod.kind != beat.module || rec.phase != ModulePhase::kStarting || !beat.running) {
+      continue;
+    }
+    // The process the launcher started is the module itself on this machine and in a network
+    // namespace (ip netns exec execs it); over ssh the pid is the remote one, so a heartbeat
+    // stamped after the start stands for it.
+    const bool remote = m_.host(mod.host).kind == launch::HostKind::kSsh;
+    if (beat.pid == rec.pid || (remote && beat.stamp_ns >= rec.started_ns)) {
+      rec.phase = ModulePhase::kRunning;
+      say(fmt::format("{} is running (heartbeat from pid {})", mod.name, beat.pid));
+      saveRecord();
+    }
+  }
 }
 
 bool LaunchRun::signalModule(const std::string& name, int signal, bool exit_expected)
@@ -162,33 +211,38 @@ void LaunchRun::handleExit(const launch::Supervisor::Exit& e)
     failed_ = true;
     failure_ = (e.name == "record" ? "the recorder" : "the discovery server") + std::string(" ended (") + what + ")";
     say(failure_);
+    saveRecord();
     return;
   }
   const auto it = std::find_if(m_.modules.begin(), m_.modules.end(), [&](const Module& x) { return x.name == e.name; });
   if (it == m_.modules.end()) {
     return;
   }
+  ModuleRecord& rec = record_.modules[e.name];
+  rec.last_exit = what;
   if (it->ends_run && e.status == 0) {
     say(fmt::format("{} finished ({}): ending the run", e.name, what));
     ended_ = true;
-    return;
-  }
-  if (st.restarts < it->respawn) {
+    rec.phase = ModulePhase::kExited;
+  } else if (st.restarts < it->respawn) {
     const double delay = it->backoff_s * std::pow(2.0, st.restarts);
     ++st.restarts;
     st.restart_at_ns = common::steadyTimeNs() + common::toNanoseconds(delay);
     say(fmt::format("{} exited ({}): restarting in {:.1f} s ({} of {})", e.name, what, delay, st.restarts,
                     it->respawn));
-    return;
-  }
-  if (st.exit_expected) {
+    rec.phase = ModulePhase::kRestarting;
+    rec.restarts = st.restarts;
+  } else if (st.exit_expected) {
     say(fmt::format("{} exited ({}), as the fault meant it to", e.name, what));
-    return;
+    rec.phase = ModulePhase::kExited;
+  } else {
+    failed_ = true;
+    failure_ = fmt::format("{} failed ({}){}", e.name, what,
+                           it->respawn > 0 ? fmt::format(" after {} restarts", st.restarts) : "");
+    say(failure_ + ": stopping the run");
+    rec.phase = ModulePhase::kFailed;
   }
-  failed_ = true;
-  failure_ = fmt::format("{} failed ({}){}", e.name, what,
-                         it->respawn > 0 ? fmt::format(" after {} restarts", st.restarts) : "");
-  say(failure_ + ": stopping the run");
+  saveRecord();
 }
 
 bool LaunchRun::service(int timeout_ms)
@@ -205,6 +259,9 @@ bool LaunchRun::service(int timeout_ms)
   }
   if (observer_) {
     observer_->update();
+    for (const auto& beat : observer_->takeHeartbeats()) {
+      onHeartbeat(beat);
+    }
     if (auto* mission = observer_->mission()) {
       for (const auto& line : mission->takeProgress()) {
         say(line);
@@ -215,6 +272,7 @@ bool LaunchRun::service(int timeout_ms)
     failed_ = true;
     failure_ = fmt::format("the run took longer than --wall-timeout {:.0f} s", options_.wall_timeout_s);
     say(failure_);
+    saveRecord();
   }
   return !failed_ && !ended_ && !interrupted();
 }
@@ -279,6 +337,7 @@ bool LaunchRun::waitForNeeds(const Module& mod)
       failed_ = true;
       failure_ = fmt::format("{} not started: after {:.1f} s no writer on {}", mod.name, mod.ready_timeout_s, list);
       say(failure_);
+      saveRecord();
       return false;
     }
   }
@@ -289,10 +348,17 @@ void LaunchRun::stopAll()
 {
   // Reverse start order; the discovery server last of all. A paused process must be resumed
   // to see its SIGTERM.
+  record_.phase = RunPhase::kStopping;
+  saveRecord();
   for (auto it = started_order_.rbegin(); it != started_order_.rend(); ++it) {
     supervisor_.signal(*it, SIGCONT);
     if (const auto status = supervisor_.stop(*it, m_.grace_s)) {
       say(fmt::format("stopped {} ({})", *it, process::describeStatus(*status)));
+      if (const auto rec = record_.modules.find(*it); rec != record_.modules.end()) {
+        rec->second.phase = ModulePhase::kStopped;
+        rec->second.last_exit = process::describeStatus(*status);
+        record_.stopped_order.push_back(*it);
+      }
     }
   }
   supervisor_.stop("discovery", m_.grace_s);
@@ -341,14 +407,18 @@ int LaunchRun::execute(RunExtension* extension)
                       ports.last, extra.empty() ? "" : fmt::format(" and {}", extra.front())));
     }
   } catch (const std::exception& e) {
-    say(std::string("cannot set up the hosts: ") + e.what());
-    return 1;
+    failure_ = std::string("cannot set up the hosts: ") + e.what();
+    say(failure_);
+    return endedBeforeStart(kExitFailed);
   }
   for (const auto& h : m_.hosts) {
     if (h.kind == launch::HostKind::kNetns) {
       say(fmt::format("host {}: network namespace {} at {}", h.name, net_->namespaceOf(h.name), net_->address(h.name)));
     }
+    record_.hosts[h.name] = {std::string(launch::toString(h.kind)), net_->address(h.name), net_->namespaceOf(h.name)};
   }
+  record_.firewall = m_.firewall;
+  saveRecord();
   env_ = runEnvironment(m_, domain_, *net_);
   if (m_.discovery == launch::Discovery::kServer) {
     const auto& host = m_.host(m_.discovery_host);
@@ -356,6 +426,7 @@ int LaunchRun::execute(RunExtension* extension)
                                         std::to_string(m_.discovery_port)};
     supervisor_.start("discovery", net_->command(host, argv, {}), {});
     say(fmt::format("started a discovery server on {} at {}", host.name, env_[dds::environment::kDiscoveryServer]));
+    record_.discovery_server = env_[dds::environment::kDiscoveryServer];
   }
 
   // The launcher's participant, set up like the modules': from the same environment, read by
@@ -372,8 +443,9 @@ int LaunchRun::execute(RunExtension* extension)
     world = world::loadWorld(m_.world);
     const double radius = m_.mission.vehicle.empty() ? 0.0 : vehicle::loadVehicle(m_.mission.vehicle).radius;
     if (const auto problem = launch::goalProblem(*world, radius)) {
-      say(fmt::format("{}: {}: refused", m_.world.string(), *problem));
-      return kExitInvalid;
+      failure_ = fmt::format("{}: {}: refused", m_.world.string(), *problem);
+      say(failure_);
+      return endedBeforeStart(kExitInvalid);
     }
     observer_->startMission(m_.mission, *world, radius);
     const auto& g = world->goal();
@@ -398,6 +470,10 @@ int LaunchRun::execute(RunExtension* extension)
     }
     startModule(mod);
   }
+  if (all_started) {
+    record_.phase = RunPhase::kRunning;
+    saveRecord();
+  }
   std::int64_t stall_reported_ns = 0;
   constexpr std::int64_t kStallNs = 30 * common::kNanosecondsPerSecond;
   while (all_started && service(50)) {
@@ -419,6 +495,7 @@ int LaunchRun::execute(RunExtension* extension)
         // Sim time waits for everyone: a lockstep run that stopped this long does not resume.
         failed_ = true;
         failure_ = "no vehicle state for 30 s: the lockstep run stalled";
+        saveRecord();
         break;
       }
     }
@@ -461,6 +538,9 @@ int LaunchRun::execute(RunExtension* extension)
   if (extension != nullptr) {
     code = extension->finish(*this, code);
   }
+  record_.phase = RunPhase::kEnded;
+  record_.exit_code = code;
+  saveRecord();
   std::printf("launch: logs in %s\n", supervisor_.logDir().string().c_str());
   std::fflush(stdout);
   return code;

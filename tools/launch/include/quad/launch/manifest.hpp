@@ -9,11 +9,14 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace quad::launch {
 
 enum class HostKind { kLocal, kNetns, kSsh };
+/// "local", "netns", "ssh": a host's `type` in a manifest.
+std::string_view toString(HostKind kind);
 enum class Discovery { kMulticast, kInitialPeers, kServer };
 
 struct Host {

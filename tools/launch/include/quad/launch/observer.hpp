@@ -4,6 +4,7 @@
 /// discovered), and plays the operator of a mission (gives the goal, commands the landing)
 /// while feeding a MissionTracker with what the stack publishes.
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,6 +21,14 @@ std::string controlModeName(int mode);
 /// Every ControlMode's name, in that form.
 std::vector<std::string> controlModeNames();
 
+/// A module's heartbeat, as the launcher follows its modules' lives.
+struct ModuleBeat {
+  std::string module;      ///< Heartbeat.module_name: the module's kind ("mapping", ...)
+  std::int32_t pid = 0;    ///< on its host
+  bool running = false;    ///< state MODULE_RUNNING (or DEGRADED: running, working around an error)
+  std::int64_t stamp_ns = 0;  ///< wall time on its host
+};
+
 class Observer {
 public:
   explicit Observer(dds::ParticipantOptions options);
@@ -32,6 +41,8 @@ public:
   void startMission(const Mission& mission, const world::World& world, double radius);
   /// Takes what arrived, feeds the tracker, sends the land command when it asks.
   void update();
+  /// The modules' heartbeats that arrived since the last call.
+  std::vector<ModuleBeat> takeHeartbeats();
   /// Null until startMission.
   MissionTracker* mission() { return tracker_.get(); }
   /// Wall time [ns, steady] of the last vehicle state; 0 before the first.

@@ -20,6 +20,7 @@
 #include "quad/launch/manifest.hpp"
 #include "quad/launch/mission.hpp"
 #include "quad/launch/observer.hpp"
+#include "quad/launch/run_record.hpp"
 #include "quad/launch/supervisor.hpp"
 
 namespace quad::launch {
@@ -94,6 +95,8 @@ public:
   void say(const std::string& line) { supervisor_.say(line); }
   /// Why the run failed (a module, the recorder, a timeout); empty while nothing failed.
   const std::string& failure() const { return failure_; }
+  /// The run's state as run.json holds it.
+  const launch::RunRecord& record() const { return record_; }
   /// The mission summary, once the run ended (nothing without a mission).
   const std::optional<launch::MissionSummary>& summary() const { return summary_; }
 
@@ -110,6 +113,12 @@ private:
   };
 
   void startModule(const launch::Module& mod);
+  /// A module's heartbeat: a started module whose process it came from is running.
+  void onHeartbeat(const launch::ModuleBeat& beat);
+  /// Rewrites <run folder>/run.json from record_ (and the failure, if any).
+  void saveRecord();
+  /// The run ends before any module started (failure_ says why): records it, returns `code`.
+  int endedBeforeStart(int code);
   void handleExit(const launch::Supervisor::Exit& e);
   std::string whoWrites(const std::string& topic) const;
   /// Says, for each module, the last line its log has about lockstep ("lockstep: ...").
@@ -136,6 +145,7 @@ private:
   std::string failure_;
   std::int64_t start_ns_;
   std::optional<launch::MissionSummary> summary_;
+  launch::RunRecord record_;
 };
 
 /// Loads and validates `options.manifest` with the options' overrides (world, mode, domain,

@@ -1,0 +1,50 @@
+#include "module_wait.hpp"
+
+#include <functional>
+
+#include "quad/dds/participant.hpp"
+#include "quad/dds/subscriber.hpp"
+#include "quad/dds/topics.hpp"
+#include "wait.hpp"
+
+namespace quad::test {
+
+namespace {
+
+/// Waits for a heartbeat of `module` that `holds`.
+bool waitForHeartbeat(int domain, const std::string& module, const std::function<bool(const msg::Heartbeat&)>& holds,
+                      std::chrono::milliseconds timeout)
+{
+  dds::ParticipantOptions options;
+  options.name = "quad_test_wait";
+  options.domain_id = domain;
+  options.transport = dds::Transport::kUdp;
+  dds::Participant participant(options);
+  dds::Subscriber<msg::Heartbeat> heartbeats(participant, dds::topics::kHeartbeat);
+  return waitFor(
+      [&] {
+        for (const auto& hb : heartbeats.takeAll()) {
+          if (hb.module_name().to_string() == module && holds(hb)) {
+            return true;
+          }
+        }
+        return false;
+      },
+      timeout);
+}
+
+}  // namespace
+
+bool waitForRunningModule(int domain, const std::string& module, std::chrono::milliseconds timeout)
+{
+  return waitForHeartbeat(
+      domain, module, [](const msg::Heartbeat& hb) { return hb.state() == msg::MODULE_RUNNING; }, timeout);
+}
+
+bool waitForModuleErrors(int domain, const std::string& module, std::uint64_t errors, std::chrono::milliseconds timeout)
+{
+  return waitForHeartbeat(
+      domain, module, [errors](const msg::Heartbeat& hb) { return hb.errors() >= errors; }, timeout);
+}
+
+}  // namespace quad::test

@@ -1,0 +1,92 @@
+#include "quad/launch/run_record.hpp"
+
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+namespace quad::launch {
+
+std::string_view toString(ModulePhase phase)
+{
+  switch (phase) {
+    case ModulePhase::kWaiting:
+      return "waiting";
+    case ModulePhase::kStarting:
+      return "starting";
+    case ModulePhase::kRunning:
+      return "running";
+    case ModulePhase::kRestarting:
+      return "restarting";
+    case ModulePhase::kExited:
+      return "exited";
+    case ModulePhase::kFailed:
+      return "failed";
+    case ModulePhase::kStopped:
+      return "stopped";
+  }
+  return "?";
+}
+
+std::string_view toString(RunPhase phase)
+{
+  switch (phase) {
+    case RunPhase::kStarting:
+      return "starting";
+    case RunPhase::kRunning:
+      return "running";
+    case RunPhase::kStopping:
+      return "stopping";
+    case RunPhase::kEnded:
+      return "ended";
+  }
+  return "?";
+}
+
+std::string toJson(const RunRecord& r)
+{
+  nlohmann::ordered_json j;
+  j["manifest"] = r.manifest;
+  j["domain"] = r.domain;
+  j["phase"] = toString(r.phase);
+  j["failure"] = r.failure;
+  j["exit_code"] = r.exit_code ? nlohmann::ordered_json(*r.exit_code) : nlohmann::ordered_json(nullptr);
+  j["discovery_server"] = r.discovery_server;
+  j["firewall"] = r.firewall;
+  nlohmann::ordered_json hosts = nlohmann::ordered_json::object();
+  for (const auto& [name, h] : r.hosts) {
+    hosts[name] = {{"kind", h.kind}, {"address", h.address}, {"namespace", h.network_namespace}};
+  }
+  j["hosts"] = hosts;
+  nlohmann::ordered_json modules = nlohmann::ordered_json::object();
+  for (const auto& name : r.order) {
+    const auto it = r.modules.find(name);
+    if (it == r.modules.end()) {
+      continue;
+    }
+    const ModuleRecord& m = it->second;
+    modules[name] = {{"kind", m.kind},         {"host", m.host},         {"phase", toString(m.phase)},
+                     {"pid", m.pid},           {"starts", m.starts},     {"restarts", m.restarts},
+                     {"last_exit", m.last_exit}, {"started_ns", m.started_ns}};
+  }
+  j["modules"] = modules;
+  j["stopped_order"] = r.stopped_order;
+  return j.dump(2) + "\n";
+}
+
+bool writeRunRecord(const std::filesystem::path& file, const RunRecord& record)
+{
+  std::filesystem::path partial = file;
+  partial += ".partial";
+  {
+    std::ofstream out(partial, std::ios::trunc);
+    out << toJson(record);
+    if (!out) {
+      return false;
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(partial, file, ec);
+  return !ec;
+}
+
+}  // namespace quad::launch

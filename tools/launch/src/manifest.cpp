@@ -3,6 +3,7 @@
 #include <arpa/inet.h>
 
 #include <algorithm>
+#include <array>
 #include <regex>
 #include <set>
 #include <stdexcept>
@@ -14,15 +15,8 @@ namespace quad::launch {
 
 std::string_view toString(HostKind kind)
 {
-  switch (kind) {
-    case HostKind::kLocal:
-      return "local";
-    case HostKind::kNetns:
-      return "netns";
-    case HostKind::kSsh:
-      return "ssh";
-  }
-  return "?";
+  constexpr std::array<std::string_view, 3> kNames{"local", "netns", "ssh"};  // by the enumerators' order
+  return kNames.at(static_cast<std::size_t>(kind));
 }
 
 namespace fs = std::filesystem;

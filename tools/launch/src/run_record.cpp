@@ -1,46 +1,22 @@
 #include "quad/launch/run_record.hpp"
 
+#include <array>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
 
 namespace quad::launch {
 
-std::string_view toString(ModulePhase phase)
-{
-  switch (phase) {
-    case ModulePhase::kWaiting:
-      return "waiting";
-    case ModulePhase::kStarting:
-      return "starting";
-    case ModulePhase::kRunning:
-      return "running";
-    case ModulePhase::kRestarting:
-      return "restarting";
-    case ModulePhase::kExited:
-      return "exited";
-    case ModulePhase::kFailed:
-      return "failed";
-    case ModulePhase::kStopped:
-      return "stopped";
-  }
-  return "?";
-}
+namespace {
+// Indexed by the enumerators, in their order.
+constexpr std::array<std::string_view, 7> kModulePhases{"waiting", "starting", "running", "restarting",
+                                                        "exited",  "failed",   "stopped"};
+constexpr std::array<std::string_view, 4> kRunPhases{"starting", "running", "stopping", "ended"};
+}  // namespace
 
-std::string_view toString(RunPhase phase)
-{
-  switch (phase) {
-    case RunPhase::kStarting:
-      return "starting";
-    case RunPhase::kRunning:
-      return "running";
-    case RunPhase::kStopping:
-      return "stopping";
-    case RunPhase::kEnded:
-      return "ended";
-  }
-  return "?";
-}
+std::string_view toString(ModulePhase phase) { return kModulePhases.at(static_cast<std::size_t>(phase)); }
+
+std::string_view toString(RunPhase phase) { return kRunPhases.at(static_cast<std::size_t>(phase)); }
 
 std::string toJson(const RunRecord& r)
 {

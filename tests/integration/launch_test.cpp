@@ -9,7 +9,7 @@
 #include <algorithm>
 #include <fstream>
 #include <functional>
-#include <regex>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -102,13 +102,23 @@ void flyMission(const std::string& manifest, int domain, const std::vector<std::
   EXPECT_EQ(modes.back(), "IDLE") << summary;
   if (std::find(extra.begin(), extra.end(), "--record") != extra.end()) {
     // The recording holds the run's topics, with no loss on reliable ones.
-    ChildProcess info({QUAD_TOOL, "bag", "info", (dir / "run.mcap").string()});
+    ChildProcess info({QUAD_TOOL, "bag", "info", (dir / "run.mcap").string(), "--json"});
     ASSERT_EQ(info.wait(60s), 0) << info.output();
-    for (const char* line : {"quad/planning/path", "quad/control/actuators", "quad/sim/state", "quad/mapping/update"}) {
-      EXPECT_NE(info.output().find(line), std::string::npos) << line << "\n" << info.output();
+    const auto bag = nlohmann::json::parse(info.output(), nullptr, false);
+    ASSERT_TRUE(bag.is_object()) << info.output();
+    EXPECT_EQ(bag["complete"], true) << bag;
+    std::map<std::string, nlohmann::json> topics;
+    for (const auto& t : bag["topics"]) {
+      topics[t["topic"]] = t;
     }
-    const std::regex path_line(R"(quad/planning/path .* missing 0 duplicated 0 reordered 0)");
-    EXPECT_TRUE(std::regex_search(info.output(), path_line)) << info.output();
+    for (const char* topic : {"quad/planning/path", "quad/control/actuators", "quad/sim/state", "quad/mapping/update"}) {
+      EXPECT_GT(topics[topic]["messages"].get<int>(), 0) << topic << "\n" << bag;
+    }
+    const auto& path = topics["quad/planning/path"]["loss"];
+    ASSERT_TRUE(path.is_object()) << bag;
+    EXPECT_EQ(path["missing"], 0) << bag;
+    EXPECT_EQ(path["duplicated"], 0) << bag;
+    EXPECT_EQ(path["reordered"], 0) << bag;
   }
   if (!::testing::Test::HasFailure()) {
     fs::remove_all(dir);  // kept to look into otherwise

@@ -3,9 +3,9 @@
 #include <signal.h>
 
 #include <chrono>
-#include <regex>
 #include <string>
 
+#include "json_lines.hpp"
 #include "module_wait.hpp"
 #include "process.hpp"
 
@@ -58,17 +58,29 @@ TEST(NodeAndTools, TopicListShowsWritersAndReadersOfTheNode)
 {
   ChildProcess node({QUAD_TEST_NODE}, env(134));
   ASSERT_TRUE(quad::test::waitForRunningModule(134, "test_node", 10s)) << node.output();
-  ChildProcess list({QUAD_TOOL, "topic", "list", "--wait", "3"}, env(134));
+  ChildProcess list({QUAD_TOOL, "topic", "list", "--wait", "3", "--json"}, env(134));
   ASSERT_EQ(list.wait(20s), 0) << list.output();
-  const std::string& out = list.output();
-  EXPECT_NE(out.find("quad/system/heartbeat      quad::msg::Heartbeat               1       0  "
-                     "every module"),
-            std::string::npos)
-      << out;
-  EXPECT_NE(out.find("quad/system/command        quad::msg::VehicleCommand          0       1  "
-                     "operator"),
-            std::string::npos)
-      << out;
+  const auto out = nlohmann::json::parse(list.output(), nullptr, false);
+  ASSERT_TRUE(out.is_object()) << list.output();
+  EXPECT_EQ(out["domain"], 134);
+  const auto row = [&](const std::string& topic) {
+    for (const auto& r : out["topics"]) {
+      if (r["topic"] == topic) {
+        return r;
+      }
+    }
+    return nlohmann::json();
+  };
+  const auto heartbeat = row("quad/system/heartbeat");
+  EXPECT_EQ(heartbeat["type"], "quad::msg::Heartbeat") << out;
+  EXPECT_EQ(heartbeat["writers"], 1) << out;
+  EXPECT_EQ(heartbeat["readers"], 0) << out;
+  EXPECT_EQ(heartbeat["owner"], "every module") << out;
+  EXPECT_EQ(heartbeat["type_matches"], true) << out;
+  const auto command = row("quad/system/command");
+  EXPECT_EQ(command["writers"], 0) << out;
+  EXPECT_EQ(command["readers"], 1) << out;
+  EXPECT_EQ(command["owner"], "operator") << out;
 }
 
 TEST(NodeAndTools, UnknownTopicIsRefusedWithTheKnownOnes)
@@ -191,21 +203,26 @@ TEST(NodeAndTools, TopicHzMeasuresTheHeartbeatAgainstItsContract)
 {
   ChildProcess node({QUAD_TEST_NODE}, {{"QUAD_DOMAIN_ID", "194"}, {"QUAD_TRANSPORT", "udp"}});
   ASSERT_TRUE(quad::test::waitForRunningModule(194, "test_node", 10s)) << node.output();
-  ChildProcess hz({QUAD_TOOL, "topic", "hz", "quad/system/heartbeat", "--duration", "4.2", "--window", "2"},
+  ChildProcess hz({QUAD_TOOL, "topic", "hz", "quad/system/heartbeat", "--duration", "4.2", "--window", "2", "--json"},
                   {{"QUAD_DOMAIN_ID", "194"}, {"QUAD_TRANSPORT", "udp"}});
   ASSERT_EQ(hz.wait(20s), 0) << hz.output();
   // The heartbeat's contract is 2 Hz: a 2 s window holds 4 samples, give or take one.
-  EXPECT_NE(hz.output().find("(contract: 2 Hz)"), std::string::npos) << hz.output();
-  const std::regex line(R"(quad/system/heartbeat: (\d+\.\d) Hz \(contract: 2 Hz\), intervals)");
-  std::smatch m;
-  const std::string out = hz.output();
-  ASSERT_TRUE(std::regex_search(out, m, line)) << out;
-  EXPECT_NEAR(std::stod(m[1].str()), 2.0, 0.6) << out;
-  ChildProcess info({QUAD_TOOL, "topic", "info", "quad/system/heartbeat", "--wait", "1.5"},
+  const auto lines = quad::test::jsonLines(hz.output());
+  ASSERT_EQ(lines.size(), 3U) << hz.output();  // two windows and the total
+  EXPECT_EQ(lines[0]["kind"], "window") << hz.output();
+  EXPECT_EQ(lines[0]["contract_hz"], 2.0) << hz.output();
+  EXPECT_NEAR(lines[1]["rate_hz"].get<double>(), 2.0, 0.6) << hz.output();
+  EXPECT_FALSE(lines[1]["min_interval_ms"].is_null()) << hz.output();
+  EXPECT_EQ(lines[2]["kind"], "total") << hz.output();
+  ChildProcess info({QUAD_TOOL, "topic", "info", "quad/system/heartbeat", "--wait", "1.5", "--json"},
                     {{"QUAD_DOMAIN_ID", "194"}, {"QUAD_TRANSPORT", "udp"}});
   ASSERT_EQ(info.wait(20s), 0) << info.output();
-  EXPECT_NE(info.output().find("test_node            on 127.0.0.1"), std::string::npos) << info.output();
-  EXPECT_NE(info.output().find("written by:  every module"), std::string::npos) << info.output();
+  const auto seen = nlohmann::json::parse(info.output(), nullptr, false);
+  ASSERT_TRUE(seen.is_object()) << info.output();
+  EXPECT_EQ(seen["owner"], "every module") << seen;
+  ASSERT_EQ(seen["writers"].size(), 1U) << seen;
+  EXPECT_EQ(seen["writers"][0]["participant"], "test_node") << seen;
+  EXPECT_EQ(seen["writers"][0]["host"], "127.0.0.1") << seen;
 }
 
 }  // namespace

@@ -1,7 +1,10 @@
 #include <cstdio>
 #include <map>
+#include <optional>
+#include <vector>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "bag_commands.hpp"
 #include "quad/bag/audit.hpp"
@@ -9,7 +12,7 @@
 
 namespace quad::tools {
 
-int bagInfo(const std::string& file)
+int bagInfo(const std::string& file, bool json)
 {
   bag::McapContents c;
   try {
@@ -42,21 +45,56 @@ int bagInfo(const std::string& file)
   }
   const auto loss = bag::metadataValues(c, bag::kLossMetadata);
   const double span = static_cast<double>(last - first) * 1e-9;
+  struct Topic {
+    std::string topic, type;
+    std::uint64_t messages = 0;
+    std::optional<double> rate_hz;
+    std::optional<std::string> loss;  // the recorder's figures
+  };
+  std::vector<Topic> topics;
+  for (const auto& [id, ch] : channels) {
+    const Row r = rows[id];
+    const double s = static_cast<double>(r.last - r.first) * 1e-9;
+    const auto schema_it = schemas.find(ch->schema_id);
+    const auto l = loss.find(ch->topic);
+    topics.push_back({ch->topic, schema_it == schemas.end() ? "?" : schema_it->second->name, r.count,
+                      r.count > 1 && s > 0 ? std::optional(static_cast<double>(r.count - 1) / s) : std::nullopt,
+                      l == loss.end() ? std::nullopt : std::optional(l->second)});
+  }
+  if (json) {
+    nlohmann::ordered_json j;
+    j["file"] = file;
+    j["complete"] = c.complete;
+    j["problem"] = c.problem;
+    j["messages"] = c.messages.size();
+    j["chunks"] = c.chunks;
+    j["duration_s"] = span;
+    j["topics"] = nlohmann::ordered_json::array();
+    for (const Topic& t : topics) {
+      nlohmann::ordered_json figures = nullptr;
+      if (const auto f = t.loss ? bag::parseLossFigures(*t.loss) : std::nullopt) {
+        figures = {{"received", f->received}, {"missing", f->missing}, {"duplicated", f->duplicated},
+                   {"reordered", f->reordered}};
+      }
+      j["topics"].push_back({{"topic", t.topic},
+                             {"type", t.type},
+                             {"messages", t.messages},
+                             {"rate_hz", t.rate_hz ? nlohmann::ordered_json(*t.rate_hz) : nlohmann::ordered_json(nullptr)},
+                             {"loss", figures}});
+    }
+    std::printf("%s\n", j.dump(2).c_str());
+    return c.complete ? 0 : 1;
+  }
   std::printf("file:      %s%s\n", file.c_str(), c.complete ? "" : " (INCOMPLETE: quad bag recover can rewrite it)");
   if (!c.complete) {
     std::printf("problem:   %s\n", c.problem.c_str());
   }
   std::printf("messages:  %zu in %u chunks, %zu channels, %.3f s\n", c.messages.size(), c.chunks, c.channels.size(), span);
   std::printf("%-26s %-28s %9s %9s  %s\n", "TOPIC", "TYPE", "MESSAGES", "RATE", "LOSS (from Header.seq per writer)");
-  for (const auto& [id, ch] : channels) {
-    const Row r = rows[id];
-    const double s = static_cast<double>(r.last - r.first) * 1e-9;
-    const std::string rate = r.count > 1 && s > 0 ? fmt::format("{:.1f} Hz", static_cast<double>(r.count - 1) / s) : "-";
-    const auto schema_it = schemas.find(ch->schema_id);
-    const std::string type = schema_it == schemas.end() ? "?" : schema_it->second->name;
-    const auto l = loss.find(ch->topic);
-    std::printf("%-26s %-28s %9llu %9s  %s\n", ch->topic.c_str(), type.c_str(), static_cast<unsigned long long>(r.count),
-                rate.c_str(), l == loss.end() ? "(not recorded)" : l->second.c_str());
+  for (const Topic& t : topics) {
+    const std::string rate = t.rate_hz ? fmt::format("{:.1f} Hz", *t.rate_hz) : "-";
+    std::printf("%-26s %-28s %9llu %9s  %s\n", t.topic.c_str(), t.type.c_str(), static_cast<unsigned long long>(t.messages),
+                rate.c_str(), t.loss ? t.loss->c_str() : "(not recorded)");
   }
   return c.complete ? 0 : 1;
 }

@@ -32,8 +32,9 @@ int replay(const ReplayOptions& options);
 /// Records until Ctrl-C, SIGTERM or the duration; returns the exit status.
 int record(const record::RecordOptions& options);
 
-/// Prints topics, types, counts, rates, time span and loss figures of a recording.
-int bagInfo(const std::string& file);
+/// Prints topics, types, counts, rates, time span and loss figures of a recording; as one JSON
+/// object when `json` (docs/quad-command.md).
+int bagInfo(const std::string& file, bool json);
 
 /// Rewrites a recording cut short (a killed recorder) whole, with index and summary.
 int bagRecover(const std::string& file, std::string output);

@@ -151,6 +151,8 @@ int main(int argc, char** argv)
   bag->require_subcommand(1);
   auto* bag_info = bag->add_subcommand("info", "Topics, types, counts, rates, time span and loss of a recording");
   bag_info->add_option("file", bag_file, "MCAP file")->required();
+  bool bag_json = false;
+  bag_info->add_flag("--json", bag_json, "One JSON object instead of text");
   std::string recover_output;
   auto* bag_recover = bag->add_subcommand("recover", "Rewrite a recording cut short (killed recorder) whole");
   bag_recover->add_option("file", bag_file, "MCAP file")->required();
@@ -177,6 +179,7 @@ int main(int argc, char** argv)
       ->check(CLI::Range(0.0, 60.0));
   list->add_flag("--contracts", list_options.contracts,
                  "Print quad's declared topics (name, type, QoS, rate, owner) instead");
+  list->add_flag("--json", list_options.json, "One JSON object instead of a table");
 
   quad::tools::TopicEchoOptions echo_options;
   quad::tools::TopicInfoOptions info_options;
@@ -184,6 +187,7 @@ int main(int argc, char** argv)
   addConnectionOptions(info, info_options.connection);
   info->add_option("topic", info_options.topic, "Topic name, e.g. quad/sim/state")->required();
   info->add_option("--wait", info_options.wait_s, "Seconds to listen to discovery")->check(CLI::PositiveNumber);
+  info->add_flag("--json", info_options.json, "One JSON object instead of text");
 
   quad::tools::TopicHzOptions hz_options;
   auto* hz = topic->add_subcommand("hz", "A topic's measured rate against its contract's");
@@ -192,6 +196,7 @@ int main(int argc, char** argv)
   hz->add_option("--duration", hz_options.duration_s, "Stop after this many seconds (0: Ctrl-C)")
       ->check(CLI::NonNegativeNumber);
   hz->add_option("--window", hz_options.window_s, "Seconds per line")->check(CLI::PositiveNumber);
+  hz->add_flag("--json", hz_options.json, "One JSON object per line instead of text");
 
   auto* echo = topic->add_subcommand("echo", "Print the samples of a topic, decoded from its IDL");
   addConnectionOptions(echo, echo_options.connection);
@@ -300,7 +305,7 @@ int main(int argc, char** argv)
       return quad::tools::securityInit(security_options);
     }
     if (bag_info->parsed()) {
-      return quad::tools::bagInfo(bag_file);
+      return quad::tools::bagInfo(bag_file, bag_json);
     }
     if (bag_recover->parsed()) {
       return quad::tools::bagRecover(bag_file, recover_output);

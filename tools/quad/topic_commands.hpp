@@ -13,6 +13,7 @@ struct TopicListOptions {
   topic::ConnectionOptions connection;
   double wait_s = 2.0;      ///< how long to listen to discovery
   bool contracts = false;   ///< print the declared contracts instead
+  bool json = false;        ///< one JSON object (docs/quad-command.md) instead of a table
 };
 
 struct TopicEchoOptions {
@@ -37,6 +38,7 @@ struct TopicInfoOptions {
   topic::ConnectionOptions connection;
   std::string topic;
   double wait_s = 2.0;      ///< how long to listen to discovery
+  bool json = false;        ///< one JSON object (docs/quad-command.md) instead of text
 };
 
 struct TopicHzOptions {
@@ -44,6 +46,7 @@ struct TopicHzOptions {
   std::string topic;
   double duration_s = 0.0;  ///< 0: until Ctrl-C
   double window_s = 1.0;    ///< a line per window
+  bool json = false;        ///< one JSON object per line (docs/quad-command.md) instead of text
 };
 
 int topicList(const TopicListOptions& options);

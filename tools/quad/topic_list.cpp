@@ -3,6 +3,8 @@
 #include <map>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
 #include "quad/topic/connection.hpp"
 #include "quad/common/params.hpp"
 #include "quad/dds/topics.hpp"
@@ -12,18 +14,33 @@ namespace quad::tools {
 
 namespace {
 
-void printContracts()
+void printContracts(bool json)
 {
-  std::printf("%-26s %-28s %-10s %8s %11s  %-12s %s\n", "TOPIC", "TYPE", "QOS", "RATE", "STALE AFTER",
-              "OWNER", "DESCRIPTION");
+  nlohmann::ordered_json contracts = nlohmann::ordered_json::array();
+  if (!json) {
+    std::printf("%-26s %-28s %-10s %8s %11s  %-12s %s\n", "TOPIC", "TYPE", "QOS", "RATE", "STALE AFTER", "OWNER",
+                "DESCRIPTION");
+  }
   for (const auto& t : dds::topics::kAll) {
-    const std::string rate = t.rate_hz > 0 ? std::to_string(static_cast<int>(t.rate_hz)) + " Hz"
-                                           : "event";
+    if (json) {
+      contracts.push_back({{"topic", t.name},
+                           {"type", t.type_name},
+                           {"qos", t.qos_profile},
+                           {"rate_hz", t.rate_hz > 0 ? nlohmann::ordered_json(t.rate_hz) : nlohmann::ordered_json(nullptr)},
+                           {"stale_after_s", t.stale_after_s > 0 ? nlohmann::ordered_json(t.stale_after_s)
+                                                                 : nlohmann::ordered_json(nullptr)},
+                           {"owner", dds::toString(t.owner)},
+                           {"description", t.description}});
+      continue;
+    }
+    const std::string rate = t.rate_hz > 0 ? std::to_string(static_cast<int>(t.rate_hz)) + " Hz" : "event";
     const std::string stale = t.stale_after_s > 0 ? common::formatValue(t.stale_after_s) + " s" : "-";
-    std::printf("%-26s %-28s %-10s %8s %11s  %-12s %s\n", std::string(t.name).c_str(),
-                std::string(t.type_name).c_str(), std::string(t.qos_profile).c_str(),
-                rate.c_str(), stale.c_str(), std::string(dds::toString(t.owner)).c_str(),
-                std::string(t.description).c_str());
+    std::printf("%-26s %-28s %-10s %8s %11s  %-12s %s\n", std::string(t.name).c_str(), std::string(t.type_name).c_str(),
+                std::string(t.qos_profile).c_str(), rate.c_str(), stale.c_str(),
+                std::string(dds::toString(t.owner)).c_str(), std::string(t.description).c_str());
+  }
+  if (json) {
+    std::printf("%s\n", nlohmann::ordered_json{{"contracts", contracts}}.dump(2).c_str());
   }
 }
 
@@ -32,7 +49,7 @@ void printContracts()
 int topicList(const TopicListOptions& options)
 {
   if (options.contracts) {
-    printContracts();
+    printContracts(options.json);
     return 0;
   }
   dds::Participant participant(topic::participantOptions("quad_topic_list", options.connection));
@@ -53,9 +70,25 @@ int topicList(const TopicListOptions& options)
     }
     (e.writer ? row.writers : row.readers) += 1;
   }
+  const int domain = participant.options().domain_id;
+  if (options.json) {
+    nlohmann::ordered_json topics = nlohmann::ordered_json::array();
+    for (const auto& [name, row] : rows) {
+      const auto contract = dds::topics::find(name);
+      topics.push_back({{"topic", name},
+                        {"type", row.type},
+                        {"writers", row.writers},
+                        {"readers", row.readers},
+                        {"declared", contract.has_value()},
+                        {"owner", contract ? nlohmann::ordered_json(dds::toString(contract->owner)) : nullptr},
+                        {"type_matches", contract && contract->type_name == row.type}});
+    }
+    std::printf("%s\n",
+                nlohmann::ordered_json{{"domain", domain}, {"wait_s", options.wait_s}, {"topics", topics}}.dump(2).c_str());
+    return 0;
+  }
   if (rows.empty()) {
-    std::fprintf(stderr, "no topics seen on domain %d within %.1f s\n",
-                 participant.options().domain_id, options.wait_s);
+    std::fprintf(stderr, "no topics seen on domain %d within %.1f s\n", domain, options.wait_s);
     return 0;
   }
   std::printf("%-26s %-28s %7s %7s  %s\n", "TOPIC", "TYPE", "WRITERS", "READERS", "CONTRACT");
@@ -64,11 +97,9 @@ int topicList(const TopicListOptions& options)
     std::string note = "not declared by quad";
     if (contract) {
       note = contract->type_name == row.type ? std::string(dds::toString(contract->owner))
-                                             : "TYPE DIFFERS: expected " +
-                                                   std::string(contract->type_name);
+                                             : "TYPE DIFFERS: expected " + std::string(contract->type_name);
     }
-    std::printf("%-26s %-28s %7d %7d  %s\n", name.c_str(), row.type.c_str(), row.writers,
-                row.readers, note.c_str());
+    std::printf("%-26s %-28s %7d %7d  %s\n", name.c_str(), row.type.c_str(), row.writers, row.readers, note.c_str());
   }
   return 0;
 }

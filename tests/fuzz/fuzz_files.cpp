@@ -28,7 +28,7 @@ void readAs(std::uint8_t reader, const std::string& text)
         (void)quad::world::parseWorld(text, "fuzz.yaml");
         break;
       default: {
-        const quad::launch::ProgramLookup lookup{QUAD_BUILD_DIR, QUAD_SOURCE_DIR, {}};
+        const quad::launch::ProgramLookup lookup{{false, QUAD_SOURCE_DIR, QUAD_BUILD_DIR}, {}};
         (void)quad::launch::parseManifest(text, fs::path(QUAD_SOURCE_DIR) / "bringup/fuzz.yaml", {}, lookup);
         break;
       }

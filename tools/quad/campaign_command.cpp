@@ -17,7 +17,7 @@ int campaign(const CampaignCommandOptions& options)
 {
   campaign::CampaignOptions c;
   c.quad = fs::read_symlink("/proc/self/exe");
-  c.manifest = fs::absolute(options.manifest);
+  c.manifest = fs::absolute(launch::findManifest(options.manifest, common::layout()));
   c.seeds = options.seeds;
   for (const auto& w : options.worlds) {
     if (!fs::is_regular_file(w)) {

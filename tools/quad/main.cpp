@@ -15,6 +15,7 @@
 #include "plan_command.hpp"
 #include "security_command.hpp"
 #include "bag_commands.hpp"
+#include "quad/common/layout.hpp"
 #include "quad/so3/so3.hpp"
 #include "topic_commands.hpp"
 
@@ -62,7 +63,7 @@ int main(int argc, char** argv)
 
   quad::launch::LaunchOptions launch_options;
   auto* launch = app.add_subcommand("launch", "Start a manifest's modules on their hosts, supervise them, fly its mission");
-  launch->add_option("manifest", launch_options.manifest, "Manifest, e.g. bringup/demo.yaml")->required();
+  launch->add_option("manifest", launch_options.manifest, "Manifest file, or the name of a shipped one (demo: bringup/demo.yaml)")->required();
   launch->add_option("--world", launch_options.world, "Fly this world instead of the manifest's");
   auto* realtime = launch->add_flag("--realtime", launch_options.realtime, "Sim time follows the wall clock");
   launch->add_flag("--lockstep", launch_options.lockstep, "Sim time waits for every module (reproducible)")
@@ -80,7 +81,7 @@ int main(int argc, char** argv)
   launch->add_flag("--check", launch_options.check, "Validate the manifest and exit");
 
   quad::tools::PlanOptions plan_options;
-  plan_options.config = std::string(QUAD_SOURCE_DIR) + "/configs/planning.yaml";
+  plan_options.config = (quad::common::configDir() / "planning.yaml").string();
   auto* plan = app.add_subcommand("plan", "The known-map optimum: plan on the whole world, every obstacle known");
   plan->add_option("--world", plan_options.world, "World file (default: the planning config's)");
   plan->add_option("--config", plan_options.config, "Planning config (radius, margin, lattice)")->capture_default_str();
@@ -88,7 +89,7 @@ int main(int argc, char** argv)
   plan->add_option("--json", plan_options.json, "Write the result as JSON to this file");
 
   quad::tools::CampaignCommandOptions campaign_options;
-  campaign_options.manifest = std::string(QUAD_SOURCE_DIR) + "/bringup/demo.yaml";
+  campaign_options.manifest = (quad::common::layout().data / "bringup" / "demo.yaml").string();
   auto* campaign = app.add_subcommand("campaign", "Fly worlds (and seeds) one after another; a table and JSON of the runs");
   campaign->add_option("worlds", campaign_options.worlds, "World files")->required();
   campaign->add_option("--seeds", campaign_options.seeds, "Fly each world with seeds 1 ... N")->check(CLI::Range(1, 1000));

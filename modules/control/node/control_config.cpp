@@ -1,5 +1,6 @@
 #include "control_config.hpp"
 
+#include "quad/common/layout.hpp"
 #include "quad/dds/topics.hpp"
 
 namespace quad::control {
@@ -88,6 +89,6 @@ const common::ParamTable<ControlNodeConfig>& controlTable()
 
 common::ParamSchema controlSchema() { return controlTable().schema(); }
 
-ControlNodeConfig controlConfigFrom(const common::Params& p) { return controlTable().read(p, QUAD_CONFIG_DIR); }
+ControlNodeConfig controlConfigFrom(const common::Params& p) { return controlTable().read(p, common::configDir()); }
 
 }  // namespace quad::control

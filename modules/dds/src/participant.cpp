@@ -1,3 +1,4 @@
+#include "quad/common/layout.hpp"
 #include "quad/dds/participant.hpp"
 
 #include <arpa/inet.h>
@@ -173,7 +174,7 @@ std::filesystem::path defaultQosFile()
   if (const char* file = env(environment::kQosFile)) {
     return file;
   }
-  return std::filesystem::path(QUAD_CONFIG_DIR) / "dds" / "quad_qos.xml";
+  return common::configDir() / "dds" / "quad_qos.xml";
 }
 
 ParticipantOptions optionsFromEnvironment(std::string name)

@@ -1,5 +1,6 @@
 #include "mapping_node.hpp"
 
+#include "quad/common/layout.hpp"
 #include "quad/world/world_file.hpp"
 
 #include <spdlog/spdlog.h>
@@ -51,7 +52,7 @@ common::ParamSchema mappingSchema() { return mappingTable().schema(); }
 
 MappingNodeConfig mappingConfigFrom(const common::Params& p)
 {
-  const MappingParams m = mappingTable().read(p, QUAD_CONFIG_DIR);
+  const MappingParams m = mappingTable().read(p, common::configDir());
   MappingNodeConfig c;
   c.map = mapperConfigFrom(m.mapper, p.origin());
   if (!m.world_file.empty()) {

@@ -1,3 +1,4 @@
+#include "quad/common/layout.hpp"
 #include "quad/planning/planning_params.hpp"
 
 #include <algorithm>
@@ -46,7 +47,7 @@ const common::ParamTable<PlanningParams>& planningTable()
 
 common::ParamSchema planningSchema() { return planningTable().schema(); }
 
-PlanningParams planningParamsOf(const common::Params& params) { return planningTable().read(params, QUAD_CONFIG_DIR); }
+PlanningParams planningParamsOf(const common::Params& params) { return planningTable().read(params, common::configDir()); }
 
 void fitToWorld(PlanningParams& c, const Vector3& world_min, const Vector3& world_max, double vehicle_radius,
                 const std::string& origin)

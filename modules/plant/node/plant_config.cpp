@@ -1,5 +1,6 @@
 #include "plant_config.hpp"
 
+#include "quad/common/layout.hpp"
 #include "quad/common/time.hpp"
 
 namespace quad::plant {
@@ -78,7 +79,7 @@ common::ParamSchema plantSchema() { return plantTable().schema(); }
 
 PlantNodeConfig plantConfigFrom(const common::Params& p)
 {
-  const PlantNodeConfig c = plantTable().read(p, QUAD_CONFIG_DIR);
+  const PlantNodeConfig c = plantTable().read(p, common::configDir());
   const SimulationConfig& s = c.simulation;
   const std::string& origin = p.origin();
 

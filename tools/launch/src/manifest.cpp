@@ -299,7 +299,7 @@ void readModule(const std::string& name, YAML::Node spec, Reader& r, const Progr
                 "module not found: quad builds " + list + " (or give 'program')");
     } else {
       mod.kind = which;
-      mod.program = lookup.build_dir / built->second;
+      mod.program = common::programPath(lookup.layout, built->second);
       if (!fs::exists(mod.program)) {
         r.problem(key + ".module", YAML::Node(which), "module not built: no " + mod.program.string());
       }
@@ -421,7 +421,7 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
   const std::map<std::string, std::string> vars{{"world", m.world.string()},
                                                 {"mode", m.mode},
                                                 {"seed", std::to_string(m.seed)},
-                                                {"root", lookup.source_dir.string()}};
+                                                {"root", lookup.layout.data.string()}};
   for (const auto& [k, v] : r.scalars(root["env"], "env")) {
     m.environment[k] = expand(v, vars, r, "env." + k, root["env"][k]);
   }
@@ -452,6 +452,17 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
   }
   r.throwIfAny();
   return m;
+}
+
+fs::path findManifest(const std::string& name_or_path, const common::Layout& layout)
+{
+  std::error_code ec;
+  if (fs::exists(name_or_path, ec) || name_or_path.find('/') != std::string::npos) {
+    return name_or_path;
+  }
+  const fs::path shipped =
+      layout.data / "bringup" / (name_or_path.ends_with(".yaml") ? name_or_path : name_or_path + ".yaml");
+  return fs::exists(shipped, ec) ? shipped : fs::path(name_or_path);
 }
 
 Manifest loadManifest(const fs::path& file, const ManifestOverrides& overrides, const ProgramLookup& lookup)

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "quad/launch/shm.hpp"
+#include "quad/common/layout.hpp"
 #include "quad/common/params.hpp"
 #include "quad/common/time.hpp"
 #include "quad/plan/known_map.hpp"
@@ -28,13 +29,6 @@ namespace quad::launch {
 namespace fs = std::filesystem;
 
 std::atomic<int> LaunchRun::received_signal{0};
-
-fs::path buildDir()
-{
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? fs::current_path() : self.parent_path().parent_path().parent_path();
-}
 
 std::string runFolderName(const std::string& name)
 {
@@ -456,7 +450,7 @@ int LaunchRun::execute(RunExtension* extension)
 
   if (options_.record) {
     // Started first, so stopped last: it sees every module's last samples.
-    const std::vector<std::string> argv{(buildDir() / "tools/quad/quad").string(), "record", "-q", "-o",
+    const std::vector<std::string> argv{common::programPath(common::layout(), "tools/quad/quad").string(), "record", "-q", "-o",
                                         fs::absolute(*options_.record).string()};
     supervisor_.start("record", argv, env_);
     started_order_.push_back("record");
@@ -560,10 +554,10 @@ std::optional<launch::Manifest> loadRunManifest(const LaunchOptions& options)
   overrides.seed = options.seed;
   overrides.domain = options.domain;
   overrides.subnet = options.subnet;
-  launch::ProgramLookup lookup{buildDir(), QUAD_SOURCE_DIR,
+  launch::ProgramLookup lookup{common::layout(),
                                [](const std::string& t) { return dds::topics::find(t).has_value(); }};
   try {
-    return launch::loadManifest(options.manifest, overrides, lookup);
+    return launch::loadManifest(launch::findManifest(options.manifest, common::layout()), overrides, lookup);
   } catch (const common::ConfigError& e) {
     for (const auto& p : e.problems()) {
       std::fprintf(stderr, "%s\n", p.c_str());

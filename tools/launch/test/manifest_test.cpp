@@ -27,7 +27,7 @@ protected:
     }
     std::ofstream(root_ / "configs/plant.yaml") << "sim: {mode: realtime}\n";
     std::ofstream(root_ / "configs/worlds/w.yaml") << "bounds: {min: [0, 0, 0], max: [1, 1, 1]}\n";
-    lookup_ = {root_ / "build", root_, [](const std::string& t) { return t.starts_with("quad/"); }};
+    lookup_ = {{false, root_, root_ / "build"}, [](const std::string& t) { return t.starts_with("quad/"); }};
   }
   void TearDown() override { fs::remove_all(root_); }
 
@@ -198,7 +198,7 @@ TEST_F(ManifestTest, AMissionNeedsAWorld)
 
 TEST_F(ManifestTest, TheShippedManifestsAreValid)
 {
-  ProgramLookup shipped{QUAD_BUILD_DIR, QUAD_SOURCE_DIR, {}};
+  ProgramLookup shipped{{false, QUAD_SOURCE_DIR, QUAD_BUILD_DIR}, {}};
   for (const char* name : {"demo.yaml", "three_hosts.yaml"}) {
     EXPECT_NO_THROW(loadManifest(fs::path(QUAD_SOURCE_DIR) / "bringup" / name, {}, shipped)) << name;
   }

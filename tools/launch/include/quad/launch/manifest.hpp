@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "quad/common/layout.hpp"
+
 namespace quad::launch {
 
 enum class HostKind { kLocal, kNetns, kSsh };
@@ -95,14 +97,18 @@ struct ManifestOverrides {
   std::optional<std::string> subnet;
 };
 
-/// What a manifest is checked against: where modules' programs are
-/// (`<build_dir>/modules/<m>/node/quad_<m>_node`, `<build_dir>/tools/quad/quad`) and which
-/// topic names exist.
+/// What a manifest is checked against: where modules' programs are (common::programPath of
+/// the layout: the build tree or an installed prefix), `${root}` (the layout's data folder)
+/// and which topic names exist.
 struct ProgramLookup {
-  std::filesystem::path build_dir;
-  std::filesystem::path source_dir;  ///< ${root}
+  common::Layout layout;
   std::function<bool(const std::string&)> known_topic;  ///< unset: any name
 };
+
+/// The manifest `name_or_path` names: an existing file as it is; a bare name ("demo") the
+/// layout's bringup/<name>.yaml when that exists; else as given (reading it then fails,
+/// naming it).
+std::filesystem::path findManifest(const std::string& name_or_path, const common::Layout& layout);
 
 /// Reads and validates a manifest. Relative paths are relative to the manifest's folder;
 /// `${world}`, `${mode}`, `${seed}` and `${root}` are expanded in module args, sets and environment.

@@ -155,9 +155,6 @@ std::optional<launch::Manifest> loadRunManifest(const LaunchOptions& options);
 /// Runs a loaded manifest (in its own log folder unless `options.log_dir`); the exit code.
 int runManifest(const launch::Manifest& manifest, const LaunchOptions& options, RunExtension* extension);
 
-/// The build tree this quad binary belongs to (<build>/tools/quad/quad).
-std::filesystem::path buildDir();
-
 /// "demo-20261122-101500-4242": a run folder's name.
 std::string runFolderName(const std::string& name);
 

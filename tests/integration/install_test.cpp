@@ -1,0 +1,71 @@
+// An installed quad (cmake --install) works from its prefix, moved or not, from any working
+// directory: help, the shipped manifest found by name, and the demo mission flown. Domain 230.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "process.hpp"
+#include "scratch.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+using quad::test::ChildProcess;
+namespace fs = std::filesystem;
+
+/// Runs `argv` in `cwd` (through env -C); its exit status, output in `out`.
+std::optional<int> runIn(const fs::path& cwd, std::vector<std::string> argv, std::string* out,
+                         std::chrono::milliseconds timeout = 60s)
+{
+  argv.insert(argv.begin(), {"/usr/bin/env", "-C", cwd.string()});
+  ChildProcess p(argv, {{"QUAD_TRANSPORT", "udp"}});
+  const auto status = p.wait(timeout);
+  *out = p.output();
+  return status;
+}
+
+TEST(Install, APrefixMovedElsewhereFliesTheDemoFromAnyFolder)
+{
+  const fs::path dir = quad::test::scratchDir("quad_install");
+  std::string out;
+  ASSERT_EQ(runIn(dir, {"cmake", "--install", QUAD_BUILD_DIR, "--prefix", (dir / "first").string(), "--strip"}, &out,
+                  180s),
+            0)
+      << out;
+  // Relocatable: the prefix moves, nothing in it names where it was.
+  fs::rename(dir / "first", dir / "prefix");
+  const fs::path quad = dir / "prefix/bin/quad";
+  for (const char* file : {"lib/quad/quad_plant_node", "lib/quad/quad_control_node", "share/quad/configs/dds/quad_qos.xml",
+                           "share/quad/bringup/demo.yaml", "share/quad/idl/quad/msg/VehicleState.idl"}) {
+    EXPECT_TRUE(fs::exists(dir / "prefix" / file)) << file;
+  }
+  const fs::path elsewhere = dir / "elsewhere";
+  fs::create_directories(elsewhere);
+  ASSERT_EQ(runIn(elsewhere, {quad.string(), "--help"}, &out), 0) << out;
+  EXPECT_NE(out.find("launch"), std::string::npos) << out;
+  // The shipped manifest by name, its programs and configs in the prefix.
+  ASSERT_EQ(runIn(elsewhere, {quad.string(), "launch", "demo", "--check"}, &out), 0) << out;
+  // The demo mission, flown from the installed files.
+  ASSERT_EQ(runIn(elsewhere,
+                  {quad.string(), "launch", "demo", "--domain", "230", "--quiet", "--wall-timeout", "240", "--log-dir",
+                   (elsewhere / "run").string()},
+                  &out, 270s),
+            0)
+      << out;
+  const auto summary = nlohmann::json::parse(quad::test::readFile(elsewhere / "run/summary.json"), nullptr, false);
+  ASSERT_TRUE(summary.is_object()) << out;
+  EXPECT_EQ(summary["end"], "success") << summary;
+  EXPECT_EQ(summary["collisions"], 0) << summary;
+  const auto record = nlohmann::json::parse(quad::test::readFile(elsewhere / "run/run.json"), nullptr, false);
+  ASSERT_TRUE(record.is_object()) << out;
+  EXPECT_EQ(record["manifest"], (dir / "prefix/share/quad/bringup/demo.yaml").string()) << record;
+  if (!::testing::Test::HasFailure()) {
+    fs::remove_all(dir);
+  }
+}
+
+}  // namespace

@@ -23,7 +23,7 @@ cd "$root"
 # Everything quad needs from Debian 12, toolchain included (a fresh system has no compiler).
 packages=(
   build-essential cmake ninja-build ccache pkg-config git iproute2 iptables procps python3
-  openssh-client openssh-server
+  openssh-client openssh-server man-db
   default-jre-headless
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
   libeigen3-dev liboctomap-dev libmrpt-poses-dev libmrpt-math-dev

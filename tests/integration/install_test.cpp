@@ -40,7 +40,9 @@ TEST(Install, APrefixMovedElsewhereFliesTheDemoFromAnyFolder)
   fs::rename(dir / "first", dir / "prefix");
   const fs::path quad = dir / "prefix/bin/quad";
   for (const char* file : {"lib/quad/quad_plant_node", "lib/quad/quad_control_node", "share/quad/configs/dds/quad_qos.xml",
-                           "share/quad/bringup/demo.yaml", "share/quad/idl/quad/msg/VehicleState.idl"}) {
+                           "share/quad/bringup/demo.yaml", "share/quad/idl/quad/msg/VehicleState.idl",
+                           "share/man/man1/quad.1", "share/man/man1/quad-launch.1",
+                           "share/bash-completion/completions/quad"}) {
     EXPECT_TRUE(fs::exists(dir / "prefix" / file)) << file;
   }
   const fs::path elsewhere = dir / "elsewhere";

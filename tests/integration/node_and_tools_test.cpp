@@ -226,3 +226,38 @@ TEST(NodeAndTools, TopicHzMeasuresTheHeartbeatAgainstItsContract)
 }
 
 }  // namespace
+
+namespace {
+
+TEST(NodeAndTools, TheManualHasAPagePerCommandThatManRendersAndBashCompletes)
+{
+  const auto dir = std::filesystem::temp_directory_path() / ("quad_manual_" + std::to_string(::getpid()));
+  ChildProcess write({QUAD_TOOL, "--write-manual", dir.string()});
+  ASSERT_EQ(write.wait(20s), 0) << write.output();
+  for (const char* page : {"quad", "quad-launch", "quad-topic", "quad-topic-list", "quad-bag-info", "quad-so3-sample",
+                           "quad-fault", "quad-campaign", "quad-plan", "quad-record", "quad-replay"}) {
+    const auto file = dir / (std::string(page) + ".1");
+    ASSERT_TRUE(std::filesystem::exists(file)) << page;
+    ChildProcess man({"/usr/bin/env", "MANWIDTH=100", "man", "-l", file.string()});
+    ASSERT_EQ(man.wait(20s), 0) << man.output();
+    EXPECT_NE(man.output().find("NAME"), std::string::npos) << man.output();
+    EXPECT_EQ(man.output().find("warning"), std::string::npos) << man.output();
+  }
+  // The options of a page are the command's own.
+  ChildProcess list({"/usr/bin/env", "MANWIDTH=100", "man", "-l", (dir / "quad-topic-list.1").string()});
+  ASSERT_EQ(list.wait(20s), 0);
+  EXPECT_NE(list.output().find("--json"), std::string::npos) << list.output();
+  const auto complete = [&](const std::string& words, int at) {
+    ChildProcess bash({"/bin/bash", "-c",
+                       "source " + (dir / "quad.bash").string() + "; COMP_WORDS=(" + words + "); COMP_CWORD=" +
+                           std::to_string(at) + "; _quad; echo \"${COMPREPLY[*]}\""});
+    bash.wait(10s);
+    return bash.output();
+  };
+  EXPECT_EQ(complete("quad topic l", 2), "list\n");
+  EXPECT_EQ(complete("quad topic list --j", 3), "--json\n");
+  EXPECT_EQ(complete("quad la", 1), "launch\n");
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace

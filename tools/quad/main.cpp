@@ -1,4 +1,5 @@
-// The `quad` command. The only translation unit that includes CLI11 (it costs ~9 s each).
+// The `quad` command. With manual.cpp, the only translation units that include CLI11 (it costs
+// ~9 s each).
 #include <algorithm>
 #include <cstdio>
 #include <exception>
@@ -12,6 +13,7 @@
 #include "fault_command.hpp"
 #include "campaign_command.hpp"
 #include "launch_command.hpp"
+#include "manual.hpp"
 #include "plan_command.hpp"
 #include "security_command.hpp"
 #include "bag_commands.hpp"
@@ -254,6 +256,17 @@ int main(int argc, char** argv)
   sample->add_option("--seed", sample_seed, "Seed of the generator (same seed, same rotations)");
   sample->add_option("--as", sample_as, "quat (w x y z), matrix (9, row by row), axis-angle or ypr");
 
+  if (argc == 3 && std::string(argv[1]) == "--write-manual") {
+    // The build's step that makes the manual pages and the completion (docs/build.md).
+    try {
+      const int pages = quad::tools::writeManual(app, argv[2], "quad " QUAD_VERSION);
+      std::printf("%d manual pages and quad.bash in %s\n", pages, argv[2]);
+      return 0;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "quad: %s\n", e.what());
+      return 1;
+    }
+  }
   if (const std::string unknown = unknownSubcommand(app, argc, argv); !unknown.empty()) {
     std::fprintf(stderr, "quad: unknown subcommand '%s' (quad --help lists them)\n", unknown.c_str());
     return 2;

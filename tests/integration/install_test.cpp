@@ -1,5 +1,6 @@
 // An installed quad (cmake --install) works from its prefix, moved or not, from any working
-// directory: help, the shipped manifest found by name, and the demo mission flown. Domain 230.
+// directory: help, the shipped manifest found by name, and the demo mission flown (domain 230);
+// and the Debian package of the same files (tools/check_deb.sh installs it on a clean root).
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -65,6 +66,39 @@ TEST(Install, APrefixMovedElsewhereFliesTheDemoFromAnyFolder)
   const auto record = nlohmann::json::parse(quad::test::readFile(elsewhere / "run/run.json"), nullptr, false);
   ASSERT_TRUE(record.is_object()) << out;
   EXPECT_EQ(record["manifest"], (dir / "prefix/share/quad/bringup/demo.yaml").string()) << record;
+  if (!::testing::Test::HasFailure()) {
+    fs::remove_all(dir);
+  }
+}
+
+TEST(Install, TheDebianPackageHoldsTheInstallationUnderUsrAndDeclaresItsLibraries)
+{
+  const fs::path dir = quad::test::scratchDir("quad_package");
+  std::string out;
+  ASSERT_EQ(runIn(dir, {"cpack", "-G", "DEB", "--config", std::string(QUAD_BUILD_DIR) + "/CPackConfig.cmake", "-B",
+                        dir.string()},
+                  &out, 300s),
+            0)
+      << out;
+  fs::path deb;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.path().extension() == ".deb") {
+      deb = entry.path();
+    }
+  }
+  ASSERT_FALSE(deb.empty()) << out;
+  ASSERT_EQ(runIn(dir, {"dpkg-deb", "--field", deb.string(), "Package", "Depends"}, &out), 0) << out;
+  EXPECT_NE(out.find("Package: quad"), std::string::npos) << out;
+  // dpkg-shlibdeps found the libraries the programs link
+  for (const char* library : {"libfastrtps", "liboctomap", "libspdlog", "libyaml-cpp"}) {
+    EXPECT_NE(out.find(library), std::string::npos) << library << " missing from\n" << out;
+  }
+  ASSERT_EQ(runIn(dir, {"dpkg-deb", "--contents", deb.string()}, &out), 0) << out;
+  for (const char* file : {"./usr/bin/quad", "./usr/lib/quad/quad_planning_node", "./usr/share/quad/bringup/demo.yaml",
+                           "./usr/share/quad/configs/dds/quad_qos.xml", "./usr/share/man/man1/quad.1",
+                           "./usr/share/bash-completion/completions/quad", "./usr/share/doc/quad/LICENSE"}) {
+    EXPECT_NE(out.find(file), std::string::npos) << file;
+  }
   if (!::testing::Test::HasFailure()) {
     fs::remove_all(dir);
   }

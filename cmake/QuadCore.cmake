@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # quad_forbid_links(<target> REASON <text> PATTERNS <regex>...)
 #
 # Fails configure when <target> links a library whose name matches one of the patterns,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Finds every third-party dependency. Each comes from a Debian 12 package; when one is
 # missing, configure stops with the package to install instead of a CMake search trace.
 

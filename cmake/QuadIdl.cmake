@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # quad_add_idl_library(<target> IDL_ROOT <dir> FILES <relative .idl paths...>)
 #
 # Runs fastddsgen on every file at build time into the build tree (never committed) and

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # `cmake --install <build> --prefix P`: a relocatable installation.
 #   P/bin/quad                       the command
 #   P/lib/quad/quad_<module>_node    the module programs

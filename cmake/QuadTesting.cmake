@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # quad_add_gtest(<target> MODULE <module> LABEL <unit|integration|fault|security>
 #                SOURCES <files...> LIBS <targets...>)
 #

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # quad::warnings: the warning set for quad's own code, linked PRIVATE by every target.
 # Generated code (fastddsgen) does not link it: it is not clean under -Wconversion.
 add_library(quad_warnings INTERFACE)

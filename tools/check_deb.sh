@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Checks a quad Debian package on a clean Debian 12: bootstraps a minimal bookworm root,
 # installs the package there with apt (which must find every dependency the package
 # declares, and nothing of the build machine is there to hide a missing one), and flies the

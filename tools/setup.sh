@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Sets up a Debian 12 machine for quad and runs one of its two jobs:
 #   tools/setup.sh demo [quad launch options]   install, configure, build (release) and fly
 #                                              the demo mission (bringup/demo.yaml)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Reads a quad recording with the MCAP reader and OMG IDL decoder Foxglove uses, decodes
 // every message, and compares the samples of one topic with what `quad topic echo --json`
 // printed for the same samples (matched by Header.seq).

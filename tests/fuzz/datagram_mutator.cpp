@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "datagram_mutator.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// A structure-aware generator of hostile RTPS datagrams: well-formed templates of what quad's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The standalone fuzz driver, for builds without libFuzzer: runs every seed and corpus file,
 // then mutations of them (bit flips, interesting values, inserted, removed and repeated
 // ranges, splices), from a seeded generator, for a number of runs or seconds.

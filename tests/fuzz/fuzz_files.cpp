@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Fuzz target: the readers of files from outside: a vehicle config (the parameter schema
 // parser every module config goes through), a world, a launch manifest. The first byte picks
 // the reader; the rest is the YAML text. Bad input is an error naming the file and key, never

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Fuzz target: every IDL type's deserialisation, as a typed reader runs it (the IDL bounds
 // check, then the generated Fast CDR code), and the schema-driven decoder `quad topic echo`
 // uses. The first byte picks the type; the rest is the serialized payload.

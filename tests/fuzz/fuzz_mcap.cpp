@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Fuzz target: the MCAP reader (quad bag info, recover, replay). Whatever the bytes, it
 // returns what it read or throws BagError naming the byte; never a crash, never an
 // allocation the file's claims alone decide. The first byte picks strict or tolerant

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Fuzz target: what the validating transport does with every received UDP datagram: the
 // RTPS structure check, then, for a datagram it passes, the counts read from it and the
 // count guard lowering those that leap. Whatever the bytes, it reads inside them and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// A fuzz harness: LLVMFuzzerTestOneInput, as libFuzzer calls it, built either with clang's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // quad_datagram_fuzzer: sends structure-aware hostile RTPS datagrams (datagram_mutator.hpp)
 // to the participants of a domain on a host, to see that none of them ends.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Two processes exchanging topics through quad::dds, over each transport, and the reasons
 // reported when endpoints cannot match.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The plant and control nodes flying together: the loop the stack is built around.
 #include <gtest/gtest.h>
 

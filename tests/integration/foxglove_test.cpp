@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The independent check: a quad recording read with Foxglove's own MCAP reader and OMG IDL
 // decoder (npm packages, installed here with npm ci), every message decoded, and the decoded
 // values equal to what quad topic echo printed for the same samples.

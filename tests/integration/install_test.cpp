@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // An installed quad (cmake --install) works from its prefix, moved or not, from any working
 // directory: help, the shipped manifest found by name, and the demo mission flown (domain 230);
 // and the Debian package of the same files (tools/check_deb.sh installs it on a clean root).

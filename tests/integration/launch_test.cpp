@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // quad launch: the demo mission end to end, across network namespaces, and supervision.
 #include <gtest/gtest.h>
 #include <signal.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Lockstep across processes: the clock owner advances only when every participant is done,
 // and names who is late when one is not.
 #include <gtest/gtest.h>

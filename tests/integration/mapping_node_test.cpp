@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The mapping node in a lockstep run with the plant: it takes part in lockstep, publishes
 // change sets and stats, and saves a map OctoMap reads.
 #include <gtest/gtest.h>

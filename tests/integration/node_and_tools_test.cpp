@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A node on the shared skeleton, driven and inspected with the quad command.
 #include <gtest/gtest.h>
 #include <signal.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The planning node as a process: a goal and the vehicle's state in, a path out.
 #include <gtest/gtest.h>
 

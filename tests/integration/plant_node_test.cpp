@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The plant node as a process: real time, lockstep determinism, faults, bad configuration.
 #include <gtest/gtest.h>
 

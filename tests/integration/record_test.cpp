@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // quad record against a live publisher: what it stores, and what a SIGKILL leaves.
 #include <gtest/gtest.h>
 #include <signal.h>

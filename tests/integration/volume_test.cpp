@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Flying the whole volume (DDS domains 221 to 228): worlds that need a climb, a dip or a window, in lockstep with a
 // fixed seed, and a goal that no path reaches. Each reads the run's summary and exit status.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A minimal stand-in controller for plant tests: answers every vehicle state with rotor
 // commands stamped with that state's time, holding an altitude with a PD law on collective
 // thrust. Its output depends on the state it answers, so a run is reproducible only if the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A test participant for multi-process tests of quad::dds. Domain and transport come from
 // the environment (QUAD_DOMAIN_ID, QUAD_TRANSPORT), as for every quad process.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Samples printed by `quad topic echo --json`, one JSON object a line, as a test reads them.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Waiting on a module the way the stack itself tells of it: its heartbeat on

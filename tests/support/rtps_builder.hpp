@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Builds RTPS datagrams byte by byte for the checks, the fuzzers and the benchmark: a header,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Files for tests: an empty scratch folder of their own, and a whole file as a string.

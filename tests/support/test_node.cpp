@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A minimal node on the shared skeleton: counts the vehicle commands it receives. Tests use it
 // to check the skeleton (heartbeats, wake-ups, clean shutdown on SIGINT/SIGTERM) and the tools.
 #include <memory>

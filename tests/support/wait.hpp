@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Polling a condition with a deadline, for tests that wait on other threads or processes.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// `quad record`, `quad replay` and `quad bag ...`: topic traffic to MCAP files and back, and

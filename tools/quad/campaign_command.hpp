@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// `quad campaign WORLDS... [--seeds N]`: flies each world with each seed, prints a table,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "fault_command.hpp"
 
 #include "quad/dds/node.hpp"

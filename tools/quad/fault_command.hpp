@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// `quad fault SCENARIO`: launches a scenario's manifest, applies its faults on its timeline,

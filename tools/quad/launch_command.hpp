@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// `quad launch MANIFEST`: starts a manifest's modules on their hosts, supervises them, and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The `quad` command. With manual.cpp, the only translation units that include CLI11 (it costs
 // ~9 s each).
 #include <algorithm>

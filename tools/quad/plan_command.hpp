@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// `quad plan --world W`: the known-map optimum of a world with the planner's parameters.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "quad/common/payload_header.hpp"
 
 namespace quad::common {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Where programs and data are: an installed prefix told from a build tree by what is there.
 #include "quad/common/layout.hpp"
 

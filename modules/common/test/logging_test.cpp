@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "quad/common/logging.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A ParamTable declares each parameter once: its schema takes the defaults from the config
 // struct, and reading fills the struct's fields from a validated file.
 #include "quad/common/param_table.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Cost of one control tick: the SE(3) controller and mixer, and the whole FlightController
 // (modes, follower, controller, mixer) in a mission.
 #include <benchmark/benchmark.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // quad_control_node: path follower, SE(3) geometric control, mixer, modes and failsafe.
 #include "control_node.hpp"
 

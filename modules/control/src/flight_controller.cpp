@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "quad/control/flight_controller.hpp"
 
 #include <algorithm>

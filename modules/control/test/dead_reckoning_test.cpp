@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Dead reckoning against motions whose IMU readings and states are known in closed form.
 #include "quad/control/dead_reckoning.hpp"
 

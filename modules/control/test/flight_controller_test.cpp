@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The whole controller core flying the plant simulation: missions, failsafes, fuzzing.
 #include "quad/control/flight_controller.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The SE(3) controller flying the plant core (with motor lag), fixed seeds.
 #include "quad/control/geometric_controller.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The mode machine, table-driven: every condition in every mode.
 #include "quad/control/modes.hpp"
 

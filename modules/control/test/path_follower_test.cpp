@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "quad/control/path_follower.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "quad/dds/endpoint.hpp"
 
 #include <stdexcept>

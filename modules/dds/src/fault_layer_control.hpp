@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// A node's side of its datagram fault layer: takes the faults quad/system/fault addresses

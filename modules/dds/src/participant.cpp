@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "quad/common/layout.hpp"
 #include "quad/dds/participant.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The topic contracts against the design's conventions, the IDL, and the QoS file.
 #include "quad/dds/topics.hpp"
 

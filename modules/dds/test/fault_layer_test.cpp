@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The datagram fault layer between real participants over UDP: reliable topics come through
 // loss, duplication, reordering and delay whole and in order; a node applies, refuses and
 // clears faults commanded on quad/system/fault and acknowledges each.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The DDS key of every message is header.vehicle_id alone.
 #include "quad/dds/message_types.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // ModuleWatch between two real participants: a module is unknown until its first heartbeat,
 // alive while its heartbeat writer asserts liveliness, lost within the 0.5 s lease once it
 // stops, and alive again when it resumes; another module's heartbeats say nothing of it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Participant options from the environment: what every quad process shares with the launcher.
 #include "quad/dds/participant.hpp"
 

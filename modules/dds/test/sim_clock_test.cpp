@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Following the plant's clock between two real participants: sim time never goes back, the
 // newest sample says lockstep, frames and state, and a state is vouched for only up to
 // kStateAheadOfClockNs past the clock.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Several vehicles may share a domain: a node takes only its own vehicle's samples.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // quad::geometry's hot paths, each beside Eigen's implementation of the same operation.
 #include <benchmark/benchmark.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "quad/geometry/so3.hpp"
 
 #include <Eigen/Dense>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // quad::geometry against an independent implementation: MRPT's poses and Lie-group helpers.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Arc length along polylines: lengths, points, cuts and projections against hand-worked cases.
 #include "quad/geometry/polyline.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The guide's worked examples, computed from first principles: the ones it gets right, and
 // its errata (docs/seed-errata.md lists each with the test here that shows it).
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Schema-driven decoding (what quad topic echo and the recorder's tools use) against the
 // generated Fast CDR deserialization of the same payload, side by side.
 #include <benchmark/benchmark.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The mapper's cost per scan beside a bare OcTree::insertPointCloud on the same clouds,
 // resolution and range, and how far their classifications agree.
 #include <benchmark/benchmark.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // quad_mapping_node: OctoMap occupancy mapping with change sets for the planner.
 #include "mapping_node.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The mapping participant: integrates depth clouds into the map, publishes each scan's

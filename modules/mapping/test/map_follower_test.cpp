@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The consumer's side of change sets and snapshots: whatever it missed and in whatever order
 // snapshots arrive, once a gap is filled it holds exactly the mapper's classification.
 #include "quad/mapping/map_follower.hpp"

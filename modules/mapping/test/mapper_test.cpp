@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The mapper on scans ray-cast by the plant's depth camera, fixed seeds.
 #include "quad/mapping/mapper.hpp"
 

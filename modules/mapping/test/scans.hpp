@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Scans of a known world for the mapping tests: one box in an open field, seen by the

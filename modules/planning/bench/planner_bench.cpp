@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The same scripted navigation through unknown terrain replanned by D* Lite and by A* from
 // scratch (same graph, heap and tie-breaking), side by side in one run: the robot follows
 // D* Lite's path, and at every step both planners solve the same graph, so that their

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // quad_planning_node: D* Lite over the mapper's change sets, paths to the controller.
 #include "planning_node.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The planning participant: keeps D* Lite's graph in step with the mapper's change sets

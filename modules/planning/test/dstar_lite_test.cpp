@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // D* Lite against Dijkstra from scratch, and the ways D* Lite implementations are known to fail.
 #include "quad/planning/dstar_lite.hpp"
 

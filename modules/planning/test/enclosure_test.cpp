@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // No path is an answer: which side known-occupied space seals off, against a full search.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The queue against an ordered set: the same cells come out in the same order, whatever
 // sequence of inserts, key changes and removals came before.
 #include "quad/planning/indexed_heap.hpp"

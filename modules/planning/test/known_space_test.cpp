@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // How far a path keeps to known-free space: against voxels laid out by hand.
 #include "quad/planning/known_space.hpp"
 

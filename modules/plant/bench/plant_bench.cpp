@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The plant's costs: RK4 physics steps, depth frames in a 1,000-obstacle forest (indexed ray
 // casting beside brute force), and world generation.
 #include <benchmark/benchmark.h>

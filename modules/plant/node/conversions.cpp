@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "conversions.hpp"
 
 #include "quad/dds/geometry_messages.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // quad_plant_node: the simulated quadrotor, its world and sensors, and the sim clock.
 #include "plant_node.hpp"
 

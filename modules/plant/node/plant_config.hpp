@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The plant node's parameters (configs/plant.yaml): declared once, here.

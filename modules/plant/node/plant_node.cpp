@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "plant_node.hpp"
 
 #include <spdlog/spdlog.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The plant participant: owns the Simulation, publishes clock, state, IMU, depth and events,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "quad/plant/gimbal.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Physics of the plant core: each test states a law the simulation must obey.
 #include "quad/plant/dynamics.hpp"
 

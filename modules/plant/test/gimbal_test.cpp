@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The camera gimbal: slew limits, range, and what the camera on it sees, in closed form.
 #include "quad/plant/gimbal.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What the validating transport adds to each received datagram: checkRtpsDatagram on the
 // datagrams quad's traffic is made of, side by side with copying the same bytes once (what
 // the UDP receive path already does with every datagram).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The base of quad's transport layers in front of UDP (the fault layer, the validating

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "quad/wire/rtps_check.hpp"
 
 #include <array>

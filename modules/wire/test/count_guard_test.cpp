@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Counts a receiver only lets grow: read from datagrams, and leaps refused unless confirmed.
 #include "quad/wire/count_guard.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The decisions of the datagram fault layer: rates match their probabilities, a seed fixes
 // them, only the named sender's datagrams are touched, corruption spares the RTPS header.
 #include <gtest/gtest.h>

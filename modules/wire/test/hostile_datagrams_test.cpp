@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The validating transport between real participants over UDP: every regression datagram
 // (tests/fixtures/datagrams) sent to their ports is dropped or harmless, and they keep
 // talking; the traffic of a real exchange, fragments included, passes untouched.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The RTPS structure checks: well-formed messages pass, each kind of defect is caught, and
 // the regression datagrams that end a Fast DDS 2.9 participant are refused.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "quad/world/world.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The MCAP writer alone, against MCAP's own benchmark reference (about 410k messages/s of
 // 100 B, 41 MB/s, chunked, on a 2-core NUC): messages written to a file in /tmp, chunked
 // and indexed, with and without zstd, and the same bytes fwrite'n as they come (the floor).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Loss accounting from writers' sequence numbers.
 #include "quad/bag/audit.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // MCAP writing and reading: round trips, the layout the specification fixes, and bad files.
 #include "quad/bag/mcap.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Campaign summaries read back, tabled and written as JSON.
 #include "quad/campaign/campaign.hpp"
 

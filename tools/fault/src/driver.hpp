@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The fault driver: a RunExtension that applies a scenario's steps to a LaunchRun on its

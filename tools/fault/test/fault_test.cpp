@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Fault scenarios: what a scenario file may say and the errors for what it may not, and the
 // judge of a timeline: reaction times measured from when each fault took effect.
 #include <gtest/gtest.h>

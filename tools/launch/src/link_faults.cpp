@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "quad/launch/link_faults.hpp"
 
 #include <fmt/format.h>

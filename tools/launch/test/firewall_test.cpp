@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The run's firewall: the domain's DDS ports admit the manifest's hosts and loopback only,
 // in a chain of the run's own that removal takes away whole.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The commands behind link faults: rules on the host's link only, each undone by its exact
 // opposite, and a link taken down comes back with the multicast route DDS discovery needs.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Launch manifests: what a valid one gives, and how each kind of mistake is refused.
 #include "quad/launch/manifest.hpp"
 

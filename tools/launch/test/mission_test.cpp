@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The mission tracker: success, failure and the figures of the summary.
 #include "quad/launch/mission.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // run.json: what programs read of a run, whole at every moment.
 #include "quad/launch/run_record.hpp"
 

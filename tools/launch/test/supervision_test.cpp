@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The launcher's process side: supervision, stale shared memory, commands for remote hosts.
 #include <gtest/gtest.h>
 #include <signal.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The known-map optimum against geometry worked by hand, with the planner's own parameters.
 #include "quad/plan/known_map.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Recorder throughput, the publishing and the discarding side: quad_record_bench publishes
 // map updates of a given size as fast as reliable flow control lets it, or receives them
 // and throws them away, timing the first to the last.

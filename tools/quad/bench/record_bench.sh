@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Recorder throughput, side by side in one run: a subscriber that discards what it receives,
 # then quad record uncompressed and with zstd, each taking COUNT reliable map updates of SIZE
 # bytes from a publisher that sends as fast as flow control lets it. With -n RUNS the three

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "quad/record/recorder.hpp"
 
 #include <signal.h>

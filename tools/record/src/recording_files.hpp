@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Where a recording goes: one MCAP file, or parts when it is split by size or duration.

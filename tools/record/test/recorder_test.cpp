@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The recorder as a library, against a publisher in another participant: what it writes to
 // the file, read back with the MCAP reader. Domain 231.
 #include "quad/record/recorder.hpp"

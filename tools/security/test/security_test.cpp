@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // DDS Security with the files of `quad security init`, between real participants: the
 // authorised talk; a participant without a certificate, with one from another authority
 // under the same name, or with an expired one, and a module writing a topic it was not

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "quad/so3/so3.hpp"
 
 #include <charconv>

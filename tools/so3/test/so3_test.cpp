@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // quad so3 on the guide's worked examples, and its refusals.
 #include "quad/so3/so3.hpp"
 

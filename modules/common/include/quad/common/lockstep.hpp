@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Bookkeeping of lockstep (DESIGN.md §5): sim time may advance to t only when every lockstep

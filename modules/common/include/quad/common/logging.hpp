@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// One logging setup for every quad process: a coloured console sink and one file per module.

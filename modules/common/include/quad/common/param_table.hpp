@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Parameters declared once: each entry of a ParamTable names its key, unit, bounds and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The Header that leads every quad message (idl/quad/msg/Header.idl), read straight from a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Time in quad: integer nanoseconds everywhere on the wire and in cores (int64 holds ±292

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Reading YAML from outside (configs, worlds, fault schedules) with every problem reported

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Dead reckoning across a gap in the vehicle state: the last state received, carried on by

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The whole controller core: validated inputs, modes and failsafe, the path follower, the

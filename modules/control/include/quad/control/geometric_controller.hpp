@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Geometric tracking control on SE(3): Lee, Leok & McClamroch, "Geometric tracking control

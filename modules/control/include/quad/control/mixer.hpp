@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Thrust and torques to rotor speeds, inverting the vehicle's allocation matrix, with

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The controller's modes and failsafe: a pure state machine, stepped with what the node

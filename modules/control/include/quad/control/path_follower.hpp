@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// From a planned path (a polyline of waypoints) to a smooth, time-parameterised reference:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The untyped halves of Publisher<T> and Subscriber<T>: entity ownership and status listeners.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// What the DDS layer tells a node about its endpoints: matches, missed deadlines, lost

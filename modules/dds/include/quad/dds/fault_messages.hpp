@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Datagram faults as quad/system/fault commands: what the fault tool sends and what a

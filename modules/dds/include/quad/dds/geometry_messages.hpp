@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// quad::geometry values ⇄ the IDL's Vector3 and Quaternion (both scalar first): one place

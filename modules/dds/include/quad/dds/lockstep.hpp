@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Lockstep over DDS (DESIGN.md §5). A lockstep participant reports "done up to sim time t"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Compile-time facts about each generated message type: its TopicDataType and IDL file.

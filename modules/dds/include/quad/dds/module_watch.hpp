@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Whether another module is alive, from its heartbeat writer's liveliness: MANUAL_BY_TOPIC

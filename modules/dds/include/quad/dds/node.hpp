@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The skeleton every quad node shares (as Fast DDS's example applications share theirs):

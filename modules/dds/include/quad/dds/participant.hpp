@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// One DDS participant per process, with quad's QoS profiles, transports and discovery.

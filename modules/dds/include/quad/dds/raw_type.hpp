@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Type-agnostic samples: the serialized payload as bytes (4-byte encapsulation header, then

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Where a participant finds its DDS Security files (made by `quad security init`), and which

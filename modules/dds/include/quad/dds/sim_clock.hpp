@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Following the plant's clock (quad/sim/clock), as every reader of it must: sim time only

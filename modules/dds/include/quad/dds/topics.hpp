@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The topic contracts: every topic of quad, declared once. Nodes, tools, the recorder and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Configuration spaces. A rigid body in Rⁿ has C = Rⁿ × SO(n), of dimension

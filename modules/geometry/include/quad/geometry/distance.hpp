@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Distances between rotations: the guide's (eqs. 5, 6, 15, 16) and the geodesic angle.

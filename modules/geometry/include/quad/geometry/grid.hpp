@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Maps between the spaces a planner works in (the guide's chapter 3): world coordinates

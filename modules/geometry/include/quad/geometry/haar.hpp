@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The Haar measure on SO(3): uniformly random rotations, and what their angles look like.

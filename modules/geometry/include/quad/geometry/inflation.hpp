@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The C-space obstacle of a spherical vehicle: an occupied voxel blocks every cell whose

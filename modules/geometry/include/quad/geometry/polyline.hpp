@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Arc length along a polyline of points [m]: what a planned path is between the planner

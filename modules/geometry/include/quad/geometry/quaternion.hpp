@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Hamilton quaternions, stored scalar first: (w, x, y, z) = w + x i + y j + z k, with

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Rotation matrices: SO(n) membership, projection onto SO(3), elementary rotations,

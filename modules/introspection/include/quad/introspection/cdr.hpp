@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Decoding of serialized samples (plain CDR, XCDR1, as Fast CDR 1 writes them) driven by the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// A model of the IDL subset quad's messages use, parsed from the IDL text itself, so that

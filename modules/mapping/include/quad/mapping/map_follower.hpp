@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The consumer's side of the mapper's numbered change sets and snapshots (the planner's):

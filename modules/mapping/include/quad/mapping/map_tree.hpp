@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The mapper's octree: an octomap::OcTree whose point-cloud insertion builds exactly the tree

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Probabilistic 3D occupancy mapping with OctoMap (Hornung et al., "OctoMap: an efficient

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// D* Lite (Koenig & Likhachev, "D* Lite", AAAI 2002; the optimised version of their

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// How far along a path the vehicle stays in space its sensors have seen free. The planner

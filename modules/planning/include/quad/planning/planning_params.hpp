@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The planner's parameters (configs/planning.yaml), declared once: the planning node and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Shortening a lattice path by line of sight through the planner's inflated grid.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The plant's defence against bad rotor commands: a command is never integrated unless it

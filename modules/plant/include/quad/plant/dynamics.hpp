@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Rigid-body dynamics of an X quadrotor: Newton–Euler with quaternion attitude, rotor thrust

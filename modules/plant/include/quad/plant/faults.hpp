@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Faults the plant applies to itself: rotor failure or degradation, sensor dropout, stuck

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// A two-axis camera gimbal stabilised in the world frame, as survey multirotors carry: pan

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Simulated sensors: a forward-looking depth camera (ray casting against the world) and an

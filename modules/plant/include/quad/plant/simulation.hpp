@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The plant: the vehicle in its world, stepped in sim time. Each step integrates the rotor

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The quadrotor's physical description, shared by the plant (which simulates it) and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Tames RTPS counts that leap. A receiver ignores every HEARTBEAT (HEARTBEAT_FRAG, ACKNACK,

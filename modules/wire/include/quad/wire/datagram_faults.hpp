@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Faults on the datagrams a participant receives: loss, delay, duplication, reordering and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// A Fast DDS transport layer (ChainingTransport) in front of UDPv4 that applies a

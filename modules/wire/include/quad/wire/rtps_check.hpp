@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Structure checks of a received RTPS datagram (the OMG DDSI-RTPS 2.x wire format), made

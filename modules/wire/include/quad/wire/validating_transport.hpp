@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The validating transport: a Fast DDS transport layer (ChainingTransport) in front of UDP

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The simulated world: bounds, obstacles (boxes with yaw, vertical cylinders standing on the

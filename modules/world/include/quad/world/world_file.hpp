@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// World files (YAML): bounds, start, goal, obstacles and seeded generators.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Loss accounting from the Header.seq of each writer: every sample a writer published has

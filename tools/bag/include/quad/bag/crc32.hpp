@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// CRC-32 (ISO-HDLC: reflected polynomial 0xEDB88320, as zlib and MCAP use it).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// MCAP files (mcap.dev/spec, major version 0): a writer that produces chunked, indexed

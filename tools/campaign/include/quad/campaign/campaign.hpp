@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// `quad campaign`: flies a set of worlds (and seeds) one after another, each a `quad launch`

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Follows a scenario's timeline while it runs: says which steps are due, takes what the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// `quad fault`'s engine: loads a scenario, checks it against its manifest, launches the

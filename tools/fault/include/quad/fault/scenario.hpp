@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// A fault-injection scenario (tests/scenarios/*.yaml): the manifest to launch, a timeline of

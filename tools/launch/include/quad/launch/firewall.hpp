@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Host firewall rules for a run: on a host of the manifest, UDP to the DDS ports of the

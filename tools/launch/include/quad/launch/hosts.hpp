@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The hosts of a run: this machine, Linux network namespaces that the launcher creates

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Faults on the link of a network-namespace host (the launcher made the namespace, so it

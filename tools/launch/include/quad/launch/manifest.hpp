@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Launch manifests (bringup/*.yaml): which module runs on which host, with which config,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Follows a mission from what the stack publishes (vehicle state, controller mode, paths,

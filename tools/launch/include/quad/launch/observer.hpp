@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The launcher's own DDS participant: tells whether topics are live (a writer was

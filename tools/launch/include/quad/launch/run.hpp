@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// One run of a manifest: sets up its hosts, starts its modules in order (each once the

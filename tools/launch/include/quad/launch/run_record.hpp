@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// A run's state for programs: `<run folder>/run.json`, rewritten whole (write, then rename)

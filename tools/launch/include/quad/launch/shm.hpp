@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Fast DDS leaves its shared-memory segments in /dev/shm when a process is killed, and

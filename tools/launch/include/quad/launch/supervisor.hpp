@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Runs a run's processes: starts them in their own process groups, prefixes every line

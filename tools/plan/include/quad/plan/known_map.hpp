@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The known-map optimum: the planner's own search (D* Lite, the same lattice, vehicle

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The recorder: subscribes to every quad topic (or those asked) as raw payloads, with each

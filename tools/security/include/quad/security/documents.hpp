@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// DDS Security's governance and permissions documents (OMG DDS Security 1.1, 9.4.1): what

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// The certificates and signatures DDS Security's builtin plugins need, made with OpenSSL's

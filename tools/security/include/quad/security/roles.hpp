@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// quad's DDS Security identities and their permissions, derived from the topic contracts.

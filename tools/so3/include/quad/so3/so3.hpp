@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// `quad so3 ...`: the guide's rotation chapter on the command line, for students.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Samples typed by a user, for any topic: values read from YAML and checked against the

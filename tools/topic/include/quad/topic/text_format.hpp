@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Text forms of samples for the command line: YAML-like printing, and values typed by the

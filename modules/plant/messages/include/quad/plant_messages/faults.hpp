@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
 /// Plant faults as quad/system/fault commands, both ways: the plant node applies what a

@@ -27,6 +27,7 @@ packages=(
   openssh-client openssh-server man-db
   default-jre-headless
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
+  cyclonedds-dev cyclonedds-tools
   libeigen3-dev liboctomap-dev libmrpt-poses-dev libmrpt-math-dev
   libspdlog-dev libfmt-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev liblz4-dev libzstd-dev libssl-dev openssl

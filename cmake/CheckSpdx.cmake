@@ -1,13 +1,13 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # cmake -DSOURCE_DIR=<root> -P cmake/CheckSpdx.cmake
-# Fails, naming them, when a source file of quad (C++, IDL, CMake, shell, JavaScript) lacks
+# Fails, naming them, when a source file of quad (C, C++, IDL, CMake, shell, JavaScript) lacks
 # the licence's SPDX line within its first three lines.
 if(NOT SOURCE_DIR)
   message(FATAL_ERROR "CheckSpdx: give -DSOURCE_DIR=<quad's source tree>")
 endif()
 set(patterns)
 foreach(top cmake idl modules tools tests bringup configs)
-  foreach(ext cpp hpp idl mjs cmake sh txt)
+  foreach(ext c cpp hpp idl mjs cmake sh txt)
     list(APPEND patterns ${SOURCE_DIR}/${top}/*.${ext})
   endforeach()
 endforeach()

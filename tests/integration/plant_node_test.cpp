@@ -5,7 +5,6 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -67,36 +66,50 @@ TEST(PlantNode, RealTimeRunPublishesStateAndStopsAtItsDuration)
   EXPECT_EQ(ended["header"]["stamp_ns"], 3'000'000'000LL) << ended;
 }
 
-/// The plant's last log line of the run (full precision). A lockstep run of 4 s lasts well under
-/// a second of wall time, which can end before a reader of quad/sim/events has matched.
-std::string finalState(const std::string& log)
+/// Waits up to 15 s until `quad topic info` sees a reader of `topic` on `domain`.
+bool waitForReader(int domain, const std::string& topic)
 {
-  std::smatch m;
-  const std::regex line("final state t [0-9]+ ns p \\([^)]*\\) q \\([^)]*\\)");
-  return std::regex_search(log, m, line) ? m.str() : "";
+  for (int i = 0; i < 15; ++i) {
+    ChildProcess info({QUAD_TOOL, "topic", "info", topic, "--wait", "1", "--json"}, env(domain));
+    if (info.wait(10s) == 0) {
+      const auto seen = nlohmann::json::parse(info.output(), nullptr, false);
+      if (seen.is_object() && !seen["readers"].empty()) {
+        return true;
+      }
+    }
+  }
+  return false;
 }
 
-std::string lockstepRun(int domain)
+/// The run's end (SIM_EVENT_RUN_ENDED) of a lockstep run of 4 s. Such a run lasts well under a
+/// second of wall time, so the events reader is matched before the run starts: the plant waits
+/// for the controller's first command, and the controller starts once the reader is seen.
+nlohmann::json lockstepRun(int domain)
 {
-  ChildProcess controller({QUAD_ALTITUDE_CONTROLLER, kHover, "2.0"}, env(domain));
-  EXPECT_TRUE(controller.waitForOutput("ready", 10s)) << controller.output();
   ChildProcess plant({QUAD_PLANT_NODE, "--config",
                       config("lockstep.yaml", "sim: {mode: lockstep, duration: 4.0, seed: 5}\n")},
                      env(domain));
+  ChildProcess events({QUAD_TOOL, "topic", "echo", "quad/sim/events", "--json"}, env(domain));
+  EXPECT_TRUE(waitForReader(domain, "quad/sim/events"));
+  ChildProcess controller({QUAD_ALTITUDE_CONTROLLER, kHover, "2.0"}, env(domain));
   EXPECT_EQ(plant.wait(60s), 0) << plant.output();
-  return finalState(plant.output());
+  return runEnded(events);
 }
 
 TEST(PlantNode, TwoLockstepRunsWithOneSeedAreBitIdentical)
 {
   // GIVEN a controller whose commands depend on the state they answer
   // WHEN two lockstep runs of 4 s fly it (their wall-clock timing differs)
-  const std::string a = lockstepRun(141);
-  const std::string b = lockstepRun(142);
-  // THEN the final states agree to the last bit, and the vehicle did climb
-  ASSERT_FALSE(a.empty());
-  EXPECT_EQ(a, b);
-  EXPECT_EQ(a.find("p (0, 0, 0)"), std::string::npos) << a;
+  const nlohmann::json a = lockstepRun(141);
+  const nlohmann::json b = lockstepRun(142);
+  // THEN they end at the same sim time at the same position, to the last bit, and the
+  // vehicle did climb
+  ASSERT_FALSE(a.is_null());
+  ASSERT_FALSE(b.is_null());
+  EXPECT_EQ(a["header"]["stamp_ns"], 4'000'000'000LL) << a;
+  EXPECT_EQ(a["header"]["stamp_ns"], b["header"]["stamp_ns"]);
+  EXPECT_EQ(a["p_W"].dump(17), b["p_W"].dump(17));
+  EXPECT_GT(a["p_W"]["z"].get<double>(), 1.0) << a;
 }
 
 TEST(PlantNode, FaultCommandIsAcknowledgedOnTheEventsTopic)

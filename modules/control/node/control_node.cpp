@@ -74,8 +74,9 @@ void ControlNode::autostart()
     return;
   }
   // Asks again until it takes (a command refused for a not-yet-fresh state is not lost);
-  // done once the vehicle is taking off, so a later landing is final.
-  if (fc_.mode() == Mode::kTakeoff) {
+  // done once the vehicle is in the air (taking off, or taken over in flight), so a later
+  // landing is final.
+  if (airborne(fc_.mode())) {
     autostart_stage_ = 2;
   } else if (fc_.mode() == Mode::kDisarmed) {
     fc_.onCommand(Command::kArm);

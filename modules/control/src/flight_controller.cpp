@@ -122,7 +122,7 @@ bool FlightController::onGoal(const Vector3& p, double tolerance)
   return true;
 }
 
-void FlightController::enter(Mode mode, double t, const std::optional<VehicleState>& state)
+void FlightController::enter(Mode from, Mode mode, double t, const std::optional<VehicleState>& state)
 {
   const Vector3 p = state ? state->p_W : Vector3::Zero();
   const double yaw = state ? yawOf(state->q_WB) : 0.0;
@@ -145,7 +145,12 @@ void FlightController::enter(Mode mode, double t, const std::optional<VehicleSta
       follower_.setPath(return_path_, 0);
       break;
     case Mode::kHover: {
-      // Hold where the reference is, unless the vehicle is far from it (after a failsafe).
+      // Hold where the reference is, unless the vehicle is far from it (after a failsafe), or
+      // the controller has just taken over in the air: its reference is nobody's yet.
+      if (from == Mode::kDisarmed) {
+        follower_.hold(p, yaw);
+        break;
+      }
       const Vector3 hold = (follower_.reference().p_W - p).norm() < 1.0 ? follower_.reference().p_W : p;
       follower_.hold(hold, follower_.reference().yaw);
       break;
@@ -197,7 +202,7 @@ FlightOutput FlightController::update(double t)
   out.transition = modes_.update(in);
   out.refused = modes_.refused();
   if (out.transition) {
-    enter(out.transition->to, t, state ? state : state_);
+    enter(out.transition->from, out.transition->to, t, state ? state : state_);
   }
   out.mode = modes_.mode();
   out.reason = modes_.reason();

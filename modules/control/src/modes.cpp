@@ -112,6 +112,12 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
 
   switch (mode_) {
     case Mode::kDisarmed:
+      // Only a controller started while the vehicle flies is disarmed in the air (disarming in
+      // flight is refused, and disarming on the ground needs it landed): take over where the
+      // vehicle is, whatever was asked, rather than let it fall.
+      if (in.state_fresh && !in.landed) {
+        return go(Mode::kHover, Reason::kNone, "took over in the air: holding position", in.t);
+      }
       if (commanded(Command::kArm)) {
         if (!in.landed || !in.state_fresh) {
           refuse(!in.landed ? "not on the ground" : "no fresh vehicle state");

@@ -106,6 +106,31 @@ TEST(FlightController, ArmTakeOffFlyTheMissionAndLand)
   EXPECT_EQ(rig.sim.collisionCount(), 0U);
 }
 
+TEST(FlightController, AControllerRestartedInFlightHoldsTheVehicleWhereItTookOver)
+{
+  Rig rig;
+  takeOff(rig);
+  ASSERT_EQ(rig.mode(), Mode::kHover);
+  rig.run(1.0);
+  const Vector3 at = rig.sim.state().p_W;
+  // A new controller (a restarted process) meets the vehicle in the air.
+  rig.fc = FlightController(rig.v, Rig::withGains(Rig::defaults(), rig.v));
+  rig.log.clear();
+  rig.run(5.0);
+  ASSERT_FALSE(rig.log.empty());
+  EXPECT_TRUE(rig.log.front().armed);  // its first command already flies
+  ASSERT_TRUE(rig.log.front().transition.has_value());
+  EXPECT_EQ(rig.log.front().transition->to, Mode::kHover);
+  EXPECT_EQ(rig.mode(), Mode::kHover);
+  double lowest = at.z();
+  for (const auto& out : rig.log) {
+    lowest = std::min(lowest, out.reference.p_W.z());
+  }
+  EXPECT_GT(lowest, at.z() - 0.05) << "the reference held the altitude";
+  EXPECT_LT((rig.sim.state().p_W - at).norm(), 0.1);
+  EXPECT_EQ(rig.sim.collisionCount(), 0U);
+}
+
 TEST(FlightController, ARotorAtSeventyPercentKeepsTheAltitudeThroughTurns)
 {
   // GIVEN a vehicle in hover and a zig-zag mission at 2 m/s, 2 m up

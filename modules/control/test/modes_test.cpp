@@ -87,6 +87,8 @@ TEST(Modes, EveryConditionInEveryMode)
       {"goal reached", [](ModeInputs& i) { i.goal_reached = true; }, {D, I, T, H, H, L, F, R}},
       {"no path", [](ModeInputs& i) { i.no_path = true; i.path_fresh = false; }, {D, I, T, H, H, L, F, R}},
       {"returned", [](ModeInputs& i) { i.returned = true; }, {D, I, T, M, H, L, F, L}},
+      // Only a controller started in flight is disarmed in the air: it takes over.
+      {"in the air", [](ModeInputs& i) { i.landed = false; }, {H, I, T, M, H, L, F, R}},
   };
   for (const Row& row : table) {
     for (std::size_t k = 0; k < kModes.size(); ++k) {
@@ -100,6 +102,23 @@ TEST(Modes, EveryConditionInEveryMode)
           << row.condition << " in " << toString(kModes[k]) << ": got " << toString(m.mode());
     }
   }
+}
+
+TEST(Modes, AControllerStartedInFlightTakesOverWhateverIsAskedOnceItHasAFreshState)
+{
+  ModeMachine m;
+  ModeInputs in;
+  in.landed = false;
+  in.state_fresh = false;
+  in.command = Command::kArm;
+  EXPECT_FALSE(m.update(in).has_value());  // no state yet: nothing to hold
+  EXPECT_EQ(m.mode(), Mode::kDisarmed);
+  in.state_fresh = true;
+  const auto tr = m.update(in);
+  ASSERT_TRUE(tr.has_value());
+  EXPECT_EQ(tr->from, Mode::kDisarmed);
+  EXPECT_EQ(tr->to, Mode::kHover);
+  EXPECT_EQ(tr->why, "took over in the air: holding position");
 }
 
 TEST(Modes, TransitionsCarryTheirReason)

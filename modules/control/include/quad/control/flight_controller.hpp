@@ -104,7 +104,7 @@ public:
   double lastStateTime() const { return state_t_; }
 
 private:
-  void enter(Mode mode, double t, const std::optional<VehicleState>& state);
+  void enter(Mode from, Mode mode, double t, const std::optional<VehicleState>& state);
   /// The follower's path: the planner's, up to its known-free length.
   std::vector<Vector3> flyablePath() const;
   void aimCamera(Mode mode, const Vector3& p_W);

@@ -5,6 +5,7 @@
 /// observed this tick. Every transition has a reason, which the node publishes.
 ///
 ///   DISARMED --arm--> IDLE --takeoff--> TAKEOFF --altitude--> HOVER --mission--> MISSION
+///   DISARMED --in the air (a controller started in flight)--> HOVER, where the vehicle is
 ///   MISSION --goal reached--> HOVER;  any airborne --land--> LAND --landed--> IDLE
 ///   MISSION --path stale--> HOVER --path still stale for path_stale_land_after--> LAND
 ///   MISSION --no path--> HOVER --still no path for no_path_land_after--> RETURN --back--> LAND

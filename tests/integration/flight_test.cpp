@@ -52,7 +52,7 @@ TEST(Flight, LockstepMissionReachesItsGoalWithoutCollision)
   // GIVEN the control node (autostart, auto mission) and an operator's goal and path, which
   // the operator vouches is free all along (known_free_m: the controller flies no further)
   ChildProcess control({QUAD_CONTROL_NODE, "--config", control_config}, env(domain));
-  ASSERT_TRUE(quad::test::waitForRunningModule(domain, "control", 10s)) << control.output();
+  ASSERT_TRUE(quad::test::waitForRunningModule(domain, "control", 20s)) << control.output();
   ChildProcess goal({QUAD_TOOL, "topic", "pub", "quad/planning/goal",
                      "{goal_id: 1, p_W: {x: 20, y: 5, z: 3}, tolerance: 0.3}", "--wait-match", "5"},
                     env(domain));

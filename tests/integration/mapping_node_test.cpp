@@ -38,7 +38,7 @@ TEST(MappingNode, LockstepRunMapsTheBoxAndSavesABtFile)
   // GIVEN a mapper, and a controller holding the vehicle at 2 m
   ChildProcess mapping({QUAD_MAPPING_NODE, "--config", (dir / "mapping.yaml").string()}, env(domain));
   ChildProcess controller({QUAD_ALTITUDE_CONTROLLER, "757.5", "2.0"}, env(domain));
-  ASSERT_TRUE(quad::test::waitForRunningModule(domain, "mapping", 10s)) << mapping.output();
+  ASSERT_TRUE(quad::test::waitForRunningModule(domain, "mapping", 20s)) << mapping.output();
   ASSERT_TRUE(controller.waitForOutput("ready", 10s)) << controller.output();
   ChildProcess stats({QUAD_TOOL, "topic", "echo", "quad/mapping/stats", "-n", "1", "--timeout", "30"}, env(domain));
   // WHEN the plant runs 3 s of lockstep time, waiting for the mapper at every round

@@ -23,7 +23,7 @@ std::map<std::string, std::string> env(int domain)
 TEST(NodeAndTools, EchoPrintsTheHeartbeatAnotherProcessPublished)
 {
   ChildProcess node({QUAD_TEST_NODE}, env(130));
-  ASSERT_TRUE(quad::test::waitForRunningModule(130, "test_node", 10s)) << node.output();
+  ASSERT_TRUE(quad::test::waitForRunningModule(130, "test_node", 20s)) << node.output();
   ChildProcess echo({QUAD_TOOL, "topic", "echo", "quad/system/heartbeat", "-n", "1", "--timeout",
                      "15"},
                     env(130));
@@ -35,7 +35,7 @@ TEST(NodeAndTools, EchoPrintsTheHeartbeatAnotherProcessPublished)
 TEST(NodeAndTools, PublishedCommandReachesTheNode)
 {
   ChildProcess node({QUAD_TEST_NODE}, env(131));
-  ASSERT_TRUE(quad::test::waitForRunningModule(131, "test_node", 10s)) << node.output();
+  ASSERT_TRUE(quad::test::waitForRunningModule(131, "test_node", 20s)) << node.output();
   ChildProcess pub({QUAD_TOOL, "topic", "pub", "quad/system/command",
                     "{kind: COMMAND_HOLD, command_id: 1}"},
                    env(131));
@@ -46,7 +46,7 @@ TEST(NodeAndTools, PublishedCommandReachesTheNode)
 void stopsCleanlyOn(int signal_number, int domain)
 {
   ChildProcess node({QUAD_TEST_NODE}, env(domain));
-  ASSERT_TRUE(quad::test::waitForRunningModule(domain, "test_node", 10s)) << node.output();
+  ASSERT_TRUE(quad::test::waitForRunningModule(domain, "test_node", 20s)) << node.output();
   node.signal(signal_number);
   EXPECT_EQ(node.wait(5s), 0) << node.output();
 }
@@ -58,7 +58,7 @@ TEST(NodeAndTools, NodeStopsCleanlyOnSigint) { stopsCleanlyOn(SIGINT, 133); }
 TEST(NodeAndTools, TopicListShowsWritersAndReadersOfTheNode)
 {
   ChildProcess node({QUAD_TEST_NODE}, env(134));
-  ASSERT_TRUE(quad::test::waitForRunningModule(134, "test_node", 10s)) << node.output();
+  ASSERT_TRUE(quad::test::waitForRunningModule(134, "test_node", 20s)) << node.output();
   ChildProcess list({QUAD_TOOL, "topic", "list", "--wait", "3", "--json"}, env(134));
   ASSERT_EQ(list.wait(20s), 0) << list.output();
   const auto out = nlohmann::json::parse(list.output(), nullptr, false);
@@ -113,7 +113,7 @@ TEST(NodeAndTools, NodeStartsWithAValidConfig)
 {
   ChildProcess node({QUAD_TEST_NODE, "--config", QUAD_FIXTURES "/test_node_ok.yaml"}, env(137));
   EXPECT_TRUE(node.waitForOutput("greeting: from the fixture", 10s)) << node.output();
-  EXPECT_TRUE(quad::test::waitForRunningModule(137, "test_node", 10s)) << node.output();
+  EXPECT_TRUE(quad::test::waitForRunningModule(137, "test_node", 20s)) << node.output();
 }
 
 TEST(NodeAndTools, NodeRefusesToStartOnABadConfigNamingFileKeyAndValue)
@@ -203,7 +203,7 @@ namespace {
 TEST(NodeAndTools, TopicHzMeasuresTheHeartbeatAgainstItsContract)
 {
   ChildProcess node({QUAD_TEST_NODE}, {{"QUAD_DOMAIN_ID", "194"}, {"QUAD_TRANSPORT", "udp"}});
-  ASSERT_TRUE(quad::test::waitForRunningModule(194, "test_node", 10s)) << node.output();
+  ASSERT_TRUE(quad::test::waitForRunningModule(194, "test_node", 20s)) << node.output();
   ChildProcess hz({QUAD_TOOL, "topic", "hz", "quad/system/heartbeat", "--duration", "4.2", "--window", "2", "--json"},
                   {{"QUAD_DOMAIN_ID", "194"}, {"QUAD_TRANSPORT", "udp"}});
   ASSERT_EQ(hz.wait(20s), 0) << hz.output();

@@ -23,7 +23,7 @@ TEST(PlanningNode, PlansFromTheVehicleToTheGoalAndRefusesGoalsOutsideTheBounds)
 {
   const int domain = 165;
   ChildProcess planning({QUAD_PLANNING_NODE, "--config", std::string(QUAD_CONFIG_DIR) + "/planning.yaml"}, env(domain));
-  ASSERT_TRUE(quad::test::waitForRunningModule(domain, "planning", 15s)) << planning.output();
+  ASSERT_TRUE(quad::test::waitForRunningModule(domain, "planning", 20s)) << planning.output();
   ChildProcess goal({QUAD_TOOL, "topic", "pub", "quad/planning/goal",
                      "{goal_id: 1, p_W: {x: 10, y: 2, z: 2}, tolerance: 0.3}", "--wait-match", "5"},
                     env(domain));
@@ -42,7 +42,7 @@ TEST(PlanningNode, PlansFromTheVehicleToTheGoalAndRefusesGoalsOutsideTheBounds)
                    env(domain));
   EXPECT_EQ(far.wait(15s), 0) << far.output();
   // The refusal counts as an error in the planner's heartbeat, and the path stays goal 1's.
-  EXPECT_TRUE(quad::test::waitForModuleErrors(domain, "planning", 1, 10s)) << planning.output();
+  EXPECT_TRUE(quad::test::waitForModuleErrors(domain, "planning", 1, 20s)) << planning.output();
   ChildProcess still({QUAD_TOOL, "topic", "echo", "quad/planning/path", "-n", "1", "--timeout", "10", "--json"},
                      env(domain));
   ASSERT_EQ(still.wait(15s), 0) << still.output();

@@ -115,7 +115,7 @@ TEST(PlantNode, TwoLockstepRunsWithOneSeedAreBitIdentical)
 TEST(PlantNode, FaultCommandIsAcknowledgedOnTheEventsTopic)
 {
   ChildProcess plant({QUAD_PLANT_NODE, "--config", config("faults.yaml", "sim: {duration: 20.0}\n")}, env(143));
-  ASSERT_TRUE(quad::test::waitForRunningModule(143, "plant", 10s)) << plant.output();
+  ASSERT_TRUE(quad::test::waitForRunningModule(143, "plant", 20s)) << plant.output();
   ChildProcess events({QUAD_TOOL, "topic", "echo", "quad/sim/events", "-n", "3", "--timeout", "15"}, env(143));
   ChildProcess pub({QUAD_TOOL, "topic", "pub", "quad/system/fault",
                     "{fault_id: 9, module_name: plant, kind: FAULT_MOTOR_FAILURE, index: 1, magnitude: 0.5}"},

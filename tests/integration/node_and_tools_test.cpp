@@ -208,13 +208,17 @@ TEST(NodeAndTools, TopicHzMeasuresTheHeartbeatAgainstItsContract)
                   {{"QUAD_DOMAIN_ID", "194"}, {"QUAD_TRANSPORT", "udp"}});
   ASSERT_EQ(hz.wait(20s), 0) << hz.output();
   // The heartbeat's contract is 2 Hz: a 2 s window holds 4 samples, give or take one.
+  // A line per 2 s window (the second may be cut by the end at 4.2 s on a busy machine), then
+  // the total.
   const auto lines = quad::test::jsonLines(hz.output());
-  ASSERT_EQ(lines.size(), 3U) << hz.output();  // two windows and the total
-  EXPECT_EQ(lines[0]["kind"], "window") << hz.output();
-  EXPECT_EQ(lines[0]["contract_hz"], 2.0) << hz.output();
-  EXPECT_NEAR(lines[1]["rate_hz"].get<double>(), 2.0, 0.6) << hz.output();
-  EXPECT_FALSE(lines[1]["min_interval_ms"].is_null()) << hz.output();
-  EXPECT_EQ(lines[2]["kind"], "total") << hz.output();
+  ASSERT_GE(lines.size(), 2U) << hz.output();
+  EXPECT_EQ(lines.front()["kind"], "window") << hz.output();
+  EXPECT_EQ(lines.front()["contract_hz"], 2.0) << hz.output();
+  const auto& window = lines[lines.size() - 2];
+  EXPECT_EQ(window["kind"], "window") << hz.output();
+  EXPECT_NEAR(window["rate_hz"].get<double>(), 2.0, 0.6) << hz.output();
+  EXPECT_FALSE(window["min_interval_ms"].is_null()) << hz.output();
+  EXPECT_EQ(lines.back()["kind"], "total") << hz.output();
   ChildProcess info({QUAD_TOOL, "topic", "info", "quad/system/heartbeat", "--wait", "1.5", "--json"},
                     {{"QUAD_DOMAIN_ID", "194"}, {"QUAD_TRANSPORT", "udp"}});
   ASSERT_EQ(info.wait(20s), 0) << info.output();

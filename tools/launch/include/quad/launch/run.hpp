@@ -96,8 +96,6 @@ public:
   void say(const std::string& line) { supervisor_.say(line); }
   /// Why the run failed (a module, the recorder, a timeout); empty while nothing failed.
   const std::string& failure() const { return failure_; }
-  /// The run's state as run.json holds it.
-  const launch::RunRecord& record() const { return record_; }
   /// The mission summary, once the run ended (nothing without a mission).
   const std::optional<launch::MissionSummary>& summary() const { return summary_; }
 

@@ -36,6 +36,9 @@ const common::ParamTable<PlantNodeConfig>& plantTable()
               "fault schedule file; empty: none")
         .seconds("commands.timeout", [](C& c) -> std::int64_t& { return c.simulation.command_timeout_ns; },
                  {0.001, 10.0}, "rotor commands older than this are late")
+        .seconds("commands.failsafe_after",
+                 [](C& c) -> std::int64_t& { return c.simulation.command_failsafe_ns; }, {0.001, 10.0},
+                 "a held rotor command older than this is flown balanced (no torque)")
         .number("state.rate", [](C& c) -> double& { return c.simulation.state_rate_hz; }, {1.0, 2000.0}, "Hz",
                 "vehicle state and clock rate")
         .number("imu.rate", [](C& c) -> double& { return c.simulation.imu.rate_hz; }, {1.0, 2000.0}, "Hz", "IMU rate")

@@ -280,7 +280,8 @@ void PlantNode::onStop()
       std::to_string(sim_->collisionCount()) + ", commands accepted " + std::to_string(c.accepted) +
       ", clamped " + std::to_string(c.clamped) + ", rejected " +
       std::to_string(c.rejected_invalid + c.rejected_late + c.rejected_old) + ", stale steps " +
-      std::to_string(c.stale_steps) + ", dropped steps " + std::to_string(dropped_steps_);
+      std::to_string(c.stale_steps) + ", failsafe steps " + std::to_string(c.failsafe_steps) +
+      ", dropped steps " + std::to_string(dropped_steps_);
   spdlog::info("plant: run ended: {}", summary);
   const auto& st = sim_->state();
   // Full precision, so that runs can be compared bit for bit from their logs.

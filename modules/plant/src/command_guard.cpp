@@ -6,8 +6,12 @@
 
 namespace quad::plant {
 
-CommandGuard::CommandGuard(const vehicle::VehicleParams& vehicle, std::int64_t timeout_ns)
-    : min_(vehicle.rotor_speed_min), max_(vehicle.rotor_speed_max), timeout_ns_(timeout_ns)
+CommandGuard::CommandGuard(const vehicle::VehicleParams& vehicle, std::int64_t timeout_ns,
+                           std::int64_t failsafe_ns)
+    : min_(vehicle.rotor_speed_min),
+      max_(vehicle.rotor_speed_max),
+      timeout_ns_(timeout_ns),
+      failsafe_ns_(failsafe_ns)
 {
 }
 
@@ -33,6 +37,12 @@ CommandGuard::Verdict CommandGuard::submit(const RotorArray& speeds, bool armed,
     clamped = clamped || next[i] != speeds[i];
   }
   held_ = next;
+  // Thrust goes with the square of the speed: the root mean square keeps the total.
+  double sum_sq = 0.0;
+  for (const double w : next) {
+    sum_sq += w * w;
+  }
+  balanced_.fill(std::sqrt(sum_sq / static_cast<double>(next.size())));
   armed_ = armed;
   have_command_ = true;
   held_stamp_ns_ = stamp_ns;
@@ -56,6 +66,10 @@ RotorArray CommandGuard::command(std::int64_t now_ns)
   }
   if (!have_command_ || !armed_) {
     return RotorArray{};
+  }
+  if (now_ns - held_stamp_ns_ > failsafe_ns_) {
+    ++counters_.failsafe_steps;
+    return balanced_;
   }
   return held_;
 }

@@ -16,7 +16,7 @@ Simulation::Simulation(vehicle::VehicleParams vehicle, world::World world, Simul
       world_(std::move(world)),
       config_(std::move(config)),
       camera_(config_.depth),
-      guard_(vehicle, config_.command_timeout_ns),
+      guard_(vehicle, config_.command_timeout_ns, config_.command_failsafe_ns),
       rng_(config_.seed)
 {
   // RK4 is stable on the motor lag only while step/τ stays inside its region (2.78): keep a

@@ -130,6 +130,55 @@ TEST(Simulation, BadMotorCommandsAreRejectedCountedAndNeverIntegrated)
   EXPECT_EQ(sim.commands().command(sim.timeNs()), RotorArray{});
 }
 
+// A command with a torque in it, held open loop after its controller fell silent: whole, it
+// spins the vehicle up without end; past the failsafe age the rotors run balanced at the
+// same total thrust, and the spin stops growing once the motors have settled.
+TEST(Simulation, AHeldCommandPastTheFailsafeAgeIsFlownBalancedWithItsThrust)
+{
+  struct Outcome {
+    double spin;  // [rad/s] angular rate after 0.4 s
+    RotorArray flown;
+    std::uint64_t failsafe_steps;
+  };
+  const auto hold = [](std::int64_t failsafe_ns) {
+    SimulationConfig config;
+    config.command_failsafe_ns = failsafe_ns;
+    Simulation sim(vehicle(), corridor(), config);
+    const RotorArray hover = hoverCommand(sim);
+    const double d = 0.05 * hover[0];
+    const RotorArray torqued{hover[0] + d, hover[1] + d, hover[2] - d, hover[3] - d};
+    RigidBodyState s;
+    s.p_W = {0, -5, 5};
+    s.rotor_speed = torqued;
+    sim.setState(s);
+    EXPECT_EQ(sim.commands().submit(torqued, true, 0, 0), CommandGuard::Verdict::kAccepted);
+    for (int k = 0; k < 400; ++k) {
+      sim.step();
+    }
+    Outcome out{sim.state().w_B.norm(), sim.commands().command(sim.timeNs()), 0};
+    out.failsafe_steps = sim.commands().counters().failsafe_steps;
+    double held_sq = 0.0;
+    double flown_sq = 0.0;
+    for (std::size_t i = 0; i < torqued.size(); ++i) {
+      held_sq += torqued[i] * torqued[i];
+      flown_sq += out.flown[i] * out.flown[i];
+    }
+    EXPECT_NEAR(flown_sq, held_sq, 1e-9 * held_sq);  // the total thrust is kept
+    return out;
+  };
+  const Outcome whole = hold(10'000'000'000);  // past the run: the held command flown whole
+  const Outcome failsafe = hold(20'000'000);
+  EXPECT_NE(whole.flown[0], whole.flown[2]);
+  EXPECT_EQ(whole.failsafe_steps, 0U);
+  EXPECT_EQ(failsafe.failsafe_steps, 380U);  // steps at 21..400 ms
+  for (const double w : failsafe.flown) {
+    EXPECT_EQ(w, failsafe.flown[0]);
+  }
+  // Torque for 20 ms and the motors' settling, against torque for the whole 400 ms.
+  EXPECT_GT(whole.spin, 1.0);
+  EXPECT_LT(failsafe.spin, 0.2 * whole.spin);
+}
+
 TEST(Simulation, StartOnTheGroundIsLandedAndTakeoffIsAnEvent)
 {
   Simulation sim(vehicle(), corridor(), {});

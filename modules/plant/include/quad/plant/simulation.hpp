@@ -27,6 +27,7 @@ struct SimulationConfig {
   std::int64_t step_ns = 1'000'000;            ///< integration step (1 ms)
   std::uint64_t seed = 1;
   std::int64_t command_timeout_ns = 100'000'000;
+  std::int64_t command_failsafe_ns = 20'000'000;  ///< a held command older than this is flown balanced
   double state_rate_hz = 250.0;
   DepthCameraConfig depth;
   GimbalConfig gimbal;  ///< enabled: the depth camera hangs on it (at depth.position_B), not on its fixed mount

@@ -230,6 +230,9 @@ private:
     // be a bad input stamped anywhere).
     t_ = common::toSeconds(run.observer().simTimeNs());
     p_W_ = dds::toMessage(run.observer().position());
+    if (run.observer().lastStateNs() > 0) {
+      judge_.altitude(t_, run.observer().position().z());  // sampled at the tick's rate
+    }
     // Paths before modes: a HOVER measured from the last path must not miss one stamped before it.
     for (const auto& p : endpoints_->path.takeAll()) {
       const bool flyable = p.status() == msg::PLAN_OK && !p.waypoints_W().empty() &&

@@ -95,7 +95,12 @@ void Judge::clock(double t, std::int64_t wall_ns)
         continue;
       }
       const double elapsed = p.expect.simTime() ? t - modeOrigin(s, p) : common::toSeconds(wall_ns - s.wall_ns);
-      if (elapsed > p.expect.within_s) {
+      if (elapsed <= p.expect.within_s) {
+        continue;
+      }
+      if (p.expect.kind == Expectation::Kind::kAltitudeLost && p.z0) {
+        p.measured_s = elapsed;  // the window is over, within the bound all along
+      } else {
         p.failed = true;
         p.why = "not seen";
       }
@@ -109,6 +114,29 @@ void Judge::mode(double t, const std::string& mode)
   for (std::size_t i = 0; i < steps_.size(); ++i) {
     if (steps_[i].applied) {
       meet(i, Expectation::Kind::kMode, mode, std::max(0.0, t - steps_[i].t));
+    }
+  }
+}
+
+void Judge::altitude(double t, double z)
+{
+  for (auto& s : steps_) {
+    if (!s.applied || t < s.t) {
+      continue;
+    }
+    for (auto& p : s.pending) {
+      if (p.expect.kind != Expectation::Kind::kAltitudeLost || p.measured_s || p.failed ||
+          t - s.t > p.expect.within_s) {
+        continue;
+      }
+      if (!p.z0) {
+        p.z0 = z;
+      }
+      p.drop = std::max(p.drop, *p.z0 - z);
+      if (p.drop > p.expect.metres) {
+        p.failed = true;
+        p.why = fmt::format("{:.2f} m by {:.2f} s", p.drop, t - s.t);
+      }
     }
   }
 }
@@ -210,8 +238,12 @@ std::vector<Judge::Row> Judge::finish(const RunFacts& facts)
       Row r;
       r.expectation = p.expect.describe();
       r.bound = fmt::format("<= {:.2f} s ({})", p.expect.within_s, p.expect.simTime() ? "sim" : "wall");
+      const bool altitude = p.expect.kind == Expectation::Kind::kAltitudeLost;
+      if (altitude) {
+        r.bound = fmt::format("<= {:.2f} m in {:.2f} s (sim)", p.expect.metres, p.expect.within_s);
+      }
       if (p.measured_s) {
-        r.measured = fmt::format("{:.3f} s", *p.measured_s);
+        r.measured = altitude ? fmt::format("{:.2f} m", p.drop) : fmt::format("{:.3f} s", *p.measured_s);
         r.pass = true;
       } else {
         r.measured = p.failed ? p.why : (s.applied ? "not seen before the run ended" : "fault not applied");

@@ -18,6 +18,7 @@ namespace {
 
 constexpr double kMaxTime = 1e6;  // [s] any time or bound beyond this is a typo
 constexpr double kMaxListLength = 1e6;  // elements a stretched list may reach
+constexpr double kMaxAltitude = 1e4;    // [m] an altitude_lost bound
 
 const std::vector<std::pair<std::string, Action::Kind>> kProcessActions = {
     {"kill", Action::Kind::kKill},
@@ -29,7 +30,8 @@ const std::vector<std::pair<std::string, Expectation::Kind>> kExpectations = {
     {"mode", Expectation::Kind::kMode},
     {"noticed", Expectation::Kind::kNoticed},
     {"back", Expectation::Kind::kBack},
-    {"rejected", Expectation::Kind::kRejected}};
+    {"rejected", Expectation::Kind::kRejected},
+    {"altitude_lost", Expectation::Kind::kAltitudeLost}};
 
 template <class Kind>
 std::string nameOf(const std::vector<std::pair<std::string, Kind>>& table, Kind kind)
@@ -437,12 +439,25 @@ private:
       }
     }
     if (!kind) {
-      r_.problem(key, node, "expected one of mode, noticed, back, rejected");
+      r_.problem(key, node, "expected one of mode, noticed, back, rejected, altitude_lost");
       return std::nullopt;
     }
     r_.onlyKeys(node, key + ".", {*kind, "within", "since"});
     YAML::Node value = node[*kind];
     const auto within = r_.number(node["within"], key + ".within", std::nullopt, 0.0, kMaxTime);
+    if (e.kind == Expectation::Kind::kAltitudeLost) {
+      const auto metres = r_.number(value, key + ".altitude_lost", std::nullopt, 0.0, kMaxAltitude);
+      if (!metres || !within) {
+        return std::nullopt;
+      }
+      if (node["since"].IsDefined()) {
+        r_.problem(key + ".since", node["since"], "only a mode expectation is measured from elsewhere than the fault");
+        return std::nullopt;
+      }
+      e.metres = *metres;
+      e.within_s = *within;
+      return e;
+    }
     if (!isName(value)) {
       r_.problem(key + "." + *kind, value, e.kind == Expectation::Kind::kMode ? "expected a mode" : "expected a module");
       return std::nullopt;
@@ -567,6 +582,9 @@ std::string Action::describe() const
 
 std::string Expectation::describe() const
 {
+  if (kind == Kind::kAltitudeLost) {
+    return "altitude lost";
+  }
   const std::string what = nameOf(kExpectations, kind) + " " + (kind == Kind::kMode ? mode : module);
   return since == Since::kLastPath ? what + " after the last path" : what;
 }
@@ -629,7 +647,8 @@ std::vector<std::string> checkAgainstModules(const Scenario& s, const std::vecto
     }
     for (std::size_t j = 0; j < st.expect.size(); ++j) {
       const Expectation& e = st.expect[j];
-      if (e.kind != Expectation::Kind::kMode && !has(e.module)) {
+      const bool names_module = e.kind != Expectation::Kind::kMode && e.kind != Expectation::Kind::kAltitudeLost;
+      if (names_module && !has(e.module)) {
         problem(key + ".expect[" + std::to_string(j) + "]." + nameOf(kExpectations, e.kind), e.module, known);
       }
     }

@@ -72,7 +72,7 @@ steps:
              {mode: HOVER, within: 1.1, since: last_path}]
   - {at: 6, pause: mapping}
   - {at: 7, resume: mapping}
-  - {at: 8, restart: control}
+  - {at: 8, restart: control, expect: [{altitude_lost: 0.5, within: 3}]}
   - at: 9
     plant: {kind: motor, rotor: 2, efficiency: 0.5, duration: 3}
   - at: 10
@@ -93,6 +93,11 @@ outcome: {mission: failure, collisions: 2, finite_actuators: false, recording_lo
   EXPECT_FALSE(s.steps[0].expect[0].simTime());
   EXPECT_EQ(s.steps[1].action.kind, Action::Kind::kPause);
   EXPECT_EQ(s.steps[3].action.kind, Action::Kind::kRestart);
+  ASSERT_EQ(s.steps[3].expect.size(), 1U);
+  EXPECT_EQ(s.steps[3].expect[0].kind, Expectation::Kind::kAltitudeLost);
+  EXPECT_DOUBLE_EQ(s.steps[3].expect[0].metres, 0.5);
+  EXPECT_DOUBLE_EQ(s.steps[3].expect[0].within_s, 3.0);
+  EXPECT_TRUE(s.steps[3].expect[0].simTime());
   EXPECT_EQ(s.steps[4].action.kind, Action::Kind::kPlant);
   EXPECT_EQ(s.steps[4].action.plant.rotor, 2);
   EXPECT_EQ(s.steps[4].action.plant.id, 5U);  // the step's number
@@ -118,6 +123,7 @@ steps:
   - {at: 8, publish: {topic: quad/sim/state, values: {nonsense: 1}}}
   - {at: -1, restart: control, expect: [{noticed: control}]}
   - {at: 9, kill: planning, expect: [{noticed: planning, within: 1, since: last_path}, {mode: HOVER, within: 1, since: noon}]}
+  - {at: 10, kill: control, expect: [{altitude_lost: -1, within: 2}, {altitude_lost: 0.5}, {altitude_lost: 0.5, within: 1, since: last_path}]}
 outcome: {mission: maybe, colisions: 1}
 )");
   EXPECT_TRUE(mentions(p, "s.yaml:manifest: nowhere.yaml: no such file")) << ::testing::PrintToString(p);
@@ -131,6 +137,9 @@ outcome: {mission: maybe, colisions: 1}
   EXPECT_TRUE(mentions(p, "steps[5].expect[0].within"));
   EXPECT_TRUE(mentions(p, "steps[6].expect[0].since: last_path: only a mode expectation"));
   EXPECT_TRUE(mentions(p, "steps[6].expect[1].since: noon: expected fault or last_path"));
+  EXPECT_TRUE(mentions(p, "steps[7].expect[0].altitude_lost: -1"));
+  EXPECT_TRUE(mentions(p, "steps[7].expect[1].within"));
+  EXPECT_TRUE(mentions(p, "steps[7].expect[2].since: last_path: only a mode expectation"));
   EXPECT_TRUE(mentions(p, "outcome.mission: maybe: expected success, failure or any"));
   EXPECT_TRUE(mentions(p, "outcome.colisions: 1: unknown key"));
 }
@@ -389,6 +398,39 @@ TEST(Judge, AModeAfterTheLastPathIsMeasuredFromThatPathsStamp)
   never.clock(5.95, 950 * kMs);  // the bound is over at 5.9
   EXPECT_TRUE(never.settled());
   EXPECT_FALSE(passed(never.finish(goodRun())));
+}
+
+TEST(Judge, AltitudeLostIsTheDeepestDropBelowTheAltitudeAtTheFaultInItsWindow)
+{
+  Scenario s = killScenario();
+  s.steps[0].expect = {{Expectation::Kind::kAltitudeLost, "", "", 3.0, Expectation::Since::kFault, 0.5}};
+  const auto fly = [&](const std::vector<std::pair<double, double>>& track) {
+    Judge j(s);
+    j.altitude(4.0, 9.0);  // before the fault: not its reference
+    EXPECT_EQ(j.due(5.0).size(), 1U);
+    j.applied(0, 5.0, 0, "SIGKILL to pid 7");
+    for (const auto& [t, z] : track) {
+      j.altitude(t, z);
+      j.clock(t, 0);
+    }
+    EXPECT_TRUE(j.settled());
+    return j.finish(goodRun());
+  };
+  // Down 0.4 m and back up, then a drop after the window (not counted).
+  const auto held = fly({{5.0, 2.0}, {5.5, 1.8}, {6.0, 1.6}, {7.0, 2.1}, {8.0, 2.0}, {8.2, 0.2}});
+  EXPECT_TRUE(passed(held)) << toTable("k", held);
+  EXPECT_NE(toTable("k", held).find("0.40 m"), std::string::npos) << toTable("k", held);
+  EXPECT_NE(toTable("k", held).find("<= 0.50 m in 3.00 s (sim)"), std::string::npos) << toTable("k", held);
+  // Falls 0.7 m: failed as soon as it is below the bound.
+  const auto fell = fly({{5.0, 2.0}, {5.3, 1.3}, {5.4, 1.9}, {8.1, 2.0}});
+  EXPECT_FALSE(passed(fell));
+  EXPECT_NE(toTable("k", fell).find("0.70 m by 0.30 s"), std::string::npos) << toTable("k", fell);
+  // No state after the fault: nothing to judge by, a failure.
+  Judge j(s);
+  ASSERT_EQ(j.due(5.0).size(), 1U);
+  j.applied(0, 5.0, 0, "SIGKILL to pid 7");
+  j.clock(8.5, 0);
+  EXPECT_FALSE(passed(j.finish(goodRun())));
 }
 
 TEST(Judge, ARefusedOrUnreachedStepFailsWithItsReason)

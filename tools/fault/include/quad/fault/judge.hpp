@@ -53,6 +53,8 @@ public:
 
   /// Time passed: expectations whose bound is over fail.
   void clock(double t, std::int64_t wall_ns);
+  /// The vehicle was at altitude `z` [m] at sim time `t`.
+  void altitude(double t, double z);
   /// The controller reported `mode` at sim time `t`.
   void mode(double t, const std::string& mode);
   /// A path a controller would fly (PLAN_OK, finite waypoints) stamped at sim time `t`; feed
@@ -85,6 +87,8 @@ private:
     std::optional<double> measured_s;  // met, after this long
     bool failed = false;
     std::string why;                   // when failed
+    std::optional<double> z0;          // kAltitudeLost: the altitude at the fault
+    double drop = 0.0;                 // kAltitudeLost: the most lost so far [m]
   };
   struct StepState {
     bool handed_out = false;

@@ -67,6 +67,9 @@ struct Expectation {
     kNoticed,   ///< the launcher's readers see `module` lose liveliness within `within_s` wall seconds
     kBack,      ///< `module` runs again (a heartbeat from a new process) within `within_s` wall seconds
     kRejected,  ///< `module`'s count of rejected inputs (its heartbeat's errors) grows within `within_s` wall seconds
+    /// the vehicle's altitude stays within `metres` below its altitude at the fault for
+    /// `within_s` of sim time
+    kAltitudeLost,
   };
   /// Where a kMode bound is measured from.
   enum class Since {
@@ -76,12 +79,13 @@ struct Expectation {
   };
   Kind kind = Kind::kMode;
   std::string mode;    ///< kMode: a ControlMode name without its prefix ("HOVER")
-  std::string module;  ///< the others
+  std::string module;  ///< kNoticed, kBack, kRejected
   double within_s = 1.0;
   Since since = Since::kFault;
+  double metres = 0.0;  ///< kAltitudeLost: the most altitude the vehicle may lose
 
-  bool simTime() const { return kind == Kind::kMode; }
-  /// "mode HOVER", "noticed planning", ...
+  bool simTime() const { return kind == Kind::kMode || kind == Kind::kAltitudeLost; }
+  /// "mode HOVER", "noticed planning", "altitude lost", ...
   std::string describe() const;
 };
 

@@ -10,6 +10,7 @@
 
 #include "quad/common/time.hpp"
 #include "quad/dds/geometry_messages.hpp"
+#include "quad/mapping/checkpoint.hpp"
 #include "quad/geometry/cspace.hpp"
 
 namespace quad::mapping {
@@ -17,6 +18,7 @@ namespace quad::mapping {
 namespace {
 constexpr std::size_t kMaxChangesPerMessage = 262144;  // MapUpdate's bound
 constexpr int kMatchSnapshots = 3;        // snapshots sent with the clouds after a new update reader
+constexpr std::uint64_t kSeqReserve = 1'000'000;  // update numbers a checkpoint reserves ahead
 
 msg::VoxelState toMessage(VoxelState s)
 {
@@ -43,7 +45,9 @@ const common::ParamTable<MappingParams>& mappingTable()
         .number("snapshot.period", [](P& p) -> double& { return p.snapshot_period_s; }, {0.05, 3600.0}, "s",
                 "sim time between map snapshots")
         .text("save_path", [](P& p) -> std::string& { return p.save_path; }, {},
-              ".bt file written on shutdown and on COMMAND_SAVE_MAP; empty: never");
+              ".bt file written on shutdown and on COMMAND_SAVE_MAP; empty: never")
+        .text("checkpoint.file", [](P& p) -> std::string& { return p.checkpoint_file; }, {},
+              "the map resumed from at the start and written with every snapshot; empty: none");
     return t;
   }();
   return table;
@@ -64,6 +68,7 @@ MappingNodeConfig mappingConfigFrom(const common::Params& p)
   c.frames = m.frames;
   c.snapshot_period_s = m.snapshot_period_s;
   c.save_path = m.save_path;
+  c.checkpoint_file = m.checkpoint_file;
   return c;
 }
 
@@ -80,6 +85,58 @@ MappingNode::MappingNode(MappingNodeConfig config, dds::ParticipantOptions optio
 {
   followSimClock();
   spdlog::info("mapping: resolution {} m, max range {} m", config_.map.resolution, config_.map.max_range);
+  resume();
+}
+
+void MappingNode::resume()
+{
+  if (config_.checkpoint_file.empty()) {
+    return;
+  }
+  const auto meta = readCheckpoint(config_.checkpoint_file, mapper_);
+  if (!meta) {
+    spdlog::info("mapping: no checkpoint at {} yet: starting with an empty map", config_.checkpoint_file.string());
+    return;
+  }
+  // Numbers from the reservation on: above every one the mapper before us published.
+  update_seq_ = meta->next_update_seq - 1;
+  reserved_seq_ = meta->next_update_seq;
+  last_stamp_ns_ = meta->stamp_ns;
+  spdlog::info("mapping: resumed from {}: {} nodes, scans up to t = {:.3f} s, updates numbered from {}",
+               config_.checkpoint_file.string(), mapper_.nodes(), common::toSeconds(meta->stamp_ns),
+               meta->next_update_seq);
+  // The resumed map at once, latched: a consumer holding the map from before fills the gap
+  // the new numbering opens with it.
+  publishSnapshot(meta->stamp_ns);
+}
+
+void MappingNode::publishSnapshot(std::int64_t stamp_ns)
+{
+  const auto bytes = mapper_.snapshot();
+  if (bytes.size() > 4194304) {
+    spdlog::warn("mapping: snapshot of {} bytes exceeds the 4 MiB a MapSnapshot carries; not sent", bytes.size());
+    return;
+  }
+  msg::MapSnapshot snapshot;
+  snapshot.header().stamp_ns(stamp_ns);
+  snapshot.update_seq(update_seq_);
+  snapshot.resolution(mapper_.resolution());
+  snapshot.octree(bytes);
+  snapshots_.write(snapshot);
+}
+
+void MappingNode::checkpoint(std::int64_t stamp_ns, std::uint64_t floor)
+{
+  if (config_.checkpoint_file.empty()) {
+    return;
+  }
+  try {
+    writeCheckpoint(config_.checkpoint_file, mapper_, {floor, stamp_ns});
+    reserved_seq_ = floor;
+  } catch (const std::exception& e) {
+    counters().errors++;
+    spdlog::error("mapping: {}", e.what());
+  }
 }
 
 void MappingNode::integrate(const msg::PointCloud& cloud)
@@ -114,8 +171,15 @@ void MappingNode::integrate(const msg::PointCloud& cloud)
                  dds::topics::kSimDepth.info.name, cloud.header().seq(), result.rejection);
     // Still one (empty) update below: consumers count clouds through them.
   }
+  last_stamp_ns_ = cloud.header().stamp_ns();
   // The change set, in as many messages as its bound needs, each with its own number.
   const std::uint64_t first_seq = update_seq_ + 1;
+  const std::uint64_t messages = std::max<std::size_t>(1, (result.changes.size() + kMaxChangesPerMessage - 1) /
+                                                              kMaxChangesPerMessage);
+  if (!config_.checkpoint_file.empty() && update_seq_ + messages >= reserved_seq_) {
+    // A mapper started after us resumes numbering at the reservation: renew it first.
+    checkpoint(last_stamp_ns_, update_seq_ + messages + kSeqReserve);
+  }
   for (std::size_t begin = 0; begin == 0 || begin < result.changes.size(); begin += kMaxChangesPerMessage) {
     msg::MapUpdate update;
     update.header().stamp_ns(cloud.header().stamp_ns());
@@ -150,18 +214,9 @@ void MappingNode::integrate(const msg::PointCloud& cloud)
   stats_.write(stats);
   if (match_snapshots_ > 0 || cloud.header().stamp_ns() >= next_snapshot_ns_) {
     match_snapshots_ = std::max(0, match_snapshots_ - 1);
-    const auto bytes = mapper_.snapshot();
-    if (bytes.size() <= 4194304) {
-      msg::MapSnapshot snapshot;
-      snapshot.header().stamp_ns(cloud.header().stamp_ns());
-      snapshot.update_seq(update_seq_);
-      snapshot.resolution(mapper_.resolution());
-      snapshot.octree(bytes);
-      snapshots_.write(snapshot);
-    } else {
-      spdlog::warn("mapping: snapshot of {} bytes exceeds the 4 MiB a MapSnapshot carries; not sent", bytes.size());
-    }
+    publishSnapshot(cloud.header().stamp_ns());
     next_snapshot_ns_ = cloud.header().stamp_ns() + common::toNanoseconds(config_.snapshot_period_s);
+    checkpoint(last_stamp_ns_, reserved_seq_);
   }
 }
 
@@ -233,6 +288,7 @@ void MappingNode::onWake()
 void MappingNode::onStop()
 {
   save();
+  checkpoint(last_stamp_ns_, std::max(reserved_seq_, update_seq_ + 1));
   spdlog::info("mapping: {} updates, {} clouds rejected, {} skipped, map {} nodes", update_seq_, rejected_, skipped_,
                mapper_.nodes());
 }

@@ -23,6 +23,9 @@ struct MappingNodeConfig {
   std::set<std::string> frames;      ///< sensor frames accepted
   double snapshot_period_s = 1.0;    ///< [s] of sim time between snapshots
   std::filesystem::path save_path;   ///< .bt written on shutdown and on COMMAND_SAVE_MAP; empty: never
+  /// Resumed from when it exists at the start, written with every snapshot and on shutdown;
+  /// empty: none (a mapper started again begins with an empty map).
+  std::filesystem::path checkpoint_file;
 };
 
 /// configs/mapping.yaml as written.
@@ -32,6 +35,7 @@ struct MappingParams {
   std::set<std::string> frames{"depth_front"};           ///< sensor frames accepted
   double snapshot_period_s = 1.0;                        ///< [s] of sim time between snapshots
   std::string save_path;                                 ///< .bt file; empty: never saved
+  std::string checkpoint_file;                           ///< empty: none
 };
 
 /// Each key with its unit, range and the field it fills; the defaults are MappingParams'.
@@ -52,6 +56,12 @@ private:
   void integrate(const msg::PointCloud& cloud);
   void reportLockstep();
   void save();
+  /// The map as it is, on the latched snapshot topic, stamped `stamp_ns`.
+  void publishSnapshot(std::int64_t stamp_ns);
+  /// Resumes from the checkpoint file, if there is one (throws naming it when it is bad).
+  void resume();
+  /// Writes the checkpoint (when there is a file), reserving update numbers up to `floor`.
+  void checkpoint(std::int64_t stamp_ns, std::uint64_t floor);
 
   MappingNodeConfig config_;
   Mapper mapper_;
@@ -65,6 +75,8 @@ private:
   std::uint64_t frames_taken_ = 0;         // depth frames dealt with (integrated, refused or skipped)
   std::int64_t reported_ns_ = -1;
   std::uint64_t update_seq_ = 0;
+  std::uint64_t reserved_seq_ = 0;  // numbers below this are in the checkpoint's reservation
+  std::int64_t last_stamp_ns_ = 0;  // the newest cloud integrated
   std::int64_t next_snapshot_ns_ = 0;
   int match_snapshots_ = 0;  // still to send with the next clouds, for a newly matched update reader
   std::uint64_t rejected_ = 0;

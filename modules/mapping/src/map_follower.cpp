@@ -15,6 +15,22 @@ std::vector<VoxelChange> MapFollower::update(std::uint64_t seq, std::vector<Voxe
   if (bad != nullptr) {
     *bad = false;
   }
+  if (seq == 1 && applied_seq_ > 1) {
+    ++restarts_;
+    std::vector<VoxelChange> forgotten;
+    for (const auto& c : held_.contents()) {
+      forgotten.push_back({c.index, VoxelState::kUnknown});
+    }
+    held_ = VoxelMap(resolution_);
+    applied_seq_ = 0;
+    gap_open_ = false;
+    gap_end_ = 0;
+    since_gap_.clear();
+    kept_.reset();
+    auto fresh = update(seq, std::move(changes), bad);
+    forgotten.insert(forgotten.end(), fresh.begin(), fresh.end());
+    return forgotten;
+  }
   if (seq <= applied_seq_) {
     return {};  // in a snapshot already applied
   }

@@ -221,6 +221,21 @@ bool Mapper::save(const std::filesystem::path& file) const
   return tree_.writeBinaryConst(file.string());
 }
 
+void Mapper::writeTree(std::ostream& out) const { tree_.writeData(out); }
+
+bool Mapper::readTree(std::istream& in)
+{
+  if (tree_.size() != 0) {
+    return false;
+  }
+  tree_.readData(in);
+  if (!in) {
+    tree_.clear();
+    return false;
+  }
+  return true;
+}
+
 bool VoxelMap::applySnapshot(const std::vector<std::uint8_t>& bytes)
 {
   std::istringstream in(std::string(bytes.begin(), bytes.end()));

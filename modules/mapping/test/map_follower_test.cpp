@@ -104,6 +104,29 @@ TEST(MapFollower, AMissedUpdateIsFilledByANewerSnapshotAndTheDiffReachesAnOutsid
   expectSame(f.classification.back(), downstream);
 }
 
+TEST(MapFollower, AMapperStartedAgainWithoutItsMapIsFollowedFromScratch)
+{
+  // GIVEN a follower (and the planner's grid it feeds) at update 8 of one mapper
+  const Flight before(8);
+  MapFollower follower(before.mapper.resolution());
+  VoxelMap downstream(before.mapper.resolution());
+  for (std::uint64_t seq = 1; seq <= 8; ++seq) {
+    downstream.apply(follower.update(seq, before.changes[seq - 1]));
+  }
+  // WHEN that mapper dies and one started again with an empty map numbers from 1
+  const Flight after(3);
+  for (std::uint64_t seq = 1; seq <= 3; ++seq) {
+    downstream.apply(follower.update(seq, after.changes[seq - 1]));
+  }
+  // THEN both hold the new mapper's map, nothing of the old one's
+  EXPECT_EQ(follower.restarts(), 1U);
+  EXPECT_FALSE(follower.gapOpen());
+  EXPECT_EQ(follower.appliedSeq(), 3U);
+  expectSame(after.classification.back(), follower.held());
+  expectSame(after.classification.back(), downstream);  // the old voxels are unknown again
+  EXPECT_LT(after.classification.back().size(), before.classification.back().size());
+}
+
 TEST(MapFollower, ASnapshotAheadOfTheUpdatesFillsTheGapThatOpensLater)
 {
   // GIVEN a follower at update 6 (a restarted planner, say, whose update reader matched

@@ -136,9 +136,15 @@ void PlanningNode::applyUpdate(const msg::MapUpdate& update)
     changes.push_back({VoxelIndex(c.ix(), c.iy(), c.iz()), static_cast<mapping::VoxelState>(fromMessage(c.state()))});
   }
   const std::uint64_t gaps = follower_.gaps();
+  const std::uint64_t restarts = follower_.restarts();
   bool bad = false;
   for (const auto& c : follower_.update(update.update_seq(), std::move(changes), &bad)) {
     planner_.updateVoxel(c.index, static_cast<Occupancy>(c.state));
+  }
+  if (follower_.restarts() > restarts) {
+    spdlog::warn("{}: numbered from 1 again: the mapper started again with an empty map (no checkpoint); "
+                 "what it knew is gone, and planning starts over from what it sees now",
+                 dds::topics::kMapUpdate.info.name);
   }
   if (bad) {
     counters().errors++;

@@ -25,7 +25,9 @@ public:
   explicit MapFollower(double resolution, std::size_t max_kept = 256);
 
   /// Update `seq` with its changes; returns the changes to apply downstream (none when the
-  /// update was already covered by a snapshot). When it opens a gap that a kept snapshot
+  /// update was already covered by a snapshot). Update 1 after later ones is a mapper that
+  /// started again with an empty map (no checkpoint to resume from): what was held is gone
+  /// from the map, so it is returned as unknown, and the new numbering is followed. When it opens a gap that a kept snapshot
   /// covers (see snapshot()), the gap is filled at once: the changes returned then bring
   /// the consumer to that snapshot too (`bad` as for snapshot()).
   std::vector<VoxelChange> update(std::uint64_t seq, std::vector<VoxelChange> changes, bool* bad = nullptr);
@@ -46,6 +48,8 @@ public:
   std::uint64_t appliedSeq() const { return applied_seq_; }
   /// Gaps seen so far.
   std::uint64_t gaps() const { return gaps_; }
+  /// Mappers seen starting again from an empty map.
+  std::uint64_t restarts() const { return restarts_; }
   /// Updates a snapshot's catch-up re-applied on top of it, last time.
   std::size_t replayed() const { return replayed_; }
   const VoxelMap& held() const { return held_; }
@@ -62,6 +66,7 @@ private:
   std::uint64_t gap_end_ = 0;  // the last update missed: snapshots from it on fill the gap
   std::deque<std::pair<std::uint64_t, std::vector<VoxelChange>>> since_gap_;
   std::uint64_t gaps_ = 0;
+  std::uint64_t restarts_ = 0;
   std::size_t replayed_ = 0;
   std::optional<std::pair<std::uint64_t, std::vector<std::uint8_t>>> kept_;  // a snapshot ahead of the updates
 };

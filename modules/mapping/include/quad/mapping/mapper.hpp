@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <iosfwd>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -100,6 +101,11 @@ public:
   std::vector<std::uint8_t> snapshot() const;
   /// Writes a .bt file that OctoMap's own tools (octovis, binvox2bt ...) read; false on I/O failure.
   bool save(const std::filesystem::path& file) const;
+  /// The tree with every node's log-odds (OctoMap's node data, as in its .ot files).
+  void writeTree(std::ostream& out) const;
+  /// Replaces an empty tree with one writeTree wrote; false (the tree left empty) when the
+  /// bytes are cut short or the mapper already holds voxels.
+  bool readTree(std::istream& in);
 
   std::size_t nodes() const { return tree_.size(); }
   std::size_t bytes() const { return tree_.memoryUsage(); }

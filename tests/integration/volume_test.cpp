@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Flying the whole volume (DDS domains 221 to 228): worlds that need a climb, a dip or a window, in lockstep with a
+// Flying the whole volume (DDS domains 145 to 149 and 91 to 93): worlds that need a climb, a dip or a window, in lockstep with a
 // fixed seed, and a goal that no path reaches. Each reads the run's summary and exit status.
 #include <gtest/gtest.h>
 
@@ -61,15 +61,15 @@ void expectReached(const std::string& world, int domain)
   EXPECT_LE(f.summary["flown_over_optimum"].get<double>(), 1.3) << f.summary.dump(2);
 }
 
-TEST(Volume, AWallAcrossTheBoxIsOverflown) { expectReached("wall", 221); }
-TEST(Volume, AHighWindowOffTheAxisIsThreaded) { expectReached("window", 222); }
-TEST(Volume, TheVehicleLeavesACourtyardOverItsWalls) { expectReached("courtyard", 223); }
-TEST(Volume, GapsLowThenHighThenLowAreFlownThrough) { expectReached("gaps", 224); }
-TEST(Volume, AnOverhangIsFlownUnder) { expectReached("overhang", 225); }
+TEST(Volume, AWallAcrossTheBoxIsOverflown) { expectReached("wall", 145); }
+TEST(Volume, AHighWindowOffTheAxisIsThreaded) { expectReached("window", 146); }
+TEST(Volume, TheVehicleLeavesACourtyardOverItsWalls) { expectReached("courtyard", 147); }
+TEST(Volume, GapsLowThenHighThenLowAreFlownThrough) { expectReached("gaps", 148); }
+TEST(Volume, AnOverhangIsFlownUnder) { expectReached("overhang", 149); }
 
 TEST(Volume, ASealedGoalEndsWithNoPathLandedAndNoCollision)
 {
-  const Flight f = fly("sealed", 226);
+  const Flight f = fly("sealed", 91);
   ASSERT_TRUE(f.summary.is_object()) << f.output;
   EXPECT_EQ(f.exit_status, 3) << f.summary.dump(2) << f.output;  // docs/launch.md: no path
   EXPECT_EQ(f.summary["success"], false);
@@ -86,7 +86,7 @@ TEST(Volume, AGoalInsideAnObstacleIsRefusedAtOnce)
   std::ofstream(world) << "bounds: {min: [-5, -10, 0], max: [45, 10, 10]}\nstart: [0, 0, 0]\ngoal: [20, 0, 2]\n"
                           "obstacles:\n  - {type: box, center: [20, 0, 2], size: [2, 2, 4]}\n";
   ChildProcess launch({QUAD_TOOL, "launch", std::string(QUAD_SOURCE_DIR) + "/bringup/demo.yaml", "--world",
-                       world.string(), "--domain", "227", "--quiet", "--log-dir", (dir / "run").string()});
+                       world.string(), "--domain", "92", "--quiet", "--log-dir", (dir / "run").string()});
   const auto status = launch.wait(60s);
   ASSERT_TRUE(status) << launch.output();
   EXPECT_EQ(*status, 2) << launch.output();  // docs/launch.md: refused before anything started
@@ -98,7 +98,7 @@ TEST(Campaign, FliesEachWorldInTurnAndFailsWhenOneDoes)
 {
   const fs::path dir = quad::test::scratchDir("quad_campaign");
   const std::string worlds = std::string(QUAD_SOURCE_DIR) + "/configs/worlds/";
-  ChildProcess campaign({QUAD_TOOL, "campaign", worlds + "wall.yaml", worlds + "sealed.yaml", "--domain", "228",
+  ChildProcess campaign({QUAD_TOOL, "campaign", worlds + "wall.yaml", worlds + "sealed.yaml", "--domain", "93",
                          "--log-dir", (dir / "runs").string(), "--json", (dir / "campaign.json").string()});
   const auto status = campaign.wait(600s);
   ASSERT_TRUE(status) << campaign.output();

@@ -92,6 +92,9 @@ public:
   /// did reaches the report.
   void ending(launch::LaunchRun& run) override
   {
+    if (const auto& by = run.endedBy()) {
+      judge_.runEnded(by->module, by->wall_ns);
+    }
     if (!endpoints_) {
       return;
     }

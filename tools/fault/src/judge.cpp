@@ -165,6 +165,11 @@ void Judge::back(const std::string& module, std::int64_t wall_ns)
   meetAfter(Expectation::Kind::kBack, module, wall_ns);
 }
 
+void Judge::runEnded(const std::string& module, std::int64_t wall_ns)
+{
+  meetAfter(Expectation::Kind::kRunEnded, module, wall_ns);
+}
+
 void Judge::rejected(const std::string& module, std::int64_t wall_ns)
 {
   meetAfter(Expectation::Kind::kRejected, module, wall_ns);

@@ -31,7 +31,8 @@ const std::vector<std::pair<std::string, Expectation::Kind>> kExpectations = {
     {"noticed", Expectation::Kind::kNoticed},
     {"back", Expectation::Kind::kBack},
     {"rejected", Expectation::Kind::kRejected},
-    {"altitude_lost", Expectation::Kind::kAltitudeLost}};
+    {"altitude_lost", Expectation::Kind::kAltitudeLost},
+    {"run_ended", Expectation::Kind::kRunEnded}};
 
 template <class Kind>
 std::string nameOf(const std::vector<std::pair<std::string, Kind>>& table, Kind kind)
@@ -439,7 +440,7 @@ private:
       }
     }
     if (!kind) {
-      r_.problem(key, node, "expected one of mode, noticed, back, rejected, altitude_lost");
+      r_.problem(key, node, "expected one of mode, noticed, back, rejected, altitude_lost, run_ended");
       return std::nullopt;
     }
     r_.onlyKeys(node, key + ".", {*kind, "within", "since"});

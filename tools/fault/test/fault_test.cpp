@@ -72,7 +72,7 @@ steps:
              {mode: HOVER, within: 1.1, since: last_path}]
   - {at: 6, pause: mapping}
   - {at: 7, resume: mapping}
-  - {at: 8, restart: control, expect: [{altitude_lost: 0.5, within: 3}]}
+  - {at: 8, restart: control, expect: [{altitude_lost: 0.5, within: 3}, {run_ended: plant, within: 0.5}]}
   - at: 9
     plant: {kind: motor, rotor: 2, efficiency: 0.5, duration: 3}
   - at: 10
@@ -93,7 +93,9 @@ outcome: {mission: failure, collisions: 2, finite_actuators: false, recording_lo
   EXPECT_FALSE(s.steps[0].expect[0].simTime());
   EXPECT_EQ(s.steps[1].action.kind, Action::Kind::kPause);
   EXPECT_EQ(s.steps[3].action.kind, Action::Kind::kRestart);
-  ASSERT_EQ(s.steps[3].expect.size(), 1U);
+  ASSERT_EQ(s.steps[3].expect.size(), 2U);
+  EXPECT_EQ(s.steps[3].expect[1].describe(), "run_ended plant");
+  EXPECT_FALSE(s.steps[3].expect[1].simTime());
   EXPECT_EQ(s.steps[3].expect[0].kind, Expectation::Kind::kAltitudeLost);
   EXPECT_DOUBLE_EQ(s.steps[3].expect[0].metres, 0.5);
   EXPECT_DOUBLE_EQ(s.steps[3].expect[0].within_s, 3.0);

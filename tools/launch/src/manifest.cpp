@@ -159,7 +159,7 @@ std::string expand(const std::string& text, const std::map<std::string, std::str
     out += text.substr(last, static_cast<std::size_t>(it->position()) - last);
     const auto found = vars.find((*it)[1].str());
     if (found == vars.end()) {
-      r.problem(key, node, "unknown variable ${" + (*it)[1].str() + "} (known: world, mode, seed, root)");
+      r.problem(key, node, "unknown variable ${" + (*it)[1].str() + "} (known: world, mode, seed, root, run_state)");
     } else {
       out += found->second;
     }
@@ -422,7 +422,8 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
   const std::map<std::string, std::string> vars{{"world", m.world.string()},
                                                 {"mode", m.mode},
                                                 {"seed", std::to_string(m.seed)},
-                                                {"root", lookup.layout.data.string()}};
+                                                {"root", lookup.layout.data.string()},
+                                                {"run_state", kRunStateVariable}};
   for (const auto& [k, v] : r.scalars(root["env"], "env")) {
     m.environment[k] = expand(v, vars, r, "env." + k, root["env"][k]);
   }

@@ -75,16 +75,29 @@ std::map<std::string, std::string> runEnvironment(const Manifest& m, int domain,
 }
 
 /// The module's command line: program, --config, --set, then its own arguments.
-std::vector<std::string> commandLine(const Module& mod)
+/// `text` with every ${run_state} replaced by the run's state folder.
+std::string withRunState(std::string text, const fs::path& state_dir)
+{
+  const std::string var = kRunStateVariable;
+  for (auto at = text.find(var); at != std::string::npos; at = text.find(var, at)) {
+    text.replace(at, var.size(), state_dir.string());
+    at += state_dir.string().size();
+  }
+  return text;
+}
+
+std::vector<std::string> commandLine(const Module& mod, const fs::path& state_dir)
 {
   std::vector<std::string> argv{mod.program.string()};
   if (!mod.config.empty()) {
     argv.insert(argv.end(), {"--config", mod.config.string()});
   }
   for (const auto& [k, v] : mod.sets) {
-    argv.insert(argv.end(), {"--set", k + "=" + v});
+    argv.insert(argv.end(), {"--set", k + "=" + withRunState(v, state_dir)});
   }
-  argv.insert(argv.end(), mod.args.begin(), mod.args.end());
+  for (const auto& a : mod.args) {
+    argv.push_back(withRunState(a, state_dir));
+  }
   return argv;
 }
 
@@ -92,8 +105,12 @@ std::vector<std::string> commandLine(const Module& mod)
 
 LaunchRun::LaunchRun(const Manifest& m, const LaunchOptions& o, fs::path dir, int domain)
     : m_(m), options_(o), domain_(domain), supervisor_(std::move(dir), stdout, !o.quiet),
-      start_ns_(common::steadyTimeNs())
+      state_dir_(fs::absolute(supervisor_.logDir() / "state")), start_ns_(common::steadyTimeNs())
 {
+  // What a module keeps for its next start within this run (${run_state}); a folder reused
+  // from an earlier run must not hand that run's state to this one.
+  fs::remove_all(state_dir_);
+  fs::create_directories(state_dir_);
   record_.manifest = m.file.string();
   record_.domain = domain;
   for (const auto& mod : m.modules) {
@@ -136,10 +153,10 @@ void LaunchRun::startModule(const Module& mod)
     env[dds::environment::kInterfaces] = commaList(net_->interfaces(mod.host));
   }
   for (const auto& [k, v] : mod.environment) {
-    env[k] = v;
+    env[k] = withRunState(v, state_dir_);
   }
   const auto& host = m_.host(mod.host);
-  supervisor_.start(mod.name, net_->command(host, commandLine(mod), env), env);
+  supervisor_.start(mod.name, net_->command(host, commandLine(mod, state_dir_), env), env);
   State& st = states_[mod.name];
   if (!st.started) {
     started_order_.push_back(mod.name);
@@ -215,9 +232,16 @@ void LaunchRun::handleExit(const launch::Supervisor::Exit& e)
   }
   ModuleRecord& rec = record_.modules[e.name];
   rec.last_exit = what;
-  if (it->ends_run && e.status == 0) {
-    say(fmt::format("{} finished ({}): ending the run", e.name, what));
+  if (it->ends_run && (e.status == 0 || st.exit_expected)) {
+    // What the others do depends on it (the plant is the vehicle's world): the run cannot
+    // go on without it, whether it finished or a fault killed it.
+    const std::string reason = e.status == 0 ? fmt::format("{} finished ({})", e.name, what)
+                                             : fmt::format("{} exited ({}), as the fault meant it to: the run "
+                                                           "cannot go on without it",
+                                                           e.name, what);
+    say(reason + ": ending the run");
     ended_ = true;
+    ended_by_ = EndedBy{e.name, common::steadyTimeNs(), reason};
     rec.phase = ModulePhase::kExited;
   } else if (st.restarts < it->respawn) {
     const double delay = it->backoff_s * std::pow(2.0, st.restarts);
@@ -512,6 +536,10 @@ int LaunchRun::execute(RunExtension* extension)
   if (auto* mission = observer_->mission()) {
     summary_ = mission->summary(common::toSeconds(common::steadyTimeNs() - start_ns_));
     summary_->optimum_m = knownMapOptimum();
+    if (ended_by_ && !summary_->success && summary_->end == launch::MissionEnd::kUnfinished) {
+      summary_->outcome = "not finished: " + ended_by_->reason;
+      summary_->failure = ended_by_->reason;
+    }
     const std::string json = launch::toJson(*summary_);
     std::ofstream(supervisor_.logDir() / "summary.json") << json;
     if (options_.summary) {

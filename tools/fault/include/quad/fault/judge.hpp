@@ -64,6 +64,8 @@ public:
   void lost(const std::string& module, std::int64_t wall_ns);
   /// `module` runs again: a heartbeat from a process it was not before.
   void back(const std::string& module, std::int64_t wall_ns);
+  /// The launcher ended the run because `module` (ends_run) exited.
+  void runEnded(const std::string& module, std::int64_t wall_ns);
   /// `module`'s count of rejected inputs grew.
   void rejected(const std::string& module, std::int64_t wall_ns);
 

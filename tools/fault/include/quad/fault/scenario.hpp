@@ -70,6 +70,7 @@ struct Expectation {
     /// the vehicle's altitude stays within `metres` below its altitude at the fault for
     /// `within_s` of sim time
     kAltitudeLost,
+    kRunEnded,  ///< the launcher ends the run because `module` (ends_run) is gone, within `within_s` wall seconds
   };
   /// Where a kMode bound is measured from.
   enum class Since {
@@ -79,7 +80,7 @@ struct Expectation {
   };
   Kind kind = Kind::kMode;
   std::string mode;    ///< kMode: a ControlMode name without its prefix ("HOVER")
-  std::string module;  ///< kNoticed, kBack, kRejected
+  std::string module;  ///< kNoticed, kBack, kRejected, kRunEnded
   double within_s = 1.0;
   Since since = Since::kFault;
   double metres = 0.0;  ///< kAltitudeLost: the most altitude the vehicle may lose

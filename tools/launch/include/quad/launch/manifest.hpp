@@ -90,6 +90,11 @@ struct Manifest {
 };
 
 /// What the command line changes in a manifest before it is checked.
+/// `${run_state}`: left as it is in a module's `set`, `args` and `environment` values, for the
+/// run to fill with its state folder (<run folder>/state, absolute: emptied when the run
+/// starts, kept across the modules' restarts within it).
+inline constexpr const char* kRunStateVariable = "${run_state}";
+
 struct ManifestOverrides {
   std::optional<std::filesystem::path> world;
   std::optional<std::string> mode;

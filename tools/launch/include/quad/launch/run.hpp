@@ -96,6 +96,15 @@ public:
   void say(const std::string& line) { supervisor_.say(line); }
   /// Why the run failed (a module, the recorder, a timeout); empty while nothing failed.
   const std::string& failure() const { return failure_; }
+  /// A module marked `ends_run` whose exit ended the run (normally, or killed by a fault):
+  /// which, when (steady wall time) and why. Nothing while the run goes on, or when it ended
+  /// otherwise.
+  struct EndedBy {
+    std::string module;
+    std::int64_t wall_ns = 0;
+    std::string reason;
+  };
+  const std::optional<EndedBy>& endedBy() const { return ended_by_; }
   /// The mission summary, once the run ended (nothing without a mission).
   const std::optional<launch::MissionSummary>& summary() const { return summary_; }
 
@@ -134,13 +143,15 @@ private:
   const LaunchOptions& options_;
   int domain_;
   launch::Supervisor supervisor_;
+  std::filesystem::path state_dir_;  // ${run_state}
   std::unique_ptr<launch::HostNetwork> net_;
   std::unique_ptr<launch::Observer> observer_;
   std::map<std::string, std::string> env_;
   std::map<std::string, State> states_;
   std::vector<std::string> started_order_;
   bool failed_ = false;
-  bool ended_ = false;  // a module that ends the run exited normally
+  bool ended_ = false;  // a module that ends the run exited normally, or as a fault meant it to
+  std::optional<EndedBy> ended_by_;
   std::string failure_;
   std::int64_t start_ns_;
   std::optional<launch::MissionSummary> summary_;

@@ -133,4 +133,39 @@ std::optional<std::pair<double, double>> YamlReader::range(const YAML::Node& nod
   return std::pair((*v)[0], (*v)[1]);
 }
 
+std::optional<std::string> YamlReader::text(const YAML::Node& node, const std::string& key,
+                                            std::optional<std::string> fallback)
+{
+  if (!node) {
+    if (!fallback) {
+      problem(key, node, "required key not set");
+    }
+    return fallback;
+  }
+  if (!node.IsScalar()) {
+    problem(key, node, "expected a string");
+    return std::nullopt;
+  }
+  return node.as<std::string>();
+}
+
+std::vector<std::pair<std::string, std::string>> YamlReader::scalars(const YAML::Node& node, const std::string& key)
+{
+  std::vector<std::pair<std::string, std::string>> out;
+  if (!node) {
+    return out;
+  }
+  if (!node.IsMap()) {
+    problem(key, node, "expected a map");
+    return out;
+  }
+  for (const auto& kv : node) {
+    const auto k = kv.first.as<std::string>();
+    if (auto v = text(kv.second, key + "." + k, std::nullopt)) {
+      out.emplace_back(k, *v);
+    }
+  }
+  return out;
+}
+
 }  // namespace quad::common

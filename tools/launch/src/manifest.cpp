@@ -52,22 +52,6 @@ class Reader : public common::YamlReader {
 public:
   Reader(std::string_view origin, fs::path dir) : YamlReader(origin), dir_(std::move(dir)) {}
 
-  std::optional<std::string> text(const YAML::Node& node, const std::string& key,
-                                  std::optional<std::string> fallback)
-  {
-    if (!node) {
-      if (!fallback) {
-        problem(key, node, "required key not set");
-      }
-      return fallback;
-    }
-    if (!node.IsScalar()) {
-      problem(key, node, "expected a string");
-      return std::nullopt;
-    }
-    return node.as<std::string>();
-  }
-
   std::optional<bool> flag(const YAML::Node& node, const std::string& key, bool fallback)
   {
     if (!node) {
@@ -117,25 +101,6 @@ public:
     return out;
   }
 
-  /// A map of scalars, in the order written.
-  std::vector<std::pair<std::string, std::string>> scalars(const YAML::Node& node, const std::string& key)
-  {
-    std::vector<std::pair<std::string, std::string>> out;
-    if (!node) {
-      return out;
-    }
-    if (!node.IsMap()) {
-      problem(key, node, "expected a map");
-      return out;
-    }
-    for (const auto& kv : node) {
-      const auto k = kv.first.as<std::string>();
-      if (auto v = text(kv.second, key + "." + k, std::nullopt)) {
-        out.emplace_back(k, *v);
-      }
-    }
-    return out;
-  }
 
   fs::path path(const std::string& written) const
   {

@@ -49,6 +49,11 @@ public:
   /// [low, high] with lo_limit <= low <= high <= hi_limit.
   std::optional<std::pair<double, double>> range(const YAML::Node& node, const std::string& key,
                                                  double lo_limit, double hi_limit);
+  /// A scalar as text; `fallback` when absent (absent without one is a problem).
+  std::optional<std::string> text(const YAML::Node& node, const std::string& key,
+                                  std::optional<std::string> fallback);
+  /// A map of scalars, in the order written.
+  std::vector<std::pair<std::string, std::string>> scalars(const YAML::Node& node, const std::string& key);
 
 private:
   std::string origin_;

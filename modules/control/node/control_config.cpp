@@ -13,6 +13,7 @@ FlightControllerConfig nodeFlightDefaults()
   f.gains.kv = 11.2;
   f.gains.kR = 2.33;
   f.gains.kOmega = 0.673;
+  f.gains.ki = 16.0;
   f.modes.idle_disarm_after = 30.0;
   f.state_timeout = dds::topics::kSimState.info.stale_after_s;
   f.path_timeout = dds::topics::kPath.info.stale_after_s;
@@ -27,6 +28,10 @@ const common::ParamTable<ControlNodeConfig>& controlTable()
     t.path("vehicle", [](C& c) -> std::filesystem::path& { return c.vehicle_file; }, "vehicle file (the plant's)")
         .number("gains.position", [](C& c) -> double& { return c.flight.gains.kx; }, {0.01, 1e4}, "N/m", "k_x")
         .number("gains.velocity", [](C& c) -> double& { return c.flight.gains.kv; }, {0.01, 1e4}, "N s/m", "k_v")
+        .number("gains.integral", [](C& c) -> double& { return c.flight.gains.ki; }, {0.0, 1e4}, "N/(m s)",
+                "k_i, on the position error's integral; 0: none")
+        .number("gains.integral_limit", [](C& c) -> double& { return c.flight.gains.integral_limit; }, {0.0, 1e3},
+                "N", "the most force the integral adds on each axis")
         .number("gains.attitude", [](C& c) -> double& { return c.flight.gains.kR; }, {1e-3, 1e3}, "N m/rad", "k_R")
         .number("gains.rate", [](C& c) -> double& { return c.flight.gains.kOmega; }, {1e-4, 1e3}, "N m s/rad",
                 "k_Omega")

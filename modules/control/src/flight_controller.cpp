@@ -246,6 +246,10 @@ FlightOutput FlightController::update(double t)
   aimCamera(out.mode, state->p_W);
   out.camera = camera_;
   out.dead_reckoning = !in.state_fresh;
+  // The position error is the model's (a mass off its file, wind) only in the air, flying
+  // a reference the vehicle can keep: not on the ground, taking off or landing.
+  const bool flying = out.mode == Mode::kHover || out.mode == Mode::kMission || out.mode == Mode::kReturn;
+  controller_.integrate(flying && !landed_);
   out.control = controller_.update(*state, ref, dt);
   if (!out.control.valid) {
     ++rejected_;

@@ -16,12 +16,13 @@ GeometricController::GeometricController(double mass, const Vector3& inertia, co
     : mass_(mass), inertia_(inertia), gains_(gains), gravity_(gravity)
 {
   const bool ok = mass > 0.0 && (inertia.array() > 0.0).all() && gains.kx > 0.0 && gains.kv > 0.0 &&
+                  gains.ki >= 0.0 && gains.integral_limit >= 0.0 &&
                   gains.kR > 0.0 && gains.kOmega > 0.0 && gains.yaw_weight > 0.0 && gains.yaw_weight <= 1.0 &&
                   gains.max_tilt > 0.0 && gains.max_tilt < geometry::kPi / 2.0 && (gains.max_rate.array() > 0.0).all();
   if (!ok) {
     throw std::invalid_argument(
         "GeometricController: mass, inertia, gains, max_tilt (0, pi/2) and max_rate must be positive, "
-        "yaw_weight in (0, 1]");
+        "yaw_weight in (0, 1], the integral gain and limit not negative");
   }
 }
 
@@ -80,21 +81,33 @@ ControlOutput GeometricController::update(const VehicleState& s, const Reference
   const Vector3 e_x = s.p_W - ref.p_W;
   const Vector3 e_v = s.v_W - ref.v_W;
   // Feedback acceleration, limited horizontally: a distant reference must not tip it over.
-  Vector3 a_fb = (-gains_.kx * e_x - gains_.kv * e_v) / mass_;
+  Vector3 a_fb = (-gains_.kx * e_x - gains_.kv * e_v + integralForce()) / mass_;
   const double horizontal = a_fb.head<2>().norm();
-  if (horizontal > gains_.max_acceleration) {
+  const bool horizontal_limited = horizontal > gains_.max_acceleration;
+  if (horizontal_limited) {
     a_fb.head<2>() *= gains_.max_acceleration / horizontal;
   }
   Vector3 thrust_W = mass_ * (a_fb + ref.a_W + gravity_ * e3);
   // Tilt limit: keep the vertical part, shorten the horizontal part. Never push downwards.
+  const bool vertical_limited = thrust_W.z() < 0.1 * mass_ * gravity_;
   thrust_W.z() = std::max(thrust_W.z(), 0.1 * mass_ * gravity_);
   const double max_horizontal = thrust_W.z() * std::tan(gains_.max_tilt);
   const double h = thrust_W.head<2>().norm();
-  if (h > max_horizontal) {
+  const bool tilt_limited = h > max_horizontal;
+  if (tilt_limited) {
     thrust_W.head<2>() *= max_horizontal / h;
   }
   if (!thrust_W.allFinite()) {
     return invalidOutput();  // finite inputs so far apart that the feedback overflows
+  }
+  // Anti-windup: an axis whose command was cut short does not integrate (the error there is
+  // the limit's, not the model's), and the integral's force stays within its limit.
+  if (integrating_ && gains_.ki > 0.0 && dt > 0.0) {
+    const bool hold_horizontal = horizontal_limited || tilt_limited;
+    const Vector3 step(hold_horizontal ? 0.0 : e_x.x() * dt, hold_horizontal ? 0.0 : e_x.y() * dt,
+                       vertical_limited ? 0.0 : e_x.z() * dt);
+    const double bound = gains_.integral_limit / gains_.ki;
+    integral_ = (integral_ + step).cwiseMax(-bound).cwiseMin(bound);
   }
   const Matrix3 R_WD = desiredAttitude(thrust_W, ref.yaw);
   // Ω_d from the change of the desired attitude, plus the yaw rate feed-forward.

@@ -27,9 +27,17 @@ std::vector<Sample> fly(const vehicle::VehicleParams& v, const GeometricGains& g
                         const std::function<Reference(double)>& reference, const plant::Environment& env,
                         double control_hz)
 {
-  const plant::QuadrotorDynamics dynamics(v);
-  GeometricController controller(v.mass, v.inertia, gains);
-  const Mixer mixer(v);
+  return flyMismatched(v, v, gains, s, seconds, reference, env, control_hz);
+}
+
+std::vector<Sample> flyMismatched(const vehicle::VehicleParams& plant, const vehicle::VehicleParams& model,
+                                  const GeometricGains& gains, plant::RigidBodyState s, double seconds,
+                                  const std::function<Reference(double)>& reference, const plant::Environment& env,
+                                  double control_hz)
+{
+  const plant::QuadrotorDynamics dynamics(plant);
+  GeometricController controller(model.mass, model.inertia, gains);
+  const Mixer mixer(model);
   const int steps_per_tick = static_cast<int>(std::lround(1000.0 / control_hz));
   const double dt = steps_per_tick * 1e-3;
   std::vector<Sample> out;

@@ -32,4 +32,11 @@ std::vector<Sample> fly(const vehicle::VehicleParams& v, const GeometricGains& g
                         const std::function<Reference(double)>& reference,
                         const plant::Environment& env = {}, double control_hz = 250.0);
 
+/// As fly(), with the controller believing `model` while the plant flies `plant` (a mass off
+/// its file, say).
+std::vector<Sample> flyMismatched(const vehicle::VehicleParams& plant, const vehicle::VehicleParams& model,
+                                  const GeometricGains& gains, plant::RigidBodyState initial, double seconds,
+                                  const std::function<Reference(double)>& reference,
+                                  const plant::Environment& env = {}, double control_hz = 250.0);
+
 }  // namespace quad::control::test

@@ -55,6 +55,10 @@ struct GeometricGains {
   double max_tilt = 0.6;    ///< [rad] desired thrust vector at most this far from vertical
   Vector3 max_rate{6.0, 6.0, 2.0};  ///< [rad/s] body rates the attitude loop may ask for
   double max_acceleration = 8.0;    ///< [m/s²] horizontal feedback acceleration limit
+  /// [N/(m s)] k_i: the position error's integral, for what the model leaves out (a mass
+  /// off its file, steady wind). 0: none.
+  double ki = 0.0;
+  double integral_limit = 5.0;      ///< [N] the most force the integral adds on each axis
   AttitudeError attitude_error = AttitudeError::kQuaternion;
 };
 
@@ -85,8 +89,18 @@ public:
   ControlOutput updateAttitude(const VehicleState& state, const Matrix3& R_WD, double thrust,
                                const Vector3& w_D_B = Vector3::Zero());
 
-  /// Forget the previous desired attitude (used for Ω_d by finite differences).
-  void reset() { have_previous_ = false; }
+  /// Forget the previous desired attitude (used for Ω_d by finite differences) and the
+  /// position error's integral.
+  void reset()
+  {
+    have_previous_ = false;
+    integral_.setZero();
+  }
+  /// Whether update() integrates the position error (the integral itself is kept when not):
+  /// off where the error is not the model's fault (on the ground, taking off, landing).
+  void integrate(bool on) { integrating_ = on; }
+  /// [N] the force the integral adds now.
+  Vector3 integralForce() const { return -gains_.ki * integral_; }
 
   const GeometricGains& gains() const { return gains_; }
 
@@ -102,6 +116,8 @@ private:
   Matrix3 previous_R_WD_ = Matrix3::Identity();
   Vector3 previous_b2_ = Vector3::UnitY();
   bool have_previous_ = false;
+  Vector3 integral_ = Vector3::Zero();  ///< [m s] ∫ e_x dt
+  bool integrating_ = true;
 };
 
 }  // namespace quad::control

@@ -46,6 +46,10 @@ const common::ParamTable<PlantNodeConfig>& plantTable()
                 "m/s^2", "accelerometer white noise std dev")
         .number("imu.gyro_noise", [](C& c) -> double& { return c.simulation.imu.gyro_noise_std; }, {0.0, 10.0},
                 "rad/s", "gyroscope white noise std dev")
+        .vector("wind.steady", [](C& c) -> Vector3& { return c.simulation.wind.steady_W; }, {-50.0, 50.0}, "m/s",
+                "steady wind, world frame")
+        .number("wind.turbulence_w20", [](C& c) -> double& { return c.simulation.wind.turbulence_w20; },
+                {0.0, 40.0}, "m/s", "Dryden turbulence (MIL-F-8785C) for this wind at 20 ft; 0: none")
         .vector("imu.accel_bias", [](C& c) -> Vector3& { return c.simulation.imu.accel_bias; }, {-10.0, 10.0},
                 "m/s^2", "accelerometer bias")
         .vector("imu.gyro_bias", [](C& c) -> Vector3& { return c.simulation.imu.gyro_bias; }, {-1.0, 1.0}, "rad/s",

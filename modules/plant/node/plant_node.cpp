@@ -58,6 +58,13 @@ PlantNode::PlantNode(PlantNodeConfig config, dds::ParticipantOptions options)
                config_.world_file.string(), sim_->world().obstacles().size(),
                config_.mode == PlantNodeConfig::Mode::kLockstep ? "lockstep" : "real-time",
                config_.simulation.seed);
+  const WindConfig& wind = config_.simulation.wind;
+  if (!wind.steady_W.isZero() || wind.turbulence_w20 > 0.0) {
+    spdlog::info("plant: wind ({:.1f}, {:.1f}, {:.1f}) m/s steady, turbulence {}", wind.steady_W.x(),
+                 wind.steady_W.y(), wind.steady_W.z(),
+                 wind.turbulence_w20 > 0.0 ? fmt::format("W20 {:.1f} m/s (Dryden, MIL-F-8785C)", wind.turbulence_w20)
+                                           : std::string("none"));
+  }
 }
 
 void PlantNode::event(msg::SimEventKind kind, std::int64_t subject, const std::string& detail)

@@ -17,7 +17,8 @@ Simulation::Simulation(vehicle::VehicleParams vehicle, world::World world, Simul
       config_(std::move(config)),
       camera_(config_.depth),
       guard_(vehicle, config_.command_timeout_ns, config_.command_failsafe_ns),
-      rng_(config_.seed)
+      rng_(config_.seed),
+      wind_(config_.wind, config_.seed ^ 0x9e3779b97f4a7c15ULL)
 {
   // RK4 is stable on the motor lag only while step/τ stays inside its region (2.78): keep a
   // margin, and refuse a vehicle whose motors are too fast for the step.
@@ -87,6 +88,7 @@ Environment Simulation::environment() const
 {
   Environment env;
   env.gravity_W = config_.gravity_W;
+  env.wind_W = wind_.current();
   for (const auto& a : faults_) {
     if (!a.applied) {
       continue;
@@ -150,6 +152,7 @@ StepOutputs Simulation::step()
 {
   StepOutputs out;
   const RotorArray command = guard_.command(t_ns_);
+  wind_.step(state_.p_W, state_.v_W, common::toSeconds(config_.step_ns));
   const Environment env = environment();
   const bool was_landed = state_.landed;
   dynamics_.step(state_, command, env, common::toSeconds(config_.step_ns));

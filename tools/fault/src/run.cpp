@@ -70,6 +70,17 @@ int runScenario(const FaultOptions& options)
     hosts[h.name] = h.kind == launch::HostKind::kNetns;
   }
   auto problems = checkAgainstModules(scenario, names, kinds, hosts);
+  for (auto& m : manifest->modules) {
+    const auto it = scenario.sets.find(m.name);
+    if (it == scenario.sets.end()) {
+      continue;
+    }
+    // Over the manifest's: a key it sets too is replaced, the others added.
+    for (const auto& [key, value] : it->second) {
+      std::erase_if(m.sets, [&](const auto& kv) { return kv.first == key; });
+      m.sets.emplace_back(key, value);
+    }
+  }
   // A module whose links a step breaks gets the datagram fault layer (UDP only).
   for (const auto& step : scenario.steps) {
     if (step.action.kind != Action::Kind::kDds) {

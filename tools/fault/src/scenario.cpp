@@ -78,7 +78,7 @@ public:
       r_.problem("(top level)", root, "expected a map with manifest, steps and outcome");
       r_.throwIfAny();
     }
-    r_.onlyKeys(root, "", {"name", "description", "manifest", "world", "mode", "end_at", "steps", "outcome"});
+    r_.onlyKeys(root, "", {"name", "description", "manifest", "world", "mode", "set", "end_at", "steps", "outcome"});
     if (root["name"].IsDefined()) {
       if (isName(root["name"])) {
         s.name = root["name"].Scalar();
@@ -99,6 +99,16 @@ public:
         r_.problem("mode", root["mode"], "expected realtime or lockstep");
       } else {
         s.mode = mode;
+      }
+    }
+    if (YAML::Node set = root["set"]; set.IsDefined()) {
+      if (!set.IsMap()) {
+        r_.problem("set", set, "expected a map of modules to their parameters, e.g. {plant: {wind.steady: '[0, 5, 0]'}}");
+      } else {
+        for (auto kv : set) {
+          const std::string module = kv.first.Scalar();
+          s.sets[module] = r_.scalars(kv.second, "set." + module);
+        }
       }
     }
     if (root["end_at"].IsDefined()) {
@@ -611,6 +621,11 @@ std::vector<std::string> checkAgainstModules(const Scenario& s, const std::vecto
     problems.push_back(common::configProblem(s.file.string(), key, value, why));
   };
   const std::string known = "not a module of " + s.manifest.filename().string() + " (" + joined(modules) + ")";
+  for (const auto& [module, values] : s.sets) {
+    if (!has(module)) {
+      problem("set." + module, module, known);
+    }
+  }
   for (std::size_t i = 0; i < s.steps.size(); ++i) {
     const Step& st = s.steps[i];
     const std::string key = "steps[" + std::to_string(i) + "]";

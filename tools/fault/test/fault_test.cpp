@@ -65,6 +65,7 @@ TEST_F(ScenarioFiles, EveryFaultKindAndExpectationIsRead)
 name: all
 manifest: manifest.yaml
 mode: realtime
+set: {plant: {wind.steady: "[0, 5, 0]", wind.turbulence_w20: 7.7}}
 steps:
   - at: 5
     kill: planning
@@ -81,6 +82,9 @@ steps:
 outcome: {mission: failure, collisions: 2, finite_actuators: false, recording_loss: any}
 )");
   EXPECT_EQ(s.name, "all");
+  ASSERT_EQ(s.sets.count("plant"), 1U);
+  EXPECT_EQ(s.sets.at("plant"), (std::vector<std::pair<std::string, std::string>>{
+                                    {"wind.steady", "[0, 5, 0]"}, {"wind.turbulence_w20", "7.7"}}));
   EXPECT_EQ(s.mode, "realtime");
   ASSERT_EQ(s.steps.size(), 6U);
   EXPECT_EQ(s.steps[0].action.describe(), "kill planning");
@@ -117,6 +121,7 @@ TEST_F(ScenarioFiles, MistakesAreNamedByKeyAndValue)
   const auto p = problems(R"(
 manifest: nowhere.yaml
 mode: sideways
+set: {plant: [1, 2]}
 steps:
   - {at: 5, kill: planning, pause: mapping}
   - {at: 4, explode: planning}
@@ -130,6 +135,7 @@ outcome: {mission: maybe, colisions: 1}
 )");
   EXPECT_TRUE(mentions(p, "s.yaml:manifest: nowhere.yaml: no such file")) << ::testing::PrintToString(p);
   EXPECT_TRUE(mentions(p, "mode: sideways: expected realtime or lockstep"));
+  EXPECT_TRUE(mentions(p, "set.plant: [1, 2]: expected a map"));
   EXPECT_TRUE(mentions(p, "one fault per step, found kill, pause"));
   EXPECT_TRUE(mentions(p, "steps[1].explode: planning: unknown fault"));
   EXPECT_TRUE(mentions(p, "steps[2].expect[0].mode: HOVERING: not a controller mode"));
@@ -256,16 +262,18 @@ TEST_F(ScenarioFiles, ModulesAreCheckedAgainstTheManifest)
 {
   const Scenario s = parse(R"(
 manifest: manifest.yaml
+set: {sim: {wind.steady: "[1, 0, 0]"}}
 steps:
   - {at: 1, kill: planner, expect: [{back: planner, within: 2}]}
   - {at: 2, plant: {kind: wind_gust, wind: [3, 0, 0], duration: 1}}
 )");
   const auto p = checkAgainstModules(s, {"mapping", "planning"}, {"mapping", "planning"});
+  EXPECT_TRUE(mentions(p, "set.sim: sim: not a module of manifest.yaml (mapping, planning)"));
   EXPECT_TRUE(mentions(p, "steps[0].kill: planner: not a module of manifest.yaml (mapping, planning)"))
       << ::testing::PrintToString(p);
   EXPECT_TRUE(mentions(p, "steps[0].expect[0].back: planner"));
   EXPECT_TRUE(mentions(p, "starts no plant to apply it"));
-  EXPECT_TRUE(checkAgainstModules(s, {"planner", "plant"}, {"planning", "plant"}).empty());
+  EXPECT_TRUE(checkAgainstModules(s, {"planner", "plant", "sim"}, {"planning", "plant", "plant"}).empty());
 
   // A datagram fault's sender is a participant, named after its module's kind.
   const Scenario d = parse(R"(

@@ -17,6 +17,7 @@
 #include "quad/plant/faults.hpp"
 #include "quad/plant/gimbal.hpp"
 #include "quad/plant/sensors.hpp"
+#include "quad/plant/wind.hpp"
 #include "quad/world/world.hpp"
 
 namespace quad::plant {
@@ -32,6 +33,7 @@ struct SimulationConfig {
   DepthCameraConfig depth;
   GimbalConfig gimbal;  ///< enabled: the depth camera hangs on it (at depth.position_B), not on its fixed mount
   ImuConfig imu;
+  WindConfig wind;  ///< steady wind and turbulence (gusts come as faults, on top)
   Vector3 gravity_W{0.0, 0.0, -9.81};
 };
 
@@ -101,6 +103,8 @@ public:
 
   /// Advances one step.
   StepOutputs step();
+  /// [m/s] the air's velocity at the vehicle, in the world (steady, turbulence, gusts).
+  Vector3 windAtVehicle() const { return environment().wind_W; }
 
   std::uint64_t collisionCount() const { return collisions_; }
 
@@ -122,6 +126,7 @@ private:
   std::optional<Gimbal> gimbal_;
   CommandGuard guard_;
   std::mt19937_64 rng_;
+  Wind wind_;  // its own generator: turbulence on or off leaves the sensors' draws as they were
   RigidBodyState state_;
   std::int64_t t_ns_ = 0;
   std::vector<Active> faults_;

@@ -113,6 +113,9 @@ struct Scenario {
   std::optional<std::filesystem::path> world; ///< absolute; replaces the manifest's
   std::optional<std::string> mode;            ///< "realtime" | "lockstep"; replaces the manifest's
   std::optional<double> end_s;                ///< sim time to end the run at (before the mission ends)
+  /// Per module, parameters it gets over the manifest's (`--set key=value`): the weather,
+  /// a vehicle's fault-prone settings.
+  std::map<std::string, std::vector<std::pair<std::string, std::string>>> sets;
   std::vector<Step> steps;                    ///< in time order
   Outcome outcome;
 };

@@ -117,7 +117,8 @@ struct ProgramLookup {
 std::filesystem::path findManifest(const std::string& name_or_path, const common::Layout& layout);
 
 /// Reads and validates a manifest. Relative paths are relative to the manifest's folder;
-/// `${world}`, `${mode}`, `${seed}` and `${root}` are expanded in module args, sets and environment.
+/// `${world}`, `${mode}`, `${seed}` and `${root}` are expanded in module args, sets and environment;
+/// `${run_state}` is left for the run (kRunStateVariable).
 /// Throws common::ConfigError listing every problem.
 Manifest loadManifest(const std::filesystem::path& file, const ManifestOverrides& overrides,
                       const ProgramLookup& lookup);

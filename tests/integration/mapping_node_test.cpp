@@ -27,6 +27,15 @@ std::map<std::string, std::string> env(int domain)
   return {{"QUAD_DOMAIN_ID", std::to_string(domain)}, {"QUAD_TRANSPORT", "udp"}};
 }
 
+/// A plant config in `dir`: the x500 in the demo world, lockstep with the mapper for `seconds`.
+void writePlantConfig(const std::filesystem::path& dir, double seconds)
+{
+  std::ofstream(dir / "plant.yaml") << "vehicle: " << QUAD_CONFIG_DIR << "/vehicles/x500.yaml\nworld: "
+                                    << QUAD_CONFIG_DIR << "/worlds/demo.yaml\n"
+                                    << "sim: {mode: lockstep, duration: " << seconds
+                                    << "}\nlockstep: {participants: mapping}\n";
+}
+
 TEST(MappingNode, LockstepRunMapsTheBoxAndSavesABtFile)
 {
   const int domain = 160;
@@ -35,9 +44,7 @@ TEST(MappingNode, LockstepRunMapsTheBoxAndSavesABtFile)
   const auto bt = dir / "map.bt";
   std::filesystem::remove(bt);
   std::ofstream(dir / "mapping.yaml") << "save_path: " << bt.string() << "\n";
-  std::ofstream(dir / "plant.yaml") << "vehicle: " << QUAD_CONFIG_DIR << "/vehicles/x500.yaml\nworld: "
-                                    << QUAD_CONFIG_DIR << "/worlds/demo.yaml\n"
-                                    << "sim: {mode: lockstep, duration: 3.0}\nlockstep: {participants: mapping}\n";
+  writePlantConfig(dir, 3.0);
   // GIVEN a mapper, and a controller holding the vehicle at 2 m
   ChildProcess mapping({QUAD_MAPPING_NODE, "--config", (dir / "mapping.yaml").string()}, env(domain));
   ChildProcess controller({QUAD_ALTITUDE_CONTROLLER, "757.5", "2.0"}, env(domain));
@@ -69,9 +76,7 @@ TEST(MappingNode, AMapperStartedAgainResumesFromItsCheckpoint)
   const auto bt = dir / "map.bt";
   std::ofstream(dir / "mapping.yaml") << "save_path: " << bt.string() << "\ncheckpoint: {file: "
                                       << (dir / "mapping.checkpoint").string() << "}\n";
-  std::ofstream(dir / "plant.yaml") << "vehicle: " << QUAD_CONFIG_DIR << "/vehicles/x500.yaml\nworld: "
-                                    << QUAD_CONFIG_DIR << "/worlds/demo.yaml\n"
-                                    << "sim: {mode: lockstep, duration: 2.0}\nlockstep: {participants: mapping}\n";
+  writePlantConfig(dir, 2.0);
   // GIVEN a mapper that mapped 2 s of flight and stopped
   {
     ChildProcess mapping({QUAD_MAPPING_NODE, "--config", (dir / "mapping.yaml").string()}, env(domain));

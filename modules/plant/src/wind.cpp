@@ -54,7 +54,13 @@ Vector3 DrydenTurbulence::step(const DrydenScales& scales, double airspeed, doub
 }
 
 Wind::Wind(WindConfig config, std::uint64_t seed)
-    : config_(std::move(config)), turbulence_(seed), current_(config_.steady_W)
+    : config_(std::move(config)),
+      along_(config_.steady_W.head<2>().norm() > 1e-9
+                 ? Vector3(config_.steady_W.x(), config_.steady_W.y(), 0.0).normalized()
+                 : Vector3::UnitX()),
+      across_(-along_.y(), along_.x(), 0.0),
+      turbulence_(seed),
+      current_(config_.steady_W)
 {
 }
 
@@ -66,11 +72,7 @@ Vector3 Wind::step(const Vector3& p_W, const Vector3& v_W, double dt)
   }
   const DrydenScales scales = lowAltitudeScales(p_W.z(), config_.turbulence_w20);
   const Vector3 gust = turbulence_.step(scales, (v_W - config_.steady_W).norm(), dt);
-  const Vector3 along = config_.steady_W.head<2>().norm() > 1e-9
-                            ? Vector3(config_.steady_W.x(), config_.steady_W.y(), 0.0).normalized()
-                            : Vector3::UnitX();
-  const Vector3 across(-along.y(), along.x(), 0.0);  // z × along
-  current_ += gust.x() * along + gust.y() * across + gust.z() * Vector3::UnitZ();
+  current_ += gust.x() * along_ + gust.y() * across_ + gust.z() * Vector3::UnitZ();
   return current_;
 }
 

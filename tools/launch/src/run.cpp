@@ -240,7 +240,6 @@ void LaunchRun::handleExit(const launch::Supervisor::Exit& e)
                                                            "cannot go on without it",
                                                            e.name, what);
     say(reason + ": ending the run");
-    ended_ = true;
     ended_by_ = EndedBy{e.name, common::steadyTimeNs(), reason};
     rec.phase = ModulePhase::kExited;
   } else if (st.restarts < it->respawn) {
@@ -293,7 +292,7 @@ bool LaunchRun::service(int timeout_ms)
     say(failure_);
     saveRecord();
   }
-  return !failed_ && !ended_ && !interrupted();
+  return !failed_ && !ended_by_ && !interrupted();
 }
 
 void LaunchRun::reportStall()

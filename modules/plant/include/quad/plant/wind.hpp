@@ -62,6 +62,8 @@ public:
 
 private:
   WindConfig config_;
+  Vector3 along_;   // the gusts' axes: the steady wind's horizontal direction,
+  Vector3 across_;  // and z × it
   DrydenTurbulence turbulence_;
   Vector3 current_;
 };

@@ -150,8 +150,7 @@ private:
   std::map<std::string, State> states_;
   std::vector<std::string> started_order_;
   bool failed_ = false;
-  bool ended_ = false;  // a module that ends the run exited normally, or as a fault meant it to
-  std::optional<EndedBy> ended_by_;
+  std::optional<EndedBy> ended_by_;  // set: a module that ends the run exited (normally, or by a fault)
   std::string failure_;
   std::int64_t start_ns_;
   std::optional<launch::MissionSummary> summary_;

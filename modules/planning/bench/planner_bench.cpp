@@ -14,7 +14,7 @@
 #include <utility>
 
 #include "quad/planning/dstar_lite.hpp"
-#include "quad/planning/indexed_heap.hpp"
+#include "quad/planning/bucket_queue.hpp"
 
 namespace {
 
@@ -124,8 +124,8 @@ struct AStarResult {
   std::vector<Cell> path;
 };
 
-/// A* from scratch on the planner's graph, in the same queue as D* Lite's (IndexedHeap: each
-/// cell once, its key lowered in place) with the same order: f, then g, then cell number. Its g
+/// A* from scratch on the planner's graph, in the same queue as D* Lite's (BucketQueue: each
+/// cell once, its key lowered in place, buckets one cell wide) with the same order: f, then g, then cell number. Its g
 /// and parent live in flat arrays over the lattice, reset in O(1) by a search number, so that
 /// neither side pays for hashing the other does not.
 class AStar {
@@ -135,8 +135,8 @@ public:
         g_(static_cast<std::size_t>(graph.lattice().size())),
         parent_(g_.size()),
         search_(g_.size(), 0),
-        slots_(g_.size(), kNotQueued),
-        open_(Slot{slots_.data()})
+        places_(g_.size()),
+        open_(Place{places_.data()}, Level{1.0 / graph.lattice().grid().resolution()})
   {
   }
 
@@ -185,9 +185,13 @@ private:
     double g;
     auto operator<=>(const Key&) const = default;  // f, then g
   };
-  struct Slot {
-    std::uint32_t* slots;
-    std::uint32_t& operator()(Cell c) const { return slots[static_cast<std::size_t>(c)]; }
+  struct Place {
+    QueuePlace* places;
+    QueuePlace& operator()(Cell c) const { return places[static_cast<std::size_t>(c)]; }
+  };
+  struct Level {
+    double per_metre;
+    std::uint32_t operator()(const Key& k) const { return static_cast<std::uint32_t>(k.f * per_metre + 0.38196601125); }
   };
 
   double g(Cell c) const
@@ -207,8 +211,8 @@ private:
   std::vector<double> g_;
   std::vector<Cell> parent_;
   std::vector<std::uint32_t> search_;
-  std::vector<std::uint32_t> slots_;
-  IndexedHeap<Key, Slot> open_;
+  std::vector<QueuePlace> places_;
+  BucketQueue<Key, Place, Level> open_;
   std::uint32_t number_ = 0;
 };
 

@@ -42,7 +42,7 @@ DStarLite::DStarLite(Lattice lattice, PlannerConfig config)
       dims_(lattice_.dims()),
       size_(lattice_.size()),
       pages_(static_cast<std::size_t>((size_ >> kPageBits) + 1)),
-      open_(VertexSlot{pages_.data()})
+      open_(VertexPlace{pages_.data()}, KeyLevel{1.0 / (kBucketWidth * lattice_.grid().resolution())})
 {
   if (config_.connectivity != 6 && config_.connectivity != 18 && config_.connectivity != 26) {
     throw std::invalid_argument("planner connectivity " + std::to_string(config_.connectivity) + ": expected 6, 18 or 26");
@@ -314,6 +314,7 @@ void DStarLite::setStart(Cell start)
   }
   km_ += heuristic(*last_, start);
   last_ = start;
+  open_.keysAged();
 }
 
 void DStarLite::cellChanged(Cell c, bool blocked)
@@ -418,9 +419,19 @@ PlanResult DStarLite::plan(std::uint64_t max_expansions)
   }
   const std::uint64_t pushes_before = pushes_;
   // ComputeShortestPath, optimised version (Koenig & Likhachev 2002, Fig. 4).
+  // Keys queued before the start moved are brought up to date a bucket at a time, as the
+  // search reaches them: a key update (the paper's lines 13-14) without a sift.
+  const auto fresh = [&](const auto& entry) {
+    const Key k = calculateKey(entry.cell);
+    if (entry.key < k) {
+      ++out.rekeys;
+    }
+    return k;
+  };
   while (!open_.empty()) {
-    const Cell u = open_.top().cell;
-    const Key k_old = open_.top().key;
+    const auto& top = open_.top(fresh);
+    const Cell u = top.cell;
+    const Key k_old = top.key;
     const Vertex* vstart = find(*start_);
     const double m_start = vstart ? std::min(vstart->g, vstart->rhs) : kInfinity;
     const Key k_start{m_start + km_, m_start};  // the heuristic from the start to itself is 0

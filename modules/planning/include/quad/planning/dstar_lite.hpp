@@ -7,11 +7,12 @@
 /// the vehicle's centre may go wherever a cell is free. Edge costs are Euclidean step
 /// lengths (6-, 18- or 26-connectivity), the heuristic is the obstacle-free lattice distance
 /// (consistent; see Heuristic), the key modifier k_m follows the moving start, the queue holds each cell once
-/// and changes its key in place (IndexedHeap), with deterministic tie-breaking (key, then cell
+/// and changes its key in place (BucketQueue), with deterministic tie-breaking (key, then cell
 /// number). The search's g and rhs live in
 /// pages of 4,096 consecutive cells, allocated when the search first touches one of them:
 /// memory grows with the region searched, not with the box, and a lookup is two indexings.
 
+#include <algorithm>
 #include <compare>
 #include <cstdint>
 #include <limits>
@@ -22,7 +23,7 @@
 #include <vector>
 
 #include "quad/geometry/grid.hpp"
-#include "quad/planning/indexed_heap.hpp"
+#include "quad/planning/bucket_queue.hpp"
 
 namespace quad::planning {
 
@@ -70,7 +71,7 @@ struct PlanResult {
   std::vector<Cell> cells;          ///< start first, goal last (when kOk)
   double cost = kInfinity;          ///< [m]
   std::uint64_t expansions = 0;     ///< vertices expanded (g settled or raised) by this replan
-  std::uint64_t rekeys = 0;         ///< queue entries whose key was out of date, requeued
+  std::uint64_t rekeys = 0;         ///< queue entries whose key was out of date, given their key now
   std::uint64_t heap_pushes = 0;    ///< cells queued or given a new key
 };
 
@@ -144,18 +145,30 @@ private:
   struct Vertex {
     double g = kInfinity;
     double rhs = kInfinity;
-    std::uint32_t slot = kNotQueued;  ///< its place in the queue
+    QueuePlace place;  ///< its place in the queue
   };
-  /// Finds a queued cell's slot. Holds the pages' array, which is sized once at construction
+  /// Finds a queued cell's place. Holds the pages' array, which is sized once at construction
   /// and keeps its address when the planner is moved.
-  struct VertexSlot {
+  struct VertexPlace {
     std::unique_ptr<Vertex[]>* pages;
-    std::uint32_t& operator()(Cell c) const
+    QueuePlace& operator()(Cell c) const
     {
       return pages[static_cast<std::size_t>(c >> kPageBits)][static_cast<std::size_t>(c & ((Cell{1} << kPageBits) - 1))]
-          .slot;
+          .place;
     }
   };
+  /// A key's bucket in the queue: its first component in steps of kBucketWidth lattice cells.
+  /// The offset keeps the buckets' bounds off the keys that straight paths along the axes
+  /// give (whole numbers of cells), where keys equal but for rounding would split.
+  struct KeyLevel {
+    double per_metre;
+    std::uint32_t operator()(const Key& k) const
+    {
+      constexpr double kLast = 1 << 24;
+      return static_cast<std::uint32_t>(std::min(k.k1 * per_metre + 0.38196601125, kLast));
+    }
+  };
+  static constexpr double kBucketWidth = 1.0;
   /// A neighbour offset: steps along the axes, the cell-number difference, the step length.
   struct Step {
     int dx, dy, dz;
@@ -202,7 +215,7 @@ private:
   std::unordered_map<VoxelIndex, Occupancy, geometry::VoxelIndexHash> voxels_;
   std::vector<std::unique_ptr<Vertex[]>> pages_;
   std::size_t allocated_pages_ = 0;
-  IndexedHeap<Key, VertexSlot> open_;
+  BucketQueue<Key, VertexPlace, KeyLevel> open_;
   std::optional<Cell> start_;
   std::optional<Cell> goal_;
   std::optional<Cell> last_;

@@ -9,6 +9,9 @@
 /// change of key, and most of a long search's time goes into popping what is out of date.
 ///
 /// A 4-ary heap: half the depth of a binary one, and its children are neighbours in memory.
+/// It orders itself when first asked for its top: cells queued into an empty heap are only
+/// appended until then, so a heap that is filled and then mostly left alone (a bucket of
+/// BucketQueue above the lowest) costs nothing to fill.
 
 #include <compare>
 #include <cstdint>
@@ -38,7 +41,14 @@ public:
 
   bool empty() const { return entries_.empty(); }
   std::size_t size() const { return entries_.size(); }
-  const Entry& top() const { return entries_.front(); }
+  /// The least entry; the heap must not be empty.
+  const Entry& top()
+  {
+    order();
+    return entries_.front();
+  }
+  /// Every queued entry, in no particular order.
+  const std::vector<Entry>& entries() const { return entries_; }
 
   /// Queues `cell` with `key`, or changes its key when it is queued already.
   void set(Cell cell, const Key& key)
@@ -47,10 +57,16 @@ public:
     if (at == kNotQueued) {
       at = static_cast<std::uint32_t>(entries_.size());
       entries_.push_back({key, cell});
-      up(at);
+      if (ordered_) {
+        up(at);
+      }
       return;
     }
     const std::uint32_t i = at;
+    if (!ordered_) {
+      entries_[i].key = key;
+      return;
+    }
     const bool lower = before({key, cell}, entries_[i]);
     entries_[i].key = key;
     if (lower) {
@@ -71,16 +87,31 @@ public:
     at = kNotQueued;
     const Entry last = entries_.back();
     entries_.pop_back();
+    if (entries_.empty()) {
+      ordered_ = false;
+    }
     if (last.cell == cell) {
       return;
     }
     // The last entry fills the hole; it may belong above or below it.
     place(i, last);
-    up(i);
-    down(slot_(last.cell));
+    if (ordered_) {
+      up(i);
+      down(slot_(last.cell));
+    }
   }
 
-  void pop() { remove(entries_.front().cell); }
+  void pop() { remove(top().cell); }
+
+  /// Empties the queue, marking every queued cell as not queued, and gives what it held.
+  std::vector<Entry> take()
+  {
+    for (const Entry& e : entries_) {
+      slot_(e.cell) = kNotQueued;
+    }
+    ordered_ = false;
+    return std::exchange(entries_, {});
+  }
 
   /// Empties the queue, marking every queued cell as not queued.
   void clear()
@@ -89,6 +120,7 @@ public:
       slot_(e.cell) = kNotQueued;
     }
     entries_.clear();
+    ordered_ = false;
   }
 
 private:
@@ -98,6 +130,19 @@ private:
   {
     const auto order = a.key <=> b.key;  // one comparison of the keys, not two
     return order != 0 ? order < 0 : a.cell < b.cell;
+  }
+
+  /// Makes a heap of what was appended (Floyd: sift down every parent, last first).
+  void order()
+  {
+    if (ordered_) {
+      return;
+    }
+    ordered_ = true;
+    const auto n = static_cast<std::uint32_t>(entries_.size());
+    for (std::uint32_t i = n > 1 ? (n - 2) / kArity + 1 : 0; i-- > 0;) {
+      down(i);
+    }
   }
 
   void place(std::uint32_t i, const Entry& e)
@@ -147,6 +192,7 @@ private:
 
   Slot slot_;
   std::vector<Entry> entries_;
+  bool ordered_ = false;  // a heap; when not, entries_ is in the order of arrival
 };
 
 }  // namespace quad::planning

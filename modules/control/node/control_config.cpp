@@ -79,6 +79,10 @@ const common::ParamTable<ControlNodeConfig>& controlTable()
                 {0.0, 3600.0}, "s", "hover without a path, then land")
         .number("modes.no_path_land_after", [](C& c) -> double& { return c.flight.modes.no_path_land_after; },
                 {0.0, 3600.0}, "s", "hover while the planner says the goal cannot be reached, then land")
+        .number("modes.geofence_return_after",
+                [](C& c) -> double& { return c.flight.modes.geofence_return_after; }, {0.0, 3600.0}, "s",
+                "hold after the vehicle left the geofence, then return to the take-off point and land")
+        .include(common::geofenceTable(), [](C& c) -> common::Geofence& { return c.flight.geofence; })
         .number("camera.look_ahead", [](C& c) -> double& { return c.flight.camera_look_ahead; }, {0.1, 100.0}, "m",
                 "the camera gimbal looks at the path this far ahead")
         .number("modes.idle_disarm_after", [](C& c) -> double& { return c.flight.modes.idle_disarm_after; },
@@ -95,6 +99,11 @@ const common::ParamTable<ControlNodeConfig>& controlTable()
 
 common::ParamSchema controlSchema() { return controlTable().schema(); }
 
-ControlNodeConfig controlConfigFrom(const common::Params& p) { return controlTable().read(p, common::configDir()); }
+ControlNodeConfig controlConfigFrom(const common::Params& p)
+{
+  ControlNodeConfig c = controlTable().read(p, common::configDir());
+  common::checkGeofence(c.flight.geofence, p.origin());
+  return c;
+}
 
 }  // namespace quad::control

@@ -98,6 +98,8 @@ msg::FailsafeReason toMessage(Reason reason)
       return msg::FAILSAFE_COMMANDED;
     case Reason::kNoPath:
       return msg::FAILSAFE_NO_PATH;
+    case Reason::kGeofence:
+      return msg::FAILSAFE_GEOFENCE;
   }
   return msg::FAILSAFE_NONE;
 }

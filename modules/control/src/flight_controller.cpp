@@ -190,6 +190,7 @@ FlightOutput FlightController::update(double t)
   in.goal_reached = state_ && goal_ && (state_->p_W - *goal_).norm() <= goal_tolerance_ &&
                     (modes_.mode() != Mode::kMission || follower_.finished());
   in.returned = modes_.mode() == Mode::kReturn && follower_.finished();
+  in.outside_geofence = state_ && !config_.geofence.contains(state_->p_W);
   if (state_ && (modes_.mode() == Mode::kMission || modes_.mode() == Mode::kHover) &&
       (flown_.empty() || (state_->p_W - flown_.back()).norm() >= kBreadcrumbSpacing)) {
     flown_.push_back(state_->p_W);

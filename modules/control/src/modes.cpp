@@ -43,6 +43,8 @@ std::string_view toString(Reason r)
       return "commanded";
     case Reason::kNoPath:
       return "no path";
+    case Reason::kGeofence:
+      return "geofence";
   }
   return "?";
 }
@@ -163,6 +165,23 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
   if (commanded(Command::kHold) && mode_ != Mode::kHover) {
     return go(Mode::kHover, Reason::kCommanded, "commanded: hold", in.t);
   }
+  // Pushed out of the keep-in volume: brake and hold where it is, then return. RETURN and
+  // the landings carry on wherever they are.
+  const bool holding_for_fence = mode_ == Mode::kHover && reason_ == Reason::kGeofence;
+  if (in.outside_geofence && !holding_for_fence &&
+      (mode_ == Mode::kTakeoff || mode_ == Mode::kMission || mode_ == Mode::kHover)) {
+    return go(Mode::kHover, Reason::kGeofence, "outside the geofence: holding", in.t);
+  }
+  if (holding_for_fence) {
+    if (commanded(Command::kStartMission)) {
+      refuse("holding after leaving the geofence");
+      return std::nullopt;
+    }
+    if (in.t - entered_ >= config_.geofence_return_after) {
+      return go(Mode::kReturn, Reason::kGeofence, "left the geofence: returning to land at the take-off point", in.t);
+    }
+    return std::nullopt;
+  }
   switch (mode_) {
     case Mode::kTakeoff:
       if (in.takeoff_altitude_reached) {
@@ -218,7 +237,8 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
       break;
     case Mode::kLand:
       if (in.landed) {
-        return go(Mode::kIdle, reason_ == Reason::kNoPath ? Reason::kNoPath : Reason::kNone, "landed", in.t);
+        const bool told = reason_ == Reason::kNoPath || reason_ == Reason::kGeofence;  // why the flight ended
+        return go(Mode::kIdle, told ? reason_ : Reason::kNone, "landed", in.t);
       }
       break;
     case Mode::kReturn:

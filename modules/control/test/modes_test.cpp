@@ -87,6 +87,9 @@ TEST(Modes, EveryConditionInEveryMode)
       {"goal reached", [](ModeInputs& i) { i.goal_reached = true; }, {D, I, T, H, H, L, F, R}},
       {"no path", [](ModeInputs& i) { i.no_path = true; i.path_fresh = false; }, {D, I, T, H, H, L, F, R}},
       {"returned", [](ModeInputs& i) { i.returned = true; }, {D, I, T, M, H, L, F, L}},
+      // Pushed out of the keep-in volume: hold (HOVER, reason geofence); the landings and
+      // RETURN carry on.
+      {"outside the geofence", [](ModeInputs& i) { i.outside_geofence = true; }, {D, I, H, H, H, L, F, R}},
       // Only a controller started in flight is disarmed in the air: it takes over.
       {"in the air", [](ModeInputs& i) { i.landed = false; }, {H, I, T, M, H, L, F, R}},
   };
@@ -119,6 +122,46 @@ TEST(Modes, AControllerStartedInFlightTakesOverWhateverIsAskedOnceItHasAFreshSta
   EXPECT_EQ(tr->from, Mode::kDisarmed);
   EXPECT_EQ(tr->to, Mode::kHover);
   EXPECT_EQ(tr->why, "took over in the air: holding position");
+}
+
+TEST(Modes, LeavingTheGeofenceHoldsThenReturnsAndLandsSayingWhy)
+{
+  ModeConfig config;
+  config.geofence_return_after = 2.0;
+  ModeMachine m = machineIn(Mode::kMission, config);
+  ModeInputs in;
+  in.landed = false;
+  in.path_fresh = true;
+  in.t = 10.0;
+  in.outside_geofence = true;
+  auto tr = m.update(in);
+  ASSERT_TRUE(tr.has_value());
+  EXPECT_EQ(tr->to, Mode::kHover);
+  EXPECT_EQ(tr->reason, Reason::kGeofence);
+  // Back inside, with a path: the hold still runs its course, and no mission starts.
+  in.outside_geofence = false;
+  in.t = 11.0;
+  in.command = Command::kStartMission;
+  EXPECT_FALSE(m.update(in).has_value());
+  EXPECT_EQ(m.refused(), "start mission refused in HOVER: holding after leaving the geofence");
+  in.command = Command::kNone;
+  in.t = 11.9;
+  EXPECT_FALSE(m.update(in).has_value());
+  in.t = 12.0;
+  tr = m.update(in);
+  ASSERT_TRUE(tr.has_value());
+  EXPECT_EQ(tr->to, Mode::kReturn);
+  EXPECT_EQ(tr->reason, Reason::kGeofence);
+  // Outside again on the way back: RETURN carries on.
+  in.outside_geofence = true;
+  EXPECT_FALSE(m.update(in).has_value());
+  in.returned = true;
+  EXPECT_EQ(m.update(in)->to, Mode::kLand);
+  in.landed = true;
+  tr = m.update(in);
+  ASSERT_TRUE(tr.has_value());
+  EXPECT_EQ(tr->to, Mode::kIdle);
+  EXPECT_EQ(tr->reason, Reason::kGeofence);
 }
 
 TEST(Modes, TransitionsCarryTheirReason)

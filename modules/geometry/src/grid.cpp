@@ -102,6 +102,15 @@ std::optional<std::int64_t> Lattice::cellAt(const Vector3& p) const
   return cell(grid_.toIndex(p));
 }
 
+std::int64_t Lattice::nearestCell(const Vector3& p) const
+{
+  VoxelIndex i = grid_.toIndex(p);
+  for (int axis = 0; axis < 3; ++axis) {
+    i[axis] = std::clamp(i[axis], origin_[axis], origin_[axis] + dims_[axis] - 1);
+  }
+  return *cell(i);
+}
+
 Vector3 Lattice::centre(std::int64_t c) const { return grid_.centre(voxel(c)); }
 
 }  // namespace quad::geometry

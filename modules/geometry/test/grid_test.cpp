@@ -81,6 +81,9 @@ TEST(Grid, LatticeCellsAndVoxelsAreInBijection)
   }
   EXPECT_FALSE(lattice.cell(lattice.origin() - VoxelIndex(1, 0, 0)).has_value());
   EXPECT_FALSE(lattice.cellAt(Vector3(10, 0, 1)).has_value());
+  // Outside, the nearest cell is the boundary cell next to the point; inside, the point's own.
+  EXPECT_EQ(lattice.centre(lattice.nearestCell(Vector3(10, 0.3, -4))), Vector3(2.75, 0.25, 0.25));
+  EXPECT_EQ(lattice.nearestCell(Vector3(0.1, -0.6, 1.1)), *lattice.cellAt(Vector3(0.1, -0.6, 1.1)));
   EXPECT_THROW(lattice.voxel(160), std::out_of_range);
   EXPECT_THROW(lattice.voxel(-1), std::out_of_range);
   EXPECT_THROW(Lattice(VoxelGrid(0.5), Vector3(0, 0, 0), Vector3(0.1, 1, 1)), std::invalid_argument);

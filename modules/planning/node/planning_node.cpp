@@ -202,11 +202,13 @@ void PlanningNode::replan(std::int64_t t_ns)
   if (!goal_id_ || !position_) {
     return;
   }
-  // Below or above the altitude band (taking off, say), plan from the band's nearest layer.
-  Vector3 from = *position_;
-  from.z() = std::clamp(from.z(), config_.bounds_min.z() + 0.5 * config_.resolution,
-                        config_.bounds_max.z() - 0.5 * config_.resolution);
-  auto start = planner_.lattice().cellAt(from);
+  // Outside the lattice (below the ground clearance taking off, or between the geofence and
+  // its margin), plan from its nearest cell: the controller, not the planner, answers for a
+  // vehicle outside the geofence.
+  std::optional<Cell> start;
+  if (position_->allFinite()) {
+    start = planner_.lattice().nearestCell(*position_);
+  }
   if (start && !planner_.traversable(*start)) {
     // Drifted into an inflated margin (or a cell just became blocked): leave it by the
     // nearest free cell rather than report the start blocked.

@@ -23,6 +23,7 @@ const common::ParamTable<PlanningParams>& planningTable()
                 "an optional band: lowest cell centres planned through")
         .number("altitude.max", [](P& p) -> double& { return p.altitude_max; }, {-1e4, 1e4}, "m",
                 "an optional band: highest cell centres planned through")
+        .include(common::geofenceTable(), [](P& p) -> common::Geofence& { return p.geofence; })
         .number("known_free.radius", [](P& p) -> double& { return p.known_space.radius; }, {0.0, 10.0}, "m",
                 "around the path's centre line, every voxel must be known free for the follower to fly it")
         .number("known_free.horizon", [](P& p) -> double& { return p.known_space.horizon; }, {0.0, 1e3}, "m",
@@ -48,7 +49,12 @@ const common::ParamTable<PlanningParams>& planningTable()
 
 common::ParamSchema planningSchema() { return planningTable().schema(); }
 
-PlanningParams planningParamsOf(const common::Params& params) { return planningTable().read(params, common::configDir()); }
+PlanningParams planningParamsOf(const common::Params& params)
+{
+  PlanningParams p = planningTable().read(params, common::configDir());
+  common::checkGeofence(p.geofence, params.origin());
+  return p;
+}
 
 void fitToWorld(PlanningParams& c, const Vector3& world_min, const Vector3& world_max, double vehicle_radius,
                 const std::string& origin)
@@ -65,12 +71,18 @@ void fitToWorld(PlanningParams& c, const Vector3& world_min, const Vector3& worl
   }
   c.bounds_min.z() = std::max(c.bounds_min.z(), c.altitude_min);
   c.bounds_max.z() = std::min(c.bounds_max.z(), c.altitude_max);
+  // The geofence less the margin: following the path, the vehicle stays inside.
+  for (int axis = 0; axis < 3; ++axis) {
+    const auto i = static_cast<std::size_t>(axis);
+    c.bounds_min[axis] = std::max(c.bounds_min[axis], c.geofence.min[i] + c.safety_margin);
+    c.bounds_max[axis] = std::min(c.bounds_max[axis], c.geofence.max[i] - c.safety_margin);
+  }
   for (int axis = 0; axis < 3; ++axis) {
     if (c.bounds_min[axis] + c.resolution > c.bounds_max[axis]) {
       const bool vertical = axis == 2;
       throw common::ConfigError({common::configProblem(
           origin, vertical ? "ground_clearance" : "safety_margin", vertical ? c.ground_clearance : c.safety_margin,
-          "leaves less than a cell of the world's bounds to plan in (with the altitude band, if any)")});
+          "leaves less than a cell of the world's bounds to plan in (with the altitude band and the geofence, if any)")});
     }
   }
   // The vehicle's own volume is free (it is there) but partly behind its camera.

@@ -65,7 +65,7 @@ QuadrotorDynamics::Derivative QuadrotorDynamics::derivative(const RigidBodyState
   const Wrench f = wrench(s, env);
   const geometry::Matrix3 R = geometry::toMatrix(s.q_WB);
   d.dp = s.v_W;
-  d.dv = R * f.force_B / params_.mass + env.gravity_W;
+  d.dv = (R * f.force_B + env.force_W) / params_.mass + env.gravity_W;
   // q̇ = ½ q ⊗ (0, ω_B)
   const Quaternion half = s.q_WB * Quaternion{0.0, s.w_B.x(), s.w_B.y(), s.w_B.z()};
   d.dq = {0.5 * half.w, 0.5 * half.x, 0.5 * half.y, 0.5 * half.z};

@@ -52,6 +52,8 @@ std::string_view toString(Fault::Kind k)
       return "sensor_noise";
     case Fault::Kind::kWindGust:
       return "wind_gust";
+    case Fault::Kind::kPush:
+      return "push";
   }
   return "?";
 }
@@ -72,6 +74,9 @@ std::string Fault::describe() const
       break;
     case Kind::kWindGust:
       out += ": wind " + common::formatValue(std::vector<double>{wind_W.x(), wind_W.y(), wind_W.z()}) + " m/s";
+      break;
+    case Kind::kPush:
+      out += ": force " + common::formatValue(std::vector<double>{force_W.x(), force_W.y(), force_W.z()}) + " N";
       break;
   }
   return out;
@@ -121,16 +126,19 @@ std::optional<Fault> parseFault(common::YamlReader& r, YAML::Node f, const std::
       ok = ok && s;
       fault.magnitude = s.value_or(0.0);
     }
-  } else if (kind == "wind_gust") {
-    allowed.insert("wind");
-    fault.kind = Fault::Kind::kWindGust;
-    const auto w = r.numbers(f["wind"], key + ".wind", 3, -1e3, 1e3);
-    ok = ok && w;
-    if (w) {
-      fault.wind_W = {(*w)[0], (*w)[1], (*w)[2]};
+  } else if (kind == "wind_gust" || kind == "push") {
+    // A vector in the world frame: the gust's wind [m/s], the push's force [N].
+    const bool gust = kind == "wind_gust";
+    const std::string name = gust ? "wind" : "force";
+    allowed.insert(name);
+    fault.kind = gust ? Fault::Kind::kWindGust : Fault::Kind::kPush;
+    const auto v = r.numbers(f[name], key + "." + name, 3, -1e3, 1e3);
+    ok = ok && v;
+    if (v) {
+      (gust ? fault.wind_W : fault.force_W) = {(*v)[0], (*v)[1], (*v)[2]};
     }
   } else {
-    r.problem(key + ".kind", f["kind"], "expected motor, sensor_dropout, sensor_stuck, sensor_noise or wind_gust");
+    r.problem(key + ".kind", f["kind"], "expected motor, sensor_dropout, sensor_stuck, sensor_noise, wind_gust or push");
     return std::nullopt;
   }
   for (const auto& entry : f) {

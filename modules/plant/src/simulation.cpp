@@ -97,6 +97,8 @@ Environment Simulation::environment() const
       env.rotor_efficiency[static_cast<std::size_t>(a.fault.rotor)] *= a.fault.magnitude;
     } else if (a.fault.kind == Fault::Kind::kWindGust) {
       env.wind_W += a.fault.wind_W;
+    } else if (a.fault.kind == Fault::Kind::kPush) {
+      env.force_W += a.fault.force_W;
     }
   }
   return env;

@@ -39,6 +39,30 @@ TEST(Dynamics, FreeFallMatchesHalfGTSquared)
   EXPECT_NEAR(s.p_W.x(), 1.0, 1e-12);
 }
 
+TEST(Dynamics, APushAddsItsImpulseOverTheMass)
+{
+  // GIVEN a drag-free vehicle falling from rest, once alone and once pushed sideways and up
+  const QuadrotorDynamics dyn(dragFree());
+  RigidBodyState alone;
+  alone.p_W = {0.0, 0.0, 100.0};
+  RigidBodyState pushed = alone;
+  Environment push;
+  push.force_W = {0.0, 6.0, 4.0};  // [N]
+  // WHEN the push lasts 0.5 s
+  const double dt = 1e-3;
+  for (int k = 0; k < 500; ++k) {
+    dyn.step(alone, all(0.0), Environment{}, dt);
+    dyn.step(pushed, all(0.0), push, dt);
+  }
+  // THEN the velocities differ by F t / m and the positions by F t² / 2m (m = 2 kg)
+  const Vector3 dv = pushed.v_W - alone.v_W;
+  const Vector3 dp = pushed.p_W - alone.p_W;
+  EXPECT_NEAR(dv.y(), 6.0 * 0.5 / 2.0, 1e-9);
+  EXPECT_NEAR(dv.z(), 4.0 * 0.5 / 2.0, 1e-9);
+  EXPECT_NEAR(dp.y(), 6.0 * 0.25 / 4.0, 1e-9);
+  EXPECT_NEAR(dv.x(), 0.0, 1e-12);
+}
+
 TEST(Dynamics, HoverNeedsTotalThrustMGAndStaysPut)
 {
   const QuadrotorDynamics dyn(dragFree());

@@ -270,9 +270,12 @@ TEST(FaultSchedule, FileIsValidatedAndParsed)
 - {id: 2, kind: sensor_dropout, sensor: depth, at: 3}
 - {id: 3, kind: wind_gust, wind: [4, 0, 0], at: 1, duration: 2}
 - {id: 4, kind: sensor_noise, sensor: imu, std_dev: 0.5, at: 0}
+- {id: 5, kind: push, force: [0, -20, 0], at: 6, duration: 0.5}
 )",
                                          "faults.yaml");
-  ASSERT_EQ(faults.size(), 4U);
+  ASSERT_EQ(faults.size(), 5U);
+  EXPECT_EQ(faults[4].kind, Fault::Kind::kPush);
+  EXPECT_EQ(faults[4].force_W, Vector3(0, -20, 0));
   EXPECT_EQ(faults[0].rotor, 2);
   EXPECT_EQ(faults[0].start_ns, 10'000'000'000);
   EXPECT_EQ(faults[1].sensor, Sensor::kDepth);
@@ -287,11 +290,11 @@ TEST(FaultSchedule, FileIsValidatedAndParsed)
   } catch (const common::ConfigError& e) {
     ASSERT_EQ(e.problems().size(), 4U) << e.what();
     EXPECT_EQ(e.problems()[3], "faults.yaml:[3].kind: (missing): expected motor, sensor_dropout, "
-                               "sensor_stuck, sensor_noise or wind_gust");
+                               "sensor_stuck, sensor_noise, wind_gust or push");
     EXPECT_EQ(e.problems()[0], "faults.yaml:[0].rotor: 5: out of range [0, 3]");
     EXPECT_EQ(e.problems()[1], "faults.yaml:[1].sensor: lidar: expected depth, imu or state");
     EXPECT_EQ(e.problems()[2], "faults.yaml:[2].kind: meteor: expected motor, sensor_dropout, "
-                               "sensor_stuck, sensor_noise or wind_gust");
+                               "sensor_stuck, sensor_noise, wind_gust or push");
   }
 }
 

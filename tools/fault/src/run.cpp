@@ -49,6 +49,7 @@ int runScenario(const FaultOptions& options)
   if (scenario.world) {
     lo.world = scenario.world->string();
   }
+  lo.geofence = scenario.geofence;
   lo.realtime = scenario.mode == "realtime";
   lo.lockstep = scenario.mode == "lockstep";
   lo.domain = options.domain;

@@ -78,7 +78,8 @@ public:
       r_.problem("(top level)", root, "expected a map with manifest, steps and outcome");
       r_.throwIfAny();
     }
-    r_.onlyKeys(root, "", {"name", "description", "manifest", "world", "mode", "set", "end_at", "steps", "outcome"});
+    r_.onlyKeys(root, "",
+                {"name", "description", "manifest", "world", "mode", "geofence", "set", "end_at", "steps", "outcome"});
     if (root["name"].IsDefined()) {
       if (isName(root["name"])) {
         s.name = root["name"].Scalar();
@@ -93,6 +94,7 @@ public:
       s.manifest = *m;
     }
     s.world = path(root["world"], "world", false);
+    s.geofence = common::readGeofence(root["geofence"], "geofence", r_);
     if (root["mode"].IsDefined()) {
       const std::string mode = root["mode"].IsScalar() ? root["mode"].Scalar() : "";
       if (mode != "realtime" && mode != "lockstep") {

@@ -39,6 +39,9 @@ bool Manifest::usesNamespaces() const
 
 namespace {
 
+/// The modules that act on the manifest's geofence.
+const std::set<std::string> kGeofenceModules{"planning", "control"};
+
 /// The modules quad builds, by the name a manifest gives them.
 const std::map<std::string, std::string> kBuiltModules{
     {"plant", "modules/plant/node/quad_plant_node"},
@@ -306,6 +309,17 @@ void readModule(const std::string& name, YAML::Node spec, Reader& r, const Progr
   mod.respawn = static_cast<int>(r.number(spec["respawn"], key + ".respawn", 0, 0, 100).value_or(0));
   mod.backoff_s = r.number(spec["backoff"], key + ".backoff", 1.0, 0.0, 600.0).value_or(1.0);
   mod.ends_run = r.flag(spec["ends_run"], key + ".ends_run", false).value_or(false);
+  // The manifest's geofence reaches the modules that act on it; one given to a module alone
+  // would leave the others without it.
+  if (kGeofenceModules.contains(mod.kind)) {
+    for (const auto& [k, v] : common::geofenceSets(m.geofence.value_or(common::Geofence{}))) {
+      if (spec["set"] && spec["set"][k]) {
+        r.problem(key + ".set." + k, spec["set"][k], "give the run's keep-in volume as the manifest's geofence");
+      } else if (m.geofence) {
+        mod.sets.emplace_back(k, v);
+      }
+    }
+  }
   m.modules.push_back(std::move(mod));
 }
 
@@ -323,7 +337,7 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
     r.throwIfAny();
   }
   r.onlyKeys(root, "", {"name", "domain", "transport", "discovery", "subnet", "world", "mode", "seed", "grace", "env",
-                        "security", "network", "hosts", "modules", "mission"});
+                        "security", "network", "hosts", "modules", "mission", "geofence"});
   m.name = r.text(root["name"], "name", origin.stem().string()).value_or("run");
   if (overrides.domain) {
     m.domain = overrides.domain;
@@ -392,6 +406,7 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
   for (const auto& [k, v] : r.scalars(root["env"], "env")) {
     m.environment[k] = expand(v, vars, r, "env." + k, root["env"][k]);
   }
+  m.geofence = overrides.geofence ? overrides.geofence : common::readGeofence(root["geofence"], "geofence", r);
   YAML::Node modules = root["modules"];
   if (!modules || !modules.IsMap() || modules.size() == 0) {
     r.problem("modules", modules, "expected a map of module names to modules, in start order");

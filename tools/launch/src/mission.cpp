@@ -52,8 +52,12 @@ void MissionTracker::onState(double t, const Eigen::Vector3d& p)
   }
 }
 
-void MissionTracker::onMode(double t, const std::string& mode)
+void MissionTracker::onMode(double t, const std::string& mode, bool geofence)
 {
+  if (geofence && !left_fence_t_ && !finished_) {
+    left_fence_t_ = t;
+    progress_.push_back(fmt::format("t = {:.1f} s: the vehicle left the geofence", t));
+  }
   if (mode == mode_ || finished_) {
     return;
   }
@@ -65,6 +69,9 @@ void MissionTracker::onMode(double t, const std::string& mode)
     const double to_goal = last_p_ ? (last_p_->head<2>() - goal_.head<2>()).norm() : 0.0;
     if (goal_reached_ && to_goal <= mission_.tolerance_m + 0.5) {
       finishAtGoal("landed at the goal");
+    } else if (left_fence_t_) {
+      const std::string why = fmt::format("left the geofence at t = {:.1f} s", *left_fence_t_);
+      finish(MissionEnd::kFailed, fmt::format("landed {:.2f} m from the goal: {}", to_goal, why), why);
     } else if (!no_path_.empty()) {
       finish(MissionEnd::kNoPath, fmt::format("landed {:.2f} m from the goal: {}", to_goal, no_path_), no_path_);
     } else {
@@ -156,10 +163,20 @@ std::string_view toString(MissionEnd end)
   return "?";
 }
 
-std::optional<std::string> goalProblem(const world::World& world, double radius)
+std::optional<std::string> goalProblem(const world::World& world, double radius, const common::Geofence& fence)
 {
   const Eigen::Vector3d& g = world.goal();
   const std::string goal = fmt::format("the goal ({}, {}, {})", g.x(), g.y(), g.z());
+  const auto fenced = [&](const std::string& what) {
+    return fmt::format("{} is outside the geofence ({}, {}, {}) ... ({}, {}, {})", what, fence.min[0], fence.min[1],
+                       fence.min[2], fence.max[0], fence.max[1], fence.max[2]);
+  };
+  if (!fence.contains(g)) {
+    return fenced(goal);
+  }
+  if (const Eigen::Vector3d& s = world.start(); !fence.contains(s)) {
+    return fenced(fmt::format("the start ({}, {}, {})", s.x(), s.y(), s.z()));
+  }
   if (!world.bounds().contains(g)) {
     const auto& b = world.bounds();
     return fmt::format("{} is outside the world's bounds ({}, {}, {}) ... ({}, {}, {})", goal, b.min.x(), b.min.y(),

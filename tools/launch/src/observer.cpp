@@ -97,7 +97,7 @@ std::string noPathReason(int status)
     case msg::PLAN_GOAL_BLOCKED:
       return "no path: the goal lies in an obstacle (or within the vehicle's radius and margin of one)";
     case msg::PLAN_OUT_OF_BOUNDS:
-      return "no path: the goal is outside the planning bounds";
+      return "no path: the goal is outside the planning bounds (the world's, less the margins, within the geofence)";
     default:
       return "";
   }
@@ -158,7 +158,8 @@ void Observer::update()
     return;
   }
   for (const auto& s : endpoints_->status.takeAll()) {
-    tracker_->onMode(common::toSeconds(s.header().stamp_ns()), controlModeName(static_cast<int>(s.mode())));
+    tracker_->onMode(common::toSeconds(s.header().stamp_ns()), controlModeName(static_cast<int>(s.mode())),
+                     s.failsafe_reason() == msg::FAILSAFE_GEOFENCE);
   }
   for (const auto& p : endpoints_->path.takeAll()) {
     tracker_->onPath(p.version(), noPathReason(p.status()));

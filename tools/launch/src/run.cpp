@@ -460,7 +460,7 @@ int LaunchRun::execute(RunExtension* extension)
   if (m_.mission.enabled) {
     world = world::loadWorld(m_.world);
     const double radius = m_.mission.vehicle.empty() ? 0.0 : vehicle::loadVehicle(m_.mission.vehicle).radius;
-    if (const auto problem = launch::goalProblem(*world, radius)) {
+    if (const auto problem = launch::goalProblem(*world, radius, m_.geofence.value_or(common::Geofence{}))) {
       failure_ = fmt::format("{}: {}: refused", m_.world.string(), *problem);
       say(failure_);
       return endedBeforeStart(kExitInvalid);
@@ -582,6 +582,7 @@ std::optional<launch::Manifest> loadRunManifest(const LaunchOptions& options)
   overrides.seed = options.seed;
   overrides.domain = options.domain;
   overrides.subnet = options.subnet;
+  overrides.geofence = options.geofence;
   launch::ProgramLookup lookup{common::layout(),
                                [](const std::string& t) { return dds::topics::find(t).has_value(); }};
   try {

@@ -190,6 +190,42 @@ modules: {control: {}}
   EXPECT_NE(q[0].find(":network.firewall: true: no netns or ssh host to install it on"), std::string::npos) << q[0];
 }
 
+TEST_F(ManifestTest, TheGeofenceReachesThePlannerAndTheControllerOnly)
+{
+  const Manifest m = parse(R"(
+geofence: {min: [-1, -2.5, 0], max: [20, 2.5, 6]}
+modules:
+  plant: {}
+  planning: {}
+  control: {set: {autostart: true}}
+)");
+  ASSERT_TRUE(m.geofence.has_value());
+  EXPECT_EQ(m.geofence->min[1], -2.5);
+  EXPECT_TRUE(m.modules[0].sets.empty());
+  const std::vector<std::pair<std::string, std::string>> fence{{"geofence.min", "[-1, -2.5, 0]"},
+                                                               {"geofence.max", "[20, 2.5, 6]"}};
+  EXPECT_EQ(m.modules[1].sets, fence);
+  ASSERT_EQ(m.modules[2].sets.size(), 3U);
+  EXPECT_EQ(m.modules[2].sets[1], fence[0]);
+  EXPECT_EQ(m.modules[2].sets[2], fence[1]);
+}
+
+TEST_F(ManifestTest, ABadGeofenceOrOneGivenToAModuleAloneIsRefused)
+{
+  auto p = problems("geofence: {min: [0, 0, 5], max: [1, 1, 1]}\nmodules: {control: {}}\n");
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find(":geofence.min: [0, 0, 5]: not below geofence.max on the z axis"), std::string::npos) << p[0];
+  p = problems("geofence: {min: [0, 0], max: [1, 1, 1]}\nmodules: {control: {}}\n");
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find(":geofence.min: "), std::string::npos) << p[0];
+  p = problems("modules: {planning: {set: {geofence.max: \"[1, 1, 1]\"}}}\n");
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find(":modules.planning.set.geofence.max: [1, 1, 1]: give the run's keep-in volume as the manifest's "
+                      "geofence"),
+            std::string::npos)
+      << p[0];
+}
+
 TEST_F(ManifestTest, AMissionNeedsAWorld)
 {
   const auto p = problems("modules: {control: {}}\nmission: {tolerance: 0.5}\n");

@@ -105,5 +105,37 @@ TEST(MissionTracker, LandingAwayFromTheGoalFails)
   EXPECT_FALSE(t.summary(1.0).success);
 }
 
+TEST(MissionTracker, LandingAfterLeavingTheGeofenceFailsSayingSo)
+{
+  const auto w = world();
+  MissionTracker t(mission(true), w, 0.0);
+  t.onMode(0.0, "MISSION");
+  fly(t, 0.0, {0, 0, 2}, {4, 0, 2});
+  t.onMode(4.0, "HOVER", true);
+  t.onMode(5.0, "RETURN", true);
+  fly(t, 5.0, {4, 0, 2}, {0, 0, 2});
+  t.onMode(9.0, "LAND", true);
+  fly(t, 9.0, {0, 0, 2}, {0, 0, 0});
+  t.onMode(11.0, "IDLE", true);
+  ASSERT_TRUE(t.finished());
+  const MissionSummary s = t.summary(1.0);
+  EXPECT_FALSE(s.success);
+  EXPECT_EQ(s.end, MissionEnd::kFailed);
+  EXPECT_EQ(s.failure, "left the geofence at t = 4.0 s");
+}
+
+TEST(GoalProblem, AGoalOrStartOutsideTheGeofenceIsNamed)
+{
+  const auto w = world();  // start (0, 0, 0), goal (10, 0, 2)
+  common::Geofence fence;
+  EXPECT_FALSE(goalProblem(w, 0.3, fence).has_value());
+  fence.min = {-1, -5, -1};
+  fence.max = {8, 5, 5};
+  EXPECT_EQ(goalProblem(w, 0.3, fence), "the goal (10, 0, 2) is outside the geofence (-1, -5, -1) ... (8, 5, 5)");
+  fence.min = {1, -5, -1};
+  fence.max = {11, 5, 5};
+  EXPECT_EQ(goalProblem(w, 0.3, fence), "the start (0, 0, 0) is outside the geofence (1, -5, -1) ... (11, 5, 5)");
+}
+
 }  // namespace
 }  // namespace quad::launch

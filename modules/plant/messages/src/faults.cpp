@@ -57,14 +57,16 @@ std::optional<Fault> faultFrom(const msg::FaultCommand& c, std::int64_t now_ns, 
       f.kind = Fault::Kind::kSensorNoise;
       f.magnitude = c.magnitude();
       return sensor() ? std::optional(f) : std::nullopt;
-    case msg::FAULT_WIND_GUST: {
-      const Eigen::Vector3d w(c.vector_W().x(), c.vector_W().y(), c.vector_W().z());
-      if (!w.allFinite()) {
-        why_not = "wind vector is not finite";
+    case msg::FAULT_WIND_GUST:
+    case msg::FAULT_PUSH: {
+      const bool gust = c.kind() == msg::FAULT_WIND_GUST;
+      const Eigen::Vector3d v(c.vector_W().x(), c.vector_W().y(), c.vector_W().z());
+      if (!v.allFinite()) {
+        why_not = gust ? "wind vector is not finite" : "push force is not finite";
         return std::nullopt;
       }
-      f.kind = Fault::Kind::kWindGust;
-      f.wind_W = w;
+      f.kind = gust ? Fault::Kind::kWindGust : Fault::Kind::kPush;
+      (gust ? f.wind_W : f.force_W) = v;
       return f;
     }
     default:
@@ -99,6 +101,10 @@ msg::FaultCommand toCommand(const Fault& f)
     case Fault::Kind::kWindGust:
       c.kind(msg::FAULT_WIND_GUST);
       c.vector_W(toMessage(f.wind_W));
+      break;
+    case Fault::Kind::kPush:
+      c.kind(msg::FAULT_PUSH);
+      c.vector_W(toMessage(f.force_W));
       break;
   }
   if (f.kind == Fault::Kind::kSensorDropout || f.kind == Fault::Kind::kSensorStuck ||

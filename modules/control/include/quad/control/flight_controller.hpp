@@ -11,6 +11,7 @@
 #include <optional>
 #include <vector>
 
+#include "quad/common/geofence.hpp"
 #include "quad/control/dead_reckoning.hpp"
 #include "quad/control/geometric_controller.hpp"
 #include "quad/control/mixer.hpp"
@@ -42,6 +43,8 @@ struct FlightControllerConfig {
   double dead_reckoning_horizon = 2.0;
   /// [m] the camera gimbal looks at the path this far ahead of the vehicle
   double camera_look_ahead = 3.0;
+  /// The keep-in volume: leaving it holds, then returns (ModeConfig::geofence_return_after).
+  common::Geofence geofence;
 };
 
 /// Where the camera gimbal should look: world yaw and elevation [rad].

@@ -12,6 +12,9 @@
 ///     (the planner says the goal cannot be reached: sealed off, in an obstacle, out of bounds;
 ///     RETURN retraces the flown path to the take-off point, the one way known to be clear,
 ///     and lands there)
+///   TAKEOFF, MISSION, HOVER --outside the geofence--> HOVER --geofence_return_after--> RETURN
+///     (the vehicle was pushed out of the keep-in volume: it brakes and holds, then goes back
+///     the way it came, which lay inside, and lands at the take-off point)
 ///   any airborne --state stale--> FAILSAFE_LAND --landed--> IDLE --idle timeout--> DISARMED
 
 #include <optional>
@@ -21,7 +24,7 @@
 namespace quad::control {
 
 enum class Mode { kDisarmed, kIdle, kTakeoff, kMission, kHover, kLand, kFailsafeLand, kReturn };
-enum class Reason { kNone, kStateStale, kPathStale, kInputInvalid, kSaturation, kCommanded, kNoPath };
+enum class Reason { kNone, kStateStale, kPathStale, kInputInvalid, kSaturation, kCommanded, kNoPath, kGeofence };
 enum class Command { kNone, kArm, kDisarm, kTakeoff, kStartMission, kHold, kLand };
 
 std::string_view toString(Mode m);
@@ -40,12 +43,14 @@ struct ModeInputs {
   bool takeoff_altitude_reached = false;
   bool goal_reached = false;
   bool returned = false;          ///< in RETURN: back above the take-off point
+  bool outside_geofence = false;  ///< the vehicle is outside the keep-in volume
 };
 
 struct ModeConfig {
   double path_stale_land_after = 5.0;  ///< [s] in HOVER without a path before landing
   double no_path_land_after = 5.0;     ///< [s] in HOVER while the planner finds no path, before returning to land
   double idle_disarm_after = 10.0;     ///< [s] on the ground, armed, before disarming
+  double geofence_return_after = 1.0;  ///< [s] holding after leaving the geofence, before returning
   bool auto_mission = false;           ///< HOVER with a fresh path starts the mission by itself
 };
 

@@ -70,6 +70,8 @@ public:
   VoxelIndex voxel(std::int64_t cell) const;
   /// World point → cell, if the point's voxel is in the lattice.
   std::optional<std::int64_t> cellAt(const Vector3& p) const;
+  /// The cell nearest p: the cell of p's voxel, each axis clamped into the lattice.
+  std::int64_t nearestCell(const Vector3& p) const;
   /// Cell → centre of its voxel [m].
   Vector3 centre(std::int64_t cell) const;
 

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 
+#include "quad/common/geofence.hpp"
 #include "quad/common/param_table.hpp"
 #include "quad/planning/dstar_lite.hpp"
 #include "quad/planning/known_space.hpp"
@@ -21,6 +22,7 @@ struct PlanningParams {
   double ground_clearance = 1.0;        ///< [m] lowest cell centres above the world's floor
   double altitude_min = -1e4;           ///< [m] an optional band of cell centres' altitudes
   double altitude_max = 1e4;            ///< [m]
+  common::Geofence geofence;            ///< the keep-in volume: no cell centre closer than the margin to its faces
   Vector3 bounds_min = Vector3::Zero();  ///< [m] the lattice's box (cell centres within it), from the above
   Vector3 bounds_max = Vector3::Zero();
   double resolution = 0.2;              ///< [m]
@@ -43,7 +45,8 @@ PlanningParams planningParamsOf(const common::Params& params);
 
 /// Makes the lattice's box from the world's box (`world_min`, `world_max` [m]): less the
 /// inflation radius at the sides and the top (leaving the box is a collision), from
-/// `ground_clearance` above its floor, clipped to the optional altitude band.
+/// `ground_clearance` above its floor, clipped to the optional altitude band and to the
+/// geofence less the safety margin (the follower's deviation from the path).
 /// `vehicle_radius` [m] is the vehicle's own. Throws common::ConfigError naming `origin` and
 /// the key when the band is inverted or leaves less than a cell, or the connectivity is not
 /// 6, 18 or 26.

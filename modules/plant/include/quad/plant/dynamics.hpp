@@ -31,6 +31,7 @@ struct RigidBodyState {
 struct Environment {
   Vector3 gravity_W{0.0, 0.0, -9.81};  ///< [m/s²]
   Vector3 wind_W = Vector3::Zero();    ///< [m/s] air velocity, world
+  Vector3 force_W = Vector3::Zero();   ///< [N] an external force on the body (a push), world
   /// Fraction of nominal thrust and torque each rotor delivers (1 healthy, 0 failed).
   RotorArray rotor_efficiency{1.0, 1.0, 1.0, 1.0};
 };

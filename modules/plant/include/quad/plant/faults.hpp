@@ -26,7 +26,7 @@ std::string_view toString(Sensor s);
 std::optional<Sensor> parseSensor(std::string_view text);
 
 struct Fault {
-  enum class Kind { kMotor, kSensorDropout, kSensorStuck, kSensorNoise, kWindGust };
+  enum class Kind { kMotor, kSensorDropout, kSensorStuck, kSensorNoise, kWindGust, kPush };
   std::uint32_t id = 0;
   Kind kind = Kind::kMotor;
   int rotor = 0;                         ///< kMotor: 0..3
@@ -34,6 +34,7 @@ struct Fault {
                                          ///< kSensorNoise: extra std dev (SI units)
   Sensor sensor = Sensor::kDepth;        ///< sensor faults
   geometry::Vector3 wind_W = geometry::Vector3::Zero();  ///< kWindGust [m/s]
+  geometry::Vector3 force_W = geometry::Vector3::Zero(); ///< kPush [N] on the vehicle
   std::int64_t start_ns = 0;             ///< sim time it takes effect
   std::int64_t duration_ns = 0;          ///< <= 0: until cleared
 
@@ -51,7 +52,7 @@ std::optional<Fault> parseFault(common::YamlReader& reader, YAML::Node node, con
 
 /// A schedule file: a YAML list of faults, e.g.
 /// `- {id: 1, kind: motor, rotor: 2, efficiency: 0.5, at: 10.0, duration: 5.0}`
-/// (kinds: motor, sensor_dropout, sensor_stuck, sensor_noise, wind_gust; times in seconds).
+/// (kinds: motor, sensor_dropout, sensor_stuck, sensor_noise, wind_gust, push; times in seconds).
 /// Every problem is reported as `file:key: value: reason` in a common::ConfigError.
 std::vector<Fault> parseFaultSchedule(std::string_view yaml_text, std::string_view origin);
 std::vector<Fault> loadFaultSchedule(const std::filesystem::path& file);

@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "quad/common/geofence.hpp"
 #include "quad/wire/datagram_faults.hpp"
 #include "quad/launch/link_faults.hpp"
 #include "quad/plant/faults.hpp"
@@ -112,6 +113,7 @@ struct Scenario {
   std::filesystem::path manifest;             ///< absolute
   std::optional<std::filesystem::path> world; ///< absolute; replaces the manifest's
   std::optional<std::string> mode;            ///< "realtime" | "lockstep"; replaces the manifest's
+  std::optional<common::Geofence> geofence;   ///< the keep-in volume; replaces the manifest's
   std::optional<double> end_s;                ///< sim time to end the run at (before the mission ends)
   /// Per module, parameters it gets over the manifest's (`--set key=value`): the weather,
   /// a vehicle's fault-prone settings.

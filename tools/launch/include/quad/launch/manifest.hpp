@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "quad/common/geofence.hpp"
 #include "quad/common/layout.hpp"
 
 namespace quad::launch {
@@ -84,6 +85,9 @@ struct Manifest {
   std::vector<Host> hosts;          ///< in the order written
   std::vector<Module> modules;      ///< start order
   Mission mission;
+  /// `geofence: {min: [x, y, z], max: [x, y, z]}`: the keep-in volume [m], handed to every
+  /// planning and control module as its geofence.min and geofence.max (common::geofenceSets).
+  std::optional<common::Geofence> geofence;
 
   const Host& host(const std::string& host_name) const;
   bool usesNamespaces() const;
@@ -101,6 +105,7 @@ struct ManifestOverrides {
   std::optional<std::uint64_t> seed;
   std::optional<int> domain;
   std::optional<std::string> subnet;
+  std::optional<common::Geofence> geofence;
 };
 
 /// What a manifest is checked against: where modules' programs are (common::programPath of

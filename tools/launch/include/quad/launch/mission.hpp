@@ -47,8 +47,9 @@ public:
 
   /// A vehicle state at sim time t [s].
   void onState(double t, const Eigen::Vector3d& p);
-  /// The controller's mode (its name) at sim time t; repeats are ignored.
-  void onMode(double t, const std::string& mode);
+  /// The controller's mode (its name) at sim time t; repeats are ignored. `geofence`: the
+  /// controller says the vehicle left the geofence (its failsafe reason).
+  void onMode(double t, const std::string& mode, bool geofence = false);
   /// A path of this version was published. `no_path`: the planner said the goal cannot be
   /// reached, and why (in words); empty when it has a path or is merely waiting.
   void onPath(std::uint32_t version, const std::string& no_path = {});
@@ -91,13 +92,16 @@ private:
   std::string outcome_;
   std::string failure_;
   std::string no_path_;  // the planner's last word that the goal cannot be reached
+  std::optional<double> left_fence_t_;  // when the controller said the vehicle left the geofence
   std::vector<std::string> progress_;
   double next_progress_t_ = 10.0;
 };
 
 /// Why a mission to this world's goal cannot be flown at all, naming the goal: it lies outside
-/// the world's bounds, or inside an obstacle or within `radius` [m] of one. Nothing when it can.
-std::optional<std::string> goalProblem(const world::World& world, double radius);
+/// the world's bounds or the geofence, or inside an obstacle or within `radius` [m] of one; or
+/// the vehicle starts outside the geofence. Nothing when it can.
+std::optional<std::string> goalProblem(const world::World& world, double radius,
+                                       const common::Geofence& fence = {});
 
 /// The summary as one JSON object (the --summary file).
 std::string toJson(const MissionSummary& s);

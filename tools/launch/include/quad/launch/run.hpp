@@ -36,6 +36,7 @@ struct LaunchOptions {
   std::optional<std::uint64_t> seed;   ///< ${seed} instead of the manifest's
   std::optional<int> domain;           ///< replaces the manifest's and the environment's
   std::optional<std::string> subnet;   ///< replaces the manifest's netns subnet
+  std::optional<common::Geofence> geofence;  ///< replaces the manifest's keep-in volume
   std::optional<std::string> summary;  ///< JSON summary of the mission to this file
   std::optional<std::string> log_dir;  ///< the run's folder; default log/<name>-<time>
   std::optional<std::string> record;   ///< record every topic of the run to this MCAP file

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Flying the whole volume (DDS domains 145 to 149 and 91 to 93): worlds that need a climb, a dip or a window, in lockstep with a
+// Flying the whole volume (DDS domains 145 to 149 and 91 to 94): worlds that need a climb, a dip or a window, in lockstep with a
 // fixed seed, and a goal that no path reaches. Each reads the run's summary and exit status.
 #include <gtest/gtest.h>
 
@@ -91,6 +91,37 @@ TEST(Volume, AGoalInsideAnObstacleIsRefusedAtOnce)
   ASSERT_TRUE(status) << launch.output();
   EXPECT_EQ(*status, 2) << launch.output();  // docs/launch.md: refused before anything started
   EXPECT_FALSE(fs::exists(dir / "run" / "plant.log")) << launch.output();
+  fs::remove_all(dir);
+}
+
+TEST(Volume, AGoalOutsideTheGeofenceIsRefusedAtOnce)
+{
+  const fs::path dir = quad::test::scratchDir("quad_volume_fenced");
+  const fs::path manifest = dir / "fenced.yaml";
+  const std::string configs = std::string(QUAD_SOURCE_DIR) + "/configs/";
+  // The demo's world and modules, fenced 10 m short of its goal (x = 50).
+  std::ofstream(manifest) << "world: " << configs << "worlds/demo.yaml\n"
+                          << "geofence: {min: [-5, -10, 0], max: [40, 10, 10]}\n"
+                          << "modules:\n"
+                          << "  plant: {config: " << configs << "plant.yaml, set: {world: \"${world}\"}}\n"
+                          << "  planning: {config: " << configs << "planning.yaml, set: {world: \"${world}\"}}\n"
+                          << "  control: {config: " << configs << "control.yaml}\n"
+                          << "mission: {vehicle: " << configs << "vehicles/x500.yaml}\n";
+  ChildProcess check({QUAD_TOOL, "launch", manifest.string(), "--check"});
+  const auto valid = check.wait(30s);
+  ASSERT_TRUE(valid) << check.output();
+  ASSERT_EQ(*valid, 0) << check.output();  // a valid manifest: what follows is the goal's refusal
+  ChildProcess launch({QUAD_TOOL, "launch", manifest.string(), "--domain", "94", "--quiet", "--log-dir",
+                       (dir / "run").string()});
+  const auto status = launch.wait(60s);
+  ASSERT_TRUE(status) << launch.output();
+  EXPECT_EQ(*status, 2) << launch.output();  // docs/launch.md: refused before anything started
+  const auto run = nlohmann::json::parse(quad::test::readFile(dir / "run" / "run.json"), nullptr, false);
+  ASSERT_TRUE(run.is_object()) << launch.output();
+  EXPECT_EQ(run["exit_code"], 2) << run.dump(2);
+  EXPECT_NE(run["failure"].get<std::string>().find("the goal (50, 0, 2) is outside the geofence"), std::string::npos)
+      << run.dump(2);
+  EXPECT_EQ(run["modules"]["plant"]["starts"], 0) << run.dump(2);
   fs::remove_all(dir);
 }
 

@@ -41,6 +41,8 @@ DStarLite::DStarLite(Lattice lattice, PlannerConfig config)
       config_(config),
       dims_(lattice_.dims()),
       size_(lattice_.size()),
+      nxy_(Cell{dims_.x()} * dims_.y()),
+      narrow_(size_ <= std::numeric_limits<std::uint32_t>::max()),
       pages_(static_cast<std::size_t>((size_ >> kPageBits) + 1)),
       open_(VertexPlace{pages_.data()}, KeyLevel{1.0 / (kBucketWidth * lattice_.grid().resolution())})
 {
@@ -71,9 +73,18 @@ DStarLite::DStarLite(Lattice lattice, PlannerConfig config)
 
 Eigen::Vector3i DStarLite::coordinates(Cell c) const
 {
+  // Two divisions, in 32 bits where the lattice's cells are numbered in 32 bits (a 64-bit
+  // division takes up to twice as long, and a search asks for coordinates at every step).
+  if (narrow_) {
+    const auto n = static_cast<std::uint32_t>(c);
+    const auto nx = static_cast<std::uint32_t>(dims_.x());
+    const auto nxy = static_cast<std::uint32_t>(nxy_);
+    const std::uint32_t z = n / nxy, rest = n - z * nxy, y = rest / nx;
+    return {static_cast<int>(rest - y * nx), static_cast<int>(y), static_cast<int>(z)};
+  }
   const Cell nx = dims_.x();
-  const Cell nxy = nx * dims_.y();
-  return {static_cast<int>(c % nx), static_cast<int>((c % nxy) / nx), static_cast<int>(c / nxy)};
+  const Cell z = c / nxy_, rest = c - z * nxy_, y = rest / nx;
+  return {static_cast<int>(rest - y * nx), static_cast<int>(y), static_cast<int>(z)};
 }
 
 template <typename F>

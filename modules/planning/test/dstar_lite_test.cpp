@@ -292,6 +292,18 @@ TEST(DStarLite, SearchMemoryFollowsTheRegionSearchedNotTheBox)
   EXPECT_LT(planner.searchBytes(), whole_box / 50) << "g and rhs for 2 % of the box at most";
 }
 
+TEST(DStarLite, CoordinatesAreTheLatticesOwnNumbering)
+{
+  // A box off the origin and with uneven sides; every cell's coordinates are its voxel less
+  // the first voxel's, as the lattice numbers them.
+  const Lattice lattice(VoxelGrid(0.5), Vector3(-3.2, 1.1, 0.4), Vector3(2.9, 4.0, 3.3));
+  const DStarLite planner(lattice, {26, true, 0.0});
+  const VoxelIndex first = lattice.voxel(0);
+  for (Cell c = 0; c < lattice.size(); ++c) {
+    ASSERT_EQ(planner.coordinates(c), lattice.voxel(c) - first) << "cell " << c;
+  }
+}
+
 TEST(DStarLite, BadConnectivityIsRefused)
 {
   EXPECT_THROW(DStarLite(box(3, 3, 3), {8, true, 0.0}), std::invalid_argument);

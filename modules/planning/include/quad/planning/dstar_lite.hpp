@@ -205,6 +205,8 @@ private:
   PlannerConfig config_;
   Eigen::Vector3i dims_;
   Cell size_;                                 // cells in the lattice
+  Cell nxy_;                                  // cells in a layer of z
+  bool narrow_;                               // cell numbers fit 32 bits
   Eigen::Vector3i start_coordinates_ = Eigen::Vector3i::Zero();  // of start_, for the keys
   std::vector<Step> steps_;                   // neighbour offsets
   std::vector<VoxelIndex> inflation_;         // inflation offsets

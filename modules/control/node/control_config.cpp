@@ -83,6 +83,21 @@ const common::ParamTable<ControlNodeConfig>& controlTable()
                 [](C& c) -> double& { return c.flight.modes.geofence_return_after; }, {0.0, 3600.0}, "s",
                 "hold after the vehicle left the geofence, then return to the take-off point and land")
         .include(common::geofenceTable(), [](C& c) -> common::Geofence& { return c.flight.geofence; })
+        .number("battery.reserve", [](C& c) -> double& { return c.flight.battery.reserve; }, {0.0, 0.9}, "",
+                "fraction of the capacity to land with: the vehicle returns when only the way back is left above it")
+        .number("battery.critical", [](C& c) -> double& { return c.flight.battery.critical; }, {0.0, 0.9}, "",
+                "at or below this fraction of the capacity left, land where the vehicle is")
+        .number("battery.critical_cell_voltage",
+                [](C& c) -> double& { return c.flight.battery.critical_cell_voltage; }, {0.0, 4.2}, "V",
+                "a cell's share of the pack's voltage under load below which (for battery.critical_after) to land")
+        .number("battery.critical_after", [](C& c) -> double& { return c.flight.battery.critical_after; },
+                {0.0, 60.0}, "s", "how long the cells' voltage stays low before it counts")
+        .number("battery.return_margin", [](C& c) -> double& { return c.flight.battery.return_margin; },
+                {1.0, 10.0}, "", "the way back is taken to last this many times its estimate ...")
+        .number("battery.return_overhead", [](C& c) -> double& { return c.flight.battery.return_overhead; },
+                {0.0, 600.0}, "s", "... and this much longer (braking, turning, touching down)")
+        .number("battery.current_window", [](C& c) -> double& { return c.flight.battery.current_window; },
+                {0.1, 600.0}, "s", "the current drawn is averaged over about this long")
         .number("camera.look_ahead", [](C& c) -> double& { return c.flight.camera_look_ahead; }, {0.1, 100.0}, "m",
                 "the camera gimbal looks at the path this far ahead")
         .number("modes.idle_disarm_after", [](C& c) -> double& { return c.flight.modes.idle_disarm_after; },
@@ -103,6 +118,12 @@ ControlNodeConfig controlConfigFrom(const common::Params& p)
 {
   ControlNodeConfig c = controlTable().read(p, common::configDir());
   common::checkGeofence(c.flight.geofence, p.origin());
+  const BatteryPolicy& battery = c.flight.battery;
+  if (battery.critical > battery.reserve) {
+    throw common::ConfigError({common::configProblem(p.origin(), "battery.critical", battery.critical,
+                                                     "above battery.reserve (" + common::formatValue(battery.reserve) +
+                                                         "): the vehicle would land before it returned")});
+  }
   return c;
 }
 

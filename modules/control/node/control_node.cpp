@@ -22,6 +22,7 @@ ControlNode::ControlNode(ControlNodeConfig config, dds::ParticipantOptions optio
       goal_(participant(), dds::topics::kGoal, waker()),
       command_(participant(), dds::topics::kVehicleCommand, waker()),
       imu_(participant(), dds::topics::kSimImu, waker()),
+      battery_(participant(), dds::topics::kSimBattery, waker()),
       actuators_(participant(), dds::topics::kActuators),
       status_(participant(), dds::topics::kControlStatus),
       reference_(participant(), dds::topics::kControlReference)
@@ -43,6 +44,16 @@ void ControlNode::takeInputs()
     }
     imu_ns_ = std::max(imu_ns_, m->header().stamp_ns());
     imu_wall_ns_ = common::steadyTimeNs();
+  }
+  while (auto b = battery_.take()) {
+    counters().samples_in++;
+    const BatteryReading reading{b->voltage(), b->current(), b->charge(), b->capacity(), b->cells()};
+    if (!fc_.onBattery(reading, common::toSeconds(b->header().stamp_ns()))) {
+      counters().errors++;
+      spdlog::warn("{}: sample seq {} rejected: voltage {} V, current {} A, charge {}, capacity {} Ah, {} cells",
+                   dds::topics::kSimBattery.info.name, b->header().seq(), b->voltage(), b->current(), b->charge(),
+                   b->capacity(), b->cells());
+    }
   }
   while (auto c = command_.take()) {
     counters().samples_in++;

@@ -100,6 +100,10 @@ msg::FailsafeReason toMessage(Reason reason)
       return msg::FAILSAFE_NO_PATH;
     case Reason::kGeofence:
       return msg::FAILSAFE_GEOFENCE;
+    case Reason::kBatteryLow:
+      return msg::FAILSAFE_BATTERY_LOW;
+    case Reason::kBatteryCritical:
+      return msg::FAILSAFE_BATTERY_CRITICAL;
   }
   return msg::FAILSAFE_NONE;
 }

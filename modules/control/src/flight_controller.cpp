@@ -111,6 +111,54 @@ void FlightController::aimCamera(Mode mode, const Vector3& p_W)
   camera_.pitch = std::atan2(look.z(), horizontal);
 }
 
+bool FlightController::onBattery(const BatteryReading& b, double t)
+{
+  const bool valid = std::isfinite(t) && std::isfinite(b.voltage) && b.voltage >= 0.0 && std::isfinite(b.current) &&
+                     b.current >= 0.0 && b.charge >= 0.0 && b.charge <= 1.0 && std::isfinite(b.capacity) &&
+                     b.capacity > 0.0 && b.cells >= 1 && (!battery_ || t >= battery_t_);
+  if (!valid) {
+    ++rejected_;
+    return false;
+  }
+  const BatteryPolicy& policy = config_.battery;
+  if (!battery_) {
+    average_current_ = b.current;
+  } else {
+    const double weight = 1.0 - std::exp(-(t - battery_t_) / policy.current_window);
+    average_current_ += weight * (b.current - average_current_);
+  }
+  if (b.voltage / b.cells >= policy.critical_cell_voltage) {
+    cells_low_since_ = -1.0;
+  } else if (cells_low_since_ < 0.0) {
+    cells_low_since_ = t;
+  }
+  battery_ = b;
+  battery_t_ = t;
+  return true;
+}
+
+double FlightController::batteryTimeLeft() const
+{
+  if (!battery_) {
+    return std::numeric_limits<double>::infinity();
+  }
+  const double usable = std::max(0.0, battery_->charge - config_.battery.reserve) * battery_->capacity;  // [Ah]
+  return average_current_ > 0.0 ? usable * 3600.0 / average_current_ : std::numeric_limits<double>::infinity();
+}
+
+double FlightController::returnTime() const
+{
+  if (!state_ || landed_ || !airborne(modes_.mode())) {
+    return 0.0;
+  }
+  // Back along the flown path (RETURN's way) to above the take-off point, then down.
+  const double way = flown_.empty() ? 0.0 : (state_->p_W - flown_.back()).norm() + flown_length_;
+  const double ground = takeoff_target_.z() - config_.takeoff_altitude;
+  const double descent = std::max(0.0, state_->p_W.z() - ground);
+  return config_.battery.return_margin * (way / config_.follower.max_speed + descent / config_.land_speed) +
+         config_.battery.return_overhead;
+}
+
 bool FlightController::onGoal(const Vector3& p, double tolerance)
 {
   if (!p.allFinite() || !std::isfinite(tolerance)) {
@@ -137,6 +185,7 @@ void FlightController::enter(Mode from, Mode mode, double t, const std::optional
       takeoff_target_ = p + Vector3(0.0, 0.0, config_.takeoff_altitude);
       follower_.setPath({p, takeoff_target_}, 0);
       flown_ = {takeoff_target_};
+      flown_length_ = 0.0;
       break;
     case Mode::kReturn:
       // Back along the flown path: the one way known to be clear (the world stands still).
@@ -193,7 +242,14 @@ FlightOutput FlightController::update(double t)
   in.outside_geofence = state_ && !config_.geofence.contains(state_->p_W);
   if (state_ && (modes_.mode() == Mode::kMission || modes_.mode() == Mode::kHover) &&
       (flown_.empty() || (state_->p_W - flown_.back()).norm() >= kBreadcrumbSpacing)) {
+    flown_length_ += flown_.empty() ? 0.0 : (state_->p_W - flown_.back()).norm();
     flown_.push_back(state_->p_W);
+  }
+  if (battery_) {
+    const BatteryPolicy& policy = config_.battery;
+    in.battery_low = battery_->charge <= policy.reserve || batteryTimeLeft() <= returnTime();
+    in.battery_critical = battery_->charge <= policy.critical ||
+                          (cells_low_since_ >= 0.0 && battery_t_ - cells_low_since_ >= policy.critical_after);
   }
   // The last state carried to now by the IMU samples since (the state itself when none came
   // after it). Closing the loops on a state frozen at its last value would pitch the vehicle

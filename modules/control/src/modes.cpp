@@ -45,6 +45,10 @@ std::string_view toString(Reason r)
       return "no path";
     case Reason::kGeofence:
       return "geofence";
+    case Reason::kBatteryLow:
+      return "battery low";
+    case Reason::kBatteryCritical:
+      return "battery critical";
   }
   return "?";
 }
@@ -137,6 +141,10 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
           refuse("no fresh vehicle state");
           return std::nullopt;
         }
+        if (in.battery_low || in.battery_critical) {
+          refuse(in.battery_critical ? "battery critical" : "battery down to its reserve");
+          return std::nullopt;
+        }
         return go(Mode::kTakeoff, Reason::kCommanded, "commanded: takeoff", in.t);
       }
       if (in.t - entered_ >= config_.idle_disarm_after) {
@@ -161,6 +169,19 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
   // Airborne modes with a fresh state.
   if (commanded(Command::kLand) && mode_ != Mode::kLand) {
     return go(Mode::kLand, Reason::kCommanded, "commanded: land", in.t);
+  }
+  // A battery about to fail lands where the vehicle is: no way back is short enough.
+  if (in.battery_critical && mode_ != Mode::kLand) {
+    return go(Mode::kLand, Reason::kBatteryCritical, "battery critical: landing where it is", in.t);
+  }
+  const bool returning_for_battery = mode_ == Mode::kReturn && reason_ == Reason::kBatteryLow;
+  if (returning_for_battery && (commanded(Command::kStartMission) || commanded(Command::kHold))) {
+    refuse("returning on a low battery");
+    return std::nullopt;
+  }
+  // Only as much charge left as the way back needs: go back now, the way the vehicle came.
+  if (in.battery_low && (mode_ == Mode::kTakeoff || mode_ == Mode::kMission || mode_ == Mode::kHover)) {
+    return go(Mode::kReturn, Reason::kBatteryLow, "battery low: returning to land at the take-off point", in.t);
   }
   if (commanded(Command::kHold) && mode_ != Mode::kHover) {
     return go(Mode::kHover, Reason::kCommanded, "commanded: hold", in.t);
@@ -237,7 +258,8 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
       break;
     case Mode::kLand:
       if (in.landed) {
-        const bool told = reason_ == Reason::kNoPath || reason_ == Reason::kGeofence;  // why the flight ended
+        const bool told = reason_ == Reason::kNoPath || reason_ == Reason::kGeofence || reason_ == Reason::kBatteryLow ||
+                          reason_ == Reason::kBatteryCritical;  // why the flight ended
         return go(Mode::kIdle, told ? reason_ : Reason::kNone, "landed", in.t);
       }
       break;

@@ -16,16 +16,21 @@ namespace {
 
 struct Rig {
   vehicle::VehicleParams v = test::loadVehicle("x500");
-  plant::Simulation sim{v,
-                        world::World(world::Bounds{Vector3(-50, -50, 0), Vector3(50, 50, 30)}, Vector3::Zero(),
-                                     Vector3(10, 0, 2), {}),
-                        plant::SimulationConfig{}};
+  plant::Simulation sim;
   FlightController fc;
   std::vector<FlightOutput> log;
   bool feed_state = true;
   bool feed_imu = true;
 
-  explicit Rig(FlightControllerConfig config = defaults()) : fc(v, withGains(config, v)) {}
+  explicit Rig(FlightControllerConfig config = defaults(), plant::SimulationConfig plant = {},
+               std::vector<plant::Fault> faults = {})
+      : sim(v,
+            world::World(world::Bounds{Vector3(-50, -50, 0), Vector3(50, 50, 30)}, Vector3::Zero(), Vector3(10, 0, 2),
+                         {}),
+            plant, std::move(faults)),
+        fc(v, withGains(config, v))
+  {
+  }
 
   static FlightControllerConfig defaults()
   {
@@ -49,6 +54,10 @@ struct Rig {
       if (out.imu && feed_imu) {
         fc.onImu({out.imu->sample.specific_force_B, out.imu->sample.angular_rate_B},
                  common::toSeconds(out.imu->t_ns));
+      }
+      if (out.battery) {
+        const plant::BatteryReading& b = *out.battery;
+        fc.onBattery({b.voltage, b.current, b.charge, b.capacity, b.cells}, common::toSeconds(b.t_ns));
       }
       if (out.state && feed_state) {
         const auto& s = out.state->state;
@@ -401,6 +410,98 @@ TEST(FlightController, TheCameraLooksUpOnTakeOffAlongThePathInFlightAndDownWhenL
   rig.run(0.1);
   EXPECT_NEAR(rig.log.back().camera.pitch, -geometry::kPi / 2.0, 1e-9);
   EXPECT_NEAR(rig.log.back().camera.yaw_W, aim.yaw_W, 1e-9);  // the yaw is kept
+}
+
+TEST(FlightController, BatteryReadingsOutOfTheirRangesAreRejectedAndTheTimeLeftIsTheChargeOverTheCurrent)
+{
+  Rig rig;
+  EXPECT_EQ(rig.fc.batteryTimeLeft(), std::numeric_limits<double>::infinity());  // no reading yet
+  const BatteryReading good{15.0, 10.0, 0.5, 2.0, 4};
+  const std::vector<std::function<void(BatteryReading&)>> breaks = {
+      [](BatteryReading& b) { b.voltage = -1.0; },
+      [](BatteryReading& b) { b.current = std::numeric_limits<double>::quiet_NaN(); },
+      [](BatteryReading& b) { b.current = -3.0; },
+      [](BatteryReading& b) { b.charge = 1.5; },
+      [](BatteryReading& b) { b.capacity = 0.0; },
+      [](BatteryReading& b) { b.cells = 0; }};
+  for (const auto& broken : breaks) {
+    BatteryReading bad = good;
+    broken(bad);
+    EXPECT_FALSE(rig.fc.onBattery(bad, 1.0));
+  }
+  EXPECT_EQ(rig.fc.rejectedInputs(), 6U);
+  ASSERT_TRUE(rig.fc.onBattery(good, 1.0));
+  EXPECT_FALSE(rig.fc.onBattery(good, 0.5));  // back in time
+  // (0.5 − 0.15 reserve) × 2 Ah at 10 A: 252 s; at a steady current the average is that current.
+  ASSERT_TRUE(rig.fc.onBattery(good, 2.0));
+  EXPECT_NEAR(rig.fc.batteryTimeLeft(), 252.0, 1e-9);
+  EXPECT_EQ(rig.fc.returnTime(), 0.0);  // on the ground
+}
+
+/// Out along +x at the follower's speed until `done`, with the path re-published as a
+/// planner does.
+void flyOut(Rig& rig, double seconds, const std::function<bool()>& done)
+{
+  const Vector3 p = rig.sim.state().p_W;
+  const std::vector<Vector3> path = {p, p + Vector3(45, 0, 0)};
+  rig.fc.onGoal(path.back(), 0.3);
+  rig.fc.onPath(path, 1, PathKind::kOk, rig.t());
+  rig.fc.onCommand(Command::kStartMission);
+  double next_path = rig.t() + 0.5;
+  rig.run(seconds, [&] {
+    if (rig.t() >= next_path) {
+      rig.fc.onPath(path, 1, PathKind::kOk, rig.t());
+      next_path += 0.5;
+    }
+    return done();
+  });
+}
+
+TEST(FlightController, ALowBatteryReturnsInTimeToLandAtTheTakeOffPointAboveTheCriticalCharge)
+{
+  // About 45 s of hovering in the pack: the 45 m out and back do not fit.
+  plant::SimulationConfig plant;
+  plant.battery.capacity = 0.26;
+  Rig rig(Rig::defaults(), plant);
+  takeOff(rig);
+  const Vector3 home = rig.sim.state().p_W;
+  flyOut(rig, 60.0, [&] { return rig.mode() == Mode::kReturn; });
+  ASSERT_EQ(rig.mode(), Mode::kReturn);
+  EXPECT_EQ(rig.log.back().reason, Reason::kBatteryLow);
+  const double out = (rig.sim.state().p_W - home).norm();
+  EXPECT_GT(out, 5.0);
+  EXPECT_LT(out, 40.0);
+  rig.run(60.0, [&] { return rig.mode() == Mode::kLand; });
+  rig.run(60.0, [&] { return rig.mode() == Mode::kIdle; });
+  ASSERT_EQ(rig.mode(), Mode::kIdle);
+  EXPECT_EQ(rig.log.back().reason, Reason::kBatteryLow);
+  EXPECT_LT((rig.sim.state().p_W.head<2>() - home.head<2>()).norm(), 0.5);
+  // Landed on what the margin kept: above the critical charge, not far below the reserve.
+  const double left = rig.sim.battery()->charge();
+  EXPECT_GT(left, Rig::defaults().battery.critical);
+  EXPECT_LT(left, Rig::defaults().battery.reserve + 0.1);
+  EXPECT_EQ(rig.sim.collisionCount(), 0U);
+}
+
+TEST(FlightController, AFailedCellLandsWhereTheVehicleIsWithinTheCriticalHold)
+{
+  const double at = 8.0;  // [s] after take-off began; the vehicle hovers by then
+  Rig rig(Rig::defaults(), {},
+          {plant::Fault{.id = 1, .kind = plant::Fault::Kind::kCellLoss, .cells = 1,
+                        .start_ns = common::toNanoseconds(at)}});
+  takeOff(rig);
+  rig.run(at - rig.t() + 0.01);
+  ASSERT_EQ(rig.mode(), Mode::kHover);
+  const Vector3 p = rig.sim.state().p_W;
+  rig.run(3.0, [&] { return rig.mode() == Mode::kLand; });
+  ASSERT_EQ(rig.mode(), Mode::kLand);
+  EXPECT_EQ(rig.log.back().reason, Reason::kBatteryCritical);
+  // The cells' voltage must stay low for critical_after (1 s), read at 10 Hz.
+  EXPECT_LE(rig.t() - at, Rig::defaults().battery.critical_after + 0.2);
+  rig.run(20.0, [&] { return rig.mode() == Mode::kIdle; });
+  ASSERT_EQ(rig.mode(), Mode::kIdle);
+  EXPECT_LT((rig.sim.state().p_W.head<2>() - p.head<2>()).norm(), 0.5);
+  EXPECT_EQ(rig.sim.collisionCount(), 0U);
 }
 
 TEST(FlightController, AGoalThePlannerCannotReachIsHeldThenLandedShortOfIt)

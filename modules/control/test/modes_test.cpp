@@ -90,6 +90,15 @@ TEST(Modes, EveryConditionInEveryMode)
       // Pushed out of the keep-in volume: hold (HOVER, reason geofence); the landings and
       // RETURN carry on.
       {"outside the geofence", [](ModeInputs& i) { i.outside_geofence = true; }, {D, I, H, H, H, L, F, R}},
+      // Only the way back is left above the reserve: return (a take-off is refused); the
+      // landings and RETURN carry on.
+      {"battery low", [](ModeInputs& i) { i.battery_low = true; }, {D, I, R, R, R, L, F, R}},
+      {"battery low, takeoff", [](ModeInputs& i) { i.battery_low = true; i.command = Command::kTakeoff; },
+       {D, I, R, R, R, L, F, R}},
+      // Nearly empty or a cell failed: land where the vehicle is, whatever it was doing.
+      {"battery critical", [](ModeInputs& i) { i.battery_critical = true; }, {D, I, L, L, L, L, F, L}},
+      {"battery critical, takeoff", [](ModeInputs& i) { i.battery_critical = true; i.command = Command::kTakeoff; },
+       {D, I, L, L, L, L, F, L}},
       // Only a controller started in flight is disarmed in the air: it takes over.
       {"in the air", [](ModeInputs& i) { i.landed = false; }, {H, I, T, M, H, L, F, R}},
   };
@@ -162,6 +171,45 @@ TEST(Modes, LeavingTheGeofenceHoldsThenReturnsAndLandsSayingWhy)
   ASSERT_TRUE(tr.has_value());
   EXPECT_EQ(tr->to, Mode::kIdle);
   EXPECT_EQ(tr->reason, Reason::kGeofence);
+}
+
+TEST(Modes, ALowBatteryReturnsAndACriticalOneLandsWhereItIsSayingWhy)
+{
+  ModeMachine m = machineIn(Mode::kMission);
+  ModeInputs in;
+  in.landed = false;
+  in.path_fresh = true;
+  in.t = 20.0;
+  in.battery_low = true;
+  auto tr = m.update(in);
+  ASSERT_TRUE(tr.has_value());
+  EXPECT_EQ(tr->to, Mode::kReturn);
+  EXPECT_EQ(tr->reason, Reason::kBatteryLow);
+  EXPECT_EQ(tr->why, "battery low: returning to land at the take-off point");
+  // On the way back the operator cannot send it off again, nor park it.
+  for (const Command c : {Command::kStartMission, Command::kHold}) {
+    in.command = c;
+    EXPECT_FALSE(m.update(in).has_value());
+    EXPECT_EQ(m.mode(), Mode::kReturn);
+  }
+  EXPECT_EQ(m.refused(), "hold refused in RETURN: returning on a low battery");
+  in.command = Command::kNone;
+  // The pack fails on the way: land where it is.
+  in.battery_critical = true;
+  tr = m.update(in);
+  ASSERT_TRUE(tr.has_value());
+  EXPECT_EQ(tr->to, Mode::kLand);
+  EXPECT_EQ(tr->reason, Reason::kBatteryCritical);
+  EXPECT_EQ(tr->why, "battery critical: landing where it is");
+  in.landed = true;
+  tr = m.update(in);
+  ASSERT_TRUE(tr.has_value());
+  EXPECT_EQ(tr->to, Mode::kIdle);
+  EXPECT_EQ(tr->reason, Reason::kBatteryCritical);
+  // On the ground, no take-off on that pack.
+  in.command = Command::kTakeoff;
+  EXPECT_FALSE(m.update(in).has_value());
+  EXPECT_EQ(m.refused(), "takeoff refused in IDLE: battery critical");
 }
 
 TEST(Modes, TransitionsCarryTheirReason)

@@ -33,6 +33,18 @@ msg::Imu toMessage(const ImuReading& r)
   return m;
 }
 
+msg::BatteryState toMessage(const BatteryReading& r)
+{
+  msg::BatteryState m;
+  m.header().stamp_ns(r.t_ns);
+  m.voltage(r.voltage);
+  m.current(r.current);
+  m.charge(r.charge);
+  m.capacity(r.capacity);
+  m.cells(static_cast<std::uint16_t>(r.cells));
+  return m;
+}
+
 msg::PointCloud toMessage(const DepthReading& r, double max_range)
 {
   msg::PointCloud m;

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include <quad/msg/BatteryState.h>
 #include <quad/msg/Imu.h>
 #include <quad/msg/PointCloud.h>
 #include <quad/msg/SimEvent.h>
@@ -18,6 +19,7 @@ namespace quad::plant {
 
 msg::VehicleState toMessage(const StateSample& s);
 msg::Imu toMessage(const ImuReading& r);
+msg::BatteryState toMessage(const BatteryReading& r);
 msg::PointCloud toMessage(const DepthReading& r, double max_range);
 msg::SimEvent toMessage(const SimEventRecord& e);
 

@@ -70,6 +70,24 @@ const common::ParamTable<PlantNodeConfig>& plantTable()
                 "mount point, body frame")
         .number("depth.tilt_down", [](C& c) -> double& { return c.simulation.depth.tilt_down; }, {-1.5, 1.5}, "rad",
                 "optical axis pitched below body x (fixed mount)")
+        .flag("battery.enabled", [](C& c) -> bool& { return c.simulation.battery.enabled; },
+              "fly on a battery that drains and sags; off: an ideal supply")
+        .number("battery.cells", [](C& c) -> int& { return c.simulation.battery.cells; }, {1, 16}, "",
+                "lithium-polymer cells in series")
+        .number("battery.capacity", [](C& c) -> double& { return c.simulation.battery.capacity; }, {0.001, 1000.0},
+                "Ah", "the pack's capacity")
+        .number("battery.initial_charge", [](C& c) -> double& { return c.simulation.battery.initial_charge; },
+                {0.0, 1.0}, "", "fraction of the capacity at the start")
+        .number("battery.resistance", [](C& c) -> double& { return c.simulation.battery.resistance; }, {0.0, 10.0},
+                "ohm", "the pack's internal resistance (voltage sag under load)")
+        .number("battery.rated_cell_voltage", [](C& c) -> double& { return c.simulation.battery.rated_cell_voltage; },
+                {2.5, 4.2}, "V", "a cell's voltage below which the rotors' top speed falls with it")
+        .number("battery.motor_efficiency", [](C& c) -> double& { return c.simulation.battery.motor_efficiency; },
+                {0.05, 1.0}, "", "rotor shaft power over electric power")
+        .number("battery.avionics_power", [](C& c) -> double& { return c.simulation.battery.avionics_power; },
+                {0.0, 1000.0}, "W", "drawn besides the rotors")
+        .number("battery.rate", [](C& c) -> double& { return c.simulation.battery_rate_hz; }, {0.1, 1000.0}, "Hz",
+                "battery readings")
         .flag("gimbal.enabled", [](C& c) -> bool& { return c.simulation.gimbal.enabled; },
               "the depth camera hangs on a world-stabilised pan-tilt gimbal the controller aims")
         .number("gimbal.slew_rate", [](C& c) -> double& { return c.simulation.gimbal.slew_rate; }, {0.01, 100.0},

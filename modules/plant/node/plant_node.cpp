@@ -44,6 +44,7 @@ PlantNode::PlantNode(PlantNodeConfig config, dds::ParticipantOptions options)
       clock_(participant(), dds::topics::kSimClock),
       state_(participant(), dds::topics::kSimState),
       imu_(participant(), dds::topics::kSimImu),
+      battery_(participant(), dds::topics::kSimBattery),
       depth_(participant(), dds::topics::kSimDepth),
       events_(participant(), dds::topics::kSimEvents),
       actuators_(participant(), dds::topics::kActuators, waker()),
@@ -148,6 +149,12 @@ void PlantNode::publishClock()
 
 void PlantNode::publish(const StepOutputs& out)
 {
+  // The battery before the state the controller steps on: its failsafe sees the pack as it
+  // was at that state's time.
+  if (out.battery) {
+    battery_.write(toMessage(*out.battery));
+    counters().samples_out++;
+  }
   // Depth first: the clock that follows counts it.
   if (out.depth) {
     last_depth_ = toMessage(*out.depth, config_.simulation.depth.max_range);
@@ -290,6 +297,11 @@ void PlantNode::onStop()
       std::to_string(c.stale_steps) + ", failsafe steps " + std::to_string(c.failsafe_steps) +
       ", dropped steps " + std::to_string(dropped_steps_);
   spdlog::info("plant: run ended: {}", summary);
+  if (const auto& battery = sim_->battery()) {
+    spdlog::info("plant: battery {:.1f} % left ({:.2f} of {:.2f} Ah), {:.1f} Wh drawn, {} of {} cells working",
+                 100.0 * battery->charge(), battery->chargeAh(), battery->config().capacity,
+                 battery->energyDrawn() / 3600.0, battery->workingCells(), battery->config().cells);
+  }
   const auto& st = sim_->state();
   // Full precision, so that runs can be compared bit for bit from their logs.
   spdlog::info("plant: final state t {} ns p ({:.17g}, {:.17g}, {:.17g}) q ({:.17g}, {:.17g}, {:.17g}, {:.17g})",

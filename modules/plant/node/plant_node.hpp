@@ -43,6 +43,7 @@ private:
   dds::Publisher<msg::SimClock> clock_;
   dds::Publisher<msg::VehicleState> state_;
   dds::Publisher<msg::Imu> imu_;
+  dds::Publisher<msg::BatteryState> battery_;
   dds::Publisher<msg::PointCloud> depth_;
   dds::Publisher<msg::SimEvent> events_;
   dds::Subscriber<msg::ActuatorCommand> actuators_;

@@ -73,7 +73,9 @@ QuadrotorDynamics::Derivative QuadrotorDynamics::derivative(const RigidBodyState
   const Vector3 Jw = inertia_.cwiseProduct(s.w_B);
   d.dw = (f.torque_B - s.w_B.cross(Jw)).cwiseQuotient(inertia_);
   for (std::size_t i = 0; i < commanded.size(); ++i) {
-    const double target = std::clamp(commanded[i], params_.rotor_speed_min, params_.rotor_speed_max);
+    // A sagging supply lowers the top speed, below the minimum when it is gone.
+    const double target =
+        std::min(std::max(commanded[i], params_.rotor_speed_min), env.supply * params_.rotor_speed_max);
     const double tau = target > s.rotor_speed[i] ? params_.motor_time_constant_up
                                                  : params_.motor_time_constant_down;
     d.drotor[i] = (target - s.rotor_speed[i]) / tau;

@@ -54,6 +54,8 @@ std::string_view toString(Fault::Kind k)
       return "wind_gust";
     case Fault::Kind::kPush:
       return "push";
+    case Fault::Kind::kCellLoss:
+      return "cell_loss";
   }
   return "?";
 }
@@ -77,6 +79,9 @@ std::string Fault::describe() const
       break;
     case Kind::kPush:
       out += ": force " + common::formatValue(std::vector<double>{force_W.x(), force_W.y(), force_W.z()}) + " N";
+      break;
+    case Kind::kCellLoss:
+      out += ": " + std::to_string(cells) + (cells == 1 ? " battery cell" : " battery cells") + " failed short";
       break;
   }
   return out;
@@ -137,8 +142,15 @@ std::optional<Fault> parseFault(common::YamlReader& r, YAML::Node f, const std::
     if (v) {
       (gust ? fault.wind_W : fault.force_W) = {(*v)[0], (*v)[1], (*v)[2]};
     }
+  } else if (kind == "cell_loss") {
+    allowed.insert("cells");
+    fault.kind = Fault::Kind::kCellLoss;
+    const auto cells = number("cells", 1.0, 1.0, 16.0);
+    ok = ok && cells;
+    fault.cells = static_cast<int>(cells.value_or(1.0));
   } else {
-    r.problem(key + ".kind", f["kind"], "expected motor, sensor_dropout, sensor_stuck, sensor_noise, wind_gust or push");
+    r.problem(key + ".kind", f["kind"],
+              "expected motor, sensor_dropout, sensor_stuck, sensor_noise, wind_gust, push or cell_loss");
     return std::nullopt;
   }
   for (const auto& entry : f) {

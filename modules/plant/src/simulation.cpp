@@ -34,6 +34,9 @@ Simulation::Simulation(vehicle::VehicleParams vehicle, world::World world, Simul
   if (config_.gimbal.enabled) {
     gimbal_.emplace(config_.gimbal, 0.0, 0.0);  // level, along world x: the vehicle starts level at yaw 0
   }
+  if (config_.battery.enabled) {
+    battery_.emplace(config_.battery);
+  }
   for (auto& f : schedule) {
     injectFault(f);
   }
@@ -44,6 +47,7 @@ Simulation::Simulation(vehicle::VehicleParams vehicle, world::World world, Simul
   next_state_ns_ = first(config_.state_rate_hz);
   next_imu_ns_ = first(config_.imu.rate_hz);
   next_depth_ns_ = first(config_.depth.rate_hz);
+  next_battery_ns_ = first(config_.battery_rate_hz);
 }
 
 bool Simulation::aimGimbal(double yaw_W, double pitch)
@@ -89,6 +93,7 @@ Environment Simulation::environment() const
   Environment env;
   env.gravity_W = config_.gravity_W;
   env.wind_W = wind_.current();
+  env.supply = battery_ ? battery_->supply() : 1.0;
   for (const auto& a : faults_) {
     if (!a.applied) {
       continue;
@@ -128,6 +133,9 @@ void Simulation::applyFaults(StepOutputs& out)
     const Fault& f = it->fault;
     if (!it->applied && t_ns_ >= f.start_ns) {
       it->applied = true;
+      if (f.kind == Fault::Kind::kCellLoss && battery_) {
+        battery_->loseCells(f.cells);  // for good: a clearing ends only the record
+      }
       out.events.push_back({SimEventRecord::Kind::kFaultApplied, t_ns_, state_.p_W, f.id, f.describe()});
     }
     if (it->applied && f.duration_ns > 0 && t_ns_ >= f.start_ns + f.duration_ns) {
@@ -158,6 +166,10 @@ StepOutputs Simulation::step()
   const Environment env = environment();
   const bool was_landed = state_.landed;
   dynamics_.step(state_, command, env, common::toSeconds(config_.step_ns));
+  if (battery_) {
+    battery_->draw(battery_->powerFor(state_.rotor_speed, env.rotor_efficiency, dynamics_.params().torque_coefficient),
+                   common::toSeconds(config_.step_ns));
+  }
   if (gimbal_) {
     gimbal_->step(common::toSeconds(config_.step_ns));
   }
@@ -213,6 +225,14 @@ StepOutputs Simulation::step()
     }
     last_depth_->t_ns = t_ns_;
     out.depth = last_depth_;
+  }
+  if (battery_ && due(t_ns_, next_battery_ns_, config_.battery_rate_hz)) {
+    out.battery = BatteryReading{t_ns_,
+                                 battery_->voltage(),
+                                 battery_->current(),
+                                 battery_->charge(),
+                                 battery_->config().capacity,
+                                 battery_->config().cells};
   }
   return out;
 }

@@ -271,9 +271,12 @@ TEST(FaultSchedule, FileIsValidatedAndParsed)
 - {id: 3, kind: wind_gust, wind: [4, 0, 0], at: 1, duration: 2}
 - {id: 4, kind: sensor_noise, sensor: imu, std_dev: 0.5, at: 0}
 - {id: 5, kind: push, force: [0, -20, 0], at: 6, duration: 0.5}
+- {id: 6, kind: cell_loss, cells: 2, at: 7}
 )",
                                          "faults.yaml");
-  ASSERT_EQ(faults.size(), 5U);
+  ASSERT_EQ(faults.size(), 6U);
+  EXPECT_EQ(faults[5].kind, Fault::Kind::kCellLoss);
+  EXPECT_EQ(faults[5].cells, 2);
   EXPECT_EQ(faults[4].kind, Fault::Kind::kPush);
   EXPECT_EQ(faults[4].force_W, Vector3(0, -20, 0));
   EXPECT_EQ(faults[0].rotor, 2);
@@ -284,17 +287,19 @@ TEST(FaultSchedule, FileIsValidatedAndParsed)
     parseFaultSchedule("- {id: 1, kind: motor, rotor: 5, efficiency: 0.5, at: 1}\n"
                        "- {id: 2, kind: sensor_stuck, sensor: lidar, at: 1}\n"
                        "- {id: 3, kind: meteor, at: 1}\n"
-                       "- {id: 4, at: 1}",
+                       "- {id: 4, at: 1}\n"
+                       "- {id: 5, kind: cell_loss, cells: 0, at: 1}",
                        "faults.yaml");
     FAIL();
   } catch (const common::ConfigError& e) {
-    ASSERT_EQ(e.problems().size(), 4U) << e.what();
+    ASSERT_EQ(e.problems().size(), 5U) << e.what();
+    EXPECT_EQ(e.problems()[4], "faults.yaml:[4].cells: 0: out of range [1, 16]");
     EXPECT_EQ(e.problems()[3], "faults.yaml:[3].kind: (missing): expected motor, sensor_dropout, "
-                               "sensor_stuck, sensor_noise, wind_gust or push");
+                               "sensor_stuck, sensor_noise, wind_gust, push or cell_loss");
     EXPECT_EQ(e.problems()[0], "faults.yaml:[0].rotor: 5: out of range [0, 3]");
     EXPECT_EQ(e.problems()[1], "faults.yaml:[1].sensor: lidar: expected depth, imu or state");
     EXPECT_EQ(e.problems()[2], "faults.yaml:[2].kind: meteor: expected motor, sensor_dropout, "
-                               "sensor_stuck, sensor_noise, wind_gust or push");
+                               "sensor_stuck, sensor_noise, wind_gust, push or cell_loss");
   }
 }
 

@@ -390,6 +390,9 @@ private:
           clears_.push_back({scenario_.steps[step].at_s + *a.duration_s, step});
         }
         break;
+      case Action::Kind::kMark:
+        acknowledge(step, now, "marked");
+        break;
       case Action::Kind::kPublish: {
         PublishJob& job = jobs_.at(step);
         job.active = true;

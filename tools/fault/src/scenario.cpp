@@ -54,7 +54,7 @@ std::string joined(const std::vector<std::string>& names)
   return out;
 }
 
-constexpr const char* kFaultNames = "kill, pause, resume, restart, plant, publish, dds, link";
+constexpr const char* kFaultNames = "kill, pause, resume, restart, plant, publish, dds, link, mark";
 
 constexpr wire::DatagramFaultKind kDatagramKinds[] = {
     wire::DatagramFaultKind::kLoss, wire::DatagramFaultKind::kDelay, wire::DatagramFaultKind::kDuplicate,
@@ -246,6 +246,15 @@ private:
     }
     if (name == "link") {
       return link(node, key);
+    }
+    if (name == "mark") {
+      if (!isName(node)) {
+        r_.problem(key, node, "expected what the scenario's set-up does, in words (mark injects nothing)");
+        return std::nullopt;
+      }
+      a.kind = Action::Kind::kMark;
+      a.note = node.Scalar();
+      return a;
     }
     r_.problem(key, node, "unknown fault: expected one of " + std::string(kFaultNames));
     return std::nullopt;
@@ -589,6 +598,8 @@ std::string Action::describe() const
     }
     case Kind::kLink:
       return "link " + link.describe() + (duration_s ? fmt::format(" for {:g} s", *duration_s) : "");
+    case Kind::kMark:
+      return "mark: " + note;
   }
   return "?";
 }
@@ -660,7 +671,7 @@ std::vector<std::string> checkAgainstModules(const Scenario& s, const std::vecto
                 "no module of " + s.manifest.filename().string() + " sends as '" + from +
                     "' (a module's participant is named after its kind: " + joined(kinds) + ")");
       }
-    } else if (a.kind != Action::Kind::kPublish && !has(a.module)) {
+    } else if (a.kind != Action::Kind::kPublish && a.kind != Action::Kind::kMark && !has(a.module)) {
       problem(key + "." + nameOf(kProcessActions, a.kind), a.module, known);
     }
     for (std::size_t j = 0; j < st.expect.size(); ++j) {

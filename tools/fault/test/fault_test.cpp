@@ -79,6 +79,8 @@ steps:
   - at: 10
     publish: {topic: quad/sim/state, values: {p_W: {x: .nan}}, count: 5, rate: 50}
     expect: [{rejected: control, within: 1}]
+  - {at: 11, plant: {kind: cell_loss, cells: 2}}
+  - {at: 12, mark: "a small battery", expect: [{mode: LAND, within: 30}]}
 outcome: {mission: failure, collisions: 2, finite_actuators: false, recording_loss: any}
 )");
   EXPECT_EQ(s.name, "all");
@@ -86,7 +88,7 @@ outcome: {mission: failure, collisions: 2, finite_actuators: false, recording_lo
   EXPECT_EQ(s.sets.at("plant"), (std::vector<std::pair<std::string, std::string>>{
                                     {"wind.steady", "[0, 5, 0]"}, {"wind.turbulence_w20", "7.7"}}));
   EXPECT_EQ(s.mode, "realtime");
-  ASSERT_EQ(s.steps.size(), 6U);
+  ASSERT_EQ(s.steps.size(), 8U);
   EXPECT_EQ(s.steps[0].action.describe(), "kill planning");
   ASSERT_EQ(s.steps[0].expect.size(), 4U);
   EXPECT_EQ(s.steps[0].expect[1].describe(), "mode HOVER");
@@ -109,6 +111,10 @@ outcome: {mission: failure, collisions: 2, finite_actuators: false, recording_lo
   EXPECT_EQ(s.steps[4].action.plant.id, 5U);  // the step's number
   EXPECT_EQ(s.steps[5].action.count, 5);
   EXPECT_DOUBLE_EQ(s.steps[5].action.rate_hz, 50.0);
+  EXPECT_EQ(s.steps[6].action.describe(), "plant fault 7 cell_loss: 2 battery cells failed short");
+  EXPECT_EQ(s.steps[7].action.kind, Action::Kind::kMark);
+  EXPECT_EQ(s.steps[7].action.describe(), "mark: a small battery");
+  ASSERT_EQ(s.steps[7].expect.size(), 1U);
   EXPECT_EQ(s.outcome.mission, Outcome::Mission::kFailure);
   EXPECT_EQ(s.outcome.max_collisions, 2);
   EXPECT_FALSE(s.outcome.finite_actuators);
@@ -131,6 +137,7 @@ steps:
   - {at: -1, restart: control, expect: [{noticed: control}]}
   - {at: 9, kill: planning, expect: [{noticed: planning, within: 1, since: last_path}, {mode: HOVER, within: 1, since: noon}]}
   - {at: 10, kill: control, expect: [{altitude_lost: -1, within: 2}, {altitude_lost: 0.5}, {altitude_lost: 0.5, within: 1, since: last_path}]}
+  - {at: 11, mark: [a, list]}
 outcome: {mission: maybe, colisions: 1}
 )");
   EXPECT_TRUE(mentions(p, "s.yaml:manifest: nowhere.yaml: no such file")) << ::testing::PrintToString(p);
@@ -148,6 +155,7 @@ outcome: {mission: maybe, colisions: 1}
   EXPECT_TRUE(mentions(p, "steps[7].expect[0].altitude_lost: -1"));
   EXPECT_TRUE(mentions(p, "steps[7].expect[1].within"));
   EXPECT_TRUE(mentions(p, "steps[7].expect[2].since: last_path: only a mode expectation"));
+  EXPECT_TRUE(mentions(p, "steps[8].mark: [a, list]: expected what the scenario's set-up does"));
   EXPECT_TRUE(mentions(p, "outcome.mission: maybe: expected success, failure or any"));
   EXPECT_TRUE(mentions(p, "outcome.colisions: 1: unknown key"));
 }
@@ -266,8 +274,10 @@ set: {sim: {wind.steady: "[1, 0, 0]"}}
 steps:
   - {at: 1, kill: planner, expect: [{back: planner, within: 2}]}
   - {at: 2, plant: {kind: wind_gust, wind: [3, 0, 0], duration: 1}}
+  - {at: 3, mark: "the set-up's fault"}
 )");
   const auto p = checkAgainstModules(s, {"mapping", "planning"}, {"mapping", "planning"});
+  EXPECT_FALSE(mentions(p, "steps[2]")) << "a mark names no module";
   EXPECT_TRUE(mentions(p, "set.sim: sim: not a module of manifest.yaml (mapping, planning)"));
   EXPECT_TRUE(mentions(p, "steps[0].kill: planner: not a module of manifest.yaml (mapping, planning)"))
       << ::testing::PrintToString(p);

@@ -52,11 +52,12 @@ void MissionTracker::onState(double t, const Eigen::Vector3d& p)
   }
 }
 
-void MissionTracker::onMode(double t, const std::string& mode, bool geofence)
+void MissionTracker::onMode(double t, const std::string& mode, const std::string& ended_by)
 {
-  if (geofence && !left_fence_t_ && !finished_) {
-    left_fence_t_ = t;
-    progress_.push_back(fmt::format("t = {:.1f} s: the vehicle left the geofence", t));
+  if (!ended_by.empty() && ended_by_.empty() && !finished_) {
+    ended_by_ = ended_by;
+    ended_by_t_ = t;
+    progress_.push_back(fmt::format("t = {:.1f} s: {}", t, ended_by));
   }
   if (mode == mode_ || finished_) {
     return;
@@ -69,8 +70,8 @@ void MissionTracker::onMode(double t, const std::string& mode, bool geofence)
     const double to_goal = last_p_ ? (last_p_->head<2>() - goal_.head<2>()).norm() : 0.0;
     if (goal_reached_ && to_goal <= mission_.tolerance_m + 0.5) {
       finishAtGoal("landed at the goal");
-    } else if (left_fence_t_) {
-      const std::string why = fmt::format("left the geofence at t = {:.1f} s", *left_fence_t_);
+    } else if (!ended_by_.empty()) {
+      const std::string why = fmt::format("{} at t = {:.1f} s", ended_by_, ended_by_t_);
       finish(MissionEnd::kFailed, fmt::format("landed {:.2f} m from the goal: {}", to_goal, why), why);
     } else if (!no_path_.empty()) {
       finish(MissionEnd::kNoPath, fmt::format("landed {:.2f} m from the goal: {}", to_goal, no_path_), no_path_);

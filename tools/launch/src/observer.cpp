@@ -103,6 +103,22 @@ std::string noPathReason(int status)
   }
 }
 
+/// A failsafe that ends the flight short of the goal, in words; empty for the others (the
+/// planner's no-path has its own words, from the path's status).
+std::string flightEndedBy(msg::FailsafeReason reason)
+{
+  switch (reason) {
+    case msg::FAILSAFE_GEOFENCE:
+      return "the vehicle left the geofence";
+    case msg::FAILSAFE_BATTERY_LOW:
+      return "the battery ran low";
+    case msg::FAILSAFE_BATTERY_CRITICAL:
+      return "the battery failed (critical)";
+    default:
+      return "";
+  }
+}
+
 std::string controlModeName(int mode)
 {
   const auto* modes = controlModes();
@@ -159,7 +175,7 @@ void Observer::update()
   }
   for (const auto& s : endpoints_->status.takeAll()) {
     tracker_->onMode(common::toSeconds(s.header().stamp_ns()), controlModeName(static_cast<int>(s.mode())),
-                     s.failsafe_reason() == msg::FAILSAFE_GEOFENCE);
+                     flightEndedBy(s.failsafe_reason()));
   }
   for (const auto& p : endpoints_->path.takeAll()) {
     tracker_->onPath(p.version(), noPathReason(p.status()));

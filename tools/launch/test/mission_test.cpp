@@ -111,17 +111,17 @@ TEST(MissionTracker, LandingAfterLeavingTheGeofenceFailsSayingSo)
   MissionTracker t(mission(true), w, 0.0);
   t.onMode(0.0, "MISSION");
   fly(t, 0.0, {0, 0, 2}, {4, 0, 2});
-  t.onMode(4.0, "HOVER", true);
-  t.onMode(5.0, "RETURN", true);
+  t.onMode(4.0, "HOVER", "the vehicle left the geofence");
+  t.onMode(5.0, "RETURN", "the vehicle left the geofence");
   fly(t, 5.0, {4, 0, 2}, {0, 0, 2});
-  t.onMode(9.0, "LAND", true);
+  t.onMode(9.0, "LAND", "the battery ran low");  // only the first one counts
   fly(t, 9.0, {0, 0, 2}, {0, 0, 0});
-  t.onMode(11.0, "IDLE", true);
+  t.onMode(11.0, "IDLE", "the vehicle left the geofence");
   ASSERT_TRUE(t.finished());
   const MissionSummary s = t.summary(1.0);
   EXPECT_FALSE(s.success);
   EXPECT_EQ(s.end, MissionEnd::kFailed);
-  EXPECT_EQ(s.failure, "left the geofence at t = 4.0 s");
+  EXPECT_EQ(s.failure, "the vehicle left the geofence at t = 4.0 s");
 }
 
 TEST(GoalProblem, AGoalOrStartOutsideTheGeofenceIsNamed)

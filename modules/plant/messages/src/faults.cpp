@@ -69,6 +69,14 @@ std::optional<Fault> faultFrom(const msg::FaultCommand& c, std::int64_t now_ns, 
       (gust ? f.wind_W : f.force_W) = v;
       return f;
     }
+    case msg::FAULT_CELL_LOSS:
+      if (c.index() < 1 || c.index() > 16) {
+        why_not = "cell loss needs index 1..16 (the cells that fail)";
+        return std::nullopt;
+      }
+      f.kind = Fault::Kind::kCellLoss;
+      f.cells = c.index();
+      return f;
     default:
       why_not = "this kind is not applied by the plant (datagram faults need its fault layer: QUAD_FAULT_LAYER=1)";
       return std::nullopt;
@@ -105,6 +113,10 @@ msg::FaultCommand toCommand(const Fault& f)
     case Fault::Kind::kPush:
       c.kind(msg::FAULT_PUSH);
       c.vector_W(toMessage(f.force_W));
+      break;
+    case Fault::Kind::kCellLoss:
+      c.kind(msg::FAULT_CELL_LOSS);
+      c.index(f.cells);
       break;
   }
   if (f.kind == Fault::Kind::kSensorDropout || f.kind == Fault::Kind::kSensorStuck ||

@@ -28,6 +28,27 @@ enum class PathKind {
   kUnreachable,  ///< the planner says the goal cannot be reached: hold, then land
 };
 
+/// What the battery's monitor reads (quad/sim/battery).
+struct BatteryReading {
+  double voltage = 0.0;   ///< [V] at the terminals, under load
+  double current = 0.0;   ///< [A]
+  double charge = 1.0;    ///< fraction of the capacity left
+  double capacity = 0.0;  ///< [Ah]
+  int cells = 1;          ///< in series, as built
+};
+
+/// When the battery ends the flight (PX4's low/critical thresholds and its flight-time-left
+/// return, in one rule each).
+struct BatteryPolicy {
+  double reserve = 0.15;               ///< fraction of the capacity to be left on landing
+  double critical = 0.07;              ///< at or below this fraction left: land where it is
+  double critical_cell_voltage = 3.3;  ///< [V] a cell's share of the pack's voltage under load, below which ...
+  double critical_after = 1.0;         ///< [s] ... for this long (not one surge of current): land where it is
+  double return_margin = 1.2;          ///< the way back is taken to last this many times its estimate ...
+  double return_overhead = 5.0;        ///< [s] ... and this much more: braking, turning, touching down
+  double current_window = 5.0;         ///< [s] the current drawn is averaged over about this long
+};
+
 struct FlightControllerConfig {
   GeometricGains gains;
   FollowerLimits follower;
@@ -45,6 +66,7 @@ struct FlightControllerConfig {
   double camera_look_ahead = 3.0;
   /// The keep-in volume: leaving it holds, then returns (ModeConfig::geofence_return_after).
   common::Geofence geofence;
+  BatteryPolicy battery;
 };
 
 /// Where the camera gimbal should look: world yaw and elevation [rad].
@@ -91,6 +113,16 @@ public:
   /// An IMU sample at sim time t [s], carrying the last state on while the state is stale.
   /// Rejected (false, counted) when non-finite.
   bool onImu(const InertialSample& sample, double t);
+  /// A battery reading at sim time t [s]; rejected (false, counted) when a value is
+  /// non-finite or out of its range (negative voltage or current, charge outside 0 … 1, no
+  /// capacity, no cells).
+  bool onBattery(const BatteryReading& reading, double t);
+  /// [s] how long the charge left above the reserve lasts at the average current; infinite
+  /// before any reading.
+  double batteryTimeLeft() const;
+  /// [s] the way back to the take-off point and the descent there, at the follower's top speed
+  /// and the landing speed, times the policy's margin plus its overhead (0 on the ground).
+  double returnTime() const;
   /// The goal the mission flies to; rejected (false, counted) when non-finite.
   bool onGoal(const Vector3& p, double tolerance);
   /// An operator command, applied at the next update.
@@ -129,6 +161,7 @@ private:
   PathKind path_kind_ = PathKind::kNone;  // of the last path heard
   CameraAim camera_;
   std::vector<Vector3> flown_;        // the flown path since take-off, a point every half metre
+  double flown_length_ = 0.0;         // [m] along flown_
   std::vector<Vector3> return_path_;  // RETURN flies it: back along flown_
   double path_t_ = -1e300;
   bool path_changed_ = false;
@@ -141,6 +174,10 @@ private:
   double land_z0_ = 0.0;
   double land_t0_ = 0.0;
   std::uint64_t rejected_ = 0;
+  std::optional<BatteryReading> battery_;
+  double battery_t_ = 0.0;
+  double average_current_ = 0.0;         // [A]
+  double cells_low_since_ = -1.0;        // [s] since when the cells' voltage is below critical; -1: not
 };
 
 }  // namespace quad::control

@@ -15,6 +15,9 @@
 ///   TAKEOFF, MISSION, HOVER --outside the geofence--> HOVER --geofence_return_after--> RETURN
 ///     (the vehicle was pushed out of the keep-in volume: it brakes and holds, then goes back
 ///     the way it came, which lay inside, and lands at the take-off point)
+///   TAKEOFF, MISSION, HOVER --battery low--> RETURN --back--> LAND
+///     (the charge left, less a reserve, lasts no longer than the way back and the descent)
+///   any airborne but LAND and FAILSAFE_LAND --battery critical--> LAND, where it is
 ///   any airborne --state stale--> FAILSAFE_LAND --landed--> IDLE --idle timeout--> DISARMED
 
 #include <optional>
@@ -24,7 +27,18 @@
 namespace quad::control {
 
 enum class Mode { kDisarmed, kIdle, kTakeoff, kMission, kHover, kLand, kFailsafeLand, kReturn };
-enum class Reason { kNone, kStateStale, kPathStale, kInputInvalid, kSaturation, kCommanded, kNoPath, kGeofence };
+enum class Reason {
+  kNone,
+  kStateStale,
+  kPathStale,
+  kInputInvalid,
+  kSaturation,
+  kCommanded,
+  kNoPath,
+  kGeofence,
+  kBatteryLow,
+  kBatteryCritical
+};
 enum class Command { kNone, kArm, kDisarm, kTakeoff, kStartMission, kHold, kLand };
 
 std::string_view toString(Mode m);
@@ -44,6 +58,10 @@ struct ModeInputs {
   bool goal_reached = false;
   bool returned = false;          ///< in RETURN: back above the take-off point
   bool outside_geofence = false;  ///< the vehicle is outside the keep-in volume
+  /// The charge left, less the reserve, lasts no longer than the way back to the take-off
+  /// point and the descent there (on the ground: the charge is down to the reserve).
+  bool battery_low = false;
+  bool battery_critical = false;  ///< the pack is nearly empty or a cell has failed: land now
 };
 
 struct ModeConfig {

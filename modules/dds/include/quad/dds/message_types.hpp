@@ -16,6 +16,7 @@
 #include <fastdds/dds/topic/TopicDataType.hpp>
 
 #include <quad/msg/ActuatorCommandPubSubTypes.h>
+#include <quad/msg/BatteryStatePubSubTypes.h>
 #include <quad/msg/ControlReferencePubSubTypes.h>
 #include <quad/msg/ControlStatusPubSubTypes.h>
 #include <quad/msg/FaultCommandPubSubTypes.h>
@@ -103,6 +104,7 @@ struct MessageTraits;
   }
 
 QUAD_DDS_MESSAGE(ActuatorCommand);
+QUAD_DDS_MESSAGE(BatteryState);
 QUAD_DDS_MESSAGE(ControlReference);
 QUAD_DDS_MESSAGE(ControlStatus);
 QUAD_DDS_MESSAGE(FaultCommand);

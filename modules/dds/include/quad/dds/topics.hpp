@@ -12,7 +12,7 @@
 
 namespace quad::dds::topics {
 
-using msg::ActuatorCommand, msg::ControlReference, msg::ControlStatus, msg::FaultCommand, msg::Goal, msg::Heartbeat,
+using msg::ActuatorCommand, msg::BatteryState, msg::ControlReference, msg::ControlStatus, msg::FaultCommand, msg::Goal, msg::Heartbeat,
     msg::Imu, msg::LockstepReport, msg::MapSnapshot, msg::MapStats, msg::MapUpdate, msg::Path,
     msg::PointCloud, msg::SimClock, msg::SimEvent, msg::VehicleCommand, msg::VehicleState;
 
@@ -26,6 +26,9 @@ inline constexpr auto kSimState = makeTopic<VehicleState>(
 inline constexpr auto kSimImu = makeTopic<Imu>(
     "quad/sim/imu", "sensor", 250.0, Owner::kPlant,
     "Simulated IMU");
+inline constexpr auto kSimBattery = makeTopic<BatteryState>(
+    "quad/sim/battery", "scan", 10.0, Owner::kPlant,
+    "Flight battery: voltage under load, current, charge left", 0.5);
 inline constexpr auto kSimDepth = makeTopic<PointCloud>(
     "quad/sim/depth", "scan", 10.0, Owner::kPlant,
     "Depth sensor point cloud with the sensor pose");
@@ -81,7 +84,7 @@ inline constexpr std::int64_t kStateAheadOfClockNs = 500'000'000;
 
 /// Every contract, for tools that iterate over topics.
 inline constexpr std::array kAll{
-    kSimClock.info, kSimState.info,  kSimImu.info,        kSimDepth.info,
+    kSimClock.info, kSimState.info,  kSimImu.info,        kSimBattery.info,  kSimDepth.info,
     kSimEvents.info, kLockstep.info, kMapUpdate.info,     kMapSnapshot.info, kMapStats.info,
     kGoal.info,      kPath.info,     kActuators.info,     kControlStatus.info,
     kControlReference.info, kHeartbeat.info, kVehicleCommand.info, kFault.info, kFaultEvents.info};

@@ -34,6 +34,8 @@ struct Environment {
   Vector3 force_W = Vector3::Zero();   ///< [N] an external force on the body (a push), world
   /// Fraction of nominal thrust and torque each rotor delivers (1 healthy, 0 failed).
   RotorArray rotor_efficiency{1.0, 1.0, 1.0, 1.0};
+  /// Fraction of the rated top rotor speed the battery's voltage allows (1: all of it).
+  double supply = 1.0;
 };
 
 /// Forces and torques on the body for a state, in the body frame.
@@ -49,7 +51,7 @@ public:
   const vehicle::VehicleParams& params() const { return params_; }
 
   /// Advances `state` by dt [s] towards the commanded rotor speeds (clamped to the rotor
-  /// limits; the motors follow with their lag). Resolves ground contact after the step: the
+  /// limits, the top one scaled by the supply; the motors follow with their lag). Resolves ground contact after the step: the
   /// vehicle never goes below z = 0; touching down stops it (inelastic, with friction) and
   /// sets `landed`; it stays landed until the thrust lifts it.
   void step(RigidBodyState& state, const RotorArray& commanded, const Environment& env,

@@ -2,7 +2,7 @@
 #pragma once
 /// @file
 /// Faults the plant applies to itself: rotor failure or degradation, sensor dropout, stuck
-/// sensor, extra sensor noise, wind gusts. Each has an id, a start and a duration in sim time;
+/// sensor, extra sensor noise, wind gusts, a push, battery cells failing. Each has an id, a start and a duration in sim time;
 /// the simulation reports when each takes effect and when it clears.
 
 #include <cstdint>
@@ -26,7 +26,7 @@ std::string_view toString(Sensor s);
 std::optional<Sensor> parseSensor(std::string_view text);
 
 struct Fault {
-  enum class Kind { kMotor, kSensorDropout, kSensorStuck, kSensorNoise, kWindGust, kPush };
+  enum class Kind { kMotor, kSensorDropout, kSensorStuck, kSensorNoise, kWindGust, kPush, kCellLoss };
   std::uint32_t id = 0;
   Kind kind = Kind::kMotor;
   int rotor = 0;                         ///< kMotor: 0..3
@@ -35,6 +35,7 @@ struct Fault {
   Sensor sensor = Sensor::kDepth;        ///< sensor faults
   geometry::Vector3 wind_W = geometry::Vector3::Zero();  ///< kWindGust [m/s]
   geometry::Vector3 force_W = geometry::Vector3::Zero(); ///< kPush [N] on the vehicle
+  int cells = 0;                         ///< kCellLoss: battery cells that fail short (for good)
   std::int64_t start_ns = 0;             ///< sim time it takes effect
   std::int64_t duration_ns = 0;          ///< <= 0: until cleared
 
@@ -52,7 +53,8 @@ std::optional<Fault> parseFault(common::YamlReader& reader, YAML::Node node, con
 
 /// A schedule file: a YAML list of faults, e.g.
 /// `- {id: 1, kind: motor, rotor: 2, efficiency: 0.5, at: 10.0, duration: 5.0}`
-/// (kinds: motor, sensor_dropout, sensor_stuck, sensor_noise, wind_gust, push; times in seconds).
+/// (kinds: motor, sensor_dropout, sensor_stuck, sensor_noise, wind_gust, push, cell_loss;
+/// times in seconds).
 /// Every problem is reported as `file:key: value: reason` in a common::ConfigError.
 std::vector<Fault> parseFaultSchedule(std::string_view yaml_text, std::string_view origin);
 std::vector<Fault> loadFaultSchedule(const std::filesystem::path& file);

@@ -2,8 +2,9 @@
 #pragma once
 /// @file
 /// The plant: the vehicle in its world, stepped in sim time. Each step integrates the rotor
-/// command the CommandGuard holds, applies due faults, detects contacts, and emits the sensor
-/// samples that fall due. Everything random draws from one generator seeded by the config, so
+/// command the CommandGuard holds (as far as the battery's voltage lets the rotors follow it),
+/// draws the rotors' power from the battery, applies due faults, detects contacts, and emits
+/// the sensor samples that fall due. Everything random draws from one generator seeded by the config, so
 /// the same seed and the same commands give bit-identical runs.
 
 #include <cstdint>
@@ -12,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "quad/plant/battery.hpp"
 #include "quad/plant/command_guard.hpp"
 #include "quad/plant/dynamics.hpp"
 #include "quad/plant/faults.hpp"
@@ -34,6 +36,8 @@ struct SimulationConfig {
   GimbalConfig gimbal;  ///< enabled: the depth camera hangs on it (at depth.position_B), not on its fixed mount
   ImuConfig imu;
   WindConfig wind;  ///< steady wind and turbulence (gusts come as faults, on top)
+  BatteryConfig battery;
+  double battery_rate_hz = 10.0;  ///< battery readings (the pack's monitor)
   Vector3 gravity_W{0.0, 0.0, -9.81};
 };
 
@@ -62,11 +66,22 @@ struct DepthReading {
   DepthScan scan;
 };
 
+/// What the pack's monitor reads.
+struct BatteryReading {
+  std::int64_t t_ns = 0;
+  double voltage = 0.0;   ///< [V] at the terminals
+  double current = 0.0;   ///< [A] drawn
+  double charge = 0.0;    ///< fraction of the capacity left
+  double capacity = 0.0;  ///< [Ah]
+  int cells = 0;          ///< in series, as built (a failed cell still counts)
+};
+
 struct StepOutputs {
   bool state_due = false;  ///< a state sample was due this step (whether or not a fault dropped it)
   std::optional<StateSample> state;
   std::optional<ImuReading> imu;
   std::optional<DepthReading> depth;
+  std::optional<BatteryReading> battery;
   std::vector<SimEventRecord> events;
 };
 
@@ -83,6 +98,8 @@ public:
   const SimulationConfig& config() const { return config_; }
   CommandGuard& commands() { return guard_; }
   const CommandGuard& commands() const { return guard_; }
+  /// The battery, unless the config asks for an ideal supply.
+  const std::optional<Battery>& battery() const { return battery_; }
 
   /// Schedules a fault (it takes effect at the next step at or after its start). Returns
   /// false when its id is already scheduled or active.
@@ -127,6 +144,7 @@ private:
   CommandGuard guard_;
   std::mt19937_64 rng_;
   Wind wind_;  // its own generator: turbulence on or off leaves the sensors' draws as they were
+  std::optional<Battery> battery_;
   RigidBodyState state_;
   std::int64_t t_ns_ = 0;
   std::vector<Active> faults_;
@@ -135,6 +153,7 @@ private:
   std::int64_t next_state_ns_ = 0;
   std::int64_t next_imu_ns_ = 0;
   std::int64_t next_depth_ns_ = 0;
+  std::int64_t next_battery_ns_ = 0;
   std::optional<StateSample> last_state_;
   std::optional<ImuReading> last_imu_;
   std::optional<DepthReading> last_depth_;

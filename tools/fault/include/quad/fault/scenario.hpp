@@ -32,6 +32,8 @@ struct Action {
     kPublish,  ///< samples published on a topic (bad inputs)
     kDds,      ///< datagram faults in a module's DDS fault layer (quad/system/fault)
     kLink,     ///< a fault on a network-namespace host's link (iptables, ip link)
+    kMark,     ///< nothing: the step marks the time its expectations count from (the fault is
+               ///< the scenario's set-up, `set:`, such as a small battery)
   };
   Kind kind = Kind::kKill;
   std::string module;              ///< process actions
@@ -46,6 +48,7 @@ struct Action {
   /// kDds: the faults on what `module` receives, ids `kDatagramIdBase * step + 1..5`.
   std::vector<wire::DatagramFault> datagrams;
   launch::LinkFault link;            ///< kLink
+  std::string note;                  ///< kMark: what the scenario's set-up does, in words
   /// kDds, kLink: cleared (healed) this long after; absent: when the run ends.
   std::optional<double> duration_s;
 

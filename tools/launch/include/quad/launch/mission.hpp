@@ -47,9 +47,11 @@ public:
 
   /// A vehicle state at sim time t [s].
   void onState(double t, const Eigen::Vector3d& p);
-  /// The controller's mode (its name) at sim time t; repeats are ignored. `geofence`: the
-  /// controller says the vehicle left the geofence (its failsafe reason).
-  void onMode(double t, const std::string& mode, bool geofence = false);
+  /// The controller's mode (its name) at sim time t; repeats are ignored. `ended_by`: a
+  /// failsafe of the controller's that ends the flight short of the goal, in words ("the
+  /// vehicle left the geofence", "the battery ran low"), empty for none; the first one heard is
+  /// the failure a landing short of the goal reports.
+  void onMode(double t, const std::string& mode, const std::string& ended_by = {});
   /// A path of this version was published. `no_path`: the planner said the goal cannot be
   /// reached, and why (in words); empty when it has a path or is merely waiting.
   void onPath(std::uint32_t version, const std::string& no_path = {});
@@ -92,7 +94,8 @@ private:
   std::string outcome_;
   std::string failure_;
   std::string no_path_;  // the planner's last word that the goal cannot be reached
-  std::optional<double> left_fence_t_;  // when the controller said the vehicle left the geofence
+  std::string ended_by_;                 // the first flight-ending failsafe the controller reported
+  double ended_by_t_ = 0.0;              // and when
   std::vector<std::string> progress_;
   double next_progress_t_ = 10.0;
 };

@@ -102,6 +102,11 @@ const common::ParamTable<ControlNodeConfig>& controlTable()
                 "the camera gimbal looks at the path this far ahead")
         .number("modes.idle_disarm_after", [](C& c) -> double& { return c.flight.modes.idle_disarm_after; },
                 {0.1, 1e6}, "s", "armed on the ground, then disarm")
+        .number("operator.link_loss_after", [](C& c) -> double& { return c.flight.link_loss_after; }, {0.0, 3600.0},
+                "s", "the operator's station, once heard, silent this long: the link is lost; 0: never")
+        .choice("operator.link_loss_action", [](C& c) -> LinkLossAction& { return c.flight.modes.link_loss; },
+                {{"return", LinkLossAction::kReturn}, {"land", LinkLossAction::kLand}, {"none", LinkLossAction::kNone}},
+                "what a lost link does in flight: return to land at the take-off point, land where it is, or nothing")
         .flag("modes.auto_mission", [](C& c) -> bool& { return c.flight.modes.auto_mission; },
               "start the mission as soon as a path is available")
         .flag("autostart", [](C& c) -> bool& { return c.autostart; }, "arm and take off once the vehicle state is fresh")

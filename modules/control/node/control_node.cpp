@@ -23,6 +23,7 @@ ControlNode::ControlNode(ControlNodeConfig config, dds::ParticipantOptions optio
       command_(participant(), dds::topics::kVehicleCommand, waker()),
       imu_(participant(), dds::topics::kSimImu, waker()),
       battery_(participant(), dds::topics::kSimBattery, waker()),
+      operator_(participant(), dds::topics::kOperatorHeartbeat, waker()),
       actuators_(participant(), dds::topics::kActuators),
       status_(participant(), dds::topics::kControlStatus),
       reference_(participant(), dds::topics::kControlReference)
@@ -53,6 +54,12 @@ void ControlNode::takeInputs()
       spdlog::warn("{}: sample seq {} rejected: voltage {} V, current {} A, charge {}, capacity {} Ah, {} cells",
                    dds::topics::kSimBattery.info.name, b->header().seq(), b->voltage(), b->current(), b->charge(),
                    b->capacity(), b->cells());
+    }
+  }
+  while (auto h = operator_.take()) {
+    counters().samples_in++;
+    if (!fc_.onOperatorHeartbeat(common::toSeconds(h->header().stamp_ns()))) {
+      counters().errors++;
     }
   }
   while (auto c = command_.take()) {

@@ -39,6 +39,7 @@ private:
   dds::Subscriber<msg::VehicleCommand> command_;
   dds::Subscriber<msg::Imu> imu_;
   dds::Subscriber<msg::BatteryState> battery_;
+  dds::Subscriber<msg::Heartbeat> operator_;
   dds::Publisher<msg::ActuatorCommand> actuators_;
   dds::Publisher<msg::ControlStatus> status_;
   dds::Publisher<msg::ControlReference> reference_;

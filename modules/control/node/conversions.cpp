@@ -37,6 +37,8 @@ Command fromMessage(msg::CommandKind kind)
       return Command::kHold;
     case msg::COMMAND_LAND:
       return Command::kLand;
+    case msg::COMMAND_RETURN:
+      return Command::kReturn;
     case msg::COMMAND_SAVE_MAP:
       return Command::kNone;  // the mapper's
   }
@@ -104,6 +106,8 @@ msg::FailsafeReason toMessage(Reason reason)
       return msg::FAILSAFE_BATTERY_LOW;
     case Reason::kBatteryCritical:
       return msg::FAILSAFE_BATTERY_CRITICAL;
+    case Reason::kLinkLost:
+      return msg::FAILSAFE_LINK_LOST;
   }
   return msg::FAILSAFE_NONE;
 }

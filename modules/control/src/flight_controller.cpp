@@ -137,6 +137,16 @@ bool FlightController::onBattery(const BatteryReading& b, double t)
   return true;
 }
 
+bool FlightController::onOperatorHeartbeat(double t)
+{
+  if (!std::isfinite(t)) {
+    ++rejected_;
+    return false;
+  }
+  operator_t_ = std::max(t, operator_t_.value_or(t));
+  return true;
+}
+
 double FlightController::batteryTimeLeft() const
 {
   if (!battery_) {
@@ -245,6 +255,7 @@ FlightOutput FlightController::update(double t)
     flown_length_ += flown_.empty() ? 0.0 : (state_->p_W - flown_.back()).norm();
     flown_.push_back(state_->p_W);
   }
+  in.link_lost = operator_t_ && config_.link_loss_after > 0.0 && t - *operator_t_ > config_.link_loss_after;
   if (battery_) {
     const BatteryPolicy& policy = config_.battery;
     in.battery_low = battery_->charge <= policy.reserve || batteryTimeLeft() <= returnTime();

@@ -49,6 +49,8 @@ std::string_view toString(Reason r)
       return "battery low";
     case Reason::kBatteryCritical:
       return "battery critical";
+    case Reason::kLinkLost:
+      return "link lost";
   }
   return "?";
 }
@@ -70,6 +72,8 @@ std::string_view toString(Command c)
       return "hold";
     case Command::kLand:
       return "land";
+    case Command::kReturn:
+      return "return";
   }
   return "?";
 }
@@ -179,8 +183,26 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
     refuse("returning on a low battery");
     return std::nullopt;
   }
+  const bool flying_out = mode_ == Mode::kTakeoff || mode_ == Mode::kMission || mode_ == Mode::kHover;
+  if (commanded(Command::kReturn)) {
+    if (mode_ == Mode::kReturn) {
+      return std::nullopt;
+    }
+    if (!flying_out) {
+      refuse("landing already");
+      return std::nullopt;
+    }
+    return go(Mode::kReturn, Reason::kCommanded, "commanded: return to launch", in.t);
+  }
+  // The operator's station fell silent: by policy, back the way the vehicle came, or down.
+  if (in.link_lost && flying_out && config_.link_loss != LinkLossAction::kNone) {
+    if (config_.link_loss == LinkLossAction::kLand) {
+      return go(Mode::kLand, Reason::kLinkLost, "operator link lost: landing where it is", in.t);
+    }
+    return go(Mode::kReturn, Reason::kLinkLost, "operator link lost: returning to land at the take-off point", in.t);
+  }
   // Only as much charge left as the way back needs: go back now, the way the vehicle came.
-  if (in.battery_low && (mode_ == Mode::kTakeoff || mode_ == Mode::kMission || mode_ == Mode::kHover)) {
+  if (in.battery_low && flying_out) {
     return go(Mode::kReturn, Reason::kBatteryLow, "battery low: returning to land at the take-off point", in.t);
   }
   if (commanded(Command::kHold) && mode_ != Mode::kHover) {
@@ -259,7 +281,7 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
     case Mode::kLand:
       if (in.landed) {
         const bool told = reason_ == Reason::kNoPath || reason_ == Reason::kGeofence || reason_ == Reason::kBatteryLow ||
-                          reason_ == Reason::kBatteryCritical;  // why the flight ended
+                          reason_ == Reason::kBatteryCritical || reason_ == Reason::kLinkLost;  // why the flight ended
         return go(Mode::kIdle, told ? reason_ : Reason::kNone, "landed", in.t);
       }
       break;

@@ -21,6 +21,9 @@ struct Rig {
   std::vector<FlightOutput> log;
   bool feed_state = true;
   bool feed_imu = true;
+  /// The operator's station sends its heartbeat every half second up to this sim time.
+  double operator_until = -1.0;
+  double operator_next = 0.0;
 
   explicit Rig(FlightControllerConfig config = defaults(), plant::SimulationConfig plant = {},
                std::vector<plant::Fault> faults = {})
@@ -54,6 +57,10 @@ struct Rig {
       if (out.imu && feed_imu) {
         fc.onImu({out.imu->sample.specific_force_B, out.imu->sample.angular_rate_B},
                  common::toSeconds(out.imu->t_ns));
+      }
+      if (t() < operator_until && t() >= operator_next) {
+        fc.onOperatorHeartbeat(t());
+        operator_next = t() + 0.5;
       }
       if (out.battery) {
         const plant::BatteryReading& b = *out.battery;
@@ -501,6 +508,29 @@ TEST(FlightController, AFailedCellLandsWhereTheVehicleIsWithinTheCriticalHold)
   rig.run(20.0, [&] { return rig.mode() == Mode::kIdle; });
   ASSERT_EQ(rig.mode(), Mode::kIdle);
   EXPECT_LT((rig.sim.state().p_W.head<2>() - p.head<2>()).norm(), 0.5);
+  EXPECT_EQ(rig.sim.collisionCount(), 0U);
+}
+
+TEST(FlightController, AnOperatorSilentForTheLinkLossTimeReturnsTheVehicleToLandAtHome)
+{
+  FlightControllerConfig config = Rig::defaults();
+  config.link_loss_after = 3.0;
+  Rig rig(config);
+  rig.operator_until = 1e9;
+  takeOff(rig);
+  const Vector3 home = rig.sim.state().p_W;
+  const double silent_from = rig.t() + 4.0;
+  rig.operator_until = silent_from;
+  flyOut(rig, 30.0, [&] { return rig.mode() == Mode::kReturn; });
+  ASSERT_EQ(rig.mode(), Mode::kReturn);
+  EXPECT_EQ(rig.log.back().reason, Reason::kLinkLost);
+  // The last heartbeat came at most half a second before the silence began.
+  EXPECT_GE(rig.t(), silent_from - 0.5 + config.link_loss_after);
+  EXPECT_LE(rig.t(), silent_from + config.link_loss_after + 0.01);
+  rig.run(60.0, [&] { return rig.mode() == Mode::kIdle; });
+  ASSERT_EQ(rig.mode(), Mode::kIdle);
+  EXPECT_EQ(rig.log.back().reason, Reason::kLinkLost);
+  EXPECT_LT((rig.sim.state().p_W.head<2>() - home.head<2>()).norm(), 0.5);
   EXPECT_EQ(rig.sim.collisionCount(), 0U);
 }
 

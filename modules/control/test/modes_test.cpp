@@ -99,6 +99,10 @@ TEST(Modes, EveryConditionInEveryMode)
       {"battery critical", [](ModeInputs& i) { i.battery_critical = true; }, {D, I, L, L, L, L, F, L}},
       {"battery critical, takeoff", [](ModeInputs& i) { i.battery_critical = true; i.command = Command::kTakeoff; },
        {D, I, L, L, L, L, F, L}},
+      // Return to launch, commanded or on a lost link (the default policy); on the ground,
+      // landing or returning already, nothing.
+      {"return", [](ModeInputs& i) { i.command = Command::kReturn; }, {D, I, R, R, R, L, F, R}},
+      {"link lost", [](ModeInputs& i) { i.link_lost = true; }, {D, I, R, R, R, L, F, R}},
       // Only a controller started in flight is disarmed in the air: it takes over.
       {"in the air", [](ModeInputs& i) { i.landed = false; }, {H, I, T, M, H, L, F, R}},
   };
@@ -210,6 +214,38 @@ TEST(Modes, ALowBatteryReturnsAndACriticalOneLandsWhereItIsSayingWhy)
   in.command = Command::kTakeoff;
   EXPECT_FALSE(m.update(in).has_value());
   EXPECT_EQ(m.refused(), "takeoff refused in IDLE: battery critical");
+}
+
+TEST(Modes, ALostLinkReturnsOrLandsOrDoesNothingByPolicy)
+{
+  for (const auto& [policy, expected] : {std::pair{LinkLossAction::kReturn, Mode::kReturn},
+                                         std::pair{LinkLossAction::kLand, Mode::kLand},
+                                         std::pair{LinkLossAction::kNone, Mode::kMission}}) {
+    ModeConfig config;
+    config.link_loss = policy;
+    ModeMachine m = machineIn(Mode::kMission, config);
+    ModeInputs in;
+    in.landed = false;
+    in.path_fresh = true;
+    in.link_lost = true;
+    const auto tr = m.update(in);
+    EXPECT_EQ(m.mode(), expected);
+    if (expected != Mode::kMission) {
+      ASSERT_TRUE(tr.has_value());
+      EXPECT_EQ(tr->reason, Reason::kLinkLost);
+    }
+    // The link back: what the failsafe began goes on, until the operator commands again.
+    in.link_lost = false;
+    EXPECT_FALSE(m.update(in).has_value());
+    EXPECT_EQ(m.mode(), expected);
+  }
+  // A return commanded while landing is refused, saying why.
+  ModeMachine m = machineIn(Mode::kLand);
+  ModeInputs in;
+  in.landed = false;
+  in.command = Command::kReturn;
+  EXPECT_FALSE(m.update(in).has_value());
+  EXPECT_EQ(m.refused(), "return refused in LAND: landing already");
 }
 
 TEST(Modes, TransitionsCarryTheirReason)

@@ -146,14 +146,20 @@ void Node::stop()
   waker_.notify();
 }
 
-void Node::publishHeartbeat(msg::ModuleState state)
+msg::Heartbeat processHeartbeat(const std::string& module_name, msg::ModuleState state, std::int64_t stamp_ns)
 {
   msg::Heartbeat hb;
-  hb.header().stamp_ns(common::wallTimeNs());
-  hb.module_name(module_name_);
+  hb.header().stamp_ns(stamp_ns);
+  hb.module_name(module_name);
   hb.host(hostName());
   hb.pid(static_cast<std::int32_t>(getpid()));
   hb.state(state);
+  return hb;
+}
+
+void Node::publishHeartbeat(msg::ModuleState state)
+{
+  msg::Heartbeat hb = processHeartbeat(module_name_, state, common::wallTimeNs());
   hb.samples_in(counters_.samples_in.load());
   hb.samples_out(counters_.samples_out.load());
   hb.errors(counters_.errors.load());

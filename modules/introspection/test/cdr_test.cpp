@@ -228,7 +228,7 @@ TEST(CdrEncode, BadValuesNameTheFieldPath)
             "tolerance: expected a number, got \"far\"");
   EXPECT_EQ(error("quad::msg::VehicleCommand", R"({"kind": "COMMAND_FLIP"})"),
             "kind: \"COMMAND_FLIP\" is not one of COMMAND_ARM, COMMAND_DISARM, COMMAND_TAKEOFF, "
-            "COMMAND_START_MISSION, COMMAND_HOLD, COMMAND_LAND, COMMAND_SAVE_MAP");
+            "COMMAND_START_MISSION, COMMAND_HOLD, COMMAND_LAND, COMMAND_SAVE_MAP, COMMAND_RETURN");
   EXPECT_EQ(error("quad::msg::ActuatorCommand", R"({"rotor_speed": [1, 2, 3]})"),
             "rotor_speed: expected a list of 4, got [1,2,3]");
   EXPECT_EQ(error("quad::msg::Heartbeat", R"({"module_name": "a-module-name-longer-than-32-chars"})"),

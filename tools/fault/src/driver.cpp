@@ -393,6 +393,13 @@ private:
       case Action::Kind::kMark:
         acknowledge(step, now, "marked");
         break;
+      case Action::Kind::kOperatorLink:
+        run.observer().setOperatorLink(false);
+        acknowledge(step, now, "the operator's heartbeat stopped");
+        if (a.duration_s) {
+          clears_.push_back({scenario_.steps[step].at_s + *a.duration_s, step});
+        }
+        break;
       case Action::Kind::kPublish: {
         PublishJob& job = jobs_.at(step);
         job.active = true;
@@ -457,6 +464,12 @@ private:
   void clear(launch::LaunchRun& run, std::size_t step)
   {
     const Action& a = scenario_.steps[step].action;
+    if (a.kind == Action::Kind::kOperatorLink) {
+      run.observer().setOperatorLink(true);
+      noteCleared(step, "the operator's heartbeat resumed");
+      event(step, msg::SIM_EVENT_FAULT_CLEARED, "the operator's heartbeat resumed");
+      return;
+    }
     if (a.kind == Action::Kind::kLink) {
       try {
         run.network().healLinkFault(a.link);

@@ -54,7 +54,7 @@ std::string joined(const std::vector<std::string>& names)
   return out;
 }
 
-constexpr const char* kFaultNames = "kill, pause, resume, restart, plant, publish, dds, link, mark";
+constexpr const char* kFaultNames = "kill, pause, resume, restart, plant, publish, dds, link, operator_link, mark";
 
 constexpr wire::DatagramFaultKind kDatagramKinds[] = {
     wire::DatagramFaultKind::kLoss, wire::DatagramFaultKind::kDelay, wire::DatagramFaultKind::kDuplicate,
@@ -247,6 +247,9 @@ private:
     if (name == "link") {
       return link(node, key);
     }
+    if (name == "operator_link") {
+      return operatorLink(node, key);
+    }
     if (name == "mark") {
       if (!isName(node)) {
         r_.problem(key, node, "expected what the scenario's set-up does, in words (mark injects nothing)");
@@ -319,6 +322,28 @@ private:
     if (ok && a.datagrams.empty()) {
       r_.problem(key, node, "no datagram fault: expected at least one of " + joined(datagramKeys()));
       ok = false;
+    }
+    return ok ? std::optional<Action>(a) : std::nullopt;
+  }
+
+  /// operator_link: {lost: true, duration}
+  std::optional<Action> operatorLink(YAML::Node node, const std::string& key)
+  {
+    if (!node.IsMap()) {
+      r_.problem(key, node, "expected a map with lost: true and, to restore it, duration: SECONDS");
+      return std::nullopt;
+    }
+    r_.onlyKeys(node, key + ".", {"lost", "duration"});
+    Action a;
+    a.kind = Action::Kind::kOperatorLink;
+    bool ok = true;
+    if (!flag(node["lost"], key + ".lost", false)) {
+      r_.problem(key + ".lost", node["lost"], "expected true (the link is lost; duration restores it)");
+      ok = false;
+    }
+    if (node["duration"].IsDefined()) {
+      a.duration_s = r_.number(node["duration"], key + ".duration", std::nullopt, 0.001, kMaxTime);
+      ok = ok && a.duration_s;
     }
     return ok ? std::optional<Action>(a) : std::nullopt;
   }
@@ -600,6 +625,8 @@ std::string Action::describe() const
       return "link " + link.describe() + (duration_s ? fmt::format(" for {:g} s", *duration_s) : "");
     case Kind::kMark:
       return "mark: " + note;
+    case Kind::kOperatorLink:
+      return "operator link lost" + (duration_s ? fmt::format(" for {:g} s", *duration_s) : "");
   }
   return "?";
 }
@@ -671,7 +698,8 @@ std::vector<std::string> checkAgainstModules(const Scenario& s, const std::vecto
                 "no module of " + s.manifest.filename().string() + " sends as '" + from +
                     "' (a module's participant is named after its kind: " + joined(kinds) + ")");
       }
-    } else if (a.kind != Action::Kind::kPublish && a.kind != Action::Kind::kMark && !has(a.module)) {
+    } else if (a.kind != Action::Kind::kPublish && a.kind != Action::Kind::kMark &&
+               a.kind != Action::Kind::kOperatorLink && !has(a.module)) {
       problem(key + "." + nameOf(kProcessActions, a.kind), a.module, known);
     }
     for (std::size_t j = 0; j < st.expect.size(); ++j) {

@@ -81,6 +81,7 @@ steps:
     expect: [{rejected: control, within: 1}]
   - {at: 11, plant: {kind: cell_loss, cells: 2}}
   - {at: 12, mark: "a small battery", expect: [{mode: LAND, within: 30}]}
+  - {at: 13, operator_link: {lost: true, duration: 6}}
 outcome: {mission: failure, collisions: 2, finite_actuators: false, recording_loss: any}
 )");
   EXPECT_EQ(s.name, "all");
@@ -88,7 +89,9 @@ outcome: {mission: failure, collisions: 2, finite_actuators: false, recording_lo
   EXPECT_EQ(s.sets.at("plant"), (std::vector<std::pair<std::string, std::string>>{
                                     {"wind.steady", "[0, 5, 0]"}, {"wind.turbulence_w20", "7.7"}}));
   EXPECT_EQ(s.mode, "realtime");
-  ASSERT_EQ(s.steps.size(), 8U);
+  ASSERT_EQ(s.steps.size(), 9U);
+  EXPECT_EQ(s.steps[8].action.describe(), "operator link lost for 6 s");
+  EXPECT_TRUE(s.steps[8].action.lasts());
   EXPECT_EQ(s.steps[0].action.describe(), "kill planning");
   ASSERT_EQ(s.steps[0].expect.size(), 4U);
   EXPECT_EQ(s.steps[0].expect[1].describe(), "mode HOVER");
@@ -138,6 +141,7 @@ steps:
   - {at: 9, kill: planning, expect: [{noticed: planning, within: 1, since: last_path}, {mode: HOVER, within: 1, since: noon}]}
   - {at: 10, kill: control, expect: [{altitude_lost: -1, within: 2}, {altitude_lost: 0.5}, {altitude_lost: 0.5, within: 1, since: last_path}]}
   - {at: 11, mark: [a, list]}
+  - {at: 12, operator_link: {lost: false, for: 3}}
 outcome: {mission: maybe, colisions: 1}
 )");
   EXPECT_TRUE(mentions(p, "s.yaml:manifest: nowhere.yaml: no such file")) << ::testing::PrintToString(p);
@@ -156,6 +160,8 @@ outcome: {mission: maybe, colisions: 1}
   EXPECT_TRUE(mentions(p, "steps[7].expect[1].within"));
   EXPECT_TRUE(mentions(p, "steps[7].expect[2].since: last_path: only a mode expectation"));
   EXPECT_TRUE(mentions(p, "steps[8].mark: [a, list]: expected what the scenario's set-up does"));
+  EXPECT_TRUE(mentions(p, "steps[9].operator_link.lost: false: expected true"));
+  EXPECT_TRUE(mentions(p, "steps[9].operator_link.for: 3: unknown key"));
   EXPECT_TRUE(mentions(p, "outcome.mission: maybe: expected success, failure or any"));
   EXPECT_TRUE(mentions(p, "outcome.colisions: 1: unknown key"));
 }

@@ -6,6 +6,7 @@
 
 #include "quad/common/time.hpp"
 #include "quad/dds/geometry_messages.hpp"
+#include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/sim_clock.hpp"
 #include "quad/dds/subscriber.hpp"
@@ -32,7 +33,8 @@ struct Observer::Endpoints {
         command(p, topics::kVehicleCommand),
         status(p, topics::kControlStatus),
         path(p, topics::kPath),
-        events(p, topics::kSimEvents)
+        events(p, topics::kSimEvents),
+        operator_beat(p, topics::kOperatorHeartbeat)
   {
   }
   dds::Publisher<msg::Goal> goal;
@@ -40,6 +42,7 @@ struct Observer::Endpoints {
   dds::Subscriber<msg::ControlStatus> status;
   dds::Subscriber<msg::Path> path;
   dds::Subscriber<msg::SimEvent> events;
+  dds::Publisher<msg::Heartbeat> operator_beat;
 };
 
 Observer::Observer(dds::ParticipantOptions options)
@@ -114,6 +117,8 @@ std::string flightEndedBy(msg::FailsafeReason reason)
       return "the battery ran low";
     case msg::FAILSAFE_BATTERY_CRITICAL:
       return "the battery failed (critical)";
+    case msg::FAILSAFE_LINK_LOST:
+      return "the operator's link was lost";
     default:
       return "";
   }
@@ -184,6 +189,12 @@ void Observer::update()
     if (e.kind() == msg::SIM_EVENT_COLLISION) {
       tracker_->onCollision(common::toSeconds(e.header().stamp_ns()));
     }
+  }
+  constexpr std::int64_t kOperatorBeatNs = 500'000'000;  // the contract's 2 Hz, in sim time
+  const std::int64_t now_ns = sim_->clock.ns();
+  if (operator_link_ && now_ns >= next_operator_beat_ns_) {
+    endpoints_->operator_beat.write(dds::processHeartbeat("operator", msg::MODULE_RUNNING, now_ns));
+    next_operator_beat_ns_ = now_ns + kOperatorBeatNs;
   }
   if (tracker_->takeLandRequest()) {
     msg::VehicleCommand land;

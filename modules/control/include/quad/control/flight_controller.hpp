@@ -67,6 +67,9 @@ struct FlightControllerConfig {
   /// The keep-in volume: leaving it holds, then returns (ModeConfig::geofence_return_after).
   common::Geofence geofence;
   BatteryPolicy battery;
+  /// [s] the operator's station, once heard, silent this long: the link is lost and
+  /// ModeConfig::link_loss acts (PX4's COM_DL_LOSS_T); 0: never.
+  double link_loss_after = 10.0;
 };
 
 /// Where the camera gimbal should look: world yaw and elevation [rad].
@@ -123,6 +126,9 @@ public:
   /// [s] the way back to the take-off point and the descent there, at the follower's top speed
   /// and the landing speed, times the policy's margin plus its overhead (0 on the ground).
   double returnTime() const;
+  /// A heartbeat of the operator's station stamped at sim time t [s]; rejected (false,
+  /// counted) when t is not finite.
+  bool onOperatorHeartbeat(double t);
   /// The goal the mission flies to; rejected (false, counted) when non-finite.
   bool onGoal(const Vector3& p, double tolerance);
   /// An operator command, applied at the next update.
@@ -174,6 +180,7 @@ private:
   double land_z0_ = 0.0;
   double land_t0_ = 0.0;
   std::uint64_t rejected_ = 0;
+  std::optional<double> operator_t_;     // [s] the operator's newest heartbeat
   std::optional<BatteryReading> battery_;
   double battery_t_ = 0.0;
   double average_current_ = 0.0;         // [A]

@@ -18,6 +18,8 @@
 ///   TAKEOFF, MISSION, HOVER --battery low--> RETURN --back--> LAND
 ///     (the charge left, less a reserve, lasts no longer than the way back and the descent)
 ///   any airborne but LAND and FAILSAFE_LAND --battery critical--> LAND, where it is
+///   TAKEOFF, MISSION, HOVER --return commanded--> RETURN --back--> LAND
+///   TAKEOFF, MISSION, HOVER --operator's link lost--> RETURN (or LAND, by ModeConfig::link_loss)
 ///   any airborne --state stale--> FAILSAFE_LAND --landed--> IDLE --idle timeout--> DISARMED
 
 #include <optional>
@@ -37,9 +39,12 @@ enum class Reason {
   kNoPath,
   kGeofence,
   kBatteryLow,
-  kBatteryCritical
+  kBatteryCritical,
+  kLinkLost
 };
-enum class Command { kNone, kArm, kDisarm, kTakeoff, kStartMission, kHold, kLand };
+enum class Command { kNone, kArm, kDisarm, kTakeoff, kStartMission, kHold, kLand, kReturn };
+/// What the controller does when the operator's station falls silent (PX4's NAV_DLL_ACT).
+enum class LinkLossAction { kReturn, kLand, kNone };
 
 std::string_view toString(Mode m);
 std::string_view toString(Reason r);
@@ -62,6 +67,7 @@ struct ModeInputs {
   /// point and the descent there (on the ground: the charge is down to the reserve).
   bool battery_low = false;
   bool battery_critical = false;  ///< the pack is nearly empty or a cell has failed: land now
+  bool link_lost = false;         ///< the operator's station, once heard, has been silent too long
 };
 
 struct ModeConfig {
@@ -70,6 +76,7 @@ struct ModeConfig {
   double idle_disarm_after = 10.0;     ///< [s] on the ground, armed, before disarming
   double geofence_return_after = 1.0;  ///< [s] holding after leaving the geofence, before returning
   bool auto_mission = false;           ///< HOVER with a fresh path starts the mission by itself
+  LinkLossAction link_loss = LinkLossAction::kReturn;  ///< when the operator's link is lost
 };
 
 struct Transition {

@@ -59,6 +59,10 @@ struct NodeCounters {
   std::atomic<std::uint64_t> samples_lost{0};  ///< on topics that promise every sample
 };
 
+/// A heartbeat of this process: `module_name`, this host's name and this process's id, in
+/// `state`, stamped `stamp_ns`; the counters are the caller's to fill.
+msg::Heartbeat processHeartbeat(const std::string& module_name, msg::ModuleState state, std::int64_t stamp_ns);
+
 class Node {
 public:
   /// `module_name` names the node in heartbeats and logs ("plant", "control").

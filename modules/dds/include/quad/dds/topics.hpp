@@ -65,6 +65,9 @@ inline constexpr auto kControlReference = makeTopic<ControlReference>(
 inline constexpr auto kHeartbeat = makeTopic<Heartbeat>(
     "quad/system/heartbeat", "heartbeat", 2.0, Owner::kEveryModule,
     "Every module's sign of life");
+inline constexpr auto kOperatorHeartbeat = makeTopic<Heartbeat>(
+    "quad/system/operator_heartbeat", "heartbeat", 2.0, Owner::kOperator,
+    "The operator's station's sign of life (the link): silent too long, the controller's failsafe acts");
 inline constexpr auto kVehicleCommand = makeTopic<VehicleCommand>(
     "quad/system/command", "command", 0.0, Owner::kOperator,
     "Arm, takeoff, mission, hold, land");
@@ -87,7 +90,8 @@ inline constexpr std::array kAll{
     kSimClock.info, kSimState.info,  kSimImu.info,        kSimBattery.info,  kSimDepth.info,
     kSimEvents.info, kLockstep.info, kMapUpdate.info,     kMapSnapshot.info, kMapStats.info,
     kGoal.info,      kPath.info,     kActuators.info,     kControlStatus.info,
-    kControlReference.info, kHeartbeat.info, kVehicleCommand.info, kFault.info, kFaultEvents.info};
+    kControlReference.info, kHeartbeat.info, kOperatorHeartbeat.info, kVehicleCommand.info, kFault.info,
+    kFaultEvents.info};
 
 /// The contract of a topic name, if quad declares one.
 std::optional<TopicInfo> find(std::string_view name);

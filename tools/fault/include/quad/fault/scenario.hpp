@@ -34,6 +34,7 @@ struct Action {
     kLink,     ///< a fault on a network-namespace host's link (iptables, ip link)
     kMark,     ///< nothing: the step marks the time its expectations count from (the fault is
                ///< the scenario's set-up, `set:`, such as a small battery)
+    kOperatorLink,  ///< the operator's station (the launcher) stops its heartbeat: the link is lost
   };
   Kind kind = Kind::kKill;
   std::string module;              ///< process actions
@@ -49,11 +50,11 @@ struct Action {
   std::vector<wire::DatagramFault> datagrams;
   launch::LinkFault link;            ///< kLink
   std::string note;                  ///< kMark: what the scenario's set-up does, in words
-  /// kDds, kLink: cleared (healed) this long after; absent: when the run ends.
+  /// kDds, kLink, kOperatorLink: cleared (healed) this long after; absent: when the run ends.
   std::optional<double> duration_s;
 
   /// A fault that lasts until it is cleared, and whose clearing the report shows.
-  bool lasts() const { return kind == Kind::kDds || kind == Kind::kLink; }
+  bool lasts() const { return kind == Kind::kDds || kind == Kind::kLink || kind == Kind::kOperatorLink; }
 
   /// "kill planning", "plant: fault 3 motor: rotor 2 at 0.5 efficiency", ...
   std::string describe() const;

@@ -46,6 +46,10 @@ public:
   std::vector<ModuleBeat> takeHeartbeats();
   /// Null until startMission.
   MissionTracker* mission() { return tracker_.get(); }
+  /// The operator's station: while a mission is followed, the launcher is it and sends its
+  /// heartbeat (quad/system/operator_heartbeat) every half second of sim time, unless the link is
+  /// down (a fault: the controller's link-loss failsafe then acts).
+  void setOperatorLink(bool up) { operator_link_ = up; }
   /// Wall time [ns, steady] of the last vehicle state; 0 before the first.
   std::int64_t lastStateNs() const { return last_state_ns_; }
   /// For tools that act on the run through the launcher's participant (quad fault).
@@ -63,6 +67,8 @@ private:
   std::unique_ptr<Endpoints> endpoints_;
   std::unique_ptr<MissionTracker> tracker_;
   std::int64_t last_state_ns_ = 0;
+  bool operator_link_ = true;
+  std::int64_t next_operator_beat_ns_ = 0;  // sim time the station's next heartbeat is due
   std::int64_t state_ns_ = 0;  // stamp of the newest state taken
   Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
 };

@@ -44,6 +44,9 @@ constexpr int kNotGrantedDomain = 177;
 constexpr int kCaptureDomain = 178;
 constexpr int kCaptureControlDomain = 179;
 constexpr double kQuietSeconds = 3.0;  // how long the unauthorised are watched
+// A secure match on a busy machine has taken over 10 s (a handshake message resent): the tests
+// are about who gets what, not how soon.
+constexpr std::chrono::seconds kSecureMatch{30};
 
 namespace fs = std::filesystem;
 
@@ -76,7 +79,7 @@ protected:
     if (intruder != nullptr) {
       unauthorised.emplace(*intruder, dds::topics::kSimState);
     }
-    ASSERT_TRUE(test::waitFor([&] { return authorised.matchedWriters() == 1; }));
+    ASSERT_TRUE(test::waitFor([&] { return authorised.matchedWriters() == 1; }, kSecureMatch));
     int taken = 0;
     int stolen = 0;
     const std::int64_t end = common::steadyTimeNs() + common::toNanoseconds(kQuietSeconds);
@@ -124,7 +127,8 @@ TEST_F(Security, AuthorisedModulesTalk)
   dds::Subscriber<msg::VehicleState> reader(control, dds::topics::kSimState);
   dds::Publisher<msg::ActuatorCommand> commands(control, dds::topics::kActuators);
   dds::Subscriber<msg::ActuatorCommand> command_reader(plant, dds::topics::kActuators);
-  ASSERT_TRUE(test::waitFor([&] { return reader.matchedWriters() == 1 && command_reader.matchedWriters() == 1; }));
+  ASSERT_TRUE(test::waitFor([&] { return reader.matchedWriters() == 1 && command_reader.matchedWriters() == 1; },
+                              kSecureMatch));
   int got = 0;
   EXPECT_TRUE(test::waitFor([&] {
     states.write(msg::VehicleState{});
@@ -171,7 +175,7 @@ TEST_F(Security, AModuleCannotWriteATopicItWasNotGranted)
   EXPECT_THROW(dds::Publisher<msg::VehicleState>(control, dds::topics::kSimState), std::exception);
   // And a granted writer still reaches it.
   dds::Publisher<msg::VehicleState> states(plant, dds::topics::kSimState);
-  EXPECT_TRUE(test::waitFor([&] { return reader.matchedWriters() == 1; }));
+  EXPECT_TRUE(test::waitFor([&] { return reader.matchedWriters() == 1; }, kSecureMatch));
 }
 
 /// Every frame on every interface of this host while it lives (an AF_PACKET socket: root).
@@ -230,9 +234,7 @@ std::pair<int, std::string> sendCaptured(int domain, const fs::path& dir, const 
   dds::Participant control(options("control"));
   dds::Publisher<msg::SimEvent> events(plant, dds::topics::kSimEvents);
   dds::Subscriber<msg::SimEvent> reader(control, dds::topics::kSimEvents);
-  // A secure match on a busy machine has taken over 10 s (a handshake message resent): the
-  // test is about what the wire carries, not how soon.
-  EXPECT_TRUE(test::waitFor([&] { return reader.matchedWriters() == 1; }, std::chrono::seconds(30)));
+  EXPECT_TRUE(test::waitFor([&] { return reader.matchedWriters() == 1; }, kSecureMatch));
   int got = 0;
   for (int i = 0; i < 50; ++i) {
     msg::SimEvent e;

@@ -101,8 +101,7 @@ void Battery::draw(double power, double dt)
 void Battery::loseCells(int count)
 {
   lost_cells_ = std::clamp(lost_cells_ + std::max(0, count), 0, config_.cells);
-  voltage_ = openCircuitVoltage() - current_ * config_.resistance;
-  voltage_ = std::max(0.0, voltage_);
+  voltage_ = std::max(0.0, openCircuitVoltage() - current_ * config_.resistance);
 }
 
 double Battery::supply() const

@@ -28,7 +28,7 @@ struct BatteryConfig {
 };
 
 /// [V] a lithium-polymer cell at rest with `charge` (fraction, clamped to 0 … 1) left:
-/// 4.20 V full, 3.70 V near half, falling steeply below a tenth, 3.00 V empty.
+/// 4.20 V full, 3.80 V at half, 3.62 V at a tenth, falling steeply below it to 3.00 V empty.
 double cellOpenCircuitVoltage(double charge);
 
 class Battery {

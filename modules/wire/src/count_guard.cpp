@@ -17,7 +17,8 @@ std::vector<CountGuard::Taming> CountGuard::admit(const std::vector<RtpsCount>& 
   }
   for (const RtpsCount& c : counts) {
     Track& t = tracks_[Key{c.kind, c.prefix, c.per_writer ? 0U : c.reader_id, c.writer_id}];
-    const double elapsed_s = t.at_ns == 0 ? 0.0 : static_cast<double>(now_ns - t.at_ns) * 1e-9;
+    const bool first = t.at_ns == 0;
+    const double elapsed_s = first ? 0.0 : static_cast<double>(now_ns - t.at_ns) * 1e-9;
     const auto allowed = static_cast<std::uint64_t>(kSlack + kMaxRate * elapsed_s);
     const bool within = c.count <= t.highest || std::uint64_t{c.count} - t.highest <= allowed;
     const bool confirms = t.leap && c.count > *t.leap && c.count - *t.leap <= kSlack;
@@ -29,7 +30,7 @@ std::vector<CountGuard::Taming> CountGuard::admit(const std::vector<RtpsCount>& 
     }
     t.leap = c.count;
     ++t.highest;
-    out.push_back({c, t.highest});
+    out.push_back({c, t.highest, first});
   }
   return out;
 }

@@ -60,7 +60,10 @@ void noteTamed(const frtps::Locator_t& from, const CountGuard::Taming& t)
   tamed_count.fetch_add(1, std::memory_order_relaxed);
   std::lock_guard lock(malformed_mutex);
   const std::int64_t now = common::steadyTimeNs();
-  if (now >= next_tamed_log_ns) {
+  if (t.first) {
+    // What joining a running stack looks like (a writer's counts began at its start): no warning.
+    spdlog::debug("RTPS count from {} starts at {}: passed on as {}", addressOf(from), t.count.count, t.replaced);
+  } else if (now >= next_tamed_log_ns) {
     spdlog::warn("RTPS count from {} leaps to {}: passed on as {} ({} so far)", addressOf(from), t.count.count,
                  t.replaced, tamed_count.load(std::memory_order_relaxed));
     next_tamed_log_ns = now + kLogPeriodNs;

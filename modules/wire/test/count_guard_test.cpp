@@ -94,6 +94,7 @@ TEST(CountGuard, ABitFlippedHighInAHeartbeatCountIsLoweredAndTheWriterKeepsBeing
   ASSERT_EQ(tamings.size(), 1U);
   EXPECT_EQ(tamings[0].count.count, 268'435'484U);
   EXPECT_EQ(tamings[0].replaced, 29U);
+  EXPECT_FALSE(tamings[0].first);
   CountGuard::apply(tamings, damaged.data());
   EXPECT_EQ(countsOf(damaged).at(0).count, 29U);
   // The writer's own next heartbeats rise above it and pass untouched.
@@ -106,13 +107,16 @@ TEST(CountGuard, ALeapTheSenderContinuesFromIsFollowedThere)
   // A writer met for the first time after a day of heartbeats, or a burst of fragments
   // whose middle a socket buffer dropped: the first count leaps, the next confirms it.
   CountGuard guard;
-  EXPECT_EQ(guard.admit(countsOf(heartbeat(864'000)), kSecond).size(), 1U);
+  const auto met = guard.admit(countsOf(heartbeat(864'000)), kSecond);
+  ASSERT_EQ(met.size(), 1U);
+  EXPECT_TRUE(met[0].first);  // told apart: a late joiner meets this at every running writer
   EXPECT_TRUE(guard.admit(countsOf(heartbeat(864'001)), kSecond + kSecond / 10).empty());
   EXPECT_TRUE(guard.admit(countsOf(heartbeat(864'002)), kSecond + 2 * kSecond / 10).empty());
   // Leaps that nothing continues are lowered each time, one above the last passed on.
   const auto first = guard.admit(countsOf(heartbeat(5'000'000)), 2 * kSecond);
   ASSERT_EQ(first.size(), 1U);
   EXPECT_EQ(first[0].replaced, 864'003U);
+  EXPECT_FALSE(first[0].first);
   const auto second = guard.admit(countsOf(heartbeat(9'000'000)), 2 * kSecond + kSecond / 10);
   ASSERT_EQ(second.size(), 1U);
   EXPECT_EQ(second[0].replaced, 864'004U);

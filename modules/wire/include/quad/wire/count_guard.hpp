@@ -37,6 +37,9 @@ public:
   struct Taming {
     RtpsCount count;         ///< as received (offset, byte order, leaping value)
     std::uint32_t replaced;  ///< the value to pass on instead
+    /// The sender's first count: one that joins a running writer (whose counts began at its
+    /// start) looks like a leap, and usually is none.
+    bool first = false;
   };
 
   /// The counts of one datagram to lower before it is passed on (none, nearly always).

@@ -13,6 +13,7 @@
 
 #include "fault_command.hpp"
 #include "campaign_command.hpp"
+#include "command_command.hpp"
 #include "launch_command.hpp"
 #include "manual.hpp"
 #include "plan_command.hpp"
@@ -40,6 +41,11 @@ std::string unknownSubcommand(CLI::App& app, int argc, char** argv)
   for (int i = 1; i < argc; ++i) {
     const std::string word = argv[i];
     if (word.empty() || word.front() == '-') {
+      // An option's value (`--domain 66`) is no subcommand: skip it.
+      const CLI::Option* option = word.find('=') == std::string::npos ? at->get_option_no_throw(word) : nullptr;
+      if (option != nullptr && option->get_type_size_min() > 0) {
+        ++i;
+      }
       continue;
     }
     const std::vector<CLI::App*> subcommands = at->get_subcommands([](CLI::App*) { return true; });
@@ -228,6 +234,36 @@ int main(int argc, char** argv)
                   "Seconds to wait for a reader before the first sample")
       ->check(CLI::NonNegativeNumber);
 
+  quad::tools::CommandOptions command_options;
+  auto* operator_command = app.add_subcommand(
+      "command", "The operator's commands to a running stack, each answered: taken, or refused and why");
+  operator_command->require_subcommand(1);
+  addConnectionOptions(operator_command, command_options.connection);
+  operator_command->add_option("--timeout", command_options.timeout_s, "Seconds for the controller or planner to answer")
+      ->check(CLI::PositiveNumber);
+  operator_command->footer("Exit status: 0 taken, 1 refused, 2 bad input, 3 no answer within --timeout");
+  const auto addVerb = [&](const char* name, const char* help) {
+    auto* verb = operator_command->add_subcommand(name, help);
+    verb->fallthrough();
+    verb->callback([&command_options, name] { command_options.verb = name; });
+    return verb;
+  };
+  addVerb("arm", "Arm the rotors on the ground");
+  addVerb("disarm", "Disarm on the ground");
+  auto* takeoff = addVerb("takeoff", "Take off (arming first if disarmed) and hold");
+  takeoff->add_option("--altitude", command_options.altitude,
+                      "Metres above the take-off point (default: the controller's configured altitude)")
+      ->check(CLI::PositiveNumber);
+  addVerb("hold", "Stop and hold position (the mission resumes only when commanded)");
+  addVerb("land", "Land where the vehicle is");
+  addVerb("return", "Return to launch: back along the flown path, land at the take-off point");
+  for (auto* verb : {addVerb("goal", "Set the goal the planner plans to (x y z, world frame)"),
+                     addVerb("goto", "Fly to a position (x y z: the new goal), or to the goal set (no position)")}) {
+    verb->add_option("position", command_options.position, "x y z [m], world frame")->expected(0, 3);
+    verb->add_option("--tolerance", command_options.tolerance, "Metres within which the goal counts as reached")
+        ->check(CLI::PositiveNumber);
+  }
+
   auto* so3 = app.add_subcommand("so3", "Rotations for students: convert, distance, sample");
   so3->require_subcommand(1);
   quad::so3::So3Options so3_options;
@@ -300,6 +336,9 @@ int main(int argc, char** argv)
   try {
     if (launch->parsed()) {
       return quad::tools::launch(launch_options);
+    }
+    if (operator_command->parsed()) {
+      return quad::tools::command(command_options);
     }
     if (campaign->parsed()) {
       return quad::tools::campaign(campaign_options);

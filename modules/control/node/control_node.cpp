@@ -26,7 +26,8 @@ ControlNode::ControlNode(ControlNodeConfig config, dds::ParticipantOptions optio
       operator_(participant(), dds::topics::kOperatorHeartbeat, waker()),
       actuators_(participant(), dds::topics::kActuators),
       status_(participant(), dds::topics::kControlStatus),
-      reference_(participant(), dds::topics::kControlReference)
+      reference_(participant(), dds::topics::kControlReference),
+      acks_(participant(), dds::topics::kCommandAck)
 {
   setTickPeriod(kTickNs);
   followSimClock();
@@ -65,8 +66,18 @@ void ControlNode::takeInputs()
   while (auto c = command_.take()) {
     counters().samples_in++;
     const Command command = fromMessage(c->kind());
-    spdlog::info("control: command {} ({})", static_cast<int>(c->kind()), toString(command));
-    fc_.onCommand(command);
+    if (command == Command::kNone) {
+      continue;  // another module's (the mapper's save)
+    }
+    spdlog::info("control: command {} ({}), id {}", static_cast<int>(c->kind()), toString(command), c->command_id());
+    if (c->command_id() == 0) {
+      counters().errors++;
+      acknowledge({0, c->kind(), command, c->altitude()},
+                  {command, false, std::string(toString(command)) + " refused: command_id 0 is invalid"}, fc_.mode(),
+                  c->header().stamp_ns());
+      continue;
+    }
+    commands_.push_back({c->command_id(), c->kind(), command, c->altitude()});
   }
   while (auto g = goal_.take()) {
     counters().samples_in++;
@@ -108,7 +119,16 @@ void ControlNode::autostart()
 void ControlNode::control(double t, std::int64_t stamp_ns)
 {
   autostart();
+  if (!commands_.empty()) {
+    applying_ = commands_.front();
+    commands_.pop_front();
+    fc_.onCommand(applying_->command, applying_->takeoff_altitude);
+  }
   const FlightOutput out = fc_.update(t);
+  if (applying_ && out.answer) {
+    acknowledge(*applying_, *out.answer, out.mode, stamp_ns);
+  }
+  applying_.reset();
   msg::ActuatorCommand cmd;
   cmd.header().stamp_ns(stamp_ns);
   cmd.rotor_speed({out.rotor_speed[0], out.rotor_speed[1], out.rotor_speed[2], out.rotor_speed[3]});
@@ -152,6 +172,21 @@ void ControlNode::publishStatus(const FlightOutput& out, std::int64_t stamp_ns)
   s.saturated(out.mixer.saturated);
   s.rejected_inputs(fc_.rejectedInputs());
   status_.write(s);
+}
+
+void ControlNode::acknowledge(const QueuedCommand& command, const CommandAnswer& answer, Mode mode,
+                              std::int64_t stamp_ns)
+{
+  msg::CommandAck ack;
+  ack.header().stamp_ns(stamp_ns);
+  ack.command_id(command.id);
+  ack.kind(command.kind);
+  ack.accepted(answer.accepted);
+  ack.mode(toMessage(mode));
+  ack.reason(answer.reason.substr(0, 256));
+  acks_.write(ack);
+  counters().samples_out++;
+  spdlog::info("control: command {} {}: {}", ack.command_id(), answer.accepted ? "taken" : "refused", answer.reason);
 }
 
 void ControlNode::onWake()

@@ -5,6 +5,7 @@
 /// state's time (so the plant's lockstep pairs them), publishes its status and reference, and
 /// takes paths, goals and operator commands.
 
+#include <deque>
 #include <optional>
 
 #include "control_config.hpp"
@@ -29,6 +30,7 @@ private:
   /// A command when states stopped coming, on the clock's time (lockstep) or the IMU's.
   void controlWithoutState();
   void publishStatus(const FlightOutput& out, std::int64_t stamp_ns);
+
   void autostart();
 
   ControlNodeConfig config_;
@@ -43,6 +45,19 @@ private:
   dds::Publisher<msg::ActuatorCommand> actuators_;
   dds::Publisher<msg::ControlStatus> status_;
   dds::Publisher<msg::ControlReference> reference_;
+  dds::Publisher<msg::CommandAck> acks_;
+
+  /// Operator commands taken and not yet applied: one a tick, each answered.
+  struct QueuedCommand {
+    std::uint32_t id;
+    msg::CommandKind kind;
+    Command command;
+    double takeoff_altitude;
+  };
+  std::deque<QueuedCommand> commands_;
+  std::optional<QueuedCommand> applying_;  // fed to the controller, answered by its next update
+  /// Answers `command` on quad/control/command_ack.
+  void acknowledge(const QueuedCommand& command, const CommandAnswer& answer, Mode mode, std::int64_t stamp_ns);
 
   std::int64_t imu_ns_ = 0;                // the newest IMU sample's sim time
   std::int64_t imu_wall_ns_ = 0;           // steady time it arrived

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "quad/geometry/polyline.hpp"
 #include "quad/geometry/so3.hpp"
@@ -16,6 +17,22 @@ double yawOf(const Quaternion& q)
 {
   const Vector3 x = geometry::toMatrix(q).col(0);
   return std::atan2(x.y(), x.x());
+}
+
+CommandAnswer answerTo(Command command, const std::optional<Transition>& transition, const std::string& refused,
+                       Mode mode)
+{
+  const std::string name(toString(command));
+  if (!refused.empty()) {
+    return {command, false, refused};
+  }
+  if (transition && transition->reason != Reason::kCommanded) {
+    return {command, false, name + " overridden in " + std::string(toString(transition->from)) + ": " + transition->why};
+  }
+  if (transition) {
+    return {command, true, transition->why};
+  }
+  return {command, true, name + ": nothing to change in " + std::string(toString(mode))};
 }
 }  // namespace
 
@@ -163,10 +180,24 @@ double FlightController::returnTime() const
   }
   // Back along the flown path (RETURN's way) to above the take-off point, then down.
   const double way = flown_.empty() ? 0.0 : (state_->p_W - flown_.back()).norm() + flown_length_;
-  const double ground = takeoff_target_.z() - config_.takeoff_altitude;
+  const double ground = takeoff_target_.z() - takeoff_altitude_;
   const double descent = std::max(0.0, state_->p_W.z() - ground);
   return config_.battery.return_margin * (way / config_.follower.max_speed + descent / config_.land_speed) +
          config_.battery.return_overhead;
+}
+
+std::string FlightController::checkTakeoff(double altitude) const
+{
+  std::ostringstream why;
+  if (!std::isfinite(altitude) || altitude < 0.0) {
+    why << "takeoff refused: altitude " << altitude << " m is not a height above the take-off point";
+    return why.str();
+  }
+  const double up = altitude > 0.0 ? altitude : config_.takeoff_altitude;
+  if (state_ && !config_.geofence.contains(Vector3(state_->p_W + up * Vector3::UnitZ()))) {
+    why << "takeoff refused: " << up << " m up would leave the geofence";
+  }
+  return why.str();
 }
 
 bool FlightController::onGoal(const Vector3& p, double tolerance)
@@ -192,7 +223,8 @@ void FlightController::enter(Mode from, Mode mode, double t, const std::optional
       break;
     case Mode::kTakeoff:
       follower_.hold(p, yaw);
-      takeoff_target_ = p + Vector3(0.0, 0.0, config_.takeoff_altitude);
+      takeoff_altitude_ = pending_altitude_ > 0.0 ? pending_altitude_ : config_.takeoff_altitude;
+      takeoff_target_ = p + Vector3(0.0, 0.0, takeoff_altitude_);
       follower_.setPath({p, takeoff_target_}, 0);
       flown_ = {takeoff_target_};
       flown_length_ = 0.0;
@@ -237,6 +269,10 @@ FlightOutput FlightController::update(double t)
   in.t = t;
   in.command = pending_;
   pending_ = Command::kNone;
+  const std::string takeoff_refused = in.command == Command::kTakeoff ? checkTakeoff(pending_altitude_) : "";
+  if (!takeoff_refused.empty()) {
+    in.command = Command::kNone;
+  }
   in.state_fresh = state_ && t - state_t_ <= config_.state_timeout;
   const bool path_heard = t - path_t_ <= config_.path_timeout;
   in.path_fresh = path_kind_ == PathKind::kOk && path_version_ && path_heard;
@@ -268,7 +304,11 @@ FlightOutput FlightController::update(double t)
   const std::optional<VehicleState> state = reckoning_.estimate(
       t, config_.state_timeout, in.state_fresh ? config_.state_timeout : config_.dead_reckoning_horizon);
   out.transition = modes_.update(in);
-  out.refused = modes_.refused();
+  out.refused = takeoff_refused.empty() ? modes_.refused() : takeoff_refused;
+  if (!takeoff_refused.empty() || in.command != Command::kNone) {
+    out.answer = answerTo(takeoff_refused.empty() ? in.command : Command::kTakeoff, out.transition, out.refused,
+                          modes_.mode());
+  }
   if (out.transition) {
     enter(out.transition->from, out.transition->to, t, state ? state : state_);
   }

@@ -170,7 +170,11 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
       break;
   }
 
-  // Airborne modes with a fresh state.
+  // Airborne modes with a fresh state. Refusals here do not end the tick: the failsafes below
+  // still act on it.
+  if (commanded(Command::kArm) || commanded(Command::kTakeoff)) {
+    refuse("already in the air");
+  }
   if (commanded(Command::kLand) && mode_ != Mode::kLand) {
     return go(Mode::kLand, Reason::kCommanded, "commanded: land", in.t);
   }
@@ -227,12 +231,16 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
   }
   switch (mode_) {
     case Mode::kTakeoff:
+      if (commanded(Command::kStartMission)) {
+        refuse("taking off: the mission starts once the take-off altitude is reached");
+      }
       if (in.takeoff_altitude_reached) {
         return go(Mode::kHover, Reason::kNone, "takeoff altitude reached", in.t);
       }
       break;
     case Mode::kHover:
-      if (commanded(Command::kStartMission) || (config_.auto_mission && in.path_fresh && !in.goal_reached)) {
+      if (commanded(Command::kStartMission) ||
+          (config_.auto_mission && in.path_fresh && !in.goal_reached && reason_ != Reason::kCommanded)) {
         if (!in.path_fresh) {
           refuse("no fresh path");
           return std::nullopt;
@@ -279,6 +287,9 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
       }
       break;
     case Mode::kLand:
+      if (commanded(Command::kStartMission)) {
+        refuse("landing: hold first");
+      }
       if (in.landed) {
         const bool told = reason_ == Reason::kNoPath || reason_ == Reason::kGeofence || reason_ == Reason::kBatteryLow ||
                           reason_ == Reason::kBatteryCritical || reason_ == Reason::kLinkLost;  // why the flight ended
@@ -286,6 +297,9 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
       }
       break;
     case Mode::kReturn:
+      if (commanded(Command::kStartMission)) {
+        refuse("returning: hold first");
+      }
       if (in.returned) {
         return go(Mode::kLand, reason_, "back above the take-off point: landing", in.t);
       }

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <random>
 
@@ -120,6 +121,53 @@ TEST(FlightController, ArmTakeOffFlyTheMissionAndLand)
   EXPECT_EQ(rig.mode(), Mode::kIdle);
   EXPECT_TRUE(rig.sim.state().landed);
   EXPECT_EQ(rig.sim.collisionCount(), 0U);
+}
+
+TEST(FlightController, EveryCommandIsAnsweredInTheTickThatAppliesItAndATakeOffClimbsAsHighAsAsked)
+{
+  FlightControllerConfig config = Rig::defaults();
+  config.geofence.max = {50, 50, 6};  // a ceiling 6 m up
+  Rig rig(config);
+  rig.run(0.1);
+  // The answer of the next tick: the one that applies the command given.
+  const auto answered = [&] {
+    const std::size_t from = rig.log.size();
+    rig.run(0.05, [&] { return rig.log.size() > from; });
+    EXPECT_TRUE(rig.log.back().answer.has_value());
+    return rig.log.back().answer.value_or(CommandAnswer{});
+  };
+  // Refused, saying why, and nothing changes.
+  rig.fc.onCommand(Command::kTakeoff);
+  CommandAnswer a = answered();
+  EXPECT_FALSE(a.accepted);
+  EXPECT_EQ(a.reason, "takeoff refused in DISARMED: arm first");
+  rig.fc.onCommand(Command::kArm);
+  a = answered();
+  EXPECT_TRUE(a.accepted);
+  EXPECT_EQ(a.reason, "commanded: arm");
+  // A take-off out of range: below the ground, not a number, through the ceiling.
+  for (const double altitude : {-1.0, std::nan(""), 7.0}) {
+    rig.fc.onCommand(Command::kTakeoff, altitude);
+    a = answered();
+    EXPECT_FALSE(a.accepted) << altitude;
+    EXPECT_TRUE(a.reason.starts_with("takeoff refused: ")) << a.reason;
+    EXPECT_EQ(rig.mode(), Mode::kIdle);
+  }
+  rig.fc.onCommand(Command::kTakeoff, 3.5);
+  a = answered();
+  EXPECT_TRUE(a.accepted);
+  rig.run(15.0, [&] { return rig.mode() == Mode::kHover; });
+  ASSERT_EQ(rig.mode(), Mode::kHover);
+  EXPECT_NEAR(rig.sim.state().p_W.z(), 3.5, 0.1);
+  // What already holds is taken and changes nothing.
+  rig.fc.onCommand(Command::kHold);
+  a = answered();
+  EXPECT_TRUE(a.accepted);
+  EXPECT_EQ(a.reason, "hold: nothing to change in HOVER");
+  EXPECT_FALSE(rig.log.back().transition.has_value());
+  // No answer without a command.
+  rig.run(0.1);
+  EXPECT_FALSE(rig.log.back().answer.has_value());
 }
 
 TEST(FlightController, AControllerRestartedInFlightHoldsTheVehicleWhereItTookOver)

@@ -120,6 +120,79 @@ TEST(Modes, EveryConditionInEveryMode)
   }
 }
 
+/// What the machine did with a command: took it and changed mode (A), took it with nothing to
+/// change (N), or refused it, saying why (X).
+enum Answer { A, N, X };
+
+TEST(Modes, EveryCommandInEveryModeIsTakenOrRefusedSayingWhy)
+{
+  const std::vector<std::pair<Command, std::array<Answer, 8>>> table = {
+      //                            DISARMED IDLE TAKEOFF MISSION HOVER LAND FAILSAFE RETURN
+      {Command::kArm,          {A, N, X, X, X, X, X, X}},
+      {Command::kDisarm,       {N, A, X, X, X, X, X, X}},
+      {Command::kTakeoff,      {X, A, X, X, X, X, X, X}},
+      {Command::kStartMission, {X, X, X, N, A, X, X, X}},
+      {Command::kHold,         {X, X, A, A, N, A, X, A}},
+      {Command::kLand,         {X, X, A, A, A, N, X, A}},
+      {Command::kReturn,       {X, X, A, A, A, X, X, N}},
+  };
+  for (const auto& [command, answers] : table) {
+    for (std::size_t k = 0; k < kModes.size(); ++k) {
+      ModeMachine m = machineIn(kModes[k]);
+      ModeInputs in;
+      in.landed = !airborne(kModes[k]);
+      in.path_fresh = true;
+      in.command = command;
+      const auto tr = m.update(in);
+      const std::string where = std::string(toString(command)) + " in " + std::string(toString(kModes[k]));
+      switch (answers[k]) {
+        case A:
+          ASSERT_TRUE(tr.has_value()) << where;
+          EXPECT_EQ(tr->reason, Reason::kCommanded) << where;
+          EXPECT_TRUE(tr->why.starts_with("commanded: ")) << where << ": " << tr->why;
+          EXPECT_TRUE(m.refused().empty()) << where << ": " << m.refused();
+          break;
+        case N:
+          EXPECT_FALSE(tr.has_value()) << where;
+          EXPECT_TRUE(m.refused().empty()) << where << ": " << m.refused();
+          break;
+        case X:
+          EXPECT_FALSE(tr.has_value()) << where << " -> " << toString(m.mode());
+          EXPECT_TRUE(m.refused().starts_with(std::string(toString(command)) + " refused in " +
+                                              std::string(toString(kModes[k])) + ": "))
+              << where << ": '" << m.refused() << "'";
+          break;
+      }
+    }
+  }
+}
+
+TEST(Modes, AHoldTheOperatorCommandedLastsUntilTheMissionIsCommandedAgain)
+{
+  ModeConfig config;
+  config.auto_mission = true;
+  ModeMachine m = machineIn(Mode::kMission, config);
+  ModeInputs in;
+  in.landed = false;
+  in.path_fresh = true;
+  in.command = Command::kHold;
+  ASSERT_EQ(m.update(in)->to, Mode::kHover);
+  // A fresh path, the goal not reached: auto_mission would start; the operator's hold stands.
+  in.command = Command::kNone;
+  for (int i = 0; i < 10; ++i) {
+    in.t += 0.1;
+    EXPECT_FALSE(m.update(in).has_value());
+  }
+  in.command = Command::kStartMission;
+  ASSERT_EQ(m.update(in)->to, Mode::kMission);
+  // A hold for another reason (the path went stale) resumes by itself.
+  in.command = Command::kNone;
+  in.path_fresh = false;
+  ASSERT_EQ(m.update(in)->to, Mode::kHover);
+  in.path_fresh = true;
+  EXPECT_EQ(m.update(in)->to, Mode::kMission);
+}
+
 TEST(Modes, AControllerStartedInFlightTakesOverWhateverIsAskedOnceItHasAFreshState)
 {
   ModeMachine m;

@@ -84,12 +84,24 @@ PlanningNode::PlanningNode(PlanningParams config, dds::ParticipantOptions option
       goal_(participant(), dds::topics::kGoal, waker()),
       reports_(participant(), dds::topics::kLockstep),
       path_(participant(), dds::topics::kPath),
+      goal_acks_(participant(), dds::topics::kGoalAck),
       mapper_(participant(), "mapping", waker()),
       lockstep_(participant(), "planning")
 {
   followSimClock();
   spdlog::info("planning: lattice {} cells at {} m, inflation {} m", planner_.lattice().size(), config_.resolution,
                config_.planner.vehicle_radius);
+}
+
+void PlanningNode::answerGoal(std::uint32_t goal_id, bool accepted, const std::string& reason)
+{
+  msg::GoalAck ack;
+  ack.header().stamp_ns(now_ns_);
+  ack.goal_id(goal_id);
+  ack.accepted(accepted);
+  ack.reason(reason.substr(0, 256));
+  goal_acks_.write(ack);
+  counters().samples_out++;
 }
 
 void PlanningNode::applySnapshot(const msg::MapSnapshot& snapshot)
@@ -302,10 +314,14 @@ void PlanningNode::onWake()
     const auto cell = p.allFinite() ? planner_.lattice().cellAt(p) : std::nullopt;
     if (!cell) {
       counters().errors++;
-      spdlog::error("{}: goal {} at ({}, {}, {}) is outside the planning bounds; refused{}",
-                    dds::topics::kGoal.info.name,
-                    g->goal_id(), p.x(), p.y(), p.z(),
-                    goal_id_ ? fmt::format(" (still flying to goal {})", *goal_id_) : "");
+      const Vector3& lo = config_.bounds_min;
+      const Vector3& hi = config_.bounds_max;
+      const std::string why = fmt::format(
+          "goal {} at ({}, {}, {}) is outside the planning bounds ({:g}, {:g}, {:g}) ... ({:g}, {:g}, {:g}); refused{}",
+          g->goal_id(), p.x(), p.y(), p.z(), lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z(),
+          goal_id_ ? fmt::format(" (still flying to goal {})", *goal_id_) : "");
+      spdlog::error("{}: {}", dds::topics::kGoal.info.name, why);
+      answerGoal(g->goal_id(), false, why);
       if (goal_id_) {
         continue;  // a refused goal does not replace the one being flown
       }
@@ -319,6 +335,7 @@ void PlanningNode::onWake()
     planner_.setGoal(*cell);
     goal_changed_ = true;
     spdlog::info("planning: goal {} at ({}, {}, {})", g->goal_id(), p.x(), p.y(), p.z());
+    answerGoal(g->goal_id(), true, fmt::format("planning to goal {} at ({}, {}, {})", g->goal_id(), p.x(), p.y(), p.z()));
   }
   for (const auto& s : state_.takeAll()) {
     // The sim time and the start of every replan: a state stamped past the clock, older than

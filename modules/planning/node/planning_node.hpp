@@ -48,6 +48,7 @@ private:
   dds::Subscriber<msg::Goal> goal_;
   dds::Subscriber<msg::LockstepReport> reports_;  // polled: the mapper's tell a lost update from a late one
   dds::Publisher<msg::Path> path_;
+  dds::Publisher<msg::GoalAck> goal_acks_;
   dds::ModuleWatch mapper_;
   dds::LockstepReporter lockstep_;
 
@@ -61,6 +62,8 @@ private:
   std::int64_t reported_ns_ = -1;
   bool goal_changed_ = false;
   std::optional<std::uint32_t> goal_id_;
+  /// Answers a goal on quad/planning/goal_ack.
+  void answerGoal(std::uint32_t goal_id, bool accepted, const std::string& reason);
   std::optional<Vector3> position_;
   std::int64_t now_ns_ = 0;
   std::int64_t next_replan_ns_ = 0;

@@ -106,11 +106,16 @@ std::string noPathReason(int status)
   }
 }
 
-/// A failsafe that ends the flight short of the goal, in words; empty for the others (the
-/// planner's no-path has its own words, from the path's status).
-std::string flightEndedBy(msg::FailsafeReason reason)
+/// A failsafe, or the operator's landing or return, that ends the flight short of the goal, in
+/// words; empty for the others (the planner's no-path has its own words, from the path's
+/// status).
+std::string flightEndedBy(msg::FailsafeReason reason, msg::ControlMode mode)
 {
   switch (reason) {
+    case msg::FAILSAFE_COMMANDED:
+      return mode == msg::CONTROL_LAND     ? "the operator commanded a landing"
+             : mode == msg::CONTROL_RETURN ? "the operator commanded a return to launch"
+                                           : "";
     case msg::FAILSAFE_GEOFENCE:
       return "the vehicle left the geofence";
     case msg::FAILSAFE_BATTERY_LOW:
@@ -180,7 +185,7 @@ void Observer::update()
   }
   for (const auto& s : endpoints_->status.takeAll()) {
     tracker_->onMode(common::toSeconds(s.header().stamp_ns()), controlModeName(static_cast<int>(s.mode())),
-                     flightEndedBy(s.failsafe_reason()));
+                     flightEndedBy(s.failsafe_reason(), s.mode()));
   }
   for (const auto& p : endpoints_->path.takeAll()) {
     tracker_->onPath(p.version(), noPathReason(p.status()));

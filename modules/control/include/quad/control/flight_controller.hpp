@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "quad/common/geofence.hpp"
@@ -78,6 +79,15 @@ struct CameraAim {
   double pitch = 0.0;
 };
 
+/// The controller's answer to an operator command, in the tick that applied it.
+struct CommandAnswer {
+  Command command = Command::kNone;
+  /// Taken: its transition made, or nothing to change (hold while hovering). Refused: it does
+  /// not apply in this mode, a value is out of range, or a failsafe overrode it this tick.
+  bool accepted = false;
+  std::string reason;  ///< refused: why; taken: the transition's why, or what already holds
+};
+
 struct FlightOutput {
   std::array<double, vehicle::kRotorCount> rotor_speed{};  ///< [rad/s]
   bool armed = false;
@@ -85,6 +95,7 @@ struct FlightOutput {
   Reason reason = Reason::kNone;
   std::optional<Transition> transition;  ///< taken this tick
   std::string refused;                   ///< a command refused this tick, and why
+  std::optional<CommandAnswer> answer;   ///< to the command applied this tick
   Reference reference;
   ControlOutput control;
   MixerOutput mixer;
@@ -131,8 +142,15 @@ public:
   bool onOperatorHeartbeat(double t);
   /// The goal the mission flies to; rejected (false, counted) when non-finite.
   bool onGoal(const Vector3& p, double tolerance);
-  /// An operator command, applied at the next update.
-  void onCommand(Command command) { pending_ = command; }
+  /// An operator command, applied (or refused) at the next update, which answers it. A
+  /// take-off climbs `takeoff_altitude` [m] above the take-off point, or the configured
+  /// altitude when it is 0; a negative, non-finite one, or one whose top lies outside the
+  /// geofence, is refused.
+  void onCommand(Command command, double takeoff_altitude = 0.0)
+  {
+    pending_ = command;
+    pending_altitude_ = takeoff_altitude;
+  }
 
   /// One control tick at sim time t [s].
   FlightOutput update(double t);
@@ -146,6 +164,8 @@ public:
 
 private:
   void enter(Mode from, Mode mode, double t, const std::optional<VehicleState>& state);
+  /// Why a take-off `altitude` [m] up (0: the configured one) is refused; empty when it is not.
+  std::string checkTakeoff(double altitude) const;
   /// The follower's path: the planner's, up to its known-free length.
   std::vector<Vector3> flyablePath() const;
   void aimCamera(Mode mode, const Vector3& p_W);
@@ -174,6 +194,8 @@ private:
   std::optional<Vector3> goal_;
   double goal_tolerance_ = 0.3;
   Command pending_ = Command::kNone;
+  double pending_altitude_ = 0.0;  // [m] of a pending take-off; 0: the configured altitude
+  double takeoff_altitude_ = 0.0;  // [m] of the take-off flown, above its point
   double last_update_t_ = -1.0;
   Vector3 takeoff_target_ = Vector3::Zero();
   Vector3 land_xy_ = Vector3::Zero();

@@ -75,7 +75,8 @@ struct ModeConfig {
   double no_path_land_after = 5.0;     ///< [s] in HOVER while the planner finds no path, before returning to land
   double idle_disarm_after = 10.0;     ///< [s] on the ground, armed, before disarming
   double geofence_return_after = 1.0;  ///< [s] holding after leaving the geofence, before returning
-  bool auto_mission = false;           ///< HOVER with a fresh path starts the mission by itself
+  /// HOVER with a fresh path starts the mission by itself, unless the operator commanded the hold
+  bool auto_mission = false;
   LinkLossAction link_loss = LinkLossAction::kReturn;  ///< when the operator's link is lost
 };
 
@@ -94,8 +95,10 @@ public:
   Reason reason() const { return reason_; }
 
   /// One tick. Returns the transition taken, if any. A command that does not apply in the
-  /// current mode (disarm while flying, mission without a path) is refused: no transition,
-  /// and `refused` says why.
+  /// current mode (disarm while flying, mission without a path) is refused: no transition for
+  /// it, and `refused` says why. A command that asks for what already holds (hold while
+  /// hovering) changes nothing; one that a failsafe overrides in the same tick gives way to it
+  /// (the transition is the failsafe's).
   std::optional<Transition> update(const ModeInputs& in);
 
   const std::string& refused() const { return refused_; }

@@ -17,9 +17,11 @@
 
 #include <quad/msg/ActuatorCommandPubSubTypes.h>
 #include <quad/msg/BatteryStatePubSubTypes.h>
+#include <quad/msg/CommandAckPubSubTypes.h>
 #include <quad/msg/ControlReferencePubSubTypes.h>
 #include <quad/msg/ControlStatusPubSubTypes.h>
 #include <quad/msg/FaultCommandPubSubTypes.h>
+#include <quad/msg/GoalAckPubSubTypes.h>
 #include <quad/msg/GoalPubSubTypes.h>
 #include <quad/msg/HeartbeatPubSubTypes.h>
 #include <quad/msg/ImuPubSubTypes.h>
@@ -105,10 +107,12 @@ struct MessageTraits;
 
 QUAD_DDS_MESSAGE(ActuatorCommand);
 QUAD_DDS_MESSAGE(BatteryState);
+QUAD_DDS_MESSAGE(CommandAck);
 QUAD_DDS_MESSAGE(ControlReference);
 QUAD_DDS_MESSAGE(ControlStatus);
 QUAD_DDS_MESSAGE(FaultCommand);
 QUAD_DDS_MESSAGE(Goal);
+QUAD_DDS_MESSAGE(GoalAck);
 QUAD_DDS_MESSAGE(Heartbeat);
 QUAD_DDS_MESSAGE(Imu);
 QUAD_DDS_MESSAGE(LockstepReport);

@@ -12,7 +12,7 @@
 
 namespace quad::dds::topics {
 
-using msg::ActuatorCommand, msg::BatteryState, msg::ControlReference, msg::ControlStatus, msg::FaultCommand, msg::Goal, msg::Heartbeat,
+using msg::ActuatorCommand, msg::BatteryState, msg::CommandAck, msg::ControlReference, msg::ControlStatus, msg::FaultCommand, msg::Goal, msg::GoalAck, msg::Heartbeat,
     msg::Imu, msg::LockstepReport, msg::MapSnapshot, msg::MapStats, msg::MapUpdate, msg::Path,
     msg::PointCloud, msg::SimClock, msg::SimEvent, msg::VehicleCommand, msg::VehicleState;
 
@@ -50,6 +50,9 @@ inline constexpr auto kMapStats = makeTopic<MapStats>(
 inline constexpr auto kGoal = makeTopic<Goal>(
     "quad/planning/goal", "latched", 0.0, Owner::kOperator,
     "Where the vehicle should go");
+inline constexpr auto kGoalAck = makeTopic<GoalAck>(
+    "quad/planning/goal_ack", "command", 0.0, Owner::kPlanning,
+    "The planner's answer to each goal: taken, or refused and why");
 inline constexpr auto kPath = makeTopic<Path>(
     "quad/planning/path", "latched", 0.0, Owner::kPlanning,
     "Planned path, per replan, republished unchanged at least every half deadline", 1.0);
@@ -59,6 +62,9 @@ inline constexpr auto kActuators = makeTopic<ActuatorCommand>(
 inline constexpr auto kControlStatus = makeTopic<ControlStatus>(
     "quad/control/status", "latched", 20.0, Owner::kControl,
     "Controller mode, failsafe reason, tracking errors");
+inline constexpr auto kCommandAck = makeTopic<CommandAck>(
+    "quad/control/command_ack", "command", 0.0, Owner::kControl,
+    "The controller's answer to each operator command: taken or refused, and why");
 inline constexpr auto kControlReference = makeTopic<ControlReference>(
     "quad/control/reference", "sensor", 250.0, Owner::kControl,
     "The reference the controller tracks, each tick");
@@ -89,7 +95,7 @@ inline constexpr std::int64_t kStateAheadOfClockNs = 500'000'000;
 inline constexpr std::array kAll{
     kSimClock.info, kSimState.info,  kSimImu.info,        kSimBattery.info,  kSimDepth.info,
     kSimEvents.info, kLockstep.info, kMapUpdate.info,     kMapSnapshot.info, kMapStats.info,
-    kGoal.info,      kPath.info,     kActuators.info,     kControlStatus.info,
+    kGoal.info,      kGoalAck.info,  kPath.info,     kActuators.info,     kControlStatus.info, kCommandAck.info,
     kControlReference.info, kHeartbeat.info, kOperatorHeartbeat.info, kVehicleCommand.info, kFault.info,
     kFaultEvents.info};
 

@@ -4,12 +4,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 
 #include "closed_loop.hpp"
 #include "quad/common/time.hpp"
+#include "quad/geometry/so3.hpp"
 #include "quad/plant/simulation.hpp"
 
 namespace quad::control {
@@ -608,6 +611,64 @@ TEST(FlightController, AGoalThePlannerCannotReachIsHeldThenLandedShortOfIt)
   });
   ASSERT_NE(landing, rig.log.end());
   EXPECT_EQ(landing->transition->reason, Reason::kNoPath);
+}
+
+/// Hovers 10 m up, then rotor 2 keeps `efficiency` of its thrust (and drag) for 10 s, or until
+/// the vehicle is on the ground. What the flight did, for the sweep below.
+struct RotorLossFlight {
+  double max_tilt_deg = 0.0;   ///< of the body's z axis from the vertical
+  double lowest_m = 1e9;
+  double max_descent = 0.0;    ///< [m/s]
+  double max_rate = 0.0;       ///< [rad/s] body rate, the spin included
+  double seconds = 0.0;        ///< flown after the loss
+};
+
+RotorLossFlight flyWithARotorAt(double efficiency)
+{
+  Rig rig;
+  rig.fc.onCommand(Command::kArm);
+  rig.run(0.1);
+  rig.fc.onCommand(Command::kTakeoff, 10.0);
+  rig.run(20.0, [&] { return rig.mode() == Mode::kHover; });
+  rig.run(2.0);
+  plant::Fault loss;
+  loss.id = 1;
+  loss.kind = plant::Fault::Kind::kMotor;
+  loss.rotor = 2;
+  loss.magnitude = efficiency;
+  loss.start_ns = rig.sim.timeNs();
+  EXPECT_TRUE(rig.sim.injectFault(loss));
+  const double t0 = rig.t();
+  RotorLossFlight f;
+  rig.run(10.0, [&] {
+    const auto& s = rig.sim.state();
+    const double up = std::clamp(geometry::toMatrix(s.q_WB).col(2).z(), -1.0, 1.0);
+    f.max_tilt_deg = std::max(f.max_tilt_deg, std::acos(up) * 180.0 / M_PI);
+    f.lowest_m = std::min(f.lowest_m, s.p_W.z());
+    f.max_descent = std::max(f.max_descent, -s.v_W.z());
+    f.max_rate = std::max(f.max_rate, s.w_B.norm());
+    return s.landed && rig.t() > t0 + 0.5;
+  });
+  f.seconds = rig.t() - t0;
+  return f;
+}
+
+TEST(FlightController, ARotorDownToHalfItsThrustIsFlownByGivingUpYaw)
+{
+  // The sweep docs/control.md reports (Limits: a rotor lost); what must hold is asserted: down
+  // to 45 % of one rotor's thrust the vehicle holds its altitude within 0.4 m for 10 s, the
+  // mixer giving up yaw (it spins) before thrust and tilt. Below, it descends; without the
+  // rotor it flips.
+  for (const double efficiency : {0.6, 0.5, 0.45, 0.4, 0.3, 0.2, 0.0}) {
+    const RotorLossFlight f = flyWithARotorAt(efficiency);
+    std::printf("rotor 2 at %.2f: tilt up to %.1f deg, lowest %.2f m, descent up to %.2f m/s, body rate up to "
+                "%.1f rad/s, %.2f s flown\n",
+                efficiency, f.max_tilt_deg, f.lowest_m, f.max_descent, f.max_rate, f.seconds);
+    if (efficiency >= 0.45) {
+      EXPECT_GT(f.lowest_m, 9.6) << efficiency;
+      EXPECT_LT(f.max_tilt_deg, 30.0) << efficiency;
+    }
+  }
 }
 
 }  // namespace

@@ -2,12 +2,16 @@
 // The plant and control nodes flying together: the loop the stack is built around.
 #include <gtest/gtest.h>
 
+#include <signal.h>
+
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -99,6 +103,64 @@ TEST(Flight, LockstepMissionReachesItsGoalWithoutCollision)
   };
   ASSERT_TRUE(quad::test::waitFor(hoverAfterMission, 10s)) << status.output();
   EXPECT_EQ(hover["failsafe_reason"], "FAILSAFE_NONE") << hover;
+}
+
+}  // namespace
+
+namespace {
+
+/// The newest `header.stamp_ns` among the samples a `quad topic echo --json` printed; -1 if none.
+std::int64_t lastStamp(const std::string& output)
+{
+  std::int64_t last = -1;
+  for (const auto& s : quad::test::jsonLines(output)) {
+    last = std::max(last, s["header"]["stamp_ns"].get<std::int64_t>());
+  }
+  return last;
+}
+
+TEST(Flight, InRealTimeTheStatesDeadlineEventReachesTheFailsafeBeforeTheControllersOwnTimer)
+{
+  const int domain = 61;
+  const std::string plant_config =
+      writeFile("plant_rt.yaml", std::string("vehicle: ") + QUAD_CONFIG_DIR + "/vehicles/x500.yaml\nworld: " +
+                                     QUAD_CONFIG_DIR + "/worlds/open.yaml\nsim: {mode: realtime, duration: 60.0}\n");
+  const std::string control_config = writeFile(
+      "control_rt.yaml", std::string("vehicle: ") + QUAD_CONFIG_DIR + "/vehicles/x500.yaml\nautostart: true\n");
+  // GIVEN the plant in real time and the controller holding the vehicle after its take-off
+  ChildProcess control({QUAD_CONTROL_NODE, "--config", control_config}, env(domain));
+  ASSERT_TRUE(quad::test::waitForRunningModule(domain, "control", 20s)) << control.output();
+  ChildProcess status({QUAD_TOOL, "topic", "echo", "quad/control/status", "--json"}, env(domain));
+  ChildProcess plant({QUAD_PLANT_NODE, "--config", plant_config}, env(domain));
+  ASSERT_TRUE(status.waitForOutput("CONTROL_HOVER", 30s)) << status.output() << plant.output();
+  // (the plant's clock: reliable, its newest sample always delivered, one per step, each step
+  // with its state)
+  ChildProcess clock({QUAD_TOOL, "topic", "echo", "quad/sim/clock", "--json"}, env(domain));
+  ASSERT_TRUE(clock.waitForOutput("sim_ns", 10s)) << clock.output();
+  std::this_thread::sleep_for(1s);
+  // WHEN the plant stops (SIGSTOP: no state, no IMU sample, no clock)
+  plant.signal(SIGSTOP);
+  // THEN the controller lands on the failsafe, judged on the state's last sim time plus the
+  // silence: the state topic's DDS deadline (its contract's 0.1 s) fires at the timeout, while
+  // the controller's own wall-clock tick would judge no sooner than 0.14 s (its 0.04 s
+  // backstop past the timeout)
+  ASSERT_TRUE(status.waitForOutput("CONTROL_FAILSAFE_LAND", 10s)) << status.output();
+  std::this_thread::sleep_for(500ms);
+  const std::int64_t last_state_ns = lastStamp(clock.output());
+  nlohmann::json failsafe;
+  for (const auto& s : quad::test::jsonLines(status.output())) {
+    if (s["mode"] == "CONTROL_FAILSAFE_LAND" && failsafe.is_null()) {
+      failsafe = s;
+    }
+  }
+  plant.signal(SIGCONT);
+  ASSERT_FALSE(failsafe.is_null());
+  EXPECT_EQ(failsafe["failsafe_reason"], "FAILSAFE_STATE_STALE") << failsafe;
+  const double judged_after = static_cast<double>(failsafe["header"]["stamp_ns"].get<std::int64_t>() - last_state_ns) * 1e-9;
+  // (the silence is measured from when the node took the last state, a little after the
+  // middleware received it)
+  EXPECT_GE(judged_after, 0.09) << failsafe;
+  EXPECT_LT(judged_after, 0.13) << failsafe << "\nlast state at " << last_state_ns << " ns\n" << control.output();
 }
 
 }  // namespace

@@ -11,6 +11,12 @@ namespace quad::control {
 
 namespace {
 constexpr std::int64_t kTickNs = 20'000'000;  // watch for a silent plant at 50 Hz
+/// [s] The tick's own judgement of a silent plant waits this much past the state's timeout: the
+/// state topic's deadline event (at the timeout) comes first, and the tick stands behind it.
+constexpr double kTickBackstopS = 0.04;
+/// [s] A deadline event for a topic one of whose samples was taken this recently is older than
+/// that sample (the middleware timed it from before it): not acted on.
+constexpr double kDeadlineEventSlackS = 0.01;
 }
 
 ControlNode::ControlNode(ControlNodeConfig config, dds::ParticipantOptions options)
@@ -88,6 +94,7 @@ void ControlNode::takeInputs()
   }
   while (auto p = path_.take()) {
     counters().samples_in++;
+    path_wall_ns_ = common::steadyTimeNs();
     const double t = latest_t_ >= 0.0 ? latest_t_ : common::toSeconds(p->header().stamp_ns());
     if (!fc_.onPath(waypointsOf(*p), p->version(), pathKind(p->status()), t, p->known_free_m())) {
       counters().errors++;
@@ -236,6 +243,11 @@ void ControlNode::controlWithoutState()
 void ControlNode::onTick(std::int64_t steady_ns)
 {
   takeInputs();
+  controlSilentPlant(steady_ns, config_.flight.state_timeout + kTickBackstopS);
+}
+
+void ControlNode::controlSilentPlant(std::int64_t steady_ns, double after_s)
+{
   // In real time a silent plant (or a lost link) must still reach the failsafe: advance the
   // controller's clock by the wall time since the plant was last heard (a state or an IMU
   // sample). In lockstep the plant waits.
@@ -245,9 +257,30 @@ void ControlNode::onTick(std::int64_t steady_ns)
   const bool imu_newer = imu_wall_ns_ > latest_wall_ns_;
   const double heard_t = imu_newer ? common::toSeconds(imu_ns_) : latest_t_;
   const double silent = common::toSeconds(steady_ns - std::max(latest_wall_ns_, imu_wall_ns_));
-  if (silent > config_.flight.state_timeout) {
+  if (silent > after_s) {
     const double t = heard_t + silent;
     control(t, common::toNanoseconds(t));
+  }
+}
+
+void ControlNode::onEvent(const dds::EndpointEvent& event)
+{
+  Node::onEvent(event);
+  // Wall-clock deadlines say nothing in lockstep, where sim time waits for every module.
+  if (event.kind != dds::EventKind::kDeadlineMissed || lockstep() || !simClock().seen()) {
+    return;
+  }
+  const std::int64_t now = common::steadyTimeNs();
+  if (event.topic == dds::topics::kSimState.info.name && latest_t_ >= 0.0) {
+    const double silent = common::toSeconds(now - latest_wall_ns_);
+    if (silent < dds::topics::kSimState.info.stale_after_s - kDeadlineEventSlackS) {
+      return;
+    }
+    fc_.onStateLate();
+    controlSilentPlant(now, 0.0);  // the failsafe's tick, now
+  } else if (event.topic == dds::topics::kPath.info.name &&
+             common::toSeconds(now - path_wall_ns_) >= dds::topics::kPath.info.stale_after_s - kDeadlineEventSlackS) {
+    fc_.onPathLate();
   }
 }
 

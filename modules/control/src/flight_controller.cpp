@@ -59,6 +59,7 @@ bool FlightController::onState(const VehicleState& s, bool landed, double t)
   state_ = VehicleState{s.p_W, s.v_W, s.q_WB.normalized(), s.w_B};
   landed_ = landed;
   state_t_ = t;
+  state_late_ = false;
   reckoning_.anchor(*state_, t);
   return true;
 }
@@ -82,6 +83,7 @@ bool FlightController::onPath(const std::vector<Vector3>& waypoints, std::uint32
     return false;
   }
   path_t_ = t;
+  path_late_ = false;
   path_kind_ = kind;
   if (ok && (!path_version_ || version != *path_version_)) {
     path_ = waypoints;
@@ -273,9 +275,9 @@ FlightOutput FlightController::update(double t)
   if (!takeoff_refused.empty()) {
     in.command = Command::kNone;
   }
-  in.state_fresh = state_ && t - state_t_ <= config_.state_timeout;
+  in.state_fresh = state_ && !state_late_ && t - state_t_ <= config_.state_timeout;
   const bool path_heard = t - path_t_ <= config_.path_timeout;
-  in.path_fresh = path_kind_ == PathKind::kOk && path_version_ && path_heard;
+  in.path_fresh = path_kind_ == PathKind::kOk && path_version_ && path_heard && !path_late_;
   in.no_path = path_kind_ == PathKind::kUnreachable && path_heard;
   in.landed = landed_;
   in.takeoff_altitude_reached = modes_.mode() == Mode::kTakeoff && state_ && follower_.finished() &&

@@ -281,6 +281,32 @@ TEST(FlightController, StaleStateLandsWithinATickOfItsTimeout)
   }
 }
 
+TEST(FlightController, ADeadlineEventMakesItsInputStaleAtTheNextTickUntilTheNextSample)
+{
+  // The state: the middleware's deadline event (wall clock) comes before the sim-time timeout.
+  Rig rig;
+  intoMission(rig);
+  rig.feed_state = false;
+  rig.run(0.02);
+  ASSERT_EQ(rig.mode(), Mode::kMission);  // 20 ms: well within the 0.1 s timeout
+  rig.fc.onStateLate();
+  rig.run(0.005);
+  EXPECT_EQ(rig.mode(), Mode::kFailsafeLand);
+  EXPECT_EQ(rig.log.back().reason, Reason::kStateStale);
+
+  // The path: HOVER at the next tick, saying so; a path again clears it.
+  Rig again;
+  intoMission(again);
+  again.fc.onPathLate();
+  again.run(0.005);
+  EXPECT_EQ(again.mode(), Mode::kHover);
+  EXPECT_EQ(again.log.back().reason, Reason::kPathStale);
+  again.fc.onPath({{0, 0, 2}, {40, 0, 2}}, 1, PathKind::kOk, again.t());
+  again.fc.onCommand(Command::kStartMission);
+  again.run(0.005);
+  EXPECT_EQ(again.mode(), Mode::kMission);
+}
+
 /// Flies the mission at full speed, then stops the state for `seconds` (the IMU as the rig
 /// says); returns how far the vehicle went horizontally from where the state was lost.
 double driftThroughAStateDropout(Rig& rig, double seconds)

@@ -72,7 +72,7 @@ WriterEndpoint::WriterEndpoint(Participant& participant, const TopicInfo& info,
     : participant_(participant), info_(info), listener_(std::make_unique<Listener>(*this))
 {
   auto* topic = participant_.topic(info_, type);
-  const fdds::DataWriterQos writer_qos = qos ? *qos : participant_.writerQos(info_.qos_profile);
+  const fdds::DataWriterQos writer_qos = qos ? *qos : participant_.writerQos(info_);
   participant_.addLocalEndpoint(std::string(info_.name), type.get_type_name(),
                                 type->m_isGetKeyDefined, true);
   writer_ = participant_.publisher()->create_datawriter(topic, writer_qos, listener_.get(),
@@ -191,7 +191,7 @@ ReaderEndpoint::ReaderEndpoint(Participant& participant, const TopicInfo& info,
     : participant_(participant), info_(info), listener_(std::make_unique<Listener>(*this, waker))
 {
   auto* topic = participant_.topic(info_, type);
-  const fdds::DataReaderQos reader_qos = qos ? *qos : participant_.readerQos(info_.qos_profile);
+  const fdds::DataReaderQos reader_qos = qos ? *qos : participant_.readerQos(info_);
   participant_.addLocalEndpoint(std::string(info_.name), type.get_type_name(),
                                 type->m_isGetKeyDefined, false);
   reader_ = participant_.subscriber()->create_datareader(topic, reader_qos, listener_.get(),

@@ -486,6 +486,37 @@ fdds::DataReaderQos Participant::readerQos(std::string_view qos_class) const
                                          qos_class, "reader", options_);
 }
 
+namespace {
+/// The contract's deadline as the endpoint's DEADLINE period, unless its class asks a tighter one.
+template <class Qos>
+Qos withContractDeadline(Qos qos, const TopicInfo& info)
+{
+  if (info.stale_after_s > 0.0) {
+    const eprosima::fastrtps::Duration_t contract(info.stale_after_s);
+    if (contract < qos.deadline().period) {
+      qos.deadline().period = contract;
+    }
+  }
+  return qos;
+}
+}  // namespace
+
+fdds::DataWriterQos Participant::writerQos(const TopicInfo& info) const
+{
+  return withContractDeadline(writerQos(info.qos_profile), info);
+}
+
+fdds::DataReaderQos Participant::readerQos(const TopicInfo& info) const
+{
+  // A reader asks for what the contract says: a class's tighter deadline (the state's two
+  // periods) is the writers' to offer, not a staleness a reader should act on.
+  fdds::DataReaderQos qos = readerQos(info.qos_profile);
+  if (info.stale_after_s > 0.0) {
+    qos.deadline().period = eprosima::fastrtps::Duration_t(info.stale_after_s);
+  }
+  return qos;
+}
+
 void Participant::addLocalEndpoint(const std::string& topic, const std::string& type_name,
                                    bool keyed, bool writer)
 {

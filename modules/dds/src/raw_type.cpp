@@ -87,14 +87,14 @@ Qos dynamicMemory(Qos qos)
 RawPublisher::RawPublisher(Participant& participant, const TopicInfo& info,
                            std::optional<fdds::DataWriterQos> qos)
     : WriterEndpoint(participant, info, rawTypeFor(info),
-                     dynamicMemory(qos ? *qos : participant.writerQos(info.qos_profile)))
+                     dynamicMemory(qos ? *qos : participant.writerQos(info)))
 {
 }
 
 RawSubscriber::RawSubscriber(Participant& participant, const TopicInfo& info, Waker* waker,
                              std::optional<fdds::DataReaderQos> qos)
     : ReaderEndpoint(participant, info, rawTypeFor(info), waker,
-                     dynamicMemory(qos ? *qos : participant.readerQos(info.qos_profile)))
+                     dynamicMemory(qos ? *qos : participant.readerQos(info)))
 {
 }
 

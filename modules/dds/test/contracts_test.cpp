@@ -125,6 +125,28 @@ TEST(Contracts, ControlInputsHaveDeadlinesOfTwiceTheirPeriod)
   }
 }
 
+TEST(Contracts, ATopicsStalenessIsItsReadersDdsDeadlineAndItsWritersOfferIt)
+{
+  // A reader asks for a sample within the contract's deadline (the middleware's deadline
+  // event then reaches the node); a writer offers it, or its class's tighter one, so both
+  // match.
+  Participant p = testParticipant(155);
+  int judged = 0;
+  for (const auto& t : topics::kAll) {
+    const double reader = seconds(p.readerQos(t).deadline().period);
+    const double writer = seconds(p.writerQos(t).deadline().period);
+    if (t.stale_after_s > 0.0) {
+      ++judged;
+      EXPECT_NEAR(reader, t.stale_after_s, 1e-9) << t.name;
+      EXPECT_LE(writer, reader) << t.name;
+    } else {
+      EXPECT_NEAR(reader, seconds(p.readerQos(t.qos_profile).deadline().period), 1e-9) << t.name;
+    }
+  }
+  EXPECT_EQ(judged, 3);  // the state, the battery, the path
+  EXPECT_NEAR(seconds(p.writerQos(topics::kSimState.info).deadline().period), 0.008, 1e-9);  // its class's
+}
+
 TEST(Contracts, WritersAndReadersOfOneClassAreCompatible)
 {
   // A writer and a reader built from one class must match: same reliability and durability

@@ -140,6 +140,12 @@ public:
   /// A heartbeat of the operator's station stamped at sim time t [s]; rejected (false,
   /// counted) when t is not finite.
   bool onOperatorHeartbeat(double t);
+  /// The middleware's word (a DDS deadline event, on the wall clock) that no state came
+  /// within its topic's deadline: the state counts as stale from the next update until a new
+  /// one is taken, whatever the sim-time timeout says yet.
+  void onStateLate() { state_late_ = true; }
+  /// The same for the path: stale until the next one.
+  void onPathLate() { path_late_ = true; }
   /// The goal the mission flies to; rejected (false, counted) when non-finite.
   bool onGoal(const Vector3& p, double tolerance);
   /// An operator command, applied (or refused) at the next update, which answers it. A
@@ -181,6 +187,8 @@ private:
   std::optional<VehicleState> state_;
   bool landed_ = true;
   double state_t_ = -1.0;
+  bool state_late_ = false;  // a deadline event since the last state
+  bool path_late_ = false;   // a deadline event since the last path
   std::vector<Vector3> path_;
   std::optional<std::uint32_t> path_version_;
   double path_known_free_ = 0.0;  // [m] of path_ flown

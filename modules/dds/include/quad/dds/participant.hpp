@@ -129,6 +129,12 @@ public:
   /// (map changes). KEEP_LAST N promises the newest N only: a reader that falls N behind
   /// (a paused process) loses the older ones by contract.
   bool promisesEverySample(std::string_view qos_class) const;
+  /// QoS of a topic's endpoints: its class's profile, and the contract's deadline
+  /// (TopicInfo::stale_after_s) as the DDS DEADLINE: a reader asks for a sample within it
+  /// (the middleware tells the node when none came: a deadline event), a writer offers it
+  /// (or its class's tighter one), so the two match.
+  eprosima::fastdds::dds::DataWriterQos writerQos(const TopicInfo& info) const;
+  eprosima::fastdds::dds::DataReaderQos readerQos(const TopicInfo& info) const;
 
   /// Records a local endpoint so discovery can check remote ones against it.
   void addLocalEndpoint(const std::string& topic, const std::string& type_name, bool keyed,

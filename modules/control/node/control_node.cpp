@@ -270,15 +270,19 @@ void ControlNode::onEvent(const dds::EndpointEvent& event)
   if (event.kind != dds::EventKind::kDeadlineMissed || lockstep() || !simClock().seen()) {
     return;
   }
+  // A timeout set longer than the contract's (timeouts.* in the config, for hand-fed inputs)
+  // is the operator's word: the contract's deadline event then says nothing.
+  const auto judged = [](double timeout, const dds::TopicInfo& topic) { return timeout <= topic.stale_after_s + 1e-9; };
   const std::int64_t now = common::steadyTimeNs();
-  if (event.topic == dds::topics::kSimState.info.name && latest_t_ >= 0.0) {
+  if (event.topic == dds::topics::kSimState.info.name && latest_t_ >= 0.0 &&
+      judged(config_.flight.state_timeout, dds::topics::kSimState.info)) {
     const double silent = common::toSeconds(now - latest_wall_ns_);
     if (silent < dds::topics::kSimState.info.stale_after_s - kDeadlineEventSlackS) {
       return;
     }
     fc_.onStateLate();
     controlSilentPlant(now, 0.0);  // the failsafe's tick, now
-  } else if (event.topic == dds::topics::kPath.info.name &&
+  } else if (event.topic == dds::topics::kPath.info.name && judged(config_.flight.path_timeout, dds::topics::kPath.info) &&
              common::toSeconds(now - path_wall_ns_) >= dds::topics::kPath.info.stale_after_s - kDeadlineEventSlackS) {
     fc_.onPathLate();
   }

@@ -13,10 +13,6 @@
 
 namespace quad::tools {
 
-namespace {
-constexpr auto kReaderMatchSettle = std::chrono::milliseconds(300);
-}  // namespace
-
 int topicPub(const TopicPubOptions& options)
 {
   const dds::TopicInfo info = topic::requireTopic(options.topic);
@@ -43,7 +39,7 @@ int topicPub(const TopicPubOptions& options)
   } else {
     // A volatile reader drops samples from a writer it has not matched yet, and the readers'
     // side of discovery completes on its own schedule: give it a moment.
-    std::this_thread::sleep_for(kReaderMatchSettle);
+    std::this_thread::sleep_for(dds::kReaderMatchSettle);
   }
 
   const auto period = std::chrono::duration<double>(1.0 / options.rate_hz);

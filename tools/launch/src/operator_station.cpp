@@ -25,9 +25,6 @@ namespace topics = dds::topics;
 
 namespace {
 constexpr auto kPoll = std::chrono::milliseconds(10);
-/// A volatile reader drops samples from a writer it has not matched yet, and a reader's side
-/// of discovery completes on its own schedule: a moment after our side matched.
-constexpr auto kReaderMatchSettle = std::chrono::milliseconds(300);
 
 msg::CommandKind toMessage(OperatorCommand c)
 {
@@ -136,7 +133,7 @@ OperatorAnswer OperatorStation::command(OperatorCommand command, double takeoff_
             fmt::format("no controller found (no writer of {}) within {} s", topics::kCommandAck.info.name, timeout_s_),
             ""};
   }
-  std::this_thread::sleep_for(kReaderMatchSettle);
+  std::this_thread::sleep_for(dds::kReaderMatchSettle);
   msg::VehicleCommand c;
   c.header().stamp_ns(stampNs());
   c.command_id(freshCommandId());
@@ -178,7 +175,7 @@ OperatorAnswer OperatorStation::setGoal(const Eigen::Vector3d& p_W, double toler
     return {OperatorAnswer::Outcome::kNoAnswer,
             fmt::format("no planner found (no writer of {}) within {} s", topics::kGoalAck.info.name, timeout_s_), ""};
   }
-  std::this_thread::sleep_for(kReaderMatchSettle);
+  std::this_thread::sleep_for(dds::kReaderMatchSettle);
   // The next goal id: past the latched goal (the launcher's) and the latched path's (the goal
   // the planner flies to, which may be an earlier command's).
   std::uint32_t last_id = 0;

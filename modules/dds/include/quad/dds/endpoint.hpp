@@ -23,6 +23,11 @@
 
 namespace quad::dds {
 
+/// After a writer matched its first reader, how long before writing what a volatile reader
+/// must not miss: the reader's side of discovery completes on its own schedule, and until then
+/// it drops the writer's samples.
+inline constexpr std::chrono::milliseconds kReaderMatchSettle{300};
+
 /// Owns one DataWriter; reports matches, offered deadlines, liveliness and incompatible QoS
 /// to the participant's event queue.
 class WriterEndpoint {

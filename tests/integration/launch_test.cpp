@@ -13,6 +13,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -84,6 +85,19 @@ void flyMission(const std::string& manifest, int domain, const std::vector<std::
   for (const char* log : {"launch.log", "plant.log", "control.log", "mapping.log", "planning.log", "summary.json"}) {
     EXPECT_TRUE(fs::exists(dir / "run" / log)) << log;
   }
+  // What the run cost: sim over wall time, and each process's CPU time over the wall time.
+  // Together they cannot have kept more cores busy than the machine has.
+  const double wall = summary["wall_seconds"].get<double>();
+  EXPECT_NEAR(summary["real_time_factor"].get<double>(), summary["sim_seconds"].get<double>() / wall, 1e-9) << summary;
+  double busy = 0.0;
+  for (const char* process : {"plant", "control", "mapping", "planning", "launch"}) {
+    const auto& cost = summary["processes"][process];
+    ASSERT_TRUE(cost["cpu_seconds"].is_number()) << process << " " << summary;
+    EXPECT_GT(cost["cpu_seconds"].get<double>(), 0.0) << process;
+    EXPECT_NEAR(cost["busy_share"].get<double>(), cost["cpu_seconds"].get<double>() / wall, 1e-9) << process;
+    busy += cost["busy_share"].get<double>();
+  }
+  EXPECT_LE(busy, static_cast<double>(std::thread::hardware_concurrency()) + 0.05) << summary;
   const auto record = runRecord(dir / "run");
   EXPECT_EQ(record["exit_code"], 0) << record;
   for (const char* module : {"plant", "control", "mapping", "planning"}) {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "quad/common/time.hpp"
 
+#include <sys/resource.h>
+
 #include <ctime>
 
 namespace quad::common {
@@ -15,5 +17,18 @@ std::int64_t read(clockid_t clock)
 
 std::int64_t wallTimeNs() { return read(CLOCK_REALTIME); }
 std::int64_t steadyTimeNs() { return read(CLOCK_MONOTONIC); }
+
+double cpuSeconds(const ::rusage& usage)
+{
+  const auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
+double processCpuSeconds()
+{
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return cpuSeconds(usage);
+}
 
 }  // namespace quad::common

@@ -204,6 +204,7 @@ std::string toJson(const MissionSummary& s)
   j["collisions"] = s.collisions;
   j["sim_seconds"] = s.sim_s;
   j["wall_seconds"] = s.wall_s;
+  j["real_time_factor"] = s.wall_s > 0.0 ? nlohmann::ordered_json(s.sim_s / s.wall_s) : nlohmann::ordered_json(nullptr);
   j["path_length_m"] = s.path_length_m;
   j["straight_line_m"] = s.straight_line_m;
   j["optimum_m"] = s.optimum_m ? nlohmann::ordered_json(*s.optimum_m) : nlohmann::ordered_json(nullptr);
@@ -214,8 +215,29 @@ std::string toJson(const MissionSummary& s)
   j["mode_changes"] = s.mode_changes;
   j["modes"] = s.modes;
   j["goal_distance_m"] = s.goal_distance_m;
+  nlohmann::ordered_json processes = nlohmann::ordered_json::object();
+  for (const ProcessCost& p : s.processes) {
+    const bool known = p.cpu_s && s.wall_s > 0.0;
+    processes[p.name] = {{"cpu_seconds", p.cpu_s ? nlohmann::ordered_json(*p.cpu_s) : nlohmann::ordered_json(nullptr)},
+                         {"busy_share", known ? nlohmann::ordered_json(*p.cpu_s / s.wall_s) : nlohmann::ordered_json(nullptr)}};
+  }
+  j["processes"] = processes;
   return j.dump(2) + "\n";
 }
+
+namespace {
+/// "  CPU: plant 12.1 s (0.32 of a core), ...": what each process cost; empty when none known.
+std::string costText(const MissionSummary& s)
+{
+  std::string line;
+  for (const ProcessCost& p : s.processes) {
+    if (p.cpu_s && s.wall_s > 0.0) {
+      line += fmt::format("{}{} {:.1f} s ({:.2f})", line.empty() ? "" : ", ", p.name, *p.cpu_s, *p.cpu_s / s.wall_s);
+    }
+  }
+  return line.empty() ? "" : "  CPU (share of a core): " + line + "\n";
+}
+}  // namespace
 
 std::string toText(const MissionSummary& s)
 {
@@ -229,7 +251,7 @@ std::string toText(const MissionSummary& s)
       s.optimum_m && *s.optimum_m > 0.0
           ? fmt::format(", a {:.1f} m known-map optimum ({:.2f}x)", *s.optimum_m, s.path_length_m / *s.optimum_m)
           : "",
-      s.paths, s.min_clearance_m, s.collisions, s.mode_changes, s.goal_distance_m);
+      s.paths, s.min_clearance_m, s.collisions, s.mode_changes, s.goal_distance_m) + costText(s);
 }
 
 }  // namespace quad::launch

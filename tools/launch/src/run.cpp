@@ -382,6 +382,19 @@ void LaunchRun::stopAll()
   supervisor_.stop("discovery", m_.grace_s);
 }
 
+std::vector<launch::ProcessCost> LaunchRun::processCosts() const
+{
+  std::vector<launch::ProcessCost> costs;
+  for (const auto& name : started_order_) {
+    // Over ssh the local process is the ssh client, whose CPU time is not the module's.
+    const auto mod = std::find_if(m_.modules.begin(), m_.modules.end(), [&](const Module& x) { return x.name == name; });
+    const bool remote = mod != m_.modules.end() && m_.host(mod->host).kind == launch::HostKind::kSsh;
+    costs.push_back({name, remote ? std::nullopt : supervisor_.cpuSeconds(name)});
+  }
+  costs.push_back({"launch", common::processCpuSeconds()});
+  return costs;
+}
+
 std::optional<double> LaunchRun::knownMapOptimum()
 {
   const auto planning = std::find_if(m_.modules.begin(), m_.modules.end(), [](const Module& x) { return x.kind == "planning"; });
@@ -534,6 +547,7 @@ int LaunchRun::execute(RunExtension* extension)
   int code = failed_ ? 1 : 0;
   if (auto* mission = observer_->mission()) {
     summary_ = mission->summary(common::toSeconds(common::steadyTimeNs() - start_ns_));
+    summary_->processes = processCosts();  // before the optimum's search, which the wall time leaves out
     summary_->optimum_m = knownMapOptimum();
     if (ended_by_ && !summary_->success && summary_->end == launch::MissionEnd::kUnfinished) {
       summary_->outcome = "not finished: " + ended_by_->reason;

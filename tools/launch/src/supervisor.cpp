@@ -138,13 +138,27 @@ std::vector<Supervisor::Exit> Supervisor::pump(int timeout_ms)
     const auto status = child.process->poll();
     forward(name, child, status.has_value());
     if (status) {
-      child.exited = true;
+      ended(child);
       child.log << "--- " << timestamp() << " ended: "
                 << process::describeStatus(*status) << '\n' << std::flush;
       exits.push_back({name, *status});
     }
   }
   return exits;
+}
+
+void Supervisor::ended(Child& child)
+{
+  child.exited = true;
+  if (const auto cpu = child.process->cpuSeconds()) {
+    child.cpu_s = child.cpu_s.value_or(0.0) + *cpu;
+  }
+}
+
+std::optional<double> Supervisor::cpuSeconds(const std::string& name) const
+{
+  const auto it = children_.find(name);
+  return it == children_.end() ? std::nullopt : it->second.cpu_s;
 }
 
 bool Supervisor::signal(const std::string& name, int signal)
@@ -170,7 +184,7 @@ std::optional<int> Supervisor::stop(const std::string& name, double grace_s)
     const auto status = child.process->poll();
     forward(name, child, status.has_value());
     if (status) {
-      child.exited = true;
+      ended(child);
       child.log << "--- " << timestamp() << " stopped: "
                 << process::describeStatus(*status) << '\n' << std::flush;
       return status;

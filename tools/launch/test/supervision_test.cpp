@@ -4,6 +4,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <fstream>
 #include <sstream>
 #include <thread>
@@ -52,6 +53,32 @@ TEST(Supervisor, EnvironmentIsPassed)
   s.start("env", {"sh", "-c", "echo domain=$QUAD_DOMAIN_ID"}, {{"QUAD_DOMAIN_ID", "77"}});
   EXPECT_EQ(waitExit(s, "env"), 0);
   EXPECT_NE(quad::test::readFile(dir / "env.log").find("domain=77"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST(Supervisor, AProcessIsChargedTheCpuTimeItRanNotTheTimeItWaitedAndARestartAddsUp)
+{
+  const fs::path dir = quad::test::scratchDir("quad_supervisor_cpu");
+  Supervisor s(dir, nullptr, false);
+  s.start("sleeper", {"sleep", "0.5"}, {});
+  EXPECT_FALSE(s.cpuSeconds("sleeper"));  // nothing known while it runs
+  EXPECT_EQ(waitExit(s, "sleeper"), 0);
+  ASSERT_TRUE(s.cpuSeconds("sleeper"));
+  EXPECT_LT(*s.cpuSeconds("sleeper"), 0.1);  // it waited half a second
+
+  const auto busy = [&] {
+    const auto t0 = std::chrono::steady_clock::now();
+    s.start("busy", {"sh", "-c", "i=0; while [ $i -lt 100000 ]; do i=$((i + 1)); done"}, {});
+    EXPECT_EQ(waitExit(s, "busy"), 0);
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  const double wall = busy();
+  ASSERT_TRUE(s.cpuSeconds("busy"));
+  const double first = *s.cpuSeconds("busy");
+  EXPECT_GT(first, 0.05);  // it counted
+  EXPECT_LE(first, wall);  // one thread: never more than the time it took
+  busy();
+  EXPECT_GT(*s.cpuSeconds("busy"), first + 0.05);  // the second instance's time is added
   fs::remove_all(dir);
 }
 

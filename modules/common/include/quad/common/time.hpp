@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdint>
 
+struct rusage;  // <sys/resource.h>
+
 namespace quad::common {
 
 inline constexpr std::int64_t kNanosecondsPerSecond = 1'000'000'000;
@@ -17,6 +19,11 @@ std::int64_t wallTimeNs();
 
 /// [ns] CLOCK_MONOTONIC: for measuring durations and timeouts; never goes back.
 std::int64_t steadyTimeNs();
+
+/// [s] The CPU time in a resource usage (getrusage, wait4): user plus system.
+double cpuSeconds(const ::rusage& usage);
+/// [s] The CPU time this process took so far, all its threads.
+double processCpuSeconds();
 
 constexpr double toSeconds(std::int64_t ns) { return static_cast<double>(ns) * 1e-9; }
 

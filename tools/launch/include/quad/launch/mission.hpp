@@ -22,6 +22,14 @@ enum class MissionEnd { kUnfinished, kSuccess, kFailed, kNoPath };
 /// "unfinished", "success", "failed", "no_path": the summary's `end`.
 std::string_view toString(MissionEnd end);
 
+/// What a process of the run cost: the CPU time it took over the run (user and system, all
+/// its threads; a restarted module's instances together) and that over the run's wall time,
+/// the share of one core it kept busy. Unknown for a module run on another host.
+struct ProcessCost {
+  std::string name;               ///< the manifest's module name, "record", or "launch" itself
+  std::optional<double> cpu_s;
+};
+
 struct MissionSummary {
   bool success = false;
   MissionEnd end = MissionEnd::kUnfinished;
@@ -38,6 +46,7 @@ struct MissionSummary {
   int mode_changes = 0;
   std::vector<std::string> modes;  ///< "t MODE" in order
   double goal_distance_m = 0.0; ///< at the end
+  std::vector<ProcessCost> processes;  ///< filled by the launcher once its processes ended
 };
 
 class MissionTracker {

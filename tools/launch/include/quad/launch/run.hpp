@@ -135,6 +135,8 @@ private:
   /// The known-map optimum of the run's world, with its planning module's parameters; nothing
   /// when the run has no planner or no path exists.
   std::optional<double> knownMapOptimum();
+  /// What each process of the run cost, once they all stopped, and the launcher itself.
+  std::vector<launch::ProcessCost> processCosts() const;
   void stopAll();
   bool waitForNeeds(const launch::Module& mod);
   const launch::Module& module(const std::string& name) const;

@@ -46,6 +46,10 @@ public:
   /// (nothing if it was not running).
   std::optional<int> stop(const std::string& name, double grace_s);
 
+  /// The CPU time [s] that the processes started as `name` took, summed over those that
+  /// ended (a restarted module's instances together); nothing while none has ended.
+  std::optional<double> cpuSeconds(const std::string& name) const;
+
   /// A line of the launcher's own, on the console and in launch.log.
   void say(const std::string& line);
 
@@ -58,7 +62,10 @@ private:
     std::string partial;  // output after the last newline
     bool eof = false;     // its output pipe closed (it is exiting, or closed it)
     bool exited = false;
+    std::optional<double> cpu_s;  // of the instances that ended
   };
+  /// Bookkeeping for a child whose exit status came: marks it exited, counts its CPU time.
+  static void ended(Child& child);
   void forward(const std::string& name, Child& child, bool flush_partial);
 
   std::filesystem::path log_dir_;

@@ -37,10 +37,15 @@ public:
   /// Sends `signal` to the child's process group.
   void signal(int signal) const;
 
+  /// The CPU time the child took, user and system, all its threads [s]; known once poll()
+  /// gave its exit status.
+  std::optional<double> cpuSeconds() const { return cpu_s_; }
+
 private:
   pid_t pid_ = -1;
   int out_fd_ = -1;
   std::optional<int> status_;
+  std::optional<double> cpu_s_;
 };
 
 /// Describes an exit status as poll() gives it: "exit 0", "killed by SIGKILL".

@@ -1,13 +1,23 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Recorder throughput, the publishing and the discarding side: quad_record_bench publishes
-// map updates of a given size as fast as reliable flow control lets it, or receives them
-// and throws them away, timing the first to the last.
+// Recorder cost and throughput, the publishing and the discarding side: quad_record_bench
+// publishes map updates of a given size as fast as reliable flow control lets it, or
+// receives them and throws them away, timing the first to the last; and it runs a command
+// and reports the CPU time that command's process took (its rusage, as wait4 gives it).
 //   quad_record_bench publish BYTES COUNT     (waits for a reader first)
 //   quad_record_bench discard COUNT TIMEOUT_S (prints "received N in S s")
+//   quad_record_bench cpu FILE -- COMMAND...  (writes its CPU seconds to FILE; SIGINT and
+//                                              SIGTERM are passed on to the command)
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "quad/common/time.hpp"
 #include "quad/dds/participant.hpp"
@@ -66,6 +76,53 @@ int discard(int count, double timeout_s)
   return received == count ? 0 : 1;
 }
 
+namespace {
+volatile std::sig_atomic_t g_child = 0;
+void passOn(int signal)
+{
+  if (g_child > 0) {
+    ::kill(static_cast<pid_t>(g_child), signal);
+  }
+}
+}  // namespace
+
+/// Runs argv[0...] as a child process and writes the CPU time it took (user plus system, all
+/// its threads) to `file`; returns its exit status.
+int cpu(const char* file, char** argv)
+{
+  std::signal(SIGINT, passOn);
+  std::signal(SIGTERM, passOn);
+  const pid_t child = ::fork();
+  if (child < 0) {
+    std::perror("fork");
+    return 2;
+  }
+  if (child == 0) {
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+    ::execvp(argv[0], argv);
+    std::perror(argv[0]);
+    std::_Exit(127);
+  }
+  g_child = child;
+  int status = 0;
+  rusage usage{};
+  while (::wait4(child, &status, 0, &usage) < 0) {
+    if (errno != EINTR) {
+      std::perror("wait4");
+      return 2;
+    }
+  }
+  std::FILE* out = std::fopen(file, "w");
+  if (out == nullptr) {
+    std::perror(file);
+    return 2;
+  }
+  std::fprintf(out, "%.6f\n", common::cpuSeconds(usage));
+  std::fclose(out);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
 }  // namespace quad::bench
 
 int main(int argc, char** argv)
@@ -77,6 +134,10 @@ int main(int argc, char** argv)
   if (mode == "discard" && argc == 4) {
     return quad::bench::discard(std::stoi(argv[2]), std::stod(argv[3]));
   }
-  std::fprintf(stderr, "usage: quad_record_bench publish BYTES COUNT | discard COUNT TIMEOUT_S\n");
+  if (mode == "cpu" && argc > 4 && std::string(argv[3]) == "--") {
+    return quad::bench::cpu(argv[2], argv + 4);
+  }
+  std::fprintf(stderr,
+               "usage: quad_record_bench publish BYTES COUNT | discard COUNT TIMEOUT_S | cpu FILE -- COMMAND...\n");
   return 2;
 }

@@ -85,6 +85,7 @@ MappingNode::MappingNode(MappingNodeConfig config, dds::ParticipantOptions optio
 {
   followSimClock();
   spdlog::info("mapping: resolution {} m, max range {} m", config_.map.resolution, config_.map.max_range);
+  map_bytes_ = mapper_.bytes();  // the empty map's; resume() counts a resumed one
   resume();
 }
 
@@ -112,6 +113,7 @@ void MappingNode::resume()
 
 void MappingNode::publishSnapshot(std::int64_t stamp_ns)
 {
+  map_bytes_ = mapper_.bytes();
   const auto bytes = mapper_.snapshot();
   if (bytes.size() > 4194304) {
     spdlog::warn("mapping: snapshot of {} bytes exceeds the 4 MiB a MapSnapshot carries; not sent", bytes.size());
@@ -208,7 +210,7 @@ void MappingNode::integrate(const msg::PointCloud& cloud)
   stats.changed_voxels(static_cast<std::uint32_t>(result.changes.size()));
   stats.insert_time_s(insert_s);
   stats.map_nodes(mapper_.nodes());
-  stats.map_bytes(mapper_.bytes());
+  stats.map_bytes(map_bytes_);
   stats.rejected_clouds(rejected_);
   stats.skipped_clouds(skipped_);
   stats_.write(stats);

@@ -107,6 +107,8 @@ std::optional<bool> MapTree::updateTracked(const octomap::OcTreeKey& key, bool o
     path[depth + 1] = getNodeChild(path[depth], pos);
     ++depth;
   }
+  // path[0 ... existed] were in the tree before this update, with their values then.
+  const unsigned existed = created ? 0 : depth;
   // OcTree::updateNode's early abort: the voxel (or the pruned node holding it) is already
   // at the clamping bound the update pushes towards; nothing changes.
   if (!created && (depth == tree_depth || !nodeHasChildren(path[depth]))) {
@@ -138,9 +140,18 @@ std::optional<bool> MapTree::updateTracked(const octomap::OcTreeKey& key, bool o
   const bool occupied_after = isNodeOccupied(leaf);
   const bool changed = created || occupied_before != occupied_after;
   // Back up: prune where the eight children agree, else refresh the inner node's value.
+  // OctoMap goes on to the root; it can stop at an inner node that stays inner and keeps the
+  // value it had, because nothing above it changes then: its parent's children keep their
+  // values, and no ancestor can be pruned while one of its children has children.
   for (int d = static_cast<int>(tree_depth) - 1; d >= 0; --d) {
-    if (!pruneNode(path[static_cast<std::size_t>(d)])) {
-      path[static_cast<std::size_t>(d)]->updateOccupancyChildren();
+    octomap::OcTreeNode* node = path[static_cast<std::size_t>(d)];
+    if (pruneNode(node)) {
+      continue;
+    }
+    const float before = node->getLogOdds();
+    node->updateOccupancyChildren();
+    if (static_cast<unsigned>(d) <= existed && node->getLogOdds() == before) {
+      break;
     }
   }
   return changed ? std::optional<bool>(occupied_after) : std::nullopt;

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "quad/mapping/map_tree.hpp"
 
+#include <algorithm>
 #include <array>
+#include <bit>
 #include <optional>
 
 namespace quad::mapping {
@@ -60,6 +62,7 @@ void MapTree::insertPointCloudTracked(const octomap::Pointcloud& cloud, const oc
   // OccupancyOcTreeBase::computeUpdate without a bounding box, expression for expression,
   // so that every ray ends in the same voxel.
   keys_.clear();
+  path_valid_ = -1;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const octomap::point3d& p = cloud[i];
     // A point beyond range clears space up to the range only; its end is not a hit.
@@ -89,16 +92,22 @@ void MapTree::insertPointCloudTracked(const octomap::Pointcloud& cloud, const oc
 std::optional<bool> MapTree::updateTracked(const octomap::OcTreeKey& key, bool occupied)
 {
   const float delta = occupied ? prob_hit_log : prob_miss_log;
-  std::array<octomap::OcTreeNode*, 17> path{};  // root at 0, the voxel at tree_depth (16)
-  bool created = false;                         // path[depth] was created by this update
+  auto& path = path_;   // root at 0, the voxel at tree_depth (16)
+  bool created = false;  // path[depth] was created by this update
+  unsigned depth = 0;
   if (root == nullptr) {
     root = new octomap::OcTreeNode();
     ++tree_size;
     created = true;
+  } else if (path_valid_ >= 0) {
+    // The levels whose child indices agree with the last key's lead to the same nodes.
+    const unsigned differ = static_cast<unsigned>((key[0] ^ path_key_[0]) | (key[1] ^ path_key_[1]) | (key[2] ^ path_key_[2]));
+    const auto common = static_cast<unsigned>(std::countl_zero(static_cast<std::uint16_t>(differ)));
+    depth = std::min({common, static_cast<unsigned>(path_valid_), static_cast<unsigned>(tree_depth)});
   }
   path[0] = root;
+  path_key_ = key;
   // As far as the key's path exists: where OcTree::search stops.
-  unsigned depth = 0;
   while (depth < tree_depth) {
     const unsigned pos = octomap::computeChildIdx(key, static_cast<int>(tree_depth - 1 - depth));
     if (!nodeChildExists(path[depth], pos)) {
@@ -114,6 +123,7 @@ std::optional<bool> MapTree::updateTracked(const octomap::OcTreeKey& key, bool o
   if (!created && (depth == tree_depth || !nodeHasChildren(path[depth]))) {
     const float value = path[depth]->getLogOdds();
     if ((delta >= 0 && value >= clamping_thres_max) || (delta <= 0 && value <= clamping_thres_min)) {
+      path_valid_ = static_cast<int>(depth);
       return std::nullopt;
     }
   }
@@ -143,9 +153,11 @@ std::optional<bool> MapTree::updateTracked(const octomap::OcTreeKey& key, bool o
   // OctoMap goes on to the root; it can stop at an inner node that stays inner and keeps the
   // value it had, because nothing above it changes then: its parent's children keep their
   // values, and no ancestor can be pruned while one of its children has children.
+  path_valid_ = static_cast<int>(tree_depth);
   for (int d = static_cast<int>(tree_depth) - 1; d >= 0; --d) {
     octomap::OcTreeNode* node = path[static_cast<std::size_t>(d)];
     if (pruneNode(node)) {
+      path_valid_ = d;  // its children are gone
       continue;
     }
     const float before = node->getLogOdds();

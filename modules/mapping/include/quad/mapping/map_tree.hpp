@@ -12,6 +12,7 @@
 /// does the early abort, the update and the change check together, then one ascent that
 /// prunes or refreshes the inner nodes, as OctoMap's recursion does.
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -93,10 +94,16 @@ private:
                          k[2] >= box_lo_[2] && k[2] <= box_hi_[2]);
   }
   /// OcTree::updateNode(key, occupied) in one descent; the voxel's classification after it
-  /// (true: occupied) when that changed, nothing when it did not.
+  /// (true: occupied) when that changed, nothing when it did not. The descent starts where
+  /// the previous update's path and this key's part (a ray's voxels come one after another).
   std::optional<bool> updateTracked(const octomap::OcTreeKey& key, bool occupied);
 
   ScanKeySet keys_;
+  // The last update's path from the root: path_[0 ... path_valid_] still exist as they were
+  // (-1: none, as at the start of a scan; the tree may have changed since the last one).
+  std::array<octomap::OcTreeNode*, 17> path_{};
+  octomap::OcTreeKey path_key_;
+  int path_valid_ = -1;
   octomap::KeyRay ray_;
   bool limited_ = false;  // updates only inside [box_lo_, box_hi_]
   octomap::OcTreeKey box_lo_;

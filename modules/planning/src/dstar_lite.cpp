@@ -88,18 +88,23 @@ Eigen::Vector3i DStarLite::coordinates(Cell c) const
 }
 
 template <typename F>
-void DStarLite::forEachNeighbour(Cell c, F&& f) const
+void DStarLite::forEachStep(Cell c, const Eigen::Vector3i& p, F&& f) const
 {
-  const Eigen::Vector3i p = coordinates(c);
   const bool interior = p.x() > 0 && p.y() > 0 && p.z() > 0 && p.x() + 1 < dims_.x() && p.y() + 1 < dims_.y() &&
                         p.z() + 1 < dims_.z();
   for (const Step& s : steps_) {
     if (interior || (static_cast<unsigned>(p.x() + s.dx) < static_cast<unsigned>(dims_.x()) &&
                      static_cast<unsigned>(p.y() + s.dy) < static_cast<unsigned>(dims_.y()) &&
                      static_cast<unsigned>(p.z() + s.dz) < static_cast<unsigned>(dims_.z()))) {
-      f(c + s.delta, s.cost);
+      f(c + s.delta, s);
     }
   }
+}
+
+template <typename F>
+void DStarLite::forEachNeighbour(Cell c, F&& f) const
+{
+  forEachStep(c, coordinates(c), [&](Cell n, const Step& s) { f(n, s.cost); });
 }
 
 DStarLite::Vertex& DStarLite::vertex(Cell c)
@@ -375,7 +380,8 @@ void DStarLite::updateVoxel(const VoxelIndex& voxel, Occupancy state)
   if (before == state) {
     return;
   }
-  std::vector<Cell> changed;
+  std::vector<Cell>& changed = changed_;
+  changed.clear();
   if (own) {
     const bool was = traversable(*own);
     cell_state_[static_cast<std::size_t>(*own)] = state;
@@ -470,25 +476,29 @@ PlanResult DStarLite::plan(std::uint64_t max_expansions)
       vu.g = gu;
       open_.remove(u);
       if (traversable(u)) {
-        forEachNeighbour(u, [&](Cell s, double step) {
-          const double through = step + gu;
-          if (s == *goal_ || !traversable(s) || !(through < rhs(s))) {
+        forEachStep(u, pu, [&](Cell s, const Step& step) {
+          const double through = step.cost + gu;
+          if (s == *goal_ || !traversable(s)) {
             return;
           }
-          Vertex& vs = vertex(s);
+          Vertex* found = find(s);
+          if (found != nullptr && !(through < found->rhs)) {
+            return;
+          }
+          Vertex& vs = found != nullptr ? *found : vertex(s);
           vs.rhs = through;
-          updateVertex(s, vs, coordinates(s));
+          updateVertex(s, vs, Eigen::Vector3i(pu.x() + step.dx, pu.y() + step.dy, pu.z() + step.dz));
         });
       }
     } else {
       // Underconsistent: raise g to infinity; whoever went through u recomputes.
       const double g_old = vu.g;
       vu.g = kInfinity;
-      forEachNeighbour(u, [&](Cell s, double step) {
+      forEachStep(u, pu, [&](Cell s, const Step& step) {
         // The paper updates every predecessor; one whose rhs did not come through u keeps its
         // g and rhs, so its queued key (a lower bound, refreshed when it reaches the top)
         // stands and its consistency is unchanged.
-        if (s != *goal_ && rhs(s) == step + g_old) {
+        if (s != *goal_ && rhs(s) == step.cost + g_old) {
           setRhs(s, bestRhs(s));
           updateVertex(s);
         }

@@ -94,7 +94,7 @@ public:
       if (at.bucket == kNotQueued) {
         ++size_;
       } else {
-        buckets_[at.bucket].remove(cell);
+        buckets_[at.bucket].remove(cell, at.index);
       }
       if (b >= buckets_.size()) {
         buckets_.resize(b + std::size_t{1}, Bucket(IndexOf{place_}));
@@ -106,7 +106,7 @@ public:
       at.bucket = b;
       lowest_ = std::min(lowest_, b);
     }
-    buckets_[b].set(cell, key);
+    buckets_[b].set(cell, key, at.index);
   }
 
   /// Takes `cell` out of the queue; nothing when it is not queued.
@@ -116,7 +116,7 @@ public:
     if (at.bucket == kNotQueued) {
       return;
     }
-    buckets_[at.bucket].remove(cell);
+    buckets_[at.bucket].remove(cell, at.index);
     at.bucket = kNotQueued;
     --size_;
   }

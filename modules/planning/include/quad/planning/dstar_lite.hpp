@@ -182,7 +182,16 @@ private:
     const auto& page = pages_[static_cast<std::size_t>(c >> kPageBits)];
     return page ? &page[static_cast<std::size_t>(c & ((Cell{1} << kPageBits) - 1))] : nullptr;
   }
+  Vertex* find(Cell c)
+  {
+    auto& page = pages_[static_cast<std::size_t>(c >> kPageBits)];
+    return page ? &page[static_cast<std::size_t>(c & ((Cell{1} << kPageBits) - 1))] : nullptr;
+  }
   Vertex& vertex(Cell c);  ///< allocates c's page on first touch
+  /// f(neighbour, step) for each neighbour of c inside the lattice; p: c's coordinates.
+  template <typename F>
+  void forEachStep(Cell c, const Eigen::Vector3i& p, F&& f) const;
+  /// f(neighbour, step length) for each neighbour of c inside the lattice.
   template <typename F>
   void forEachNeighbour(Cell c, F&& f) const;
 
@@ -214,6 +223,7 @@ private:
   // classification of its own voxel. Traversability is asked for every edge: no hashing.
   std::vector<std::uint16_t> blockers_;
   std::vector<Occupancy> cell_state_;
+  std::vector<Cell> changed_;  // updateVoxel's cells whose traversability changed, reused
   std::unordered_map<VoxelIndex, Occupancy, geometry::VoxelIndexHash> voxels_;
   std::vector<std::unique_ptr<Vertex[]>> pages_;
   std::size_t allocated_pages_ = 0;

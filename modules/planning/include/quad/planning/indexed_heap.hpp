@@ -51,9 +51,10 @@ public:
   const std::vector<Entry>& entries() const { return entries_; }
 
   /// Queues `cell` with `key`, or changes its key when it is queued already.
-  void set(Cell cell, const Key& key)
+  void set(Cell cell, const Key& key) { set(cell, key, slot_(cell)); }
+  /// The same, with the cell's slot already found by the caller.
+  void set(Cell cell, const Key& key, std::uint32_t& at)
   {
-    std::uint32_t& at = slot_(cell);
     if (at == kNotQueued) {
       at = static_cast<std::uint32_t>(entries_.size());
       entries_.push_back({key, cell});
@@ -77,9 +78,10 @@ public:
   }
 
   /// Takes `cell` out of the queue; nothing when it is not queued.
-  void remove(Cell cell)
+  void remove(Cell cell) { remove(cell, slot_(cell)); }
+  /// The same, with the cell's slot already found by the caller.
+  void remove(Cell cell, std::uint32_t& at)
   {
-    std::uint32_t& at = slot_(cell);
     if (at == kNotQueued) {
       return;
     }

@@ -32,6 +32,12 @@ const Host& Manifest::host(const std::string& host_name) const
   throw std::out_of_range("no host '" + host_name + "' in " + file.string());
 }
 
+const Module* Manifest::findModule(const std::string& module_name) const
+{
+  const auto it = std::find_if(modules.begin(), modules.end(), [&](const Module& m) { return m.name == module_name; });
+  return it == modules.end() ? nullptr : &*it;
+}
+
 bool Manifest::usesNamespaces() const
 {
   return std::any_of(hosts.begin(), hosts.end(), [](const Host& h) { return h.kind == HostKind::kNetns; });

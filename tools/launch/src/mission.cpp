@@ -194,6 +194,11 @@ std::optional<std::string> goalProblem(const world::World& world, double radius,
   return std::nullopt;
 }
 
+std::optional<double> busyShare(const ProcessCost& p, double wall_s)
+{
+  return p.cpu_s && wall_s > 0.0 ? std::optional<double>(*p.cpu_s / wall_s) : std::nullopt;
+}
+
 std::string toJson(const MissionSummary& s)
 {
   nlohmann::ordered_json j;
@@ -216,23 +221,23 @@ std::string toJson(const MissionSummary& s)
   j["modes"] = s.modes;
   j["goal_distance_m"] = s.goal_distance_m;
   nlohmann::ordered_json processes = nlohmann::ordered_json::object();
+  const auto orNull = [](std::optional<double> v) { return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr); };
   for (const ProcessCost& p : s.processes) {
-    const bool known = p.cpu_s && s.wall_s > 0.0;
-    processes[p.name] = {{"cpu_seconds", p.cpu_s ? nlohmann::ordered_json(*p.cpu_s) : nlohmann::ordered_json(nullptr)},
-                         {"busy_share", known ? nlohmann::ordered_json(*p.cpu_s / s.wall_s) : nlohmann::ordered_json(nullptr)}};
+    processes[p.name] = {{"cpu_seconds", orNull(p.cpu_s)}, {"busy_share", orNull(busyShare(p, s.wall_s))}};
   }
   j["processes"] = processes;
   return j.dump(2) + "\n";
 }
 
 namespace {
-/// "  CPU: plant 12.1 s (0.32 of a core), ...": what each process cost; empty when none known.
+/// "  CPU (share of a core): plant 12.1 s (0.32), ...": what each process cost; empty when
+/// none is known.
 std::string costText(const MissionSummary& s)
 {
   std::string line;
   for (const ProcessCost& p : s.processes) {
-    if (p.cpu_s && s.wall_s > 0.0) {
-      line += fmt::format("{}{} {:.1f} s ({:.2f})", line.empty() ? "" : ", ", p.name, *p.cpu_s, *p.cpu_s / s.wall_s);
+    if (const auto share = busyShare(p, s.wall_s)) {
+      line += fmt::format("{}{} {:.1f} s ({:.2f})", line.empty() ? "" : ", ", p.name, *p.cpu_s, *share);
     }
   }
   return line.empty() ? "" : "  CPU (share of a core): " + line + "\n";

@@ -139,11 +139,11 @@ LaunchRun::~LaunchRun() = default;
 
 const Module& LaunchRun::module(const std::string& name) const
 {
-  const auto it = std::find_if(m_.modules.begin(), m_.modules.end(), [&](const Module& x) { return x.name == name; });
-  if (it == m_.modules.end()) {
+  const Module* found = m_.findModule(name);
+  if (found == nullptr) {
     throw std::invalid_argument("no module '" + name + "' in " + m_.file.string());
   }
-  return *it;
+  return *found;
 }
 
 void LaunchRun::startModule(const Module& mod)
@@ -226,8 +226,8 @@ void LaunchRun::handleExit(const launch::Supervisor::Exit& e)
     saveRecord();
     return;
   }
-  const auto it = std::find_if(m_.modules.begin(), m_.modules.end(), [&](const Module& x) { return x.name == e.name; });
-  if (it == m_.modules.end()) {
+  const Module* it = m_.findModule(e.name);
+  if (it == nullptr) {
     return;
   }
   ModuleRecord& rec = record_.modules[e.name];
@@ -387,8 +387,8 @@ std::vector<launch::ProcessCost> LaunchRun::processCosts() const
   std::vector<launch::ProcessCost> costs;
   for (const auto& name : started_order_) {
     // Over ssh the local process is the ssh client, whose CPU time is not the module's.
-    const auto mod = std::find_if(m_.modules.begin(), m_.modules.end(), [&](const Module& x) { return x.name == name; });
-    const bool remote = mod != m_.modules.end() && m_.host(mod->host).kind == launch::HostKind::kSsh;
+    const Module* mod = m_.findModule(name);
+    const bool remote = mod != nullptr && m_.host(mod->host).kind == launch::HostKind::kSsh;
     costs.push_back({name, remote ? std::nullopt : supervisor_.cpuSeconds(name)});
   }
   costs.push_back({"launch", common::processCpuSeconds()});

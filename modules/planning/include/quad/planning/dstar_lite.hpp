@@ -20,6 +20,7 @@
 #include <optional>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "quad/geometry/grid.hpp"
@@ -182,11 +183,7 @@ private:
     const auto& page = pages_[static_cast<std::size_t>(c >> kPageBits)];
     return page ? &page[static_cast<std::size_t>(c & ((Cell{1} << kPageBits) - 1))] : nullptr;
   }
-  Vertex* find(Cell c)
-  {
-    auto& page = pages_[static_cast<std::size_t>(c >> kPageBits)];
-    return page ? &page[static_cast<std::size_t>(c & ((Cell{1} << kPageBits) - 1))] : nullptr;
-  }
+  Vertex* find(Cell c) { return const_cast<Vertex*>(std::as_const(*this).find(c)); }
   Vertex& vertex(Cell c);  ///< allocates c's page on first touch
   /// f(neighbour, step) for each neighbour of c inside the lattice; p: c's coordinates.
   template <typename F>

@@ -90,6 +90,8 @@ struct Manifest {
   std::optional<common::Geofence> geofence;
 
   const Host& host(const std::string& host_name) const;
+  /// The module of that name; nullptr when there is none (the launcher's own processes).
+  const Module* findModule(const std::string& module_name) const;
   bool usesNamespaces() const;
 };
 

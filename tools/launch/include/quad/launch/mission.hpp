@@ -29,6 +29,8 @@ struct ProcessCost {
   std::string name;               ///< the manifest's module name, "record", or "launch" itself
   std::optional<double> cpu_s;
 };
+/// cpu_s over the run's wall time; nothing when either is unknown.
+std::optional<double> busyShare(const ProcessCost& p, double wall_s);
 
 struct MissionSummary {
   bool success = false;

@@ -17,7 +17,6 @@ namespace quad::mapping {
 
 namespace {
 constexpr std::size_t kMaxChangesPerMessage = 262144;  // MapUpdate's bound
-constexpr int kMatchSnapshots = 3;        // snapshots sent with the clouds after a new update reader
 constexpr std::uint64_t kSeqReserve = 1'000'000;  // update numbers a checkpoint reserves ahead
 
 msg::VoxelState toMessage(VoxelState s)
@@ -214,8 +213,11 @@ void MappingNode::integrate(const msg::PointCloud& cloud)
   stats.rejected_clouds(rejected_);
   stats.skipped_clouds(skipped_);
   stats_.write(stats);
-  if (match_snapshots_ > 0 || cloud.header().stamp_ns() >= next_snapshot_ns_) {
-    match_snapshots_ = std::max(0, match_snapshots_ - 1);
+  if (match_pending_) {
+    match_pending_ = false;
+    match_until_ns_ = cloud.header().stamp_ns() + common::toNanoseconds(config_.snapshot_period_s);
+  }
+  if (cloud.header().stamp_ns() <= match_until_ns_ || cloud.header().stamp_ns() >= next_snapshot_ns_) {
     publishSnapshot(cloud.header().stamp_ns());
     next_snapshot_ns_ = cloud.header().stamp_ns() + common::toNanoseconds(config_.snapshot_period_s);
     checkpoint(last_stamp_ns_, reserved_seq_);
@@ -227,11 +229,12 @@ void MappingNode::onEvent(const dds::EndpointEvent& event)
   // A new reader of updates (a restarted planner, say) gets those published from its match
   // on, and the latched snapshot, up to a snapshot period old (its snapshot reader may even
   // match seconds earlier): the updates in between are lost to it, a gap it would wait out
-  // until the next snapshot. Fresh snapshots with the next clouds fill it at once: several,
-  // as the reader's side of the match may complete an update or two after ours (it then
-  // misses those too, and takes a snapshot newer than what it holds).
+  // until the next snapshot. A snapshot with every cloud for one snapshot period fills it at
+  // once: the reader's side of the match can complete several updates after ours (half a
+  // second, 5 clouds, on a loaded machine), and it then misses those too. A reader later
+  // than the window still has the periodic snapshot within a period.
   if (event.kind == dds::EventKind::kMatched && event.topic == dds::topics::kMapUpdate.info.name) {
-    match_snapshots_ = kMatchSnapshots;
+    match_pending_ = true;
   }
   Node::onEvent(event);
 }

@@ -78,7 +78,9 @@ private:
   std::uint64_t reserved_seq_ = 0;  // numbers below this are in the checkpoint's reservation
   std::int64_t last_stamp_ns_ = 0;  // the newest cloud integrated
   std::int64_t next_snapshot_ns_ = 0;
-  int match_snapshots_ = 0;  // still to send with the next clouds, for a newly matched update reader
+  // A newly matched update reader: snapshots go with every cloud up to match_until_ns_.
+  bool match_pending_ = false;
+  std::int64_t match_until_ns_ = -1;
   std::uint64_t rejected_ = 0;
   std::uint64_t skipped_ = 0;
   // The tree's memory as of the last snapshot: OctoMap counts it by walking the whole tree,

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "quad/common/yaml_input.hpp"
+#include "quad/mapping/map_follower.hpp"
 #include "quad/mapping/mapper.hpp"
 #include "quad/plant/sensors.hpp"
 #include "quad/world/world_file.hpp"
@@ -122,9 +123,54 @@ void BM_ClassificationAgreement(benchmark::State& state)
   state.counters["agreement_percent"] = 100.0 * static_cast<double>(same) / static_cast<double>(both.size());
 }
 
+/// The map after the whole flight, as the mapper's snapshot bytes.
+const std::vector<std::uint8_t>& flightSnapshot()
+{
+  static const std::vector<std::uint8_t> bytes = [] {
+    mapping::Mapper mapper(mapping::MapperConfig{});
+    for (const auto& s : scans().scans) {
+      mapper.integrate(s);
+    }
+    return mapper.snapshot();
+  }();
+  return bytes;
+}
+
+// A planner joining (or started again): from nothing to the snapshot's map; items are voxels.
+void BM_MapFollower_Join(benchmark::State& state)
+{
+  flightSnapshot();  // built before the timing
+  std::size_t voxels = 0;
+  for (auto _ : state) {
+    mapping::MapFollower follower(0.2);
+    voxels = follower.snapshot(100, flightSnapshot())->size();
+    benchmark::DoNotOptimize(voxels);
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(voxels));
+  state.counters["voxels"] = static_cast<double>(voxels);
+}
+
+// A planner holding the map that missed an update: the next snapshot fills the gap (the
+// change it brings is small, the comparison is of the whole map); items are voxels.
+void BM_MapFollower_FillGap(benchmark::State& state)
+{
+  mapping::MapFollower follower(0.2);
+  const std::size_t voxels = follower.snapshot(100, flightSnapshot())->size();
+  std::uint64_t seq = 100;
+  for (auto _ : state) {
+    follower.update(seq + 2, {});  // seq + 1 missed
+    benchmark::DoNotOptimize(follower.snapshot(seq + 2, flightSnapshot()));
+    seq += 2;
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(voxels));
+  state.counters["voxels"] = static_cast<double>(voxels);
+}
+
 BENCHMARK(BM_Mapper_Integrate)->Unit(benchmark::kMillisecond)->MinTime(5.0);
 BENCHMARK(BM_OcTree_InsertPointCloud)->Unit(benchmark::kMillisecond)->MinTime(5.0);
 BENCHMARK(BM_ClassificationAgreement)->Iterations(1);
+BENCHMARK(BM_MapFollower_Join)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MapFollower_FillGap)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

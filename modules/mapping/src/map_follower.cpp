@@ -78,35 +78,86 @@ std::optional<std::vector<VoxelChange>> MapFollower::snapshot(std::uint64_t seq,
   return fill(seq, bytes, bad);
 }
 
+namespace {
+
+bool byIndex(const VoxelChange& a, const VoxelChange& b) { return indexLess(a.index, b.index); }
+
+/// `base` (sorted by index) with `changes` applied in their order: sorted, unknown dropped.
+std::vector<VoxelChange> overlay(const std::vector<VoxelChange>& base, std::vector<VoxelChange> changes)
+{
+  std::stable_sort(changes.begin(), changes.end(), byIndex);
+  std::vector<VoxelChange> out;
+  out.reserve(base.size() + changes.size());
+  auto b = base.begin();
+  for (auto c = changes.begin(); c != changes.end(); ++c) {
+    if (std::next(c) != changes.end() && !byIndex(*c, *std::next(c))) {
+      continue;  // a later change of the same voxel wins
+    }
+    for (; b != base.end() && byIndex(*b, *c); ++b) {
+      out.push_back(*b);
+    }
+    if (b != base.end() && !byIndex(*c, *b)) {
+      ++b;  // replaced
+    }
+    if (c->state != VoxelState::kUnknown) {
+      out.push_back(*c);
+    }
+  }
+  out.insert(out.end(), b, base.end());
+  return out;
+}
+
+/// The changes that turn `from` into `to` (both sorted by index, no unknown): `to`'s voxels
+/// that `from` classifies otherwise, and `from`'s that `to` does not know, as unknown.
+std::vector<VoxelChange> difference(const std::vector<VoxelChange>& from, const std::vector<VoxelChange>& to)
+{
+  std::vector<VoxelChange> out;
+  auto f = from.begin();
+  auto t = to.begin();
+  while (f != from.end() || t != to.end()) {
+    if (t == to.end() || (f != from.end() && byIndex(*f, *t))) {
+      out.push_back({f->index, VoxelState::kUnknown});
+      ++f;
+    } else if (f == from.end() || byIndex(*t, *f)) {
+      out.push_back(*t);
+      ++t;
+    } else {
+      if (f->state != t->state) {
+        out.push_back(*t);
+      }
+      ++f;
+      ++t;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 std::optional<std::vector<VoxelChange>> MapFollower::fill(std::uint64_t seq, const std::vector<std::uint8_t>& bytes,
                                                           bool* bad)
 {
-  VoxelMap map(resolution_);
-  if (!map.applySnapshot(bytes)) {
+  // Sorted sequences merged, not hash lookups: a planner's catch-up compares whole maps
+  // (a million voxels), and it hovers while it does.
+  auto map = classificationOf(bytes, resolution_);
+  if (!map) {
     if (bad != nullptr) {
       *bad = true;
     }
     return std::nullopt;
   }
   replayed_ = 0;
+  std::vector<VoxelChange> later;
   for (const auto& [s, changes] : since_gap_) {
     if (s > seq) {
-      map.apply(changes);
+      later.insert(later.end(), changes.begin(), changes.end());
       ++replayed_;
     }
   }
-  // Whatever differs from what is held: voxels the map knows, and held ones it does not.
-  std::vector<VoxelChange> diff;
-  for (const auto& c : map.contents()) {
-    if (held_.classify(c.index) != c.state) {
-      diff.push_back(c);
-    }
+  if (!later.empty()) {
+    *map = overlay(*map, std::move(later));
   }
-  for (const auto& c : held_.contents()) {
-    if (map.classify(c.index) == VoxelState::kUnknown) {
-      diff.push_back({c.index, VoxelState::kUnknown});
-    }
-  }
+  auto diff = difference(held_.contents(), *map);
   held_.apply(diff);
   applied_seq_ = std::max(applied_seq_, seq);
   gap_open_ = false;

@@ -47,11 +47,6 @@ std::vector<std::string> problemsOf(const MapperConfig& c, const std::string& or
 
 }  // namespace
 
-bool indexLess(const VoxelIndex& a, const VoxelIndex& b)
-{
-  return std::tie(a.x(), a.y(), a.z()) < std::tie(b.x(), b.y(), b.z());
-}
-
 const common::ParamTable<MapperParams>& mapperTable()
 {
   using P = MapperParams;
@@ -162,8 +157,7 @@ IntegrationResult Mapper::integrate(const Scan& scan)
   for (const KeyChange& c : changed) {
     out.changes.push_back({indexOf(c.key), c.occupied ? VoxelState::kOccupied : VoxelState::kFree});
   }
-  std::sort(out.changes.begin(), out.changes.end(),
-            [](const VoxelChange& a, const VoxelChange& b) { return indexLess(a.index, b.index); });
+  sortByIndex(out.changes);
   out.accepted = true;
   return out;
 }
@@ -202,7 +196,7 @@ std::vector<VoxelChange> classificationOf(const octomap::OcTree& tree)
       }
     }
   }
-  std::sort(out.begin(), out.end(), [](const VoxelChange& a, const VoxelChange& b) { return indexLess(a.index, b.index); });
+  sortByIndex(out);
   return out;
 }
 
@@ -236,46 +230,14 @@ bool Mapper::readTree(std::istream& in)
   return true;
 }
 
-bool VoxelMap::applySnapshot(const std::vector<std::uint8_t>& bytes)
+std::optional<std::vector<VoxelChange>> classificationOf(const std::vector<std::uint8_t>& snapshot, double resolution)
 {
-  std::istringstream in(std::string(bytes.begin(), bytes.end()));
-  octomap::OcTree tree(resolution_);
-  if (!tree.readBinary(in) || std::abs(tree.getResolution() - resolution_) > 1e-9) {
-    return false;
+  std::istringstream in(std::string(snapshot.begin(), snapshot.end()));
+  octomap::OcTree tree(resolution);
+  if (!tree.readBinary(in) || std::abs(tree.getResolution() - resolution) > 1e-9) {
+    return std::nullopt;
   }
-  cells_.clear();
-  for (const auto& c : classificationOf(tree)) {
-    cells_[c.index] = c.state;
-  }
-  return true;
-}
-
-void VoxelMap::apply(const std::vector<VoxelChange>& changes)
-{
-  for (const auto& c : changes) {
-    if (c.state == VoxelState::kUnknown) {
-      cells_.erase(c.index);
-    } else {
-      cells_[c.index] = c.state;
-    }
-  }
-}
-
-VoxelState VoxelMap::classify(const VoxelIndex& index) const
-{
-  const auto it = cells_.find(index);
-  return it == cells_.end() ? VoxelState::kUnknown : it->second;
-}
-
-std::vector<VoxelChange> VoxelMap::contents() const
-{
-  std::vector<VoxelChange> out;
-  out.reserve(cells_.size());
-  for (const auto& [index, state] : cells_) {
-    out.push_back({index, state});
-  }
-  std::sort(out.begin(), out.end(), [](const VoxelChange& a, const VoxelChange& b) { return indexLess(a.index, b.index); });
-  return out;
+  return classificationOf(tree);
 }
 
 }  // namespace quad::mapping

@@ -36,7 +36,7 @@ public:
   /// nothing was received yet) returns the changes that bring what is held to it; nothing
   /// otherwise. Bytes that are not a map of this resolution: `bad` is set, nothing returned.
   /// A snapshot newer than every update held, with no gap open, is kept undecoded (decoding
-  /// a large map costs the consumer seconds) until the updates reach it, or until a gap it
+  /// a large map costs a few hundred ms) until the updates reach it, or until a gap it
   /// covers opens: a reader that matched mid-stream may never get the update or two sent
   /// around its match, and the mapper's fresh snapshots may arrive before the hole shows.
   std::optional<std::vector<VoxelChange>> snapshot(std::uint64_t seq, const std::vector<std::uint8_t>& bytes,

@@ -14,7 +14,6 @@
 #include <iosfwd>
 #include <optional>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include <octomap/OcTree.h>
@@ -22,18 +21,11 @@
 #include "quad/common/param_table.hpp"
 #include "quad/geometry/grid.hpp"
 #include "quad/mapping/map_tree.hpp"
+#include "quad/mapping/voxel_map.hpp"
 
 namespace quad::mapping {
 
 using geometry::Vector3;
-using geometry::VoxelIndex;
-
-enum class VoxelState : std::uint8_t { kUnknown, kFree, kOccupied };
-
-struct VoxelChange {
-  VoxelIndex index;
-  VoxelState state;  ///< after the change
-};
 
 struct MapperConfig {
   double resolution = 0.2;           ///< [m] voxel edge
@@ -118,31 +110,11 @@ private:
   geometry::VoxelGrid grid_;
 };
 
-/// A consumer's copy of the classification (the planner's): a snapshot, then change sets
-/// applied in order, reproduce the mapper's classification exactly.
-class VoxelMap {
-public:
-  explicit VoxelMap(double resolution) : resolution_(resolution) {}
-
-  /// Replaces the contents with a snapshot's classification; false when the bytes are not an
-  /// OctoMap binary tree of this resolution.
-  bool applySnapshot(const std::vector<std::uint8_t>& bytes);
-  void apply(const std::vector<VoxelChange>& changes);
-  VoxelState classify(const VoxelIndex& index) const;
-  std::size_t known() const { return cells_.size(); }
-
-  /// Every known voxel, sorted by index.
-  std::vector<VoxelChange> contents() const;
-
-private:
-  double resolution_;
-  std::unordered_map<VoxelIndex, VoxelState, geometry::VoxelIndexHash> cells_;
-};
-
-/// Orders voxel indices x, then y, then z (for sorted change sets).
-bool indexLess(const VoxelIndex& a, const VoxelIndex& b);
-
 /// Every known voxel of an octree, expanded to its resolution, sorted.
 std::vector<VoxelChange> classificationOf(const octomap::OcTree& tree);
+
+/// The same of a snapshot's bytes; nothing when they are not an OctoMap binary tree of this
+/// resolution.
+std::optional<std::vector<VoxelChange>> classificationOf(const std::vector<std::uint8_t>& snapshot, double resolution);
 
 }  // namespace quad::mapping

@@ -33,6 +33,33 @@ msg::Imu toMessage(const ImuReading& r)
   return m;
 }
 
+msg::PositionFix toMessage(const PositionReading& r)
+{
+  msg::PositionFix m;
+  m.header().stamp_ns(r.t_ns);
+  m.p_W(toMessage(r.fix.p_W));
+  m.std_dev(r.fix.std_dev);
+  return m;
+}
+
+msg::BaroAltitude toMessage(const BaroReading& r)
+{
+  msg::BaroAltitude m;
+  m.header().stamp_ns(r.t_ns);
+  m.altitude(r.altitude);
+  m.std_dev(r.std_dev);
+  return m;
+}
+
+msg::MagneticField toMessage(const MagReading& r)
+{
+  msg::MagneticField m;
+  m.header().stamp_ns(r.t_ns);
+  m.field_B(toMessage(r.field_B));
+  m.std_dev(r.std_dev);
+  return m;
+}
+
 msg::BatteryState toMessage(const BatteryReading& r)
 {
   msg::BatteryState m;

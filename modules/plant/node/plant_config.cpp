@@ -54,6 +54,42 @@ const common::ParamTable<PlantNodeConfig>& plantTable()
                 "m/s^2", "accelerometer bias")
         .vector("imu.gyro_bias", [](C& c) -> Vector3& { return c.simulation.imu.gyro_bias; }, {-1.0, 1.0}, "rad/s",
                 "gyroscope bias")
+        .number("imu.accel_turn_on", [](C& c) -> double& { return c.simulation.imu.accel_turn_on_std; }, {0.0, 10.0},
+                "m/s^2", "std dev of the accelerometer bias drawn at each start, per axis")
+        .number("imu.gyro_turn_on", [](C& c) -> double& { return c.simulation.imu.gyro_turn_on_std; }, {0.0, 1.0},
+                "rad/s", "std dev of the gyroscope bias drawn at each start, per axis")
+        .number("imu.accel_bias_walk", [](C& c) -> double& { return c.simulation.imu.accel_bias_walk; }, {0.0, 1.0},
+                "m/s^2/sqrt(s)", "accelerometer bias random walk")
+        .number("imu.gyro_bias_walk", [](C& c) -> double& { return c.simulation.imu.gyro_bias_walk; }, {0.0, 0.1},
+                "rad/s/sqrt(s)", "gyroscope bias random walk")
+        .flag("position.enabled", [](C& c) -> bool& { return c.simulation.position.enabled; },
+              "publish absolute position fixes (GNSS or motion capture)")
+        .number("position.rate", [](C& c) -> double& { return c.simulation.position.rate_hz; }, {0.1, 1000.0}, "Hz",
+                "position fix rate")
+        .number("position.noise", [](C& c) -> double& { return c.simulation.position.noise_std; }, {0.0001, 100.0}, "m",
+                "white noise std dev per axis")
+        .number("position.latency", [](C& c) -> double& { return c.simulation.position.latency; }, {0.0, 5.0}, "s",
+                "from a fix's measurement to its delivery")
+        .number("position.outages_per_minute", [](C& c) -> double& { return c.simulation.position.outages_per_minute; },
+                {0.0, 600.0}, "1/min", "random outages (a Poisson process); 0: none")
+        .number("position.outage_duration", [](C& c) -> double& { return c.simulation.position.outage_duration; },
+                {0.01, 3600.0}, "s", "mean length of an outage")
+        .flag("baro.enabled", [](C& c) -> bool& { return c.simulation.baro.enabled; }, "publish barometric altitude")
+        .number("baro.rate", [](C& c) -> double& { return c.simulation.baro.rate_hz; }, {0.1, 1000.0}, "Hz",
+                "barometer rate")
+        .number("baro.noise", [](C& c) -> double& { return c.simulation.baro.noise_std; }, {0.0001, 100.0}, "m",
+                "white noise std dev")
+        .number("baro.offset", [](C& c) -> double& { return c.simulation.baro.offset_std; }, {0.0, 1000.0}, "m",
+                "std dev of the offset drawn at each start (the pressure of the day)")
+        .number("baro.drift", [](C& c) -> double& { return c.simulation.baro.drift_walk; }, {0.0, 10.0}, "m/sqrt(s)",
+                "random walk of the offset")
+        .flag("mag.enabled", [](C& c) -> bool& { return c.simulation.mag.enabled; }, "publish the magnetometer")
+        .number("mag.rate", [](C& c) -> double& { return c.simulation.mag.rate_hz; }, {0.1, 1000.0}, "Hz",
+                "magnetometer rate")
+        .vector("mag.field", [](C& c) -> Vector3& { return c.simulation.mag.field_W; }, {-100.0, 100.0}, "uT",
+                "Earth's field in the world frame (ENU)")
+        .number("mag.noise", [](C& c) -> double& { return c.simulation.mag.noise_std; }, {0.0001, 100.0}, "uT",
+                "white noise std dev per axis")
         .number("depth.width", [](C& c) -> int& { return c.simulation.depth.width; }, {1, 1024}, "px",
                 "depth image width")
         .number("depth.height", [](C& c) -> int& { return c.simulation.depth.height; }, {1, 1024}, "px",
@@ -118,6 +154,10 @@ PlantNodeConfig plantConfigFrom(const common::Params& p)
   if (s.gimbal.min_pitch > s.gimbal.max_pitch) {
     problems.push_back(common::configProblem(origin, "gimbal.min_pitch", s.gimbal.min_pitch,
                                              "above gimbal.max_pitch (" + common::formatValue(s.gimbal.max_pitch) + ")"));
+  }
+  if (s.mag.enabled && s.mag.field_W.head<2>().norm() < 1.0) {
+    problems.push_back(common::configProblem(origin, "mag.field", s.mag.field_W.head<2>().norm(),
+                                             "horizontal part in uT: below 1 uT the field gives no heading"));
   }
   if (s.depth.width * s.depth.height > 65536) {
     problems.push_back(common::configProblem(origin, "depth.width", std::int64_t{s.depth.width},

@@ -44,6 +44,9 @@ PlantNode::PlantNode(PlantNodeConfig config, dds::ParticipantOptions options)
       clock_(participant(), dds::topics::kSimClock),
       state_(participant(), dds::topics::kSimState),
       imu_(participant(), dds::topics::kSimImu),
+      position_(participant(), dds::topics::kSimPosition),
+      baro_(participant(), dds::topics::kSimBaro),
+      mag_(participant(), dds::topics::kSimMag),
       battery_(participant(), dds::topics::kSimBattery),
       depth_(participant(), dds::topics::kSimDepth),
       events_(participant(), dds::topics::kSimEvents),
@@ -174,6 +177,18 @@ void PlantNode::publish(const StepOutputs& out)
   }
   if (out.imu) {
     imu_.write(toMessage(*out.imu));
+    counters().samples_out++;
+  }
+  if (out.position) {
+    position_.write(toMessage(*out.position));
+    counters().samples_out++;
+  }
+  if (out.baro) {
+    baro_.write(toMessage(*out.baro));
+    counters().samples_out++;
+  }
+  if (out.mag) {
+    mag_.write(toMessage(*out.mag));
     counters().samples_out++;
   }
   for (const auto& e : out.events) {

@@ -43,6 +43,9 @@ private:
   dds::Publisher<msg::SimClock> clock_;
   dds::Publisher<msg::VehicleState> state_;
   dds::Publisher<msg::Imu> imu_;
+  dds::Publisher<msg::PositionFix> position_;
+  dds::Publisher<msg::BaroAltitude> baro_;
+  dds::Publisher<msg::MagneticField> mag_;
   dds::Publisher<msg::BatteryState> battery_;
   dds::Publisher<msg::PointCloud> depth_;
   dds::Publisher<msg::SimEvent> events_;

@@ -3,6 +3,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -25,13 +26,32 @@ std::string_view toString(Sensor s)
       return "imu";
     case Sensor::kState:
       return "state";
+    case Sensor::kPosition:
+      return "position";
+    case Sensor::kBaro:
+      return "baro";
+    case Sensor::kMag:
+      return "mag";
   }
   return "?";
 }
 
+namespace {
+constexpr std::array kSensors{Sensor::kDepth, Sensor::kImu, Sensor::kState, Sensor::kPosition, Sensor::kBaro, Sensor::kMag};
+}  // namespace
+
+std::string sensorNames()
+{
+  std::string out;
+  for (std::size_t i = 0; i < kSensors.size(); ++i) {
+    out += (i == 0 ? "" : i + 1 == kSensors.size() ? " or " : ", ") + std::string(toString(kSensors[i]));
+  }
+  return out;
+}
+
 std::optional<Sensor> parseSensor(std::string_view text)
 {
-  for (const Sensor s : {Sensor::kDepth, Sensor::kImu, Sensor::kState}) {
+  for (const Sensor s : kSensors) {
     if (toString(s) == text) {
       return s;
     }
@@ -120,7 +140,7 @@ std::optional<Fault> parseFault(common::YamlReader& r, YAML::Node f, const std::
                                           : Fault::Kind::kSensorNoise;
     const auto sensor = f["sensor"].IsScalar() ? parseSensor(f["sensor"].Scalar()) : std::nullopt;
     if (!sensor) {
-      r.problem(key + ".sensor", f["sensor"], "expected depth, imu or state");
+      r.problem(key + ".sensor", f["sensor"], "expected " + sensorNames());
       ok = false;
     } else {
       fault.sensor = *sensor;

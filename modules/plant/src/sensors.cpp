@@ -60,24 +60,40 @@ DepthScan DepthCamera::captureFrom(const world::World& world, const geometry::Po
   return scan;
 }
 
-ImuSample measureImu(const ImuConfig& config, const geometry::Quaternion& q_WB, const Vector3& a_W,
+Vector3 standardNormal3(std::mt19937_64& rng)
+{
+  std::normal_distribution<double> n(0.0, 1.0);
+  // One at a time: argument evaluation order is unspecified, a run must repeat.
+  const double x = n(rng);
+  const double y = n(rng);
+  const double z = n(rng);
+  return Vector3(x, y, z);
+}
+
+ImuBias turnOnBias(const ImuConfig& config, std::mt19937_64& rng)
+{
+  ImuBias b;
+  b.accel = config.accel_bias + config.accel_turn_on_std * standardNormal3(rng);
+  b.gyro = config.gyro_bias + config.gyro_turn_on_std * standardNormal3(rng);
+  return b;
+}
+
+void walkBias(ImuBias& bias, const ImuConfig& config, double dt_s, std::mt19937_64& rng)
+{
+  const double root_dt = std::sqrt(dt_s);
+  bias.accel += config.accel_bias_walk * root_dt * standardNormal3(rng);
+  bias.gyro += config.gyro_bias_walk * root_dt * standardNormal3(rng);
+}
+
+ImuSample measureImu(const ImuConfig& config, const ImuBias& bias, const geometry::Quaternion& q_WB, const Vector3& a_W,
                      const Vector3& w_B, const Vector3& gravity_W, std::mt19937_64& rng,
                      double extra_noise_std)
 {
-  std::normal_distribution<double> n(0.0, 1.0);
-  // Explicit Vector3 result (an Eigen expression would outlive its temporary) and draws in a
-  // fixed order (argument evaluation order is unspecified), for reproducible runs.
-  const auto white = [&](double std_dev) -> Vector3 {
-    const double x = n(rng);
-    const double y = n(rng);
-    const double z = n(rng);
-    return Vector3(x, y, z) * std_dev;
-  };
   const geometry::Matrix3 R_WB = geometry::toMatrix(q_WB);
   ImuSample out;
-  out.specific_force_B = R_WB.transpose() * (a_W - gravity_W) + config.accel_bias +
-                         white(config.accel_noise_std + extra_noise_std);
-  out.angular_rate_B = w_B + config.gyro_bias + white(config.gyro_noise_std + extra_noise_std);
+  out.specific_force_B = R_WB.transpose() * (a_W - gravity_W) + bias.accel +
+                         (config.accel_noise_std + extra_noise_std) * standardNormal3(rng);
+  out.angular_rate_B = w_B + bias.gyro + (config.gyro_noise_std + extra_noise_std) * standardNormal3(rng);
   return out;
 }
 

@@ -18,7 +18,11 @@ Simulation::Simulation(vehicle::VehicleParams vehicle, world::World world, Simul
       camera_(config_.depth),
       guard_(vehicle, config_.command_timeout_ns, config_.command_failsafe_ns),
       rng_(config_.seed),
-      wind_(config_.wind, config_.seed ^ 0x9e3779b97f4a7c15ULL)
+      wind_(config_.wind, config_.seed ^ 0x9e3779b97f4a7c15ULL),
+      nav_rng_(config_.seed ^ 0x6a09e667f3bcc909ULL),
+      imu_bias_(turnOnBias(config_.imu, nav_rng_)),
+      position_(config_.position),
+      baro_(config_.baro, nav_rng_)
 {
   // RK4 is stable on the motor lag only while step/τ stays inside its region (2.78): keep a
   // margin, and refuse a vehicle whose motors are too fast for the step.
@@ -48,6 +52,9 @@ Simulation::Simulation(vehicle::VehicleParams vehicle, world::World world, Simul
   next_imu_ns_ = first(config_.imu.rate_hz);
   next_depth_ns_ = first(config_.depth.rate_hz);
   next_battery_ns_ = first(config_.battery_rate_hz);
+  next_position_ns_ = config_.position.enabled ? first(config_.position.rate_hz) : 0;
+  next_baro_ns_ = config_.baro.enabled ? first(config_.baro.rate_hz) : 0;
+  next_mag_ns_ = config_.mag.enabled ? first(config_.mag.rate_hz) : 0;
 }
 
 bool Simulation::aimGimbal(double yaw_W, double pitch)
@@ -158,6 +165,46 @@ bool Simulation::due(std::int64_t t_ns, std::int64_t& next_ns, double rate_hz)
   return true;
 }
 
+void Simulation::measureNavigation(StepOutputs& out)
+{
+  // Each as the IMU: a dropout fault sends nothing, a stuck one repeats the last content with
+  // fresh stamps, a noise fault adds to the white noise.
+  const auto live = [&](Sensor s) { return !sensorFault(s, Fault::Kind::kSensorDropout); };
+  const auto fresh = [&](Sensor s, const auto& last) { return !sensorFault(s, Fault::Kind::kSensorStuck) || !last; };
+  if (config_.position.enabled && due(t_ns_, next_position_ns_, config_.position.rate_hz) && live(Sensor::kPosition)) {
+    if (fresh(Sensor::kPosition, last_position_)) {
+      if (const auto fix = position_.measure(state_.p_W, nav_rng_, sensorNoise(Sensor::kPosition))) {
+        last_position_ = PositionReading{t_ns_, *fix};
+        positions_in_flight_.push_back(*last_position_);
+      }
+    } else {
+      last_position_->t_ns = t_ns_;
+      positions_in_flight_.push_back(*last_position_);
+    }
+  }
+  const auto latency_ns = common::toNanoseconds(config_.position.latency);
+  if (!positions_in_flight_.empty() && positions_in_flight_.front().t_ns + latency_ns <= t_ns_) {
+    out.position = positions_in_flight_.front();
+    positions_in_flight_.pop_front();
+  }
+  if (config_.baro.enabled && due(t_ns_, next_baro_ns_, config_.baro.rate_hz) && live(Sensor::kBaro)) {
+    if (fresh(Sensor::kBaro, last_baro_)) {
+      last_baro_ = BaroReading{t_ns_, baro_.measure(state_.p_W.z(), 1.0 / config_.baro.rate_hz, nav_rng_, sensorNoise(Sensor::kBaro)),
+                               config_.baro.noise_std};
+    }
+    last_baro_->t_ns = t_ns_;
+    out.baro = last_baro_;
+  }
+  if (config_.mag.enabled && due(t_ns_, next_mag_ns_, config_.mag.rate_hz) && live(Sensor::kMag)) {
+    if (fresh(Sensor::kMag, last_mag_)) {
+      last_mag_ = MagReading{t_ns_, measureMagnetometer(config_.mag, state_.q_WB, Vector3::Zero(), nav_rng_, sensorNoise(Sensor::kMag)),
+                             config_.mag.noise_std};
+    }
+    last_mag_->t_ns = t_ns_;
+    out.mag = last_mag_;
+  }
+}
+
 StepOutputs Simulation::step()
 {
   StepOutputs out;
@@ -212,12 +259,14 @@ StepOutputs Simulation::step()
   }
   if (due(t_ns_, next_imu_ns_, config_.imu.rate_hz) && !sensorFault(Sensor::kImu, Fault::Kind::kSensorDropout)) {
     if (!sensorFault(Sensor::kImu, Fault::Kind::kSensorStuck) || !last_imu_) {
-      last_imu_ = ImuReading{t_ns_, measureImu(config_.imu, state_.q_WB, dynamics_.acceleration(state_, after),
+      walkBias(imu_bias_, config_.imu, 1.0 / config_.imu.rate_hz, nav_rng_);
+      last_imu_ = ImuReading{t_ns_, measureImu(config_.imu, imu_bias_, state_.q_WB, dynamics_.acceleration(state_, after),
                                                state_.w_B, after.gravity_W, rng_, sensorNoise(Sensor::kImu))};
     }
     last_imu_->t_ns = t_ns_;
     out.imu = last_imu_;
   }
+  measureNavigation(out);
   if (due(t_ns_, next_depth_ns_, config_.depth.rate_hz) &&
       !sensorFault(Sensor::kDepth, Fault::Kind::kSensorDropout)) {
     if (!sensorFault(Sensor::kDepth, Fault::Kind::kSensorStuck) || !last_depth_) {

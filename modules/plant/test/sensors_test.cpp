@@ -77,14 +77,15 @@ TEST(DepthCamera, RangeNoiseHasTheConfiguredSpread)
 TEST(Imu, AtRestItReadsGravityUpPlusBias)
 {
   ImuConfig config;
-  config.accel_bias = {0.1, -0.2, 0.05};
-  config.gyro_bias = {0.01, 0.0, -0.02};
+  ImuBias bias;
+  bias.accel = {0.1, -0.2, 0.05};
+  bias.gyro = {0.01, 0.0, -0.02};
   std::mt19937_64 rng(9);
   Vector3 f_sum = Vector3::Zero();
   Vector3 w_sum = Vector3::Zero();
   const int n = 20000;
   for (int k = 0; k < n; ++k) {
-    const ImuSample s = measureImu(config, {}, Vector3::Zero(), Vector3::Zero(), Vector3(0, 0, -9.81), rng);
+    const ImuSample s = measureImu(config, bias, {}, Vector3::Zero(), Vector3::Zero(), Vector3(0, 0, -9.81), rng);
     f_sum += s.specific_force_B;
     w_sum += s.angular_rate_B;
   }
@@ -93,8 +94,40 @@ TEST(Imu, AtRestItReadsGravityUpPlusBias)
   // In free fall the accelerometer reads zero (besides bias and noise).
   config = ImuConfig{};
   config.accel_noise_std = 0.0;
-  const ImuSample falling = measureImu(config, {}, Vector3(0, 0, -9.81), Vector3::Zero(), Vector3(0, 0, -9.81), rng);
+  const ImuSample falling = measureImu(config, {}, {}, Vector3(0, 0, -9.81), Vector3::Zero(), Vector3(0, 0, -9.81), rng);
   EXPECT_LT(falling.specific_force_B.norm(), 1e-12);
+}
+
+// GIVEN many IMUs turned on WHEN their biases are drawn and walk for T THEN the turn-on
+// biases spread by their std dev around the configured part, and the walks' spread grows
+// as walk × √T (a random walk's variance is linear in time).
+TEST(Imu, TurnOnBiasesSpreadAsConfiguredAndTheirWalksGrowAsTheRootOfTime)
+{
+  ImuConfig config;
+  config.accel_bias = {0.2, 0.0, 0.0};
+  std::mt19937_64 rng(5);
+  const int n = 1000;
+  const double t = 100.0;
+  const double dt = 0.1;
+  double accel_x = 0.0;
+  double accel_x2 = 0.0;
+  double walked2 = 0.0;
+  double gyro_walked2 = 0.0;
+  for (int k = 0; k < n; ++k) {
+    ImuBias b = turnOnBias(config, rng);
+    accel_x += b.accel.x();
+    accel_x2 += (b.accel.x() - 0.2) * (b.accel.x() - 0.2);
+    const ImuBias start = b;
+    for (double s = 0.0; s < t - 1e-9; s += dt) {
+      walkBias(b, config, dt, rng);
+    }
+    walked2 += (b.accel - start.accel).squaredNorm() / 3.0;
+    gyro_walked2 += (b.gyro - start.gyro).squaredNorm() / 3.0;
+  }
+  EXPECT_NEAR(accel_x / n, 0.2, 0.006);
+  EXPECT_NEAR(std::sqrt(accel_x2 / n), config.accel_turn_on_std, 0.004);
+  EXPECT_NEAR(std::sqrt(walked2 / n), config.accel_bias_walk * std::sqrt(t), 0.05 * config.accel_bias_walk * std::sqrt(t));
+  EXPECT_NEAR(std::sqrt(gyro_walked2 / n), config.gyro_bias_walk * std::sqrt(t), 0.05 * config.gyro_bias_walk * std::sqrt(t));
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 #include "quad/common/params.hpp"
 
@@ -214,6 +215,45 @@ TEST(Simulation, SensorsComeAtTheirRates)
   EXPECT_EQ(depths, 10);
 }
 
+// GIVEN a vehicle climbing at 1 m/s WHEN the navigation aids fall due THEN each comes at its
+// rate, and a position fix is delivered its latency after it was measured, telling where the
+// vehicle was then (within its noise); a dropout fault stops the fixes and nothing else.
+TEST(Simulation, NavigationAidsComeAtTheirRatesAndAFixArrivesItsLatencyLate)
+{
+  SimulationConfig config;
+  config.position.latency = 0.05;
+  Simulation sim(vehicle(), corridor(), config);
+  RigidBodyState s;
+  s.p_W = {0, 0, 5};
+  s.v_W = {0, 0, 1};
+  sim.setState(s);
+  Fault dropout;
+  dropout.id = 3;
+  dropout.kind = Fault::Kind::kSensorDropout;
+  dropout.sensor = Sensor::kPosition;
+  dropout.start_ns = 1'000'000'000;
+  dropout.duration_ns = 500'000'000;
+  ASSERT_TRUE(sim.injectFault(dropout));
+  std::map<std::int64_t, double> z_at;  // sim time → true height
+  int fixes = 0, baros = 0, mags = 0;
+  for (int k = 0; k < 2000; ++k) {
+    sim.commands().submit(hoverCommand(sim), true, sim.timeNs(), sim.timeNs());
+    const StepOutputs out = sim.step();
+    z_at[sim.timeNs()] = sim.state().p_W.z();
+    if (out.position) {
+      ++fixes;
+      EXPECT_EQ(sim.timeNs() - out.position->t_ns, 50'000'000);
+      EXPECT_NEAR(out.position->fix.p_W.z(), z_at.at(out.position->t_ns), 0.1);
+      EXPECT_FALSE(out.position->t_ns > 1'000'000'000 && out.position->t_ns < 1'500'000'000);
+    }
+    baros += out.baro ? 1 : 0;
+    mags += out.mag ? 1 : 0;
+  }
+  EXPECT_EQ(fixes, 20 - 1 - 5);  // the last one still in flight; 5 dropped
+  EXPECT_EQ(baros, 50);
+  EXPECT_EQ(mags, 100);
+}
+
 TEST(Simulation, FaultsTakeEffectAreAcknowledgedAndClear)
 {
   Simulation sim(vehicle(), corridor(), {});
@@ -297,7 +337,7 @@ TEST(FaultSchedule, FileIsValidatedAndParsed)
     EXPECT_EQ(e.problems()[3], "faults.yaml:[3].kind: (missing): expected motor, sensor_dropout, "
                                "sensor_stuck, sensor_noise, wind_gust, push or cell_loss");
     EXPECT_EQ(e.problems()[0], "faults.yaml:[0].rotor: 5: out of range [0, 3]");
-    EXPECT_EQ(e.problems()[1], "faults.yaml:[1].sensor: lidar: expected depth, imu or state");
+    EXPECT_EQ(e.problems()[1], "faults.yaml:[1].sensor: lidar: expected depth, imu, state, position, baro or mag");
     EXPECT_EQ(e.problems()[2], "faults.yaml:[2].kind: meteor: expected motor, sensor_dropout, "
                                "sensor_stuck, sensor_noise, wind_gust, push or cell_loss");
   }

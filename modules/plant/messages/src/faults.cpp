@@ -27,7 +27,7 @@ std::optional<Fault> faultFrom(const msg::FaultCommand& c, std::int64_t now_ns, 
   const auto sensor = [&]() -> bool {
     const auto s = parseSensor(c.target().to_string());
     if (!s) {
-      why_not = "target '" + c.target().to_string() + "' is not a plant sensor (depth, imu, state)";
+      why_not = "target '" + c.target().to_string() + "' is not a plant sensor (" + sensorNames() + ")";
       return false;
     }
     f.sensor = *s;

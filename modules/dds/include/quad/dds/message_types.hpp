@@ -16,6 +16,7 @@
 #include <fastdds/dds/topic/TopicDataType.hpp>
 
 #include <quad/msg/ActuatorCommandPubSubTypes.h>
+#include <quad/msg/BaroAltitudePubSubTypes.h>
 #include <quad/msg/BatteryStatePubSubTypes.h>
 #include <quad/msg/CommandAckPubSubTypes.h>
 #include <quad/msg/ControlReferencePubSubTypes.h>
@@ -26,11 +27,13 @@
 #include <quad/msg/HeartbeatPubSubTypes.h>
 #include <quad/msg/ImuPubSubTypes.h>
 #include <quad/msg/LockstepReportPubSubTypes.h>
+#include <quad/msg/MagneticFieldPubSubTypes.h>
 #include <quad/msg/MapSnapshotPubSubTypes.h>
 #include <quad/msg/MapStatsPubSubTypes.h>
 #include <quad/msg/MapUpdatePubSubTypes.h>
 #include <quad/msg/PathPubSubTypes.h>
 #include <quad/msg/PointCloudPubSubTypes.h>
+#include <quad/msg/PositionFixPubSubTypes.h>
 #include <quad/msg/SimClockPubSubTypes.h>
 #include <quad/msg/SimEventPubSubTypes.h>
 #include <quad/msg/VehicleCommandPubSubTypes.h>
@@ -106,6 +109,7 @@ struct MessageTraits;
   }
 
 QUAD_DDS_MESSAGE(ActuatorCommand);
+QUAD_DDS_MESSAGE(BaroAltitude);
 QUAD_DDS_MESSAGE(BatteryState);
 QUAD_DDS_MESSAGE(CommandAck);
 QUAD_DDS_MESSAGE(ControlReference);
@@ -116,10 +120,12 @@ QUAD_DDS_MESSAGE(GoalAck);
 QUAD_DDS_MESSAGE(Heartbeat);
 QUAD_DDS_MESSAGE(Imu);
 QUAD_DDS_MESSAGE(LockstepReport);
+QUAD_DDS_MESSAGE(MagneticField);
 QUAD_DDS_MESSAGE(MapSnapshot);
 QUAD_DDS_MESSAGE(MapStats);
 QUAD_DDS_MESSAGE(MapUpdate);
 QUAD_DDS_MESSAGE(Path);
+QUAD_DDS_MESSAGE(PositionFix);
 QUAD_DDS_MESSAGE(PointCloud);
 QUAD_DDS_MESSAGE(SimClock);
 QUAD_DDS_MESSAGE(SimEvent);

@@ -12,9 +12,9 @@
 
 namespace quad::dds::topics {
 
-using msg::ActuatorCommand, msg::BatteryState, msg::CommandAck, msg::ControlReference, msg::ControlStatus, msg::FaultCommand, msg::Goal, msg::GoalAck, msg::Heartbeat,
-    msg::Imu, msg::LockstepReport, msg::MapSnapshot, msg::MapStats, msg::MapUpdate, msg::Path,
-    msg::PointCloud, msg::SimClock, msg::SimEvent, msg::VehicleCommand, msg::VehicleState;
+using msg::ActuatorCommand, msg::BaroAltitude, msg::BatteryState, msg::CommandAck, msg::ControlReference, msg::ControlStatus, msg::FaultCommand, msg::Goal, msg::GoalAck, msg::Heartbeat,
+    msg::Imu, msg::LockstepReport, msg::MagneticField, msg::MapSnapshot, msg::MapStats, msg::MapUpdate, msg::Path,
+    msg::PointCloud, msg::PositionFix, msg::SimClock, msg::SimEvent, msg::VehicleCommand, msg::VehicleState;
 
 // clang-format off
 inline constexpr auto kSimClock = makeTopic<SimClock>(
@@ -26,6 +26,15 @@ inline constexpr auto kSimState = makeTopic<VehicleState>(
 inline constexpr auto kSimImu = makeTopic<Imu>(
     "quad/sim/imu", "sensor", 250.0, Owner::kPlant,
     "Simulated IMU");
+inline constexpr auto kSimPosition = makeTopic<PositionFix>(
+    "quad/sim/position", "sensor", 10.0, Owner::kPlant,
+    "Absolute position fixes (GNSS or motion capture), stamped when measured");
+inline constexpr auto kSimBaro = makeTopic<BaroAltitude>(
+    "quad/sim/baro", "sensor", 25.0, Owner::kPlant,
+    "Barometric altitude, its offset of the day and drift included");
+inline constexpr auto kSimMag = makeTopic<MagneticField>(
+    "quad/sim/mag", "sensor", 50.0, Owner::kPlant,
+    "Magnetometer: the field in the body frame");
 inline constexpr auto kSimBattery = makeTopic<BatteryState>(
     "quad/sim/battery", "scan", 10.0, Owner::kPlant,
     "Flight battery: voltage under load, current, charge left", 0.5);
@@ -93,7 +102,7 @@ inline constexpr std::int64_t kStateAheadOfClockNs = 500'000'000;
 
 /// Every contract, for tools that iterate over topics.
 inline constexpr std::array kAll{
-    kSimClock.info, kSimState.info,  kSimImu.info,        kSimBattery.info,  kSimDepth.info,
+    kSimClock.info, kSimState.info,  kSimImu.info,  kSimPosition.info, kSimBaro.info, kSimMag.info, kSimBattery.info,  kSimDepth.info,
     kSimEvents.info, kLockstep.info, kMapUpdate.info,     kMapSnapshot.info, kMapStats.info,
     kGoal.info,      kGoalAck.info,  kPath.info,     kActuators.info,     kControlStatus.info, kCommandAck.info,
     kControlReference.info, kHeartbeat.info, kOperatorHeartbeat.info, kVehicleCommand.info, kFault.info,

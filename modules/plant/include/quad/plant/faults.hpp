@@ -20,10 +20,12 @@
 
 namespace quad::plant {
 
-enum class Sensor { kDepth, kImu, kState };
+enum class Sensor { kDepth, kImu, kState, kPosition, kBaro, kMag };
 
 std::string_view toString(Sensor s);
 std::optional<Sensor> parseSensor(std::string_view text);
+/// Every sensor's name, for messages: "depth, imu, ... or mag".
+std::string sensorNames();
 
 struct Fault {
   enum class Kind { kMotor, kSensorDropout, kSensorStuck, kSensorNoise, kWindGust, kPush, kCellLoss };

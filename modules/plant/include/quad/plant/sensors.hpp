@@ -2,8 +2,10 @@
 #pragma once
 /// @file
 /// Simulated sensors: a forward-looking depth camera (ray casting against the world) and an
-/// IMU (specific force and angular rate with bias and white noise). Randomness comes from a
-/// generator the caller owns, so a run is reproducible for a seed.
+/// IMU (specific force and angular rate with white noise, and biases that start off by a
+/// random turn-on offset and wander as random walks). Randomness comes from a generator the
+/// caller owns, so a run is reproducible for a seed. The navigation aids (position, altitude,
+/// heading) are in navigation_sensors.hpp.
 
 #include <random>
 #include <vector>
@@ -66,19 +68,37 @@ private:
 struct ImuConfig {
   double accel_noise_std = 0.02;          ///< [m/s²] per sample
   double gyro_noise_std = 0.002;          ///< [rad/s] per sample
-  Vector3 accel_bias = Vector3::Zero();   ///< [m/s²]
+  Vector3 accel_bias = Vector3::Zero();   ///< [m/s²] the part of the bias every run has
   Vector3 gyro_bias = Vector3::Zero();    ///< [rad/s]
+  double accel_turn_on_std = 0.05;        ///< [m/s²] per axis: the bias drawn at each start
+  double gyro_turn_on_std = 0.005;        ///< [rad/s]
+  double accel_bias_walk = 0.001;         ///< [m/s²/√s] the bias's random walk (instability)
+  double gyro_bias_walk = 0.0001;         ///< [rad/s/√s]
   double rate_hz = 250.0;                 ///< [Hz]
 };
+
+/// The IMU's biases now.
+struct ImuBias {
+  Vector3 accel = Vector3::Zero();  ///< [m/s²] body frame
+  Vector3 gyro = Vector3::Zero();   ///< [rad/s] body frame
+};
+
+/// Three independent standard normal draws, x first.
+Vector3 standardNormal3(std::mt19937_64& rng);
+
+/// The biases at turn-on: the configured ones plus a draw of the turn-on spread.
+ImuBias turnOnBias(const ImuConfig& config, std::mt19937_64& rng);
+/// Advances the biases' random walks by `dt_s`.
+void walkBias(ImuBias& bias, const ImuConfig& config, double dt_s, std::mt19937_64& rng);
 
 struct ImuSample {
   Vector3 specific_force_B;  ///< [m/s²] R_WBᵀ (a_W − g_W): +9.81 z at rest
   Vector3 angular_rate_B;    ///< [rad/s]
 };
 
-/// The ideal readings plus bias plus white noise (`extra_noise_std` adds to both channels'
+/// The ideal readings plus `bias` plus white noise (`extra_noise_std` adds to both channels'
 /// standard deviation, in their units).
-ImuSample measureImu(const ImuConfig& config, const geometry::Quaternion& q_WB, const Vector3& a_W,
+ImuSample measureImu(const ImuConfig& config, const ImuBias& bias, const geometry::Quaternion& q_WB, const Vector3& a_W,
                      const Vector3& w_B, const Vector3& gravity_W, std::mt19937_64& rng,
                      double extra_noise_std = 0.0);
 

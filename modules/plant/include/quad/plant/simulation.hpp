@@ -8,6 +8,7 @@
 /// the same seed and the same commands give bit-identical runs.
 
 #include <cstdint>
+#include <deque>
 #include <optional>
 #include <random>
 #include <string>
@@ -18,6 +19,7 @@
 #include "quad/plant/dynamics.hpp"
 #include "quad/plant/faults.hpp"
 #include "quad/plant/gimbal.hpp"
+#include "quad/plant/navigation_sensors.hpp"
 #include "quad/plant/sensors.hpp"
 #include "quad/plant/wind.hpp"
 #include "quad/world/world.hpp"
@@ -35,6 +37,9 @@ struct SimulationConfig {
   DepthCameraConfig depth;
   GimbalConfig gimbal;  ///< enabled: the depth camera hangs on it (at depth.position_B), not on its fixed mount
   ImuConfig imu;
+  PositionSensorConfig position;
+  BarometerConfig baro;
+  MagnetometerConfig mag;
   WindConfig wind;  ///< steady wind and turbulence (gusts come as faults, on top)
   BatteryConfig battery;
   double battery_rate_hz = 10.0;  ///< battery readings (the pack's monitor)
@@ -61,6 +66,24 @@ struct ImuReading {
   ImuSample sample;
 };
 
+/// A position fix, stamped when it was measured (it is delivered `latency` later).
+struct PositionReading {
+  std::int64_t t_ns = 0;
+  PositionFix fix;
+};
+
+struct BaroReading {
+  std::int64_t t_ns = 0;
+  double altitude = 0.0;  ///< [m]
+  double std_dev = 0.0;   ///< [m] the white noise's, as the sensor declares it
+};
+
+struct MagReading {
+  std::int64_t t_ns = 0;
+  Vector3 field_B;        ///< [µT]
+  double std_dev = 0.0;   ///< [µT] per axis, as the sensor declares it
+};
+
 struct DepthReading {
   std::int64_t t_ns = 0;
   DepthScan scan;
@@ -80,6 +103,9 @@ struct StepOutputs {
   bool state_due = false;  ///< a state sample was due this step (whether or not a fault dropped it)
   std::optional<StateSample> state;
   std::optional<ImuReading> imu;
+  std::optional<PositionReading> position;  ///< delivered now, measured at its stamp
+  std::optional<BaroReading> baro;
+  std::optional<MagReading> mag;
   std::optional<DepthReading> depth;
   std::optional<BatteryReading> battery;
   std::vector<SimEventRecord> events;
@@ -115,6 +141,11 @@ public:
   /// Where the depth camera is now, in the world.
   geometry::Pose3 cameraPose() const;
 
+  /// The IMU's biases now (for tests and scoring).
+  const ImuBias& imuBias() const { return imu_bias_; }
+  /// The barometer's offset now (for tests and scoring).
+  double baroOffset() const { return baro_.offset(); }
+
   /// Places the vehicle (scenarios and tests: start in the air, moving).
   void setState(const RigidBodyState& state) { state_ = state; }
 
@@ -131,6 +162,8 @@ private:
     bool applied = false;
   };
   void applyFaults(StepOutputs& out);
+  /// The navigation aids' samples due this step.
+  void measureNavigation(StepOutputs& out);
   Environment environment() const;
   bool sensorFault(Sensor s, Fault::Kind k) const;
   double sensorNoise(Sensor s) const;
@@ -144,6 +177,12 @@ private:
   CommandGuard guard_;
   std::mt19937_64 rng_;
   Wind wind_;  // its own generator: turbulence on or off leaves the sensors' draws as they were
+  // The IMU's bias walks and the navigation aids draw from their own too: they left the depth
+  // camera's and the IMU noise's draws as they were when they came.
+  std::mt19937_64 nav_rng_;
+  ImuBias imu_bias_;
+  PositionSensor position_;
+  Barometer baro_;
   std::optional<Battery> battery_;
   RigidBodyState state_;
   std::int64_t t_ns_ = 0;
@@ -154,6 +193,13 @@ private:
   std::int64_t next_imu_ns_ = 0;
   std::int64_t next_depth_ns_ = 0;
   std::int64_t next_battery_ns_ = 0;
+  std::int64_t next_position_ns_ = 0;
+  std::int64_t next_baro_ns_ = 0;
+  std::int64_t next_mag_ns_ = 0;
+  std::deque<PositionReading> positions_in_flight_;  // measured, not yet delivered
+  std::optional<PositionReading> last_position_;
+  std::optional<BaroReading> last_baro_;
+  std::optional<MagReading> last_mag_;
   std::optional<StateSample> last_state_;
   std::optional<ImuReading> last_imu_;
   std::optional<DepthReading> last_depth_;

@@ -10,6 +10,8 @@ std::string_view toString(Owner owner)
   switch (owner) {
     case Owner::kPlant:
       return "plant";
+    case Owner::kEstimation:
+      return "estimation";
     case Owner::kMapping:
       return "mapping";
     case Owner::kPlanning:

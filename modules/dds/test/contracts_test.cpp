@@ -33,7 +33,7 @@ double seconds(const eprosima::fastrtps::Duration_t& d)
 
 TEST(Contracts, NamesAreUniqueAndFollowTheConvention)
 {
-  const std::regex pattern("quad/(sim|mapping|planning|control|system)/[a-z_]+");
+  const std::regex pattern("quad/(sim|estimation|mapping|planning|control|system)/[a-z_]+");
   std::set<std::string_view> names;
   for (const auto& t : topics::kAll) {
     EXPECT_TRUE(std::regex_match(std::string(t.name), pattern)) << t.name;
@@ -143,7 +143,7 @@ TEST(Contracts, ATopicsStalenessIsItsReadersDdsDeadlineAndItsWritersOfferIt)
       EXPECT_NEAR(reader, seconds(p.readerQos(t.qos_profile).deadline().period), 1e-9) << t.name;
     }
   }
-  EXPECT_EQ(judged, 3);  // the state, the battery, the path
+  EXPECT_EQ(judged, 4);  // the true state, the estimated state, the battery, the path
   EXPECT_NEAR(seconds(p.writerQos(topics::kSimState.info).deadline().period), 0.008, 1e-9);  // its class's
 }
 

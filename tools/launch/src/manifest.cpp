@@ -51,6 +51,7 @@ const std::set<std::string> kGeofenceModules{"planning", "control"};
 /// The modules quad builds, by the name a manifest gives them.
 const std::map<std::string, std::string> kBuiltModules{
     {"plant", "modules/plant/node/quad_plant_node"},
+    {"estimation", "modules/estimation/node/quad_estimation_node"},
     {"mapping", "modules/mapping/node/quad_mapping_node"},
     {"planning", "modules/planning/node/quad_planning_node"},
     {"control", "modules/control/node/quad_control_node"},

@@ -29,7 +29,7 @@ std::vector<Role> quadRoles()
   using dds::Owner;
   const std::vector<std::string> all{kEveryQuadTopic};
   std::vector<Role> roles;
-  for (const auto& [identity, owner] : {std::pair{"plant", Owner::kPlant}, std::pair{"mapping", Owner::kMapping},
+  for (const auto& [identity, owner] : {std::pair{"plant", Owner::kPlant}, std::pair{"estimation", Owner::kEstimation}, std::pair{"mapping", Owner::kMapping},
                                         std::pair{"planning", Owner::kPlanning}, std::pair{"control", Owner::kControl}}) {
     auto publish = ownedBy({owner, Owner::kEveryModule});
     publish.emplace_back(dds::topics::kFaultEvents.info.name);  // a fault layer's acknowledgements

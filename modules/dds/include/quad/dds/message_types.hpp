@@ -21,6 +21,7 @@
 #include <quad/msg/CommandAckPubSubTypes.h>
 #include <quad/msg/ControlReferencePubSubTypes.h>
 #include <quad/msg/ControlStatusPubSubTypes.h>
+#include <quad/msg/EstimatedStatePubSubTypes.h>
 #include <quad/msg/FaultCommandPubSubTypes.h>
 #include <quad/msg/GoalAckPubSubTypes.h>
 #include <quad/msg/GoalPubSubTypes.h>
@@ -114,6 +115,7 @@ QUAD_DDS_MESSAGE(BatteryState);
 QUAD_DDS_MESSAGE(CommandAck);
 QUAD_DDS_MESSAGE(ControlReference);
 QUAD_DDS_MESSAGE(ControlStatus);
+QUAD_DDS_MESSAGE(EstimatedState);
 QUAD_DDS_MESSAGE(FaultCommand);
 QUAD_DDS_MESSAGE(Goal);
 QUAD_DDS_MESSAGE(GoalAck);

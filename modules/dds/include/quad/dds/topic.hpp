@@ -11,7 +11,7 @@
 namespace quad::dds {
 
 /// The module that owns (writes) a topic.
-enum class Owner { kPlant, kMapping, kPlanning, kControl, kOperator, kFaultTool, kEveryModule };
+enum class Owner { kPlant, kEstimation, kMapping, kPlanning, kControl, kOperator, kFaultTool, kEveryModule };
 
 std::string_view toString(Owner owner);
 

@@ -12,7 +12,7 @@
 
 namespace quad::dds::topics {
 
-using msg::ActuatorCommand, msg::BaroAltitude, msg::BatteryState, msg::CommandAck, msg::ControlReference, msg::ControlStatus, msg::FaultCommand, msg::Goal, msg::GoalAck, msg::Heartbeat,
+using msg::ActuatorCommand, msg::BaroAltitude, msg::BatteryState, msg::CommandAck, msg::ControlReference, msg::ControlStatus, msg::EstimatedState, msg::FaultCommand, msg::Goal, msg::GoalAck, msg::Heartbeat,
     msg::Imu, msg::LockstepReport, msg::MagneticField, msg::MapSnapshot, msg::MapStats, msg::MapUpdate, msg::Path,
     msg::PointCloud, msg::PositionFix, msg::SimClock, msg::SimEvent, msg::VehicleCommand, msg::VehicleState;
 
@@ -35,6 +35,9 @@ inline constexpr auto kSimBaro = makeTopic<BaroAltitude>(
 inline constexpr auto kSimMag = makeTopic<MagneticField>(
     "quad/sim/mag", "sensor", 50.0, Owner::kPlant,
     "Magnetometer: the field in the body frame");
+inline constexpr auto kEstimatedState = makeTopic<EstimatedState>(
+    "quad/estimation/state", "state", 250.0, Owner::kEstimation,
+    "The estimator's vehicle state: pose, velocity, biases, 1-sigma, health", 0.1);
 inline constexpr auto kSimBattery = makeTopic<BatteryState>(
     "quad/sim/battery", "scan", 10.0, Owner::kPlant,
     "Flight battery: voltage under load, current, charge left", 0.5);
@@ -102,7 +105,7 @@ inline constexpr std::int64_t kStateAheadOfClockNs = 500'000'000;
 
 /// Every contract, for tools that iterate over topics.
 inline constexpr std::array kAll{
-    kSimClock.info, kSimState.info,  kSimImu.info,  kSimPosition.info, kSimBaro.info, kSimMag.info, kSimBattery.info,  kSimDepth.info,
+    kSimClock.info, kSimState.info,  kSimImu.info,  kSimPosition.info, kSimBaro.info, kSimMag.info, kEstimatedState.info, kSimBattery.info,  kSimDepth.info,
     kSimEvents.info, kLockstep.info, kMapUpdate.info,     kMapSnapshot.info, kMapStats.info,
     kGoal.info,      kGoalAck.info,  kPath.info,     kActuators.info,     kControlStatus.info, kCommandAck.info,
     kControlReference.info, kHeartbeat.info, kOperatorHeartbeat.info, kVehicleCommand.info, kFault.info,

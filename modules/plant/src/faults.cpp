@@ -70,6 +70,8 @@ std::string_view toString(Fault::Kind k)
       return "sensor_stuck";
     case Fault::Kind::kSensorNoise:
       return "sensor_noise";
+    case Fault::Kind::kSensorOffset:
+      return "sensor_offset";
     case Fault::Kind::kWindGust:
       return "wind_gust";
     case Fault::Kind::kPush:
@@ -93,6 +95,10 @@ std::string Fault::describe() const
       break;
     case Kind::kSensorNoise:
       out += ": " + std::string(toString(sensor)) + " +" + common::formatValue(magnitude) + " std dev";
+      break;
+    case Kind::kSensorOffset:
+      out += ": " + std::string(toString(sensor)) + " offset " +
+             common::formatValue(std::vector<double>{offset.x(), offset.y(), offset.z()});
       break;
     case Kind::kWindGust:
       out += ": wind " + common::formatValue(std::vector<double>{wind_W.x(), wind_W.y(), wind_W.z()}) + " m/s";
@@ -133,11 +139,12 @@ std::optional<Fault> parseFault(common::YamlReader& r, YAML::Node f, const std::
       fault.rotor = static_cast<int>(*rotor);
       fault.magnitude = *eff;
     }
-  } else if (kind == "sensor_dropout" || kind == "sensor_stuck" || kind == "sensor_noise") {
+  } else if (kind == "sensor_dropout" || kind == "sensor_stuck" || kind == "sensor_noise" || kind == "sensor_offset") {
     allowed.insert("sensor");
     fault.kind = kind == "sensor_dropout" ? Fault::Kind::kSensorDropout
                  : kind == "sensor_stuck" ? Fault::Kind::kSensorStuck
-                                          : Fault::Kind::kSensorNoise;
+                 : kind == "sensor_noise" ? Fault::Kind::kSensorNoise
+                                          : Fault::Kind::kSensorOffset;
     const auto sensor = f["sensor"].IsScalar() ? parseSensor(f["sensor"].Scalar()) : std::nullopt;
     if (!sensor) {
       r.problem(key + ".sensor", f["sensor"], "expected " + sensorNames());
@@ -150,6 +157,14 @@ std::optional<Fault> parseFault(common::YamlReader& r, YAML::Node f, const std::
       const auto s = number("std_dev", std::nullopt, 0.0, 1e3);
       ok = ok && s;
       fault.magnitude = s.value_or(0.0);
+    }
+    if (kind == "sensor_offset") {
+      allowed.insert("offset");
+      const auto v = r.numbers(f["offset"], key + ".offset", 3, -1e4, 1e4);
+      ok = ok && v;
+      if (v) {
+        fault.offset = {(*v)[0], (*v)[1], (*v)[2]};
+      }
     }
   } else if (kind == "wind_gust" || kind == "push") {
     // A vector in the world frame: the gust's wind [m/s], the push's force [N].
@@ -170,7 +185,7 @@ std::optional<Fault> parseFault(common::YamlReader& r, YAML::Node f, const std::
     fault.cells = static_cast<int>(cells.value_or(1.0));
   } else {
     r.problem(key + ".kind", f["kind"],
-              "expected motor, sensor_dropout, sensor_stuck, sensor_noise, wind_gust, push or cell_loss");
+              "expected motor, sensor_dropout, sensor_stuck, sensor_noise, sensor_offset, wind_gust, push or cell_loss");
     return std::nullopt;
   }
   for (const auto& entry : f) {

@@ -134,6 +134,17 @@ double Simulation::sensorNoise(Sensor s) const
   return extra;
 }
 
+Vector3 Simulation::sensorOffset(Sensor s) const
+{
+  Vector3 sum = Vector3::Zero();
+  for (const auto& a : faults_) {
+    if (a.applied && a.fault.kind == Fault::Kind::kSensorOffset && a.fault.sensor == s) {
+      sum += a.fault.offset;
+    }
+  }
+  return sum;
+}
+
 void Simulation::applyFaults(StepOutputs& out)
 {
   for (auto it = faults_.begin(); it != faults_.end();) {
@@ -168,12 +179,14 @@ bool Simulation::due(std::int64_t t_ns, std::int64_t& next_ns, double rate_hz)
 void Simulation::measureNavigation(StepOutputs& out)
 {
   // Each as the IMU: a dropout fault sends nothing, a stuck one repeats the last content with
-  // fresh stamps, a noise fault adds to the white noise.
+  // fresh stamps, a noise fault adds to the white noise, an offset fault to the reading (a
+  // position jump, a barometer step, a magnetic disturbance).
   const auto live = [&](Sensor s) { return !sensorFault(s, Fault::Kind::kSensorDropout); };
   const auto fresh = [&](Sensor s, const auto& last) { return !sensorFault(s, Fault::Kind::kSensorStuck) || !last; };
   if (config_.position.enabled && due(t_ns_, next_position_ns_, config_.position.rate_hz) && live(Sensor::kPosition)) {
     if (fresh(Sensor::kPosition, last_position_)) {
-      if (const auto fix = position_.measure(state_.p_W, nav_rng_, sensorNoise(Sensor::kPosition))) {
+      if (const auto fix = position_.measure(state_.p_W + sensorOffset(Sensor::kPosition), nav_rng_,
+                                             sensorNoise(Sensor::kPosition))) {
         last_position_ = PositionReading{t_ns_, *fix};
         positions_in_flight_.push_back(*last_position_);
       }
@@ -189,7 +202,8 @@ void Simulation::measureNavigation(StepOutputs& out)
   }
   if (config_.baro.enabled && due(t_ns_, next_baro_ns_, config_.baro.rate_hz) && live(Sensor::kBaro)) {
     if (fresh(Sensor::kBaro, last_baro_)) {
-      last_baro_ = BaroReading{t_ns_, baro_.measure(state_.p_W.z(), 1.0 / config_.baro.rate_hz, nav_rng_, sensorNoise(Sensor::kBaro)),
+      last_baro_ = BaroReading{t_ns_, baro_.measure(state_.p_W.z() + sensorOffset(Sensor::kBaro).z(), 1.0 / config_.baro.rate_hz,
+                                                    nav_rng_, sensorNoise(Sensor::kBaro)),
                                config_.baro.noise_std};
     }
     last_baro_->t_ns = t_ns_;
@@ -197,7 +211,8 @@ void Simulation::measureNavigation(StepOutputs& out)
   }
   if (config_.mag.enabled && due(t_ns_, next_mag_ns_, config_.mag.rate_hz) && live(Sensor::kMag)) {
     if (fresh(Sensor::kMag, last_mag_)) {
-      last_mag_ = MagReading{t_ns_, measureMagnetometer(config_.mag, state_.q_WB, Vector3::Zero(), nav_rng_, sensorNoise(Sensor::kMag)),
+      last_mag_ = MagReading{t_ns_, measureMagnetometer(config_.mag, state_.q_WB, sensorOffset(Sensor::kMag), nav_rng_,
+                                                        sensorNoise(Sensor::kMag)),
                              config_.mag.noise_std};
     }
     last_mag_->t_ns = t_ns_;
@@ -260,7 +275,9 @@ StepOutputs Simulation::step()
   if (due(t_ns_, next_imu_ns_, config_.imu.rate_hz) && !sensorFault(Sensor::kImu, Fault::Kind::kSensorDropout)) {
     if (!sensorFault(Sensor::kImu, Fault::Kind::kSensorStuck) || !last_imu_) {
       walkBias(imu_bias_, config_.imu, 1.0 / config_.imu.rate_hz, nav_rng_);
-      last_imu_ = ImuReading{t_ns_, measureImu(config_.imu, imu_bias_, state_.q_WB, dynamics_.acceleration(state_, after),
+      ImuBias bias = imu_bias_;
+      bias.accel += sensorOffset(Sensor::kImu);  // a bias step
+      last_imu_ = ImuReading{t_ns_, measureImu(config_.imu, bias, state_.q_WB, dynamics_.acceleration(state_, after),
                                                state_.w_B, after.gravity_W, rng_, sensorNoise(Sensor::kImu))};
     }
     last_imu_->t_ns = t_ns_;

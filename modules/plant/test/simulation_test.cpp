@@ -254,6 +254,64 @@ TEST(Simulation, NavigationAidsComeAtTheirRatesAndAFixArrivesItsLatencyLate)
   EXPECT_EQ(mags, 100);
 }
 
+// GIVEN a vehicle at rest WHEN sensor_offset faults are active THEN each sensor reads its
+// offset on top (a position jump, a barometer step, a magnetic disturbance, an accelerometer
+// bias step), within its noise, and reads true again once the fault clears.
+TEST(Simulation, SensorOffsetFaultsShiftEachSensorsReadingsWhileActive)
+{
+  SimulationConfig config;
+  config.position.latency = 0.0;
+  config.imu.accel_turn_on_std = 0.0;
+  config.baro.offset_std = 0.0;
+  config.baro.drift_walk = 0.0;
+  Simulation sim(vehicle(), corridor(), config);
+  const auto offset = [&](std::uint32_t id, Sensor s, const Vector3& v) {
+    Fault f;
+    f.id = id;
+    f.kind = Fault::Kind::kSensorOffset;
+    f.sensor = s;
+    f.offset = v;
+    f.start_ns = 500'000'000;
+    f.duration_ns = 500'000'000;
+    ASSERT_TRUE(sim.injectFault(f));
+  };
+  offset(1, Sensor::kPosition, {3.0, -1.0, 0.0});
+  offset(2, Sensor::kBaro, {0.0, 0.0, 2.0});
+  offset(3, Sensor::kMag, {10.0, 0.0, 0.0});
+  offset(4, Sensor::kImu, {0.5, 0.0, 0.0});
+  Vector3 p_during = Vector3::Zero(), p_after = Vector3::Zero(), m_during = Vector3::Zero(), f_during = Vector3::Zero();
+  double baro_during = 0.0, baro_after = 0.0;
+  int n_p = 0, n_pa = 0, n_b = 0, n_ba = 0, n_m = 0, n_f = 0;
+  for (int k = 0; k < 1500; ++k) {
+    const StepOutputs out = sim.step();
+    const bool during = sim.timeNs() > 500'000'000 && sim.timeNs() < 1'000'000'000;
+    const bool after = sim.timeNs() > 1'000'000'000;
+    if (out.position && (during || after)) {
+      (during ? p_during : p_after) += out.position->fix.p_W;
+      ++(during ? n_p : n_pa);
+    }
+    if (out.baro && (during || after)) {
+      (during ? baro_during : baro_after) += out.baro->altitude;
+      ++(during ? n_b : n_ba);
+    }
+    if (out.mag && during) {
+      m_during += out.mag->field_B;
+      ++n_m;
+    }
+    if (out.imu && during) {
+      f_during += out.imu->sample.specific_force_B;
+      ++n_f;
+    }
+  }
+  const Vector3 start = corridor().start();
+  EXPECT_LT((p_during / n_p - (start + Vector3(3.0, -1.0, 0.0))).norm(), 0.03);
+  EXPECT_LT((p_after / n_pa - start).norm(), 0.03);
+  EXPECT_NEAR(baro_during / n_b, start.z() + 2.0, 0.05);
+  EXPECT_NEAR(baro_after / n_ba, start.z(), 0.05);
+  EXPECT_LT((m_during / n_m - (config.mag.field_W + Vector3(10.0, 0.0, 0.0))).norm(), 0.2);  // level, facing x
+  EXPECT_NEAR(f_during.x() / n_f, 0.5, 0.01);
+}
+
 TEST(Simulation, FaultsTakeEffectAreAcknowledgedAndClear)
 {
   Simulation sim(vehicle(), corridor(), {});
@@ -335,11 +393,11 @@ TEST(FaultSchedule, FileIsValidatedAndParsed)
     ASSERT_EQ(e.problems().size(), 5U) << e.what();
     EXPECT_EQ(e.problems()[4], "faults.yaml:[4].cells: 0: out of range [1, 16]");
     EXPECT_EQ(e.problems()[3], "faults.yaml:[3].kind: (missing): expected motor, sensor_dropout, "
-                               "sensor_stuck, sensor_noise, wind_gust, push or cell_loss");
+                               "sensor_stuck, sensor_noise, sensor_offset, wind_gust, push or cell_loss");
     EXPECT_EQ(e.problems()[0], "faults.yaml:[0].rotor: 5: out of range [0, 3]");
     EXPECT_EQ(e.problems()[1], "faults.yaml:[1].sensor: lidar: expected depth, imu, state, position, baro or mag");
     EXPECT_EQ(e.problems()[2], "faults.yaml:[2].kind: meteor: expected motor, sensor_dropout, "
-                               "sensor_stuck, sensor_noise, wind_gust, push or cell_loss");
+                               "sensor_stuck, sensor_noise, sensor_offset, wind_gust, push or cell_loss");
   }
 }
 

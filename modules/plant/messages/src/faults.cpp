@@ -57,6 +57,16 @@ std::optional<Fault> faultFrom(const msg::FaultCommand& c, std::int64_t now_ns, 
       f.kind = Fault::Kind::kSensorNoise;
       f.magnitude = c.magnitude();
       return sensor() ? std::optional(f) : std::nullopt;
+    case msg::FAULT_SENSOR_OFFSET: {
+      const Eigen::Vector3d v(c.vector_W().x(), c.vector_W().y(), c.vector_W().z());
+      if (!v.allFinite()) {
+        why_not = "sensor offset is not finite";
+        return std::nullopt;
+      }
+      f.kind = Fault::Kind::kSensorOffset;
+      f.offset = v;
+      return sensor() ? std::optional(f) : std::nullopt;
+    }
     case msg::FAULT_WIND_GUST:
     case msg::FAULT_PUSH: {
       const bool gust = c.kind() == msg::FAULT_WIND_GUST;
@@ -106,6 +116,10 @@ msg::FaultCommand toCommand(const Fault& f)
       c.kind(msg::FAULT_SENSOR_NOISE);
       c.magnitude(f.magnitude);
       break;
+    case Fault::Kind::kSensorOffset:
+      c.kind(msg::FAULT_SENSOR_OFFSET);
+      c.vector_W(toMessage(f.offset));
+      break;
     case Fault::Kind::kWindGust:
       c.kind(msg::FAULT_WIND_GUST);
       c.vector_W(toMessage(f.wind_W));
@@ -120,7 +134,7 @@ msg::FaultCommand toCommand(const Fault& f)
       break;
   }
   if (f.kind == Fault::Kind::kSensorDropout || f.kind == Fault::Kind::kSensorStuck ||
-      f.kind == Fault::Kind::kSensorNoise) {
+      f.kind == Fault::Kind::kSensorNoise || f.kind == Fault::Kind::kSensorOffset) {
     c.target(std::string(toString(f.sensor)));
   }
   return c;

@@ -28,7 +28,7 @@ std::optional<Sensor> parseSensor(std::string_view text);
 std::string sensorNames();
 
 struct Fault {
-  enum class Kind { kMotor, kSensorDropout, kSensorStuck, kSensorNoise, kWindGust, kPush, kCellLoss };
+  enum class Kind { kMotor, kSensorDropout, kSensorStuck, kSensorNoise, kSensorOffset, kWindGust, kPush, kCellLoss };
   std::uint32_t id = 0;
   Kind kind = Kind::kMotor;
   int rotor = 0;                         ///< kMotor: 0..3
@@ -37,6 +37,9 @@ struct Fault {
   Sensor sensor = Sensor::kDepth;        ///< sensor faults
   geometry::Vector3 wind_W = geometry::Vector3::Zero();  ///< kWindGust [m/s]
   geometry::Vector3 force_W = geometry::Vector3::Zero(); ///< kPush [N] on the vehicle
+  /// kSensorOffset: added to the sensor's readings: position [m, world] (a jump), baro
+  /// [m] (z only), mag [µT, world] (a disturbance), imu [m/s², body] (an accelerometer bias step)
+  geometry::Vector3 offset = geometry::Vector3::Zero();
   int cells = 0;                         ///< kCellLoss: battery cells that fail short (for good)
   std::int64_t start_ns = 0;             ///< sim time it takes effect
   std::int64_t duration_ns = 0;          ///< <= 0: until cleared
@@ -55,7 +58,7 @@ std::optional<Fault> parseFault(common::YamlReader& reader, YAML::Node node, con
 
 /// A schedule file: a YAML list of faults, e.g.
 /// `- {id: 1, kind: motor, rotor: 2, efficiency: 0.5, at: 10.0, duration: 5.0}`
-/// (kinds: motor, sensor_dropout, sensor_stuck, sensor_noise, wind_gust, push, cell_loss;
+/// (kinds: motor, sensor_dropout, sensor_stuck, sensor_noise, sensor_offset, wind_gust, push, cell_loss;
 /// times in seconds).
 /// Every problem is reported as `file:key: value: reason` in a common::ConfigError.
 std::vector<Fault> parseFaultSchedule(std::string_view yaml_text, std::string_view origin);

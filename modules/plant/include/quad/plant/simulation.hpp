@@ -167,6 +167,8 @@ private:
   Environment environment() const;
   bool sensorFault(Sensor s, Fault::Kind k) const;
   double sensorNoise(Sensor s) const;
+  /// The offsets active sensor_offset faults add to a sensor's readings.
+  Vector3 sensorOffset(Sensor s) const;
   static bool due(std::int64_t t_ns, std::int64_t& next_ns, double rate_hz);
 
   QuadrotorDynamics dynamics_;

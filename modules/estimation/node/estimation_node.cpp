@@ -75,7 +75,7 @@ void EstimationNode::onWake()
   }
   if (filter_.aligned() && !announced_alignment_) {
     announced_alignment_ = true;
-    const Estimate e = filter_.estimate(filter_.estimate(0).t_ns);
+    const Estimate e = filter_.estimate(filter_.timeNs());
     spdlog::info("estimation: aligned at t = {:.3f} s, at ({:.2f}, {:.2f}, {:.2f})", common::toSeconds(e.t_ns),
                  e.p_W.x(), e.p_W.y(), e.p_W.z());
   }
@@ -85,8 +85,7 @@ void EstimationNode::publish()
 {
   // Health is judged at the state's own time: a stale IMU shows as the state's age, which
   // its readers judge by the contract's deadline.
-  const std::int64_t t = filter_.estimate(0).t_ns;
-  const Estimate e = filter_.estimate(t);
+  const Estimate e = filter_.estimate(filter_.timeNs());
   msg::EstimatedState m;
   m.header().stamp_ns(e.t_ns);
   m.p_W(dds::toMessage(e.p_W));

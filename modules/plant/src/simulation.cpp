@@ -123,26 +123,25 @@ bool Simulation::sensorFault(Sensor s, Fault::Kind k) const
   });
 }
 
-double Simulation::sensorNoise(Sensor s) const
+template <typename T>
+T Simulation::sumOfFaults(Sensor s, Fault::Kind k, T Fault::*field, T zero) const
 {
-  double extra = 0.0;
   for (const auto& a : faults_) {
-    if (a.applied && a.fault.kind == Fault::Kind::kSensorNoise && a.fault.sensor == s) {
-      extra += a.fault.magnitude;
+    if (a.applied && a.fault.kind == k && a.fault.sensor == s) {
+      zero += a.fault.*field;
     }
   }
-  return extra;
+  return zero;
+}
+
+double Simulation::sensorNoise(Sensor s) const
+{
+  return sumOfFaults(s, Fault::Kind::kSensorNoise, &Fault::magnitude, 0.0);
 }
 
 Vector3 Simulation::sensorOffset(Sensor s) const
 {
-  Vector3 sum = Vector3::Zero();
-  for (const auto& a : faults_) {
-    if (a.applied && a.fault.kind == Fault::Kind::kSensorOffset && a.fault.sensor == s) {
-      sum += a.fault.offset;
-    }
-  }
-  return sum;
+  return sumOfFaults<Vector3>(s, Fault::Kind::kSensorOffset, &Fault::offset, Vector3::Zero());
 }
 
 void Simulation::applyFaults(StepOutputs& out)

@@ -105,11 +105,11 @@ inline constexpr std::int64_t kStateAheadOfClockNs = 500'000'000;
 
 /// Every contract, for tools that iterate over topics.
 inline constexpr std::array kAll{
-    kSimClock.info, kSimState.info,  kSimImu.info,  kSimPosition.info, kSimBaro.info, kSimMag.info, kEstimatedState.info, kSimBattery.info,  kSimDepth.info,
-    kSimEvents.info, kLockstep.info, kMapUpdate.info,     kMapSnapshot.info, kMapStats.info,
-    kGoal.info,      kGoalAck.info,  kPath.info,     kActuators.info,     kControlStatus.info, kCommandAck.info,
-    kControlReference.info, kHeartbeat.info, kOperatorHeartbeat.info, kVehicleCommand.info, kFault.info,
-    kFaultEvents.info};
+    kSimClock.info, kSimState.info, kSimImu.info, kSimPosition.info, kSimBaro.info, kSimMag.info,
+    kEstimatedState.info, kSimBattery.info, kSimDepth.info, kSimEvents.info, kLockstep.info, kMapUpdate.info,
+    kMapSnapshot.info, kMapStats.info, kGoal.info, kGoalAck.info, kPath.info, kActuators.info,
+    kControlStatus.info, kCommandAck.info, kControlReference.info, kHeartbeat.info, kOperatorHeartbeat.info,
+    kVehicleCommand.info, kFault.info, kFaultEvents.info};
 
 /// The contract of a topic name, if quad declares one.
 std::optional<TopicInfo> find(std::string_view name);

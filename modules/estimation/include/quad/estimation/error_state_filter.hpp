@@ -94,6 +94,8 @@ public:
 
   /// The estimate as of the newest IMU sample; health judged at `now_ns`.
   Estimate estimate(std::int64_t now_ns) const;
+  /// [ns] The newest IMU sample's time: the estimate's; -1 before the first.
+  std::int64_t timeNs() const { return t_ns_; }
   Health health(std::int64_t now_ns) const;
   const Covariance& covariance() const { return P_; }
   const AidCounts& positionCounts() const { return position_counts_; }

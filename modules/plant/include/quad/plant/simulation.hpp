@@ -166,6 +166,10 @@ private:
   void measureNavigation(StepOutputs& out);
   Environment environment() const;
   bool sensorFault(Sensor s, Fault::Kind k) const;
+  /// `zero` plus `field` of every applied fault of kind `k` on sensor `s`.
+  template <typename T>
+  T sumOfFaults(Sensor s, Fault::Kind k, T Fault::*field, T zero) const;
+  /// The extra noise active sensor_noise faults add to a sensor's readings.
   double sensorNoise(Sensor s) const;
   /// The offsets active sensor_offset faults add to a sensor's readings.
   Vector3 sensorOffset(Sensor s) const;

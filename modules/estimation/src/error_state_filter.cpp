@@ -74,9 +74,13 @@ void BasicErrorStateFilter<Rotations>::align(std::int64_t t_ns)
   }
   // At rest the accelerometer reads −g in the body: roll and pitch. The magnetometer, levelled
   // with them, gives the yaw against the local field's heading.
+  // Not at rest (a start in the air, falling: the accelerometer reads less than gravity), the
+  // tilt cannot be told: level, with a wide 1σ, and the velocity's wide too; the fixes and the
+  // accelerometer then pull both in.
   const Vector3& f = *first_accel_;
-  const double roll = std::atan2(f.y(), f.z());
-  const double pitch = std::atan2(-f.x(), std::hypot(f.y(), f.z()));
+  const bool at_rest = std::abs(f.norm() - params_.gravity_W.norm()) <= params_.rest_tolerance;
+  const double roll = at_rest ? std::atan2(f.y(), f.z()) : 0.0;
+  const double pitch = at_rest ? std::atan2(-f.x(), std::hypot(f.y(), f.z())) : 0.0;
   const Matrix3 tilt = geometry::rotY(pitch) * geometry::rotX(roll);
   const double yaw = geometry::wrapToPi(headingOf(params_.mag_field_W) - headingOf(tilt * *first_field_));
   R_ = geometry::rotZ(yaw) * tilt;
@@ -87,8 +91,8 @@ void BasicErrorStateFilter<Rotations>::align(std::int64_t t_ns)
   P_.setZero();
   const auto block = [&](int at, double std_dev) { P_.block<3, 3>(at, at) = Matrix3::Identity() * std_dev * std_dev; };
   block(kPosition, 0.05);
-  block(kVelocity, params_.initial_velocity_std);
-  block(kAttitude, params_.initial_tilt_std);
+  block(kVelocity, at_rest ? params_.initial_velocity_std : params_.moving_velocity_std);
+  block(kAttitude, at_rest ? params_.initial_tilt_std : params_.moving_tilt_std);
   P_(kAttitude + 2, kAttitude + 2) = params_.initial_yaw_std * params_.initial_yaw_std;
   block(kAccelBias, params_.accel_bias_prior);
   block(kGyroBias, params_.gyro_bias_prior);

@@ -34,6 +34,12 @@ const common::ParamTable<EstimatorParams>& estimatorTable()
                 "1-sigma of roll and pitch at alignment")
         .number("initial.yaw_std", [](P& p) -> double& { return p.initial_yaw_std; }, {1e-5, 3.2}, "rad",
                 "1-sigma of the yaw at alignment")
+        .number("initial.rest_tolerance", [](P& p) -> double& { return p.rest_tolerance; }, {0.01, 9.0}, "m/s^2",
+                "at alignment the accelerometer reads gravity within this: at rest (else: moving, level assumed)")
+        .number("initial.moving_velocity_std", [](P& p) -> double& { return p.moving_velocity_std; }, {1e-3, 100.0},
+                "m/s", "1-sigma of the velocity at an alignment not at rest")
+        .number("initial.moving_tilt_std", [](P& p) -> double& { return p.moving_tilt_std; }, {1e-4, 1.5}, "rad",
+                "1-sigma of roll and pitch at an alignment not at rest")
         .number("gate.probability", [](P& p) -> double& { return p.gate_probability; }, {0.5, 0.999999}, "",
                 "an innovation beyond this chi-square quantile is an outlier, refused and counted")
         .number("position.max_age", [](P& p) -> double& { return p.max_fix_age; }, {0.0, 10.0}, "s",

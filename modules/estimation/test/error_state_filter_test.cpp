@@ -81,6 +81,54 @@ TEST(ErrorStateFilter, AConstantVelocityLineIsTrackedWithinTheGoals)
   EXPECT_EQ(filter.positionCounts().bad, 0U);
 }
 
+// GIVEN a vehicle falling from rest for half a second (a start in the air: the accelerometer
+// reads its noise alone), then braking on its rotors WHEN the filter aligns in the fall THEN
+// it takes itself for moving (level, with a wide 1σ) and tracks the fall and the braking;
+// aligned as if at rest, its tilt would be the noise's direction, flown as sure.
+TEST(ErrorStateFilter, AnAlignmentInAFallIsTakenForMovingAndTracksTheBraking)
+{
+  static constexpr double g = 9.81;
+  static constexpr double t_brake = 0.5;
+  static constexpr double a_up = 0.5 * g;  // net, while braking
+  const test::Motion fall = [](double t) {
+    Truth x;
+    const double tf = std::min(t, t_brake);
+    const double tb = std::max(0.0, t - t_brake);
+    x.p_W = Vector3(0.0, 0.0, 50.0 - 0.5 * g * tf * tf - g * t_brake * tb + 0.5 * a_up * tb * tb);
+    x.v_W = Vector3(0.0, 0.0, -g * tf + a_up * tb);
+    x.a_W = Vector3(0.0, 0.0, t < t_brake ? -g : a_up);
+    return x;
+  };
+  for (const bool assume_rest : {false, true}) {
+    EstimatorParams params;
+    if (assume_rest) {
+      params.rest_tolerance = 100.0;  // any accelerometer reading counts as at rest
+    }
+    ErrorStateFilter filter(params);
+    // The worst tilt while the rotors take over (the first half second of braking): what a
+    // controller catching the fall would fly on; then the errors once braking.
+    double worst_tilt = 0.0;
+    Errors e;
+    test::fly(filter, fall, 3.0, {}, 3, [&](double t, const Truth& x) {
+      const Estimate now = filter.estimate(static_cast<std::int64_t>(t * 1e9));
+      if (t >= t_brake && t < t_brake + 0.5 && filter.aligned()) {
+        worst_tilt = std::max(worst_tilt, test::attitudeError(x, now).head<2>().norm());
+      } else if (t >= 1.5) {
+        e.add(x, now);
+      }
+    });
+    e.finish();
+    if (assume_rest) {
+      EXPECT_GT(worst_tilt, 0.5) << "the noise's direction, flown as sure";
+      continue;
+    }
+    EXPECT_LT(worst_tilt, 0.05);
+    EXPECT_LT(e.p_rms, 0.05);
+    EXPECT_LT(e.v_rms, 0.1);
+    EXPECT_EQ(filter.positionCounts().rejected, 0U);
+  }
+}
+
 // GIVEN a level circle of 10 m radius at 3 m/s (a constant turn rate and a centripetal
 // acceleration the IMU measures) WHEN fused THEN the same bounds hold.
 TEST(ErrorStateFilter, ACoordinatedTurnIsTrackedWithinTheGoals)

@@ -27,6 +27,11 @@ struct EstimatorParams {
   double initial_velocity_std = 0.5;  ///< [m/s]
   double initial_tilt_std = 0.02;     ///< [rad] roll and pitch, from the accelerometer at rest
   double initial_yaw_std = 0.05;      ///< [rad] from the magnetometer
+  /// [m/s²] At alignment the accelerometer reads gravity within this: at rest. Otherwise (a
+  /// start in the air, falling) the tilt is taken as level and the two below apply.
+  double rest_tolerance = 1.0;
+  double moving_velocity_std = 5.0;   ///< [m/s] 1σ of the velocity at an alignment not at rest
+  double moving_tilt_std = 0.3;       ///< [rad] 1σ of roll and pitch at an alignment not at rest
   // Gates and health.
   double gate_probability = 0.999;   ///< an innovation beyond this χ² quantile is an outlier
   double max_fix_age = 0.5;          ///< [s] fixes stamped earlier than this behind the IMU are refused

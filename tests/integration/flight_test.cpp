@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The plant and control nodes flying together: the loop the stack is built around.
+// The plant and control nodes flying together: the loop the stack is built around, here on
+// the plant's ground truth (the shipped manifests add the estimator between them).
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -46,13 +47,14 @@ TEST(Flight, LockstepMissionReachesItsGoalWithoutCollision)
   const int domain = 150;
   const std::string plant_config =
       writeFile("plant.yaml", std::string("vehicle: ") + QUAD_CONFIG_DIR + "/vehicles/x500.yaml\nworld: " +
-                                  QUAD_CONFIG_DIR + "/worlds/open.yaml\nsim: {mode: lockstep, duration: 25.0}\n");
+                                  QUAD_CONFIG_DIR + "/worlds/open.yaml\nsim: {mode: lockstep, duration: 25.0}\n"
+                                  "state: {source: truth}\n");
   // The operator's path comes at a wall-clock rate, while lockstep sim time runs many times
   // faster: path staleness (tested in the core) is judged in sim time, so give it room here.
   const std::string control_config =
       writeFile("control.yaml", std::string("vehicle: ") + QUAD_CONFIG_DIR +
                                     "/vehicles/x500.yaml\nautostart: true\nmodes: {auto_mission: true}\n"
-                                    "timeouts: {path: 600}\n");
+                                    "timeouts: {path: 600}\nstate: {source: truth}\n");
   // GIVEN the control node (autostart, auto mission) and an operator's goal and path, which
   // the operator vouches is free all along (known_free_m: the controller flies no further)
   ChildProcess control({QUAD_CONTROL_NODE, "--config", control_config}, env(domain));
@@ -124,9 +126,11 @@ TEST(Flight, InRealTimeTheStatesDeadlineEventReachesTheFailsafeBeforeTheControll
   const int domain = 61;
   const std::string plant_config =
       writeFile("plant_rt.yaml", std::string("vehicle: ") + QUAD_CONFIG_DIR + "/vehicles/x500.yaml\nworld: " +
-                                     QUAD_CONFIG_DIR + "/worlds/open.yaml\nsim: {mode: realtime, duration: 60.0}\n");
+                                     QUAD_CONFIG_DIR + "/worlds/open.yaml\nsim: {mode: realtime, duration: 60.0}\n"
+                                     "state: {source: truth}\n");
   const std::string control_config = writeFile(
-      "control_rt.yaml", std::string("vehicle: ") + QUAD_CONFIG_DIR + "/vehicles/x500.yaml\nautostart: true\n");
+      "control_rt.yaml",
+      std::string("vehicle: ") + QUAD_CONFIG_DIR + "/vehicles/x500.yaml\nautostart: true\nstate: {source: truth}\n");
   // GIVEN the plant in real time and the controller holding the vehicle after its take-off
   ChildProcess control({QUAD_CONTROL_NODE, "--config", control_config}, env(domain));
   ASSERT_TRUE(quad::test::waitForRunningModule(domain, "control", 20s)) << control.output();

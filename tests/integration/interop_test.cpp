@@ -31,13 +31,14 @@ TEST(Interop, ACycloneDdsPeerReadsTheStateAndGivesAGoalTheStackFlies)
 #else
   const fs::path dir = quad::test::scratchDir("quad_interop");
   const std::string root = QUAD_SOURCE_DIR;
-  // The four modules, no mission of the launcher's: the goal comes from the other vendor.
+  // The five modules, no mission of the launcher's: the goal comes from the other vendor.
   std::ofstream(dir / "m.yaml") << "name: interop\nworld: " << root << R"(/configs/worlds/open.yaml
 mode: lockstep
 transport: udp
 modules:
   mapping: {config: )" << root << R"(/configs/mapping.yaml, set: {world: "${world}"}}
   planning: {config: )" << root << R"(/configs/planning.yaml, set: {world: "${world}"}, needs: [quad/mapping/update]}
+  estimation: {config: )" << root << R"(/configs/estimation.yaml}
   control: {config: )" << root << R"(/configs/control.yaml, needs: [quad/planning/path]}
   plant:
     config: )" << root << R"(/configs/plant.yaml

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -82,7 +83,9 @@ void flyMission(const std::string& manifest, int domain, const std::vector<std::
   EXPECT_EQ(summary["end"], "success") << summary;
   EXPECT_EQ(summary["outcome"], "landed at the goal") << summary;
   EXPECT_EQ(summary["collisions"], 0) << summary;
-  for (const char* log : {"launch.log", "plant.log", "control.log", "mapping.log", "planning.log", "summary.json"}) {
+  EXPECT_EQ(summary["state"], "estimate") << summary;  // the shipped manifests fly on the estimate
+  for (const char* log : {"launch.log", "plant.log", "control.log", "mapping.log", "planning.log", "estimation.log",
+                          "summary.json"}) {
     EXPECT_TRUE(fs::exists(dir / "run" / log)) << log;
   }
   // What the run cost: sim over wall time, and each process's CPU time over the wall time.
@@ -90,7 +93,7 @@ void flyMission(const std::string& manifest, int domain, const std::vector<std::
   const double wall = summary["wall_seconds"].get<double>();
   EXPECT_NEAR(summary["real_time_factor"].get<double>(), summary["sim_seconds"].get<double>() / wall, 1e-9) << summary;
   double busy = 0.0;
-  for (const char* process : {"plant", "control", "mapping", "planning", "launch"}) {
+  for (const char* process : {"plant", "control", "mapping", "planning", "estimation", "launch"}) {
     const auto& cost = summary["processes"][process];
     ASSERT_TRUE(cost["cpu_seconds"].is_number()) << process << " " << summary;
     EXPECT_GT(cost["cpu_seconds"].get<double>(), 0.0) << process;
@@ -100,7 +103,7 @@ void flyMission(const std::string& manifest, int domain, const std::vector<std::
   EXPECT_LE(busy, static_cast<double>(std::thread::hardware_concurrency()) + 0.05) << summary;
   const auto record = runRecord(dir / "run");
   EXPECT_EQ(record["exit_code"], 0) << record;
-  for (const char* module : {"plant", "control", "mapping", "planning"}) {
+  for (const char* module : {"plant", "control", "mapping", "planning", "estimation"}) {
     EXPECT_EQ(record["modules"][module]["starts"], 1) << record;  // nothing died on the way
   }
   // The controller flew the planner's paths: it took off, followed a mission, landed.
@@ -145,6 +148,48 @@ TEST(Launch, DemoMissionReachesTheGoalInLockstepWithoutCollisionAndIsRecorded)
 {
   const fs::path record = fs::temp_directory_path() / ("quad_launch_180_" + std::to_string(::getpid())) / "run.mcap";
   flyMission("demo.yaml", 180, {"--record", record.string()});
+}
+
+/// The participants reading `topic` on `domain`, as discovery shows them within 1.5 s.
+std::set<std::string> readersOf(const std::string& topic, int domain)
+{
+  ChildProcess info({QUAD_TOOL, "topic", "info", topic, "--wait", "1.5", "--json", "--domain", std::to_string(domain)});
+  std::set<std::string> names;
+  if (info.wait(30s) != 0) {
+    return names;
+  }
+  const auto seen = nlohmann::json::parse(info.output(), nullptr, false);
+  if (seen.is_object()) {
+    for (const auto& r : seen["readers"]) {
+      names.insert(r["participant"].get<std::string>());
+    }
+  }
+  return names;
+}
+
+TEST(Launch, InFlightOnlyTheLaunchersObserverReadsTheGroundTruth)
+{
+  constexpr int kDomain = 119;
+  const fs::path dir = quad::test::scratchDir("quad_launch_truth");
+  ChildProcess launch({QUAD_TOOL, "launch", std::string(QUAD_SOURCE_DIR) + "/bringup/demo.yaml", "--domain",
+                       std::to_string(kDomain), "--quiet", "--wall-timeout", "120", "--log-dir", (dir / "run").string()});
+  // Once control, planning and mapping read the estimate, every module has made its readers.
+  const std::set<std::string> flying{"control", "mapping", "planning"};
+  std::set<std::string> estimate_readers;
+  for (int i = 0; i < 40; ++i) {
+    estimate_readers = readersOf("quad/estimation/state", kDomain);
+    if (std::includes(estimate_readers.begin(), estimate_readers.end(), flying.begin(), flying.end())) {
+      break;
+    }
+  }
+  ASSERT_TRUE(std::includes(estimate_readers.begin(), estimate_readers.end(), flying.begin(), flying.end()))
+      << "readers of quad/estimation/state: " << testing::PrintToString(estimate_readers) << "\n" << launch.output();
+  EXPECT_EQ(readersOf("quad/sim/state", kDomain), std::set<std::string>{"quad_launch"});
+  launch.signal(SIGINT);
+  EXPECT_TRUE(launch.wait(60s)) << launch.output();
+  if (!::testing::Test::HasFailure()) {
+    fs::remove_all(dir);
+  }
 }
 
 TEST(Launch, ThreeHostManifestFliesTheMissionAcrossNetworkNamespaces)

@@ -28,12 +28,13 @@ std::map<std::string, std::string> env(int domain)
 }
 
 /// A plant config in `dir`: the x500 in the demo world, lockstep with the mapper for `seconds`.
+/// No estimator runs here: the mapper places the clouds on the plant's true state.
 void writePlantConfig(const std::filesystem::path& dir, double seconds)
 {
   std::ofstream(dir / "plant.yaml") << "vehicle: " << QUAD_CONFIG_DIR << "/vehicles/x500.yaml\nworld: "
                                     << QUAD_CONFIG_DIR << "/worlds/demo.yaml\n"
                                     << "sim: {mode: lockstep, duration: " << seconds
-                                    << "}\nlockstep: {participants: mapping}\n";
+                                    << "}\nlockstep: {participants: mapping}\nstate: {source: truth}\n";
 }
 
 TEST(MappingNode, LockstepRunMapsTheBoxAndSavesABtFile)
@@ -43,7 +44,7 @@ TEST(MappingNode, LockstepRunMapsTheBoxAndSavesABtFile)
   std::filesystem::create_directories(dir);
   const auto bt = dir / "map.bt";
   std::filesystem::remove(bt);
-  std::ofstream(dir / "mapping.yaml") << "save_path: " << bt.string() << "\n";
+  std::ofstream(dir / "mapping.yaml") << "save_path: " << bt.string() << "\nstate: {source: truth}\n";
   writePlantConfig(dir, 3.0);
   // GIVEN a mapper, and a controller holding the vehicle at 2 m
   ChildProcess mapping({QUAD_MAPPING_NODE, "--config", (dir / "mapping.yaml").string()}, env(domain));
@@ -74,7 +75,7 @@ TEST(MappingNode, AMapperStartedAgainResumesFromItsCheckpoint)
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const auto bt = dir / "map.bt";
-  std::ofstream(dir / "mapping.yaml") << "save_path: " << bt.string() << "\ncheckpoint: {file: "
+  std::ofstream(dir / "mapping.yaml") << "state: {source: truth}\nsave_path: " << bt.string() << "\ncheckpoint: {file: "
                                       << (dir / "mapping.checkpoint").string() << "}\n";
   writePlantConfig(dir, 2.0);
   // GIVEN a mapper that mapped 2 s of flight and stopped

@@ -29,8 +29,8 @@ TEST(PlanningNode, PlansFromTheVehicleToTheGoalAndRefusesGoalsOutsideTheBounds)
                     env(domain));
   ASSERT_EQ(goal.wait(15s), 0) << goal.output();
   ChildProcess path({QUAD_TOOL, "topic", "echo", "quad/planning/path", "-n", "1", "--timeout", "20"}, env(domain));
-  ChildProcess state({QUAD_TOOL, "topic", "pub", "quad/sim/state",
-                      "{p_W: {x: 0, y: 0, z: 2}, q_WB: {w: 1}}", "--count", "20", "--rate", "5"},
+  ChildProcess state({QUAD_TOOL, "topic", "pub", "quad/estimation/state",
+                      "{p_W: {x: 0, y: 0, z: 2}, q_WB: {w: 1}, aligned: true}", "--count", "20", "--rate", "5"},
                      env(domain));
   ASSERT_EQ(path.wait(25s), 0) << path.output() << planning.output();
   EXPECT_NE(path.output().find("status: PLAN_OK"), std::string::npos) << path.output();

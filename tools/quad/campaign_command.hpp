@@ -18,6 +18,7 @@ struct CampaignCommandOptions {
   std::optional<std::string> json;     ///< default: <dir>/campaign.json
   std::optional<std::string> dir;      ///< default: log/campaign-<time>-<pid>
   double wall_timeout_s = 600.0;
+  std::string state;                   ///< estimate | truth; empty: the manifest's
 };
 
 /// 0 when every run succeeded, 1 when any failed, 2 for bad input.

@@ -77,6 +77,8 @@ int main(int argc, char** argv)
   auto* realtime = launch->add_flag("--realtime", launch_options.realtime, "Sim time follows the wall clock");
   launch->add_flag("--lockstep", launch_options.lockstep, "Sim time waits for every module (reproducible)")
       ->excludes(realtime);
+  launch->add_option("--state", launch_options.state, "What the stack flies on: estimate, or truth to compare (the manifest's ${state})")
+      ->check(CLI::IsMember({"estimate", "truth"}));
   launch->add_option("--seed", launch_options.seed, "${seed} of the manifest (the plant's random draws)");
   launch->add_option("--domain", launch_options.domain, "DDS domain id (default: the manifest's, else $QUAD_DOMAIN_ID, else 0)")
       ->check(CLI::Range(0, 232));
@@ -105,6 +107,8 @@ int main(int argc, char** argv)
   campaign->add_option("--manifest", campaign_options.manifest, "Manifest flown in every world")->capture_default_str();
   campaign->add_option("--domain", campaign_options.domain, "DDS domain id (default: $QUAD_DOMAIN_ID, else 0)")
       ->check(CLI::Range(0, 232));
+  campaign->add_option("--state", campaign_options.state, "What every run flies on: estimate or truth (default: the manifest's)")
+      ->check(CLI::IsMember({"estimate", "truth"}));
   campaign->add_option("--json", campaign_options.json, "Write the runs as JSON here (default: in the campaign's folder)");
   campaign->add_option("--log-dir", campaign_options.dir, "The campaign's folder (default: log/campaign-<time>-<pid>)");
   campaign->add_option("--wall-timeout", campaign_options.wall_timeout_s, "A run still going after this many seconds fails")

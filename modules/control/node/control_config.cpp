@@ -15,7 +15,7 @@ FlightControllerConfig nodeFlightDefaults()
   f.gains.kOmega = 0.673;
   f.gains.ki = 16.0;
   f.modes.idle_disarm_after = 30.0;
-  f.state_timeout = dds::topics::kSimState.info.stale_after_s;
+  f.state_timeout = dds::topics::kEstimatedState.info.stale_after_s;  // the truth's is the same
   f.path_timeout = dds::topics::kPath.info.stale_after_s;
   return f;
 }
@@ -26,6 +26,8 @@ const common::ParamTable<ControlNodeConfig>& controlTable()
   static const common::ParamTable<C> table = [] {
     common::ParamTable<C> t;
     t.path("vehicle", [](C& c) -> std::filesystem::path& { return c.vehicle_file; }, "vehicle file (the plant's)")
+        .choice("state.source", [](C& c) -> dds::StateSource& { return c.state_source; }, dds::stateSourceNames(),
+                dds::kStateSourceDescription)
         .number("gains.position", [](C& c) -> double& { return c.flight.gains.kx; }, {0.01, 1e4}, "N/m", "k_x")
         .number("gains.velocity", [](C& c) -> double& { return c.flight.gains.kv; }, {0.01, 1e4}, "N s/m", "k_v")
         .number("gains.integral", [](C& c) -> double& { return c.flight.gains.ki; }, {0.0, 1e4}, "N/(m s)",
@@ -66,7 +68,17 @@ const common::ParamTable<ControlNodeConfig>& controlTable()
         .number("land_speed", [](C& c) -> double& { return c.flight.land_speed; }, {0.05, 5.0}, "m/s",
                 "descent in LAND")
         .number("timeouts.state", [](C& c) -> double& { return c.flight.state_timeout; }, {0.005, 10.0}, "s",
-                "vehicle state older than this is stale (default: the quad/sim/state contract's)")
+                "vehicle state older than this is stale (default: the state topic's contract's)")
+        .number("land_detector.max_vertical_speed",
+                [](C& c) -> double& { return c.flight.land_detector.max_vertical_speed; }, {0.01, 5.0}, "m/s",
+                "on an estimate, a landing has touched down once it sinks slower than this ...")
+        .number("land_detector.max_thrust", [](C& c) -> double& { return c.flight.land_detector.max_thrust; },
+                {0.1, 1.0}, "", "... on less than this fraction of the weight ...")
+        .number("land_detector.hold_time", [](C& c) -> double& { return c.flight.land_detector.hold_time; },
+                {0.0, 10.0}, "s", "... for this long")
+        .number("land_detector.ground_clearance",
+                [](C& c) -> double& { return c.flight.land_detector.ground_clearance; }, {0.0, 10.0}, "m",
+                "on an estimate, a controller started below this height (and still) takes the vehicle for landed")
         .number("timeouts.path", [](C& c) -> double& { return c.flight.path_timeout; }, {0.05, 600.0}, "s",
                 "path not republished for this long is stale (default: the quad/planning/path contract's)")
         .number("goal_tolerance", [](C& c) -> double& { return c.flight.goal_tolerance; }, {0.01, 10.0}, "m",

@@ -23,7 +23,7 @@ ControlNode::ControlNode(ControlNodeConfig config, dds::ParticipantOptions optio
     : Node("control", std::move(options)),
       config_(std::move(config)),
       fc_(vehicle::loadVehicle(config_.vehicle_file), config_.flight),
-      state_(participant(), dds::topics::kSimState, waker()),
+      state_(participant(), config_.state_source, waker()),
       path_(participant(), dds::topics::kPath, waker()),
       goal_(participant(), dds::topics::kGoal, waker()),
       command_(participant(), dds::topics::kVehicleCommand, waker()),
@@ -37,7 +37,8 @@ ControlNode::ControlNode(ControlNodeConfig config, dds::ParticipantOptions optio
 {
   setTickPeriod(kTickNs);
   followSimClock();
-  spdlog::info("control: vehicle {}, autostart {}", config_.vehicle_file.string(), config_.autostart);
+  spdlog::info("control: vehicle {}, autostart {}, flying on the {} ({})", config_.vehicle_file.string(),
+               config_.autostart, dds::toString(config_.state_source), state_.topic().name);
 }
 
 void ControlNode::takeInputs()
@@ -201,25 +202,31 @@ void ControlNode::onWake()
   takeInputs();
   for (const auto& s : state_.takeAll()) {
     counters().samples_in++;
-    const double t = common::toSeconds(s.header().stamp_ns());
-    if (simClock().seen() && !simClock().vouchesFor(s.header().stamp_ns())) {
-      // Accepted, it would make every true state after it look out of order.
+    const double t = common::toSeconds(s.stamp_ns);
+    if (simClock().seen() && !simClock().vouchesFor(s.stamp_ns)) {
+      // Accepted, it would make every state after it look out of order.
       counters().errors++;
       fc_.countRejected();
       spdlog::warn("{}: sample seq {} rejected: stamped {:.3f} s, ahead of the sim clock ({:.3f} s)",
-                   dds::topics::kSimState.info.name,
-                   s.header().seq(), t, common::toSeconds(simClock().ns()));
+                   state_.topic().name, s.seq, t, common::toSeconds(simClock().ns()));
       continue;
     }
-    if (!fc_.onState(fromMessage(s), s.landed(), t)) {
+    if (!s.aligned) {
+      // An estimator still aligning: nothing to fly on yet, but in lockstep the round waits
+      // for the answer to its time (the rotors stay as the mode has them).
+      if (t > latest_t_ && lockstep()) {
+        control(t, s.stamp_ns);
+      }
+      continue;
+    }
+    if (!fc_.onState(fromSample(s), s.landed, t)) {
       counters().errors++;
-      spdlog::warn("{}: sample seq {} rejected: invalid or out of order",
-                   dds::topics::kSimState.info.name, s.header().seq());
+      spdlog::warn("{}: sample seq {} rejected: invalid or out of order", state_.topic().name, s.seq);
       continue;
     }
     latest_t_ = t;
     latest_wall_ns_ = common::steadyTimeNs();
-    control(t, s.header().stamp_ns());
+    control(t, s.stamp_ns);
   }
   controlWithoutState();
 }
@@ -274,10 +281,9 @@ void ControlNode::onEvent(const dds::EndpointEvent& event)
   // is the operator's word: the contract's deadline event then says nothing.
   const auto judged = [](double timeout, const dds::TopicInfo& topic) { return timeout <= topic.stale_after_s + 1e-9; };
   const std::int64_t now = common::steadyTimeNs();
-  if (event.topic == dds::topics::kSimState.info.name && latest_t_ >= 0.0 &&
-      judged(config_.flight.state_timeout, dds::topics::kSimState.info)) {
+  if (event.topic == state_.topic().name && latest_t_ >= 0.0 && judged(config_.flight.state_timeout, state_.topic())) {
     const double silent = common::toSeconds(now - latest_wall_ns_);
-    if (silent < dds::topics::kSimState.info.stale_after_s - kDeadlineEventSlackS) {
+    if (silent < state_.topic().stale_after_s - kDeadlineEventSlackS) {
       return;
     }
     fc_.onStateLate();

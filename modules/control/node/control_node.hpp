@@ -11,6 +11,7 @@
 #include "control_config.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
+#include "quad/dds/state_input.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
 
@@ -40,7 +41,7 @@ private:
 
   ControlNodeConfig config_;
   FlightController fc_;
-  dds::Subscriber<msg::VehicleState> state_;
+  dds::StateInput state_;
   dds::Subscriber<msg::Path> path_;
   dds::Subscriber<msg::Goal> goal_;
   dds::Subscriber<msg::VehicleCommand> command_;

@@ -7,10 +7,7 @@ namespace quad::control {
 
 using dds::toMessage;
 
-VehicleState fromMessage(const msg::VehicleState& m)
-{
-  return {dds::toVector(m.p_W()), dds::toVector(m.v_W()), dds::toQuaternion(m.q_WB()), dds::toVector(m.w_B())};
-}
+VehicleState fromSample(const dds::StateSample& s) { return {s.p_W, s.v_W, s.q_WB, s.w_B}; }
 
 std::vector<Vector3> waypointsOf(const msg::Path& m)
 {

@@ -43,11 +43,12 @@ FlightController::FlightController(const vehicle::VehicleParams& vehicle, Flight
       follower_(config.follower),
       controller_(vehicle.mass, vehicle.inertia, config.gains),
       mixer_(vehicle),
+      land_detector_(config.land_detector),
       goal_tolerance_(config.goal_tolerance)
 {
 }
 
-bool FlightController::onState(const VehicleState& s, bool landed, double t)
+bool FlightController::onState(const VehicleState& s, std::optional<bool> landed, double t)
 {
   const double n = s.q_WB.norm();
   const bool valid = s.p_W.allFinite() && s.v_W.allFinite() && s.w_B.allFinite() && std::isfinite(n) &&
@@ -57,7 +58,10 @@ bool FlightController::onState(const VehicleState& s, bool landed, double t)
     return false;
   }
   state_ = VehicleState{s.p_W, s.v_W, s.q_WB.normalized(), s.w_B};
-  landed_ = landed;
+  judge_landing_ = !landed.has_value();
+  if (landed) {
+    landed_ = *landed;
+  }
   state_t_ = t;
   state_late_ = false;
   reckoning_.anchor(*state_, t);
@@ -279,6 +283,9 @@ FlightOutput FlightController::update(double t)
   const bool path_heard = t - path_t_ <= config_.path_timeout;
   in.path_fresh = path_kind_ == PathKind::kOk && path_version_ && path_heard && !path_late_;
   in.no_path = path_kind_ == PathKind::kUnreachable && path_heard;
+  if (judge_landing_ && in.state_fresh) {
+    landed_ = land_detector_.update(t, modes_.mode(), *state_, thrust_ratio_);
+  }
   in.landed = landed_;
   in.takeoff_altitude_reached = modes_.mode() == Mode::kTakeoff && state_ && follower_.finished() &&
                                 std::abs(state_->p_W.z() - takeoff_target_.z()) < 0.1;
@@ -287,7 +294,14 @@ FlightOutput FlightController::update(double t)
   in.goal_reached = state_ && goal_ && (state_->p_W - *goal_).norm() <= goal_tolerance_ &&
                     (modes_.mode() != Mode::kMission || follower_.finished());
   in.returned = modes_.mode() == Mode::kReturn && follower_.finished();
-  in.outside_geofence = state_ && !config_.geofence.contains(state_->p_W);
+  if (state_) {
+    // Taking off from a floor at the ground, an estimate a centimetre below it is no breach.
+    Vector3 p = state_->p_W;
+    if (modes_.mode() == Mode::kTakeoff) {
+      p.z() = std::max(p.z(), config_.geofence.min[2]);
+    }
+    in.outside_geofence = !config_.geofence.contains(p);
+  }
   if (state_ && (modes_.mode() == Mode::kMission || modes_.mode() == Mode::kHover) &&
       (flown_.empty() || (state_->p_W - flown_.back()).norm() >= kBreadcrumbSpacing)) {
     flown_length_ += flown_.empty() ? 0.0 : (state_->p_W - flown_.back()).norm();
@@ -325,10 +339,12 @@ FlightOutput FlightController::update(double t)
   switch (out.mode) {
     case Mode::kDisarmed:
       out.armed = false;
+      thrust_ratio_ = 0.0;
       return out;
     case Mode::kIdle:
       out.armed = true;  // rotors at their minimum speed on the ground
       out.rotor_speed.fill(vehicle_.rotor_speed_min);
+      thrust_ratio_ = 0.0;
       return out;
     default:
       break;
@@ -337,6 +353,7 @@ FlightOutput FlightController::update(double t)
   if (!state) {
     // Blind: no state to close any loop on. Descend on a little less than the weight.
     const MixerOutput m = mixer_.mix(config_.failsafe_thrust * vehicle_.mass * 9.81, Vector3::Zero());
+    thrust_ratio_ = config_.failsafe_thrust;
     out.rotor_speed = m.rotor_speed;
     out.mixer = m;
     return out;
@@ -365,6 +382,7 @@ FlightOutput FlightController::update(double t)
     ++rejected_;
   }
   out.mixer = mixer_.mix(out.control.thrust, out.control.torque_B);
+  thrust_ratio_ = out.control.thrust / (vehicle_.mass * 9.81);
   out.rotor_speed = out.mixer.rotor_speed;
   out.position_error_W = ref.p_W - state->p_W;
   out.velocity_error_W = ref.v_W - state->v_W;

@@ -28,6 +28,7 @@ struct Rig {
   /// The operator's station sends its heartbeat every half second up to this sim time.
   double operator_until = -1.0;
   double operator_next = 0.0;
+  bool tell_landed = true;  ///< false: the states do not say (an estimate); the land detector judges
 
   explicit Rig(FlightControllerConfig config = defaults(), plant::SimulationConfig plant = {},
                std::vector<plant::Fault> faults = {})
@@ -72,7 +73,8 @@ struct Rig {
       }
       if (out.state && feed_state) {
         const auto& s = out.state->state;
-        fc.onState({s.p_W, s.v_W, s.q_WB, s.w_B}, s.landed, common::toSeconds(out.state->t_ns));
+        fc.onState({s.p_W, s.v_W, s.q_WB, s.w_B}, tell_landed ? std::optional<bool>(s.landed) : std::nullopt,
+                   common::toSeconds(out.state->t_ns));
       }
       if (out.state) {
         log.push_back(fc.update(t()));
@@ -124,6 +126,48 @@ TEST(FlightController, ArmTakeOffFlyTheMissionAndLand)
   EXPECT_EQ(rig.mode(), Mode::kIdle);
   EXPECT_TRUE(rig.sim.state().landed);
   EXPECT_EQ(rig.sim.collisionCount(), 0U);
+}
+
+TEST(FlightController, WithoutTheGroundContactTheLandDetectorEndsTheFlightOnceTouchedDown)
+{
+  Rig rig;
+  rig.tell_landed = false;
+  rig.run(0.1);
+  rig.fc.onCommand(Command::kArm);
+  rig.run(0.1);
+  ASSERT_EQ(rig.mode(), Mode::kIdle) << "on the ground at the first state: landed";
+  rig.fc.onCommand(Command::kTakeoff);
+  rig.run(15.0, [&] { return rig.mode() == Mode::kHover; });
+  ASSERT_EQ(rig.mode(), Mode::kHover);
+  EXPECT_FALSE(rig.fc.landed());
+  rig.fc.onCommand(Command::kLand);
+  double touchdown = -1.0;
+  rig.run(20.0, [&] {
+    if (touchdown < 0.0 && rig.sim.state().landed) {
+      touchdown = rig.t();
+    }
+    return rig.mode() == Mode::kIdle;
+  });
+  ASSERT_EQ(rig.mode(), Mode::kIdle);
+  ASSERT_GE(touchdown, 0.0) << "IDLE before the plant touched down";
+  // Landed after the detector's hold (0.5 s), within a second of the touchdown.
+  EXPECT_GE(rig.t() - touchdown, 0.5);
+  EXPECT_LT(rig.t() - touchdown, 1.5);
+  EXPECT_TRUE(rig.sim.state().landed);
+}
+
+TEST(FlightController, AControllerStartedInTheAirWithoutTheGroundContactTakesOver)
+{
+  Rig rig;
+  takeOff(rig);
+  ASSERT_EQ(rig.mode(), Mode::kHover);
+  // A new controller (a restart) on states that do not say whether the vehicle is landed.
+  rig.fc = FlightController(rig.v, Rig::withGains(Rig::defaults(), rig.v));
+  rig.tell_landed = false;
+  rig.run(0.1);
+  EXPECT_EQ(rig.mode(), Mode::kHover);
+  EXPECT_FALSE(rig.fc.landed());
+  EXPECT_NEAR(rig.sim.state().p_W.z(), 2.0, 0.3);
 }
 
 TEST(FlightController, EveryCommandIsAnsweredInTheTickThatAppliesItAndATakeOffClimbsAsHighAsAsked)

@@ -21,6 +21,7 @@ EstimationNode::EstimationNode(EstimatorParams params, dds::ParticipantOptions o
       mag_(participant(), dds::topics::kSimMag, waker()),
       state_(participant(), dds::topics::kEstimatedState)
 {
+  followSimClock();  // in lockstep the wall clock's deadlines say nothing
   spdlog::info("estimation: gates at probability {}, health bounds {} m and {} rad", params.gate_probability,
                params.max_position_std, params.max_attitude_std);
 }
@@ -58,9 +59,16 @@ void EstimationNode::onWake()
   });
   for (const auto& [stamp, sample] : samples) {
     if (const auto* m = std::get_if<msg::Imu>(&sample)) {
-      judge(filter_.imu(stamp, dds::toVector(m->specific_force_B()), dds::toVector(m->angular_rate_B())),
-            dds::topics::kSimImu.info, m->header().seq());
-      if (filter_.aligned()) {
+      // Every IMU sample is answered, aligned or not (a lockstep round waits for the answer);
+      // one sent again (a lockstep plant resends while it waits) with the same estimate.
+      if (stamp == filter_.timeNs()) {
+        counters().samples_in++;
+        publish();
+        continue;
+      }
+      const Update u = filter_.imu(stamp, dds::toVector(m->specific_force_B()), dds::toVector(m->angular_rate_B()));
+      judge(u, dds::topics::kSimImu.info, m->header().seq());
+      if (u != Update::kBadInput && u != Update::kTooOld) {
         publish();
       }
     } else if (const auto* p = std::get_if<msg::PositionFix>(&sample)) {

@@ -46,7 +46,9 @@ const common::ParamTable<MappingParams>& mappingTable()
         .text("save_path", [](P& p) -> std::string& { return p.save_path; }, {},
               ".bt file written on shutdown and on COMMAND_SAVE_MAP; empty: never")
         .text("checkpoint.file", [](P& p) -> std::string& { return p.checkpoint_file; }, {},
-              "the map resumed from at the start and written with every snapshot; empty: none");
+              "the map resumed from at the start and written with every snapshot; empty: none")
+        .choice("state.source", [](P& p) -> dds::StateSource& { return p.state_source; }, dds::stateSourceNames(),
+                dds::kStateSourceDescription);
     return t;
   }();
   return table;
@@ -68,6 +70,7 @@ MappingNodeConfig mappingConfigFrom(const common::Params& p)
   c.snapshot_period_s = m.snapshot_period_s;
   c.save_path = m.save_path;
   c.checkpoint_file = m.checkpoint_file;
+  c.state_source = m.state_source;
   return c;
 }
 
@@ -76,6 +79,7 @@ MappingNode::MappingNode(MappingNodeConfig config, dds::ParticipantOptions optio
       config_(std::move(config)),
       mapper_(config_.map),
       depth_(participant(), dds::topics::kSimDepth, waker()),
+      state_(participant(), config_.state_source, waker()),
       commands_(participant(), dds::topics::kVehicleCommand, waker()),
       updates_(participant(), dds::topics::kMapUpdate),
       snapshots_(participant(), dds::topics::kMapSnapshot),
@@ -83,7 +87,8 @@ MappingNode::MappingNode(MappingNodeConfig config, dds::ParticipantOptions optio
       lockstep_(participant(), "mapping")
 {
   followSimClock();
-  spdlog::info("mapping: resolution {} m, max range {} m", config_.map.resolution, config_.map.max_range);
+  spdlog::info("mapping: resolution {} m, max range {} m, clouds placed on the {} ({})", config_.map.resolution,
+               config_.map.max_range, dds::toString(config_.state_source), state_.topic().name);
   map_bytes_ = mapper_.bytes();  // the empty map's; resume() counts a resumed one
   resume();
 }
@@ -140,21 +145,76 @@ void MappingNode::checkpoint(std::int64_t stamp_ns, std::uint64_t floor)
   }
 }
 
-void MappingNode::integrate(const msg::PointCloud& cloud)
+void MappingNode::takeStates()
+{
+  for (const auto& s : state_.takeAll()) {
+    counters().samples_in++;
+    const double n = s.q_WB.norm();
+    if (simClock().seen() && !simClock().vouchesFor(s.stamp_ns)) {
+      // Taken, it would make every state after it look out of order.
+      counters().errors++;
+      spdlog::warn("{}: sample seq {} rejected: stamped {:.3f} s, ahead of the sim clock ({:.3f} s)",
+                   state_.topic().name, s.seq, common::toSeconds(s.stamp_ns), common::toSeconds(simClock().ns()));
+      continue;
+    }
+    states_heard_ns_ = std::max(states_heard_ns_, s.stamp_ns);
+    if (!s.aligned || s.stamp_ns == poses_.newestNs()) {
+      continue;  // an estimator still aligning (no pose yet), or a state answered again
+    }
+    if (!s.p_W.allFinite() || !s.v_W.allFinite() || !std::isfinite(n) || std::abs(n - 1.0) > 1e-3 ||
+        !poses_.add(s.stamp_ns, {s.p_W, s.q_WB.normalized()}, s.v_W)) {
+      counters().errors++;
+      spdlog::warn("{}: sample seq {} rejected: not finite, not a unit attitude, or out of order", state_.topic().name,
+                   s.seq);
+    }
+  }
+}
+
+void MappingNode::integratePending()
+{
+  // A real-time cloud waits this long of sim time for the state of its time.
+  constexpr std::int64_t kPoseWaitNs = 500'000'000;
+  while (!pending_.empty()) {
+    const msg::PointCloud& cloud = pending_.front();
+    const std::int64_t stamp = cloud.header().stamp_ns();
+    const auto body = poses_.at(stamp);
+    // No state will come for it: states of its time or later came (it fell in a gap, or the
+    // estimator was still aligning), the lockstep clock of its time says none was sent, or in
+    // real time it has waited long enough.
+    const bool never = (!body && states_heard_ns_ >= stamp) ||
+                       (lockstep() && simClock().ns() >= stamp && !simClock().stateSent()) ||
+                       (!lockstep() && simClock().ns() - stamp > kPoseWaitNs);
+    // In lockstep the state of its own time, not one carried on to it: runs repeat.
+    const bool wait = lockstep() ? states_heard_ns_ < stamp : !body;
+    if (wait && !never) {
+      return;
+    }
+    integrate(cloud, body,
+              fmt::format("no {} at its time ({:.3f} s)", state_.topic().name, common::toSeconds(stamp)));
+    pending_.pop_front();
+  }
+}
+
+void MappingNode::integrate(const msg::PointCloud& cloud, const std::optional<geometry::Pose3>& body_W,
+                            const std::string& why)
 {
   counters().samples_in++;
   frames_taken_ = cloud.frame() != 0 ? std::max(frames_taken_, cloud.frame()) : frames_taken_ + 1;
   const std::string frame = cloud.frame_id().to_string();
-  const geometry::Quaternion q_WS = dds::toQuaternion(cloud.sensor_q_WS());
+  const geometry::Quaternion q_BS = dds::toQuaternion(cloud.sensor_q_BS());
   std::string problem;
   if (!config_.frames.contains(frame)) {
     problem = "unknown frame '" + frame + "'";
-  } else if (!std::isfinite(q_WS.norm()) || std::abs(q_WS.norm() - 1.0) > 1e-3) {
+  } else if (!std::isfinite(q_BS.norm()) || std::abs(q_BS.norm() - 1.0) > 1e-3) {
     problem = "sensor attitude is not a unit quaternion";
+  } else if (!dds::toVector(cloud.sensor_p_B()).allFinite()) {
+    problem = "sensor position is not finite";
+  } else if (!body_W) {
+    problem = why;
   }
   Scan scan;
   if (problem.empty()) {
-    const geometry::Pose3 sensor{dds::toVector(cloud.sensor_p_W()), q_WS.normalized()};
+    const geometry::Pose3 sensor = *body_W * geometry::Pose3{dds::toVector(cloud.sensor_p_B()), q_BS.normalized()};
     scan.origin_W = sensor.p;
     scan.max_range = cloud.max_range();
     scan.points_W.reserve(cloud.points().size());
@@ -273,20 +333,22 @@ void MappingNode::onWake()
       save();
     }
   }
+  takeStates();
   auto clouds = depth_.takeAll();
-  // A cloud resent by a lockstep plant waiting for us is one we have: known by its frame.
-  std::erase_if(clouds, [this](const msg::PointCloud& c) { return c.frame() != 0 && c.frame() <= frames_taken_; });
-  if (!lockstep() && clouds.size() > 1) {
+  // A cloud resent by a lockstep plant waiting for us is one we have, or one waiting for its
+  // state: known by its frame.
+  const std::uint64_t have = pending_.empty() ? frames_taken_ : std::max(frames_taken_, pending_.back().frame());
+  std::erase_if(clouds, [have](const msg::PointCloud& c) { return c.frame() != 0 && c.frame() <= have; });
+  pending_.insert(pending_.end(), clouds.begin(), clouds.end());
+  if (!lockstep() && pending_.size() > 1) {
     // Behind in real time: the newest cloud carries the freshest view; count the others
     // (integrate() then accounts for every frame up to the newest's number, those the
     // reader's history dropped while we were behind included).
-    skipped_ += clouds.size() - 1;
-    spdlog::debug("mapping: skipped {} older clouds", clouds.size() - 1);
-    clouds.erase(clouds.begin(), clouds.end() - 1);
+    skipped_ += pending_.size() - 1;
+    spdlog::debug("mapping: skipped {} older clouds", pending_.size() - 1);
+    pending_.erase(pending_.begin(), pending_.end() - 1);
   }
-  for (const auto& cloud : clouds) {
-    integrate(cloud);
-  }
+  integratePending();
   reportLockstep();
 }
 

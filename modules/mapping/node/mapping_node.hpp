@@ -4,6 +4,7 @@
 /// The mapping participant: integrates depth clouds into the map, publishes each scan's
 /// change set, a snapshot for late joiners and per-scan stats, and takes part in lockstep.
 
+#include <deque>
 #include <filesystem>
 #include <memory>
 #include <set>
@@ -12,9 +13,11 @@
 #include "quad/dds/lockstep.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
+#include "quad/dds/state_input.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/mapping/mapper.hpp"
+#include "quad/mapping/pose_history.hpp"
 
 namespace quad::mapping {
 
@@ -26,6 +29,7 @@ struct MappingNodeConfig {
   /// Resumed from when it exists at the start, written with every snapshot and on shutdown;
   /// empty: none (a mapper started again begins with an empty map).
   std::filesystem::path checkpoint_file;
+  dds::StateSource state_source = dds::StateSource::kEstimate;  ///< where the body's pose comes from
 };
 
 /// configs/mapping.yaml as written.
@@ -36,6 +40,7 @@ struct MappingParams {
   double snapshot_period_s = 1.0;                        ///< [s] of sim time between snapshots
   std::string save_path;                                 ///< .bt file; empty: never saved
   std::string checkpoint_file;                           ///< empty: none
+  dds::StateSource state_source = dds::StateSource::kEstimate;
 };
 
 /// Each key with its unit, range and the field it fills; the defaults are MappingParams'.
@@ -53,7 +58,13 @@ protected:
   void onStop() override;
 
 private:
-  void integrate(const msg::PointCloud& cloud);
+  /// Takes the vehicle states into the pose history.
+  void takeStates();
+  /// Integrates the clouds waiting for the body's pose at their time, in order; one with no
+  /// state at its time (dropped, or never coming) is refused.
+  void integratePending();
+  /// Integrates one cloud, the body at `body_W` (none: refused, `why`).
+  void integrate(const msg::PointCloud& cloud, const std::optional<geometry::Pose3>& body_W, const std::string& why);
   void reportLockstep();
   void save();
   /// The map as it is, on the latched snapshot topic, stamped `stamp_ns`.
@@ -66,12 +77,16 @@ private:
   MappingNodeConfig config_;
   Mapper mapper_;
   dds::Subscriber<msg::PointCloud> depth_;
+  dds::StateInput state_;
   dds::Subscriber<msg::VehicleCommand> commands_;
   dds::Publisher<msg::MapUpdate> updates_;
   dds::Publisher<msg::MapSnapshot> snapshots_;
   dds::Publisher<msg::MapStats> stats_;
   dds::LockstepReporter lockstep_;
 
+  PoseHistory poses_;
+  std::int64_t states_heard_ns_ = -1;    // the newest state's stamp, an estimate still aligning included
+  std::deque<msg::PointCloud> pending_;  // clouds waiting for the state of their time
   std::uint64_t frames_taken_ = 0;         // depth frames dealt with (integrated, refused or skipped)
   std::int64_t reported_ns_ = -1;
   std::uint64_t update_seq_ = 0;

@@ -5,5 +5,5 @@
 int main(int argc, char** argv)
 {
   using namespace quad::planning;
-  return quad::dds::runNode<PlanningNode>(argc, argv, "planning", planningSchema(), planningConfigFrom);
+  return quad::dds::runNode<PlanningNode>(argc, argv, "planning", planningNodeSchema(), planningConfigFrom);
 }

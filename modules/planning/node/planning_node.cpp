@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "planning_node.hpp"
 
+#include "quad/common/layout.hpp"
+
 #include <algorithm>
 #include <spdlog/spdlog.h>
 
@@ -57,9 +59,25 @@ msg::PlanStatus toMessage(PlanStatus s)
 
 }  // namespace
 
-PlanningParams planningConfigFrom(const common::Params& p)
+const common::ParamTable<PlanningNodeConfig>& planningNodeTable()
 {
-  PlanningParams c = planningParamsOf(p);
+  using N = PlanningNodeConfig;
+  static const common::ParamTable<N> table = [] {
+    common::ParamTable<N> t;
+    t.include(planningTable(), [](N& n) -> PlanningParams& { return n; })
+        .choice("state.source", [](N& n) -> dds::StateSource& { return n.state_source; }, dds::stateSourceNames(),
+                dds::kStateSourceDescription);
+    return t;
+  }();
+  return table;
+}
+
+common::ParamSchema planningNodeSchema() { return planningNodeTable().schema(); }
+
+PlanningNodeConfig planningConfigFrom(const common::Params& p)
+{
+  PlanningNodeConfig c = planningNodeTable().read(p, common::configDir());
+  static_cast<PlanningParams&>(c) = planningParamsOf(p);
   const world::World world = world::loadWorld(c.world_file);
   fitToWorld(c, world.bounds().min, world.bounds().max, vehicle::loadVehicle(c.vehicle_file).radius, p.origin());
   // Readers judge the path stale after the contract's deadline: repeat it twice within it.
@@ -73,14 +91,14 @@ PlanningParams planningConfigFrom(const common::Params& p)
   return c;
 }
 
-PlanningNode::PlanningNode(PlanningParams config, dds::ParticipantOptions options)
+PlanningNode::PlanningNode(PlanningNodeConfig config, dds::ParticipantOptions options)
     : Node("planning", std::move(options)),
       config_(std::move(config)),
       planner_(Lattice(geometry::VoxelGrid(config_.resolution), config_.bounds_min, config_.bounds_max), config_.planner),
       follower_(config_.resolution),
       updates_(participant(), dds::topics::kMapUpdate, waker()),
       snapshots_(participant(), dds::topics::kMapSnapshot, waker()),
-      state_(participant(), dds::topics::kSimState, waker()),
+      state_(participant(), config_.state_source, waker()),
       goal_(participant(), dds::topics::kGoal, waker()),
       reports_(participant(), dds::topics::kLockstep),
       path_(participant(), dds::topics::kPath),
@@ -339,18 +357,19 @@ void PlanningNode::onWake()
   }
   for (const auto& s : state_.takeAll()) {
     // The sim time and the start of every replan: a state stamped past the clock, older than
-    // the last, or not finite is a bad input (a time an hour ahead stopped every replan).
-    const Vector3 p = dds::toVector(s.p_W());
-    if (!p.allFinite() || s.header().stamp_ns() < now_ns_ ||
-        (simClock().seen() && !simClock().vouchesFor(s.header().stamp_ns()))) {
+    // the last, or not finite is a bad input (a time an hour ahead stopped every replan). An
+    // estimate still aligning gives the time only.
+    if (!s.p_W.allFinite() || s.stamp_ns < now_ns_ || (simClock().seen() && !simClock().vouchesFor(s.stamp_ns))) {
       counters().errors++;
       spdlog::warn("{}: sample seq {} rejected: position not finite, or stamp {:.3f} s out of order or "
-                   "past the sim clock ({:.3f} s)", dds::topics::kSimState.info.name,
-                   s.header().seq(), common::toSeconds(s.header().stamp_ns()), common::toSeconds(simClock().ns()));
+                   "past the sim clock ({:.3f} s)", state_.topic().name,
+                   s.seq, common::toSeconds(s.stamp_ns), common::toSeconds(simClock().ns()));
       continue;
     }
-    position_ = p;
-    now_ns_ = s.header().stamp_ns();
+    if (s.aligned) {
+      position_ = s.p_W;
+    }
+    now_ns_ = s.stamp_ns;
   }
   // In lockstep a replan sees every depth cloud published up to its time, so that runs
   // repeat; the clock waits for this node's report. A lost update is not waited for (it

@@ -12,6 +12,7 @@
 #include "quad/dds/module_watch.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
+#include "quad/dds/state_input.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/mapping/map_follower.hpp"
@@ -20,13 +21,23 @@
 
 namespace quad::planning {
 
+/// The node's parameters: the planner's (shared with `quad plan`) and where the vehicle state
+/// comes from.
+struct PlanningNodeConfig : PlanningParams {
+  dds::StateSource state_source = dds::StateSource::kEstimate;
+};
+
+/// configs/planning.yaml as the node reads it: planningTable() and `state.source`.
+const common::ParamTable<PlanningNodeConfig>& planningNodeTable();
+common::ParamSchema planningNodeSchema();
+
 /// The planning parameters of a config: its world's box and its vehicle's radius loaded from
 /// the files it names. Throws common::ConfigError naming the file or key.
-PlanningParams planningConfigFrom(const common::Params& params);
+PlanningNodeConfig planningConfigFrom(const common::Params& params);
 
 class PlanningNode : public dds::Node {
 public:
-  PlanningNode(PlanningParams config, dds::ParticipantOptions options);
+  PlanningNode(PlanningNodeConfig config, dds::ParticipantOptions options);
 
 protected:
   void onWake() override;
@@ -39,12 +50,12 @@ private:
   void replan(std::int64_t t_ns);
   void publish(std::int64_t t_ns, bool changed);
 
-  PlanningParams config_;
+  PlanningNodeConfig config_;
   DStarLite planner_;
   mapping::MapFollower follower_;  // the mapper's classification, from updates and snapshots
   dds::Subscriber<msg::MapUpdate> updates_;
   dds::Subscriber<msg::MapSnapshot> snapshots_;
-  dds::Subscriber<msg::VehicleState> state_;
+  dds::StateInput state_;
   dds::Subscriber<msg::Goal> goal_;
   dds::Subscriber<msg::LockstepReport> reports_;  // polled: the mapper's tell a lost update from a late one
   dds::Publisher<msg::Path> path_;

@@ -77,8 +77,8 @@ msg::PointCloud toMessage(const DepthReading& r, double max_range)
   msg::PointCloud m;
   m.header().stamp_ns(r.t_ns);
   m.frame_id("depth_front");
-  m.sensor_p_W(toMessage(r.scan.sensor_W.p));
-  m.sensor_q_WS(toMessage(r.scan.sensor_W.q));
+  m.sensor_p_B(toMessage(r.sensor_B.p));
+  m.sensor_q_BS(toMessage(r.sensor_B.q));
   m.max_range(static_cast<float>(max_range));
   m.points().reserve(r.scan.points_S.size());
   for (const auto& p : r.scan.points_S) {

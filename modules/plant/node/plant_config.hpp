@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "quad/common/param_table.hpp"
+#include "quad/dds/state_input.hpp"
 #include "quad/plant/simulation.hpp"
 
 namespace quad::plant {
@@ -21,6 +22,9 @@ struct PlantNodeConfig {
   bool lockstep_wait_for_command = true;
   double lockstep_timeout_s = 5.0;              ///< [s] wall time before a lockstep wait is reported
   std::int64_t lockstep_period_ns = 4'000'000;  ///< sim time between lockstep rounds
+  /// What the stack flies on. In lockstep the controller answers it: the true state, or the
+  /// estimate the estimator makes of each IMU sample; the round waits for that answer.
+  dds::StateSource state_source = dds::StateSource::kEstimate;
   std::filesystem::path vehicle_file = "vehicles/x500.yaml";
   std::filesystem::path world_file = "worlds/demo.yaml";
   std::filesystem::path fault_schedule_file;    ///< empty: none

@@ -146,8 +146,16 @@ void PlantNode::publishClock()
   clock.real_time_factor(config_.real_time_factor);
   clock.lockstep(config_.mode == PlantNodeConfig::Mode::kLockstep);
   clock.depth_frames(depth_frames_);
-  clock.state_sent(last_state_ && last_state_->t_ns == sim_->timeNs());
+  clock.state_sent(answeredInputNs() == sim_->timeNs());
   clock_.write(clock);
+}
+
+std::int64_t PlantNode::answeredInputNs() const
+{
+  if (config_.state_source == dds::StateSource::kEstimate) {
+    return last_imu_ ? last_imu_->header().stamp_ns() : -1;
+  }
+  return last_state_ ? last_state_->t_ns : -1;
 }
 
 void PlantNode::publish(const StepOutputs& out)
@@ -165,6 +173,9 @@ void PlantNode::publish(const StepOutputs& out)
     depth_.write(*last_depth_);
     counters().samples_out++;
   }
+  if (out.imu) {
+    last_imu_ = toMessage(*out.imu);  // before the clock, which says whether it was sent
+  }
   if (out.state) {
     last_state_ = out.state;
     last_state_publish_ns_ = common::steadyTimeNs();
@@ -176,7 +187,7 @@ void PlantNode::publish(const StepOutputs& out)
     counters().samples_out++;
   }
   if (out.imu) {
-    imu_.write(toMessage(*out.imu));
+    imu_.write(*last_imu_);
     counters().samples_out++;
   }
   if (out.position) {
@@ -239,8 +250,9 @@ void PlantNode::runLockstep()
     // A round may run once the controller answered the state of its start and every
     // participant finished its work up to then.
     const std::int64_t round_start = round_end_ns_ - config_.lockstep_period_ns;
-    // The controller answers states: a round whose state a fault dropped has nothing to answer.
-    const bool state_sent = last_state_ && last_state_->t_ns >= round_start;
+    // The controller answers states (true ones, or the estimates of IMU samples): a round whose
+    // input a fault dropped has nothing to answer.
+    const bool state_sent = answeredInputNs() >= round_start;
     const bool command_ready =
         !config_.lockstep_wait_for_command || !state_sent || latest_command_stamp_ns_ >= round_start;
     const bool others_ready = !barrier_ || barrier_->poll(round_start);
@@ -253,8 +265,11 @@ void PlantNode::runLockstep()
         if (last_depth_) {
           depth_.write(*last_depth_);
         }
-        if (state_sent) {
+        if (last_state_ && last_state_->t_ns >= round_start) {
           state_.write(toMessage(*last_state_));
+        }
+        if (last_imu_ && last_imu_->header().stamp_ns() >= round_start) {
+          imu_.write(*last_imu_);
         }
         publishClock();
         last_state_publish_ns_ = now;

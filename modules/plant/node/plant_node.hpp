@@ -33,6 +33,9 @@ private:
   void takeInputs();
   void publish(const StepOutputs& out);
   void publishClock();
+  /// The time of the newest input the controller answers (the state, or the IMU sample the
+  /// estimate follows); -1 before the first.
+  std::int64_t answeredInputNs() const;
   void stepOnce();
   void runRealTime(std::int64_t steady_ns);
   void runLockstep();
@@ -63,6 +66,7 @@ private:
   std::uint64_t depth_frames_ = 0;         // depth frames published so far
   std::optional<msg::PointCloud> last_depth_;  // lockstep: resent with the state while a round waits
   std::optional<StateSample> last_state_;  // last state published
+  std::optional<msg::Imu> last_imu_;       // last IMU sample published: on an estimate, resent while a round waits
   std::int64_t last_state_publish_ns_ = 0; // steady time of that publication
 };
 

@@ -271,13 +271,22 @@ StepOutputs Simulation::step()
     last_state_->t_ns = t_ns_;  // stuck: the content freezes, the samples keep coming
     out.state = last_state_;
   }
-  if (due(t_ns_, next_imu_ns_, config_.imu.rate_hz) && !sensorFault(Sensor::kImu, Fault::Kind::kSensorDropout)) {
+  const bool imu_due = due(t_ns_, next_imu_ns_, config_.imu.rate_hz);
+  const std::optional<Vector3> imu_v_before = imu_v_prev_;
+  if (imu_due) {
+    imu_v_prev_ = state_.v_W;
+  }
+  if (imu_due && !sensorFault(Sensor::kImu, Fault::Kind::kSensorDropout)) {
     if (!sensorFault(Sensor::kImu, Fault::Kind::kSensorStuck) || !last_imu_) {
       walkBias(imu_bias_, config_.imu, 1.0 / config_.imu.rate_hz, nav_rng_);
       ImuBias bias = imu_bias_;
       bias.accel += sensorOffset(Sensor::kImu);  // a bias step
-      last_imu_ = ImuReading{t_ns_, measureImu(config_.imu, bias, state_.q_WB, dynamics_.acceleration(state_, after),
-                                               state_.w_B, after.gravity_W, rng_, sensorNoise(Sensor::kImu))};
+      // The accelerometer integrates over its sample period, as real ones do (delta velocity):
+      // a touchdown, which stops the body within a step, shows as the jolt it is.
+      const Vector3 a_W = imu_v_before ? Vector3((state_.v_W - *imu_v_before) * config_.imu.rate_hz)
+                                      : dynamics_.acceleration(state_, after);
+      last_imu_ = ImuReading{t_ns_, measureImu(config_.imu, bias, state_.q_WB, a_W, state_.w_B, after.gravity_W, rng_,
+                                               sensorNoise(Sensor::kImu))};
     }
     last_imu_->t_ns = t_ns_;
     out.imu = last_imu_;
@@ -286,7 +295,9 @@ StepOutputs Simulation::step()
   if (due(t_ns_, next_depth_ns_, config_.depth.rate_hz) &&
       !sensorFault(Sensor::kDepth, Fault::Kind::kSensorDropout)) {
     if (!sensorFault(Sensor::kDepth, Fault::Kind::kSensorStuck) || !last_depth_) {
-      last_depth_ = DepthReading{t_ns_, camera_.captureFrom(world_, cameraPose(), rng_, sensorNoise(Sensor::kDepth))};
+      const geometry::Pose3 sensor_W = cameraPose();
+      last_depth_ = DepthReading{t_ns_, camera_.captureFrom(world_, sensor_W, rng_, sensorNoise(Sensor::kDepth)),
+                                 geometry::Pose3{state_.p_W, state_.q_WB}.inverse() * sensor_W};
     }
     last_depth_->t_ns = t_ns_;
     out.depth = last_depth_;

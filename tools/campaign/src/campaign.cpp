@@ -49,6 +49,10 @@ CampaignRun readRun(const fs::path& summary, const std::string& world, std::uint
   r.optimum_m = optionalNumber(j, "optimum_m");
   r.flown_over_optimum = optionalNumber(j, "flown_over_optimum");
   r.min_clearance_m = j.value("min_clearance_m", 0.0);
+  r.state = j.value("state", "");
+  if (j.contains("estimate") && j["estimate"].is_object()) {
+    r.estimate_rms_m = optionalNumber(j["estimate"], "position_rms_m");
+  }
   r.replans = j.value("paths", 0);
   r.sim_s = j.value("sim_seconds", 0.0);
   r.wall_s = j.value("wall_seconds", 0.0);
@@ -65,10 +69,15 @@ std::vector<CampaignRun> runCampaign(const CampaignOptions& options,
       fs::create_directories(dir);
       const fs::path summary = dir / "summary.json";
       fs::remove(summary);
-      const process::RunResult result = process::run(
-          {options.quad.string(), "launch", options.manifest.string(), "--world", world.string(), "--lockstep", "--seed",
-           std::to_string(seed), "--domain", std::to_string(options.domain), "--quiet", "--wall-timeout",
-           fmt::format("{}", options.wall_timeout_s), "--summary", summary.string(), "--log-dir", (dir / "run").string()});
+      std::vector<std::string> argv{options.quad.string(), "launch", options.manifest.string(), "--world",
+                                    world.string(), "--lockstep", "--seed", std::to_string(seed), "--domain",
+                                    std::to_string(options.domain), "--quiet", "--wall-timeout",
+                                    fmt::format("{}", options.wall_timeout_s), "--summary", summary.string(),
+                                    "--log-dir", (dir / "run").string()};
+      if (!options.state.empty()) {
+        argv.insert(argv.end(), {"--state", options.state});
+      }
+      const process::RunResult result = process::run(argv);
       std::ofstream(dir / "launch.out") << result.output;
       CampaignRun r;
       try {
@@ -90,15 +99,16 @@ std::vector<CampaignRun> runCampaign(const CampaignOptions& options,
 
 std::string table(const std::vector<CampaignRun>& runs)
 {
-  std::string out = fmt::format("{:<14} {:>4}  {:<8} {:>10} {:>12} {:>10} {:>7} {:>8} {:>8}  {}\n", "world", "seed",
-                                "result", "collisions", "flown/opt", "closest_m", "replans", "sim_s", "wall_s", "failure");
+  std::string out = fmt::format("{:<14} {:>4}  {:<8} {:<8} {:>10} {:>12} {:>10} {:>9} {:>7} {:>8} {:>8}  {}\n", "world",
+                                "seed", "result", "state", "collisions", "flown/opt", "closest_m", "est_rms_m", "replans",
+                                "sim_s", "wall_s", "failure");
   int ok = 0;
   for (const CampaignRun& r : runs) {
     ok += r.success ? 1 : 0;
-    out += fmt::format("{:<14} {:>4}  {:<8} {:>10} {:>12} {:>10.2f} {:>7} {:>8.1f} {:>8.1f}  {}\n", r.world, r.seed,
-                       r.success ? "ok" : (r.end.empty() ? "error" : r.end), r.collisions,
-                       orDash(r.flown_over_optimum, "{:.3f}"), r.min_clearance_m, r.replans, r.sim_s, r.wall_s,
-                       r.failure);
+    out += fmt::format("{:<14} {:>4}  {:<8} {:<8} {:>10} {:>12} {:>10.2f} {:>9} {:>7} {:>8.1f} {:>8.1f}  {}\n", r.world,
+                       r.seed, r.success ? "ok" : (r.end.empty() ? "error" : r.end), r.state.empty() ? "-" : r.state,
+                       r.collisions, orDash(r.flown_over_optimum, "{:.3f}"), r.min_clearance_m,
+                       orDash(r.estimate_rms_m, "{:.3f}"), r.replans, r.sim_s, r.wall_s, r.failure);
   }
   out += fmt::format("{} of {} runs succeeded\n", ok, runs.size());
   return out;
@@ -124,6 +134,8 @@ std::string toJson(const std::vector<CampaignRun>& runs)
     row["flown_over_optimum"] =
         r.flown_over_optimum ? nlohmann::ordered_json(*r.flown_over_optimum) : nlohmann::ordered_json(nullptr);
     row["min_clearance_m"] = r.min_clearance_m;
+    row["state"] = r.state;
+    row["estimate_rms_m"] = r.estimate_rms_m ? nlohmann::ordered_json(*r.estimate_rms_m) : nlohmann::ordered_json(nullptr);
     row["replans"] = r.replans;
     row["sim_seconds"] = r.sim_s;
     row["wall_seconds"] = r.wall_s;

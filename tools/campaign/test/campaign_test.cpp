@@ -27,9 +27,13 @@ TEST(Campaign, ASummaryIsReadBackWithItsOptimumAndEnd)
   const fs::path dir = test::scratchDir("quad_campaign_read");
   const auto file = writeSummary(dir, "a.json", R"({"success": true, "end": "success", "failure": "", "collisions": 0,
       "sim_seconds": 30.5, "wall_seconds": 41.0, "path_length_m": 45.3, "optimum_m": 43.1,
-      "flown_over_optimum": 1.051, "paths": 55, "min_clearance_m": 0.54})");
+      "flown_over_optimum": 1.051, "paths": 55, "min_clearance_m": 0.54, "state": "estimate",
+      "estimate": {"samples": 7000, "position_rms_m": 0.021}})");
   const CampaignRun r = readRun(file, "wall", 2, 0);
   EXPECT_TRUE(r.success);
+  EXPECT_EQ(r.state, "estimate");
+  ASSERT_TRUE(r.estimate_rms_m.has_value());
+  EXPECT_DOUBLE_EQ(*r.estimate_rms_m, 0.021);
   EXPECT_EQ(r.seed, 2U);
   EXPECT_EQ(r.replans, 55);
   ASSERT_TRUE(r.flown_over_optimum.has_value());

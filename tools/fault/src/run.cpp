@@ -52,6 +52,7 @@ int runScenario(const FaultOptions& options)
   lo.geofence = scenario.geofence;
   lo.realtime = scenario.mode == "realtime";
   lo.lockstep = scenario.mode == "lockstep";
+  lo.state = scenario.state;
   lo.domain = options.domain;
   lo.wall_timeout_s = options.wall_timeout_s;
   lo.quiet = options.quiet;

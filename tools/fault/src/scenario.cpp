@@ -79,7 +79,7 @@ public:
       r_.throwIfAny();
     }
     r_.onlyKeys(root, "",
-                {"name", "description", "manifest", "world", "mode", "geofence", "set", "end_at", "steps", "outcome"});
+                {"name", "description", "manifest", "world", "mode", "state", "geofence", "set", "end_at", "steps", "outcome"});
     if (root["name"].IsDefined()) {
       if (isName(root["name"])) {
         s.name = root["name"].Scalar();
@@ -95,14 +95,20 @@ public:
     }
     s.world = path(root["world"], "world", false);
     s.geofence = common::readGeofence(root["geofence"], "geofence", r_);
-    if (root["mode"].IsDefined()) {
-      const std::string mode = root["mode"].IsScalar() ? root["mode"].Scalar() : "";
-      if (mode != "realtime" && mode != "lockstep") {
-        r_.problem("mode", root["mode"], "expected realtime or lockstep");
-      } else {
-        s.mode = mode;
+    // A key replacing the manifest's, one of two words.
+    const auto either = [&](const char* key, const char* a, const char* b) -> std::optional<std::string> {
+      if (!root[key].IsDefined()) {
+        return std::nullopt;
       }
-    }
+      const std::string value = root[key].IsScalar() ? root[key].Scalar() : "";
+      if (value != a && value != b) {
+        r_.problem(key, root[key], std::string("expected ") + a + " or " + b);
+        return std::nullopt;
+      }
+      return value;
+    };
+    s.mode = either("mode", "realtime", "lockstep");
+    s.state = either("state", "estimate", "truth");
     if (YAML::Node set = root["set"]; set.IsDefined()) {
       if (!set.IsMap()) {
         r_.problem("set", set, "expected a map of modules to their parameters, e.g. {plant: {wind.steady: '[0, 5, 0]'}}");

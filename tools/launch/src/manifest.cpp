@@ -343,7 +343,7 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
     r.problem("(top level)", root, "expected a map with 'modules'");
     r.throwIfAny();
   }
-  r.onlyKeys(root, "", {"name", "domain", "transport", "discovery", "subnet", "world", "mode", "seed", "grace", "env",
+  r.onlyKeys(root, "", {"name", "domain", "transport", "discovery", "subnet", "world", "mode", "state", "seed", "grace", "env",
                         "security", "network", "hosts", "modules", "mission", "geofence"});
   m.name = r.text(root["name"], "name", origin.stem().string()).value_or("run");
   if (overrides.domain) {
@@ -400,6 +400,8 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
     }
   }
   m.mode = overrides.mode ? *overrides.mode : r.choice(root["mode"], "mode", "lockstep", {"lockstep", "realtime"}).value_or("lockstep");
+  m.state = overrides.state ? *overrides.state
+                            : r.choice(root["state"], "state", "estimate", {"estimate", "truth"}).value_or("estimate");
   if (overrides.seed) {
     m.seed = *overrides.seed;
   } else if (root["seed"]) {
@@ -407,6 +409,7 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
   }
   const std::map<std::string, std::string> vars{{"world", m.world.string()},
                                                 {"mode", m.mode},
+                                                {"state", m.state},
                                                 {"seed", std::to_string(m.seed)},
                                                 {"root", lookup.layout.data.string()},
                                                 {"run_state", kRunStateVariable}};

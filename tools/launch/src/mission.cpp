@@ -207,6 +207,7 @@ std::string toJson(const MissionSummary& s)
   j["end"] = toString(s.end);
   j["failure"] = s.failure;
   j["collisions"] = s.collisions;
+  j["state"] = s.state;
   j["sim_seconds"] = s.sim_s;
   j["wall_seconds"] = s.wall_s;
   j["real_time_factor"] = s.wall_s > 0.0 ? nlohmann::ordered_json(s.sim_s / s.wall_s) : nlohmann::ordered_json(nullptr);
@@ -226,6 +227,19 @@ std::string toJson(const MissionSummary& s)
     processes[p.name] = {{"cpu_seconds", orNull(p.cpu_s)}, {"busy_share", orNull(busyShare(p, s.wall_s))}};
   }
   j["processes"] = processes;
+  if (s.estimate) {
+    const EstimateErrors& e = *s.estimate;
+    j["estimate"] = {{"samples", e.samples},
+                     {"position_rms_m", e.position_rms_m},
+                     {"position_max_m", e.position_max_m},
+                     {"attitude_rms_deg", e.attitude_rms_deg},
+                     {"attitude_max_deg", e.attitude_max_deg},
+                     {"yaw_rms_deg", e.yaw_rms_deg},
+                     {"position_nees_mean", e.position_nees_mean},
+                     {"within_3sigma", e.within_3sigma}};
+  } else {
+    j["estimate"] = nullptr;
+  }
   return j.dump(2) + "\n";
 }
 
@@ -242,21 +256,34 @@ std::string costText(const MissionSummary& s)
   }
   return line.empty() ? "" : "  CPU (share of a core): " + line + "\n";
 }
+
+/// "  estimate against the truth: ...": how far the estimator was off; empty without one.
+std::string estimateText(const MissionSummary& s)
+{
+  if (!s.estimate) {
+    return "";
+  }
+  const EstimateErrors& e = *s.estimate;
+  return fmt::format("  estimate against the truth: position {:.1f} cm RMS (max {:.1f}), attitude {:.2f} deg RMS (max "
+                     "{:.2f}), yaw {:.2f} deg RMS; position NEES {:.2f} (3 if consistent), {:.1f} % within 3 sigma\n",
+                     100.0 * e.position_rms_m, 100.0 * e.position_max_m, e.attitude_rms_deg, e.attitude_max_deg,
+                     e.yaw_rms_deg, e.position_nees_mean, 100.0 * e.within_3sigma);
+}
 }  // namespace
 
 std::string toText(const MissionSummary& s)
 {
   return fmt::format(
       "mission: {} ({})\n{}"
-      "  sim {:.1f} s in {:.1f} s wall ({:.1f}x)\n"
+      "  flown on the {}; sim {:.1f} s in {:.1f} s wall ({:.1f}x)\n"
       "  flown {:.1f} m for a {:.1f} m straight line ({:.2f}x){}; {} paths from the planner\n"
       "  closest approach to an obstacle {:.2f} m; collisions {}; {} mode changes; ends {:.2f} m from the goal\n",
-      s.success ? "SUCCESS" : "FAILED", s.outcome, s.failure.empty() ? "" : "  failure: " + s.failure + "\n", s.sim_s, s.wall_s, s.wall_s > 0 ? s.sim_s / s.wall_s : 0.0,
+      s.success ? "SUCCESS" : "FAILED", s.outcome, s.failure.empty() ? "" : "  failure: " + s.failure + "\n", s.state, s.sim_s, s.wall_s, s.wall_s > 0 ? s.sim_s / s.wall_s : 0.0,
       s.path_length_m, s.straight_line_m, s.straight_line_m > 0 ? s.path_length_m / s.straight_line_m : 0.0,
       s.optimum_m && *s.optimum_m > 0.0
           ? fmt::format(", a {:.1f} m known-map optimum ({:.2f}x)", *s.optimum_m, s.path_length_m / *s.optimum_m)
           : "",
-      s.paths, s.min_clearance_m, s.collisions, s.mode_changes, s.goal_distance_m) + costText(s);
+      s.paths, s.min_clearance_m, s.collisions, s.mode_changes, s.goal_distance_m) + estimateText(s) + costText(s);
 }
 
 }  // namespace quad::launch

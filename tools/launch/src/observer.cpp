@@ -17,11 +17,16 @@ namespace quad::launch {
 
 namespace topics = dds::topics;
 
-/// What the launcher follows from the start: the sim time, the vehicle's state, the modules'
-/// heartbeats.
+/// What the launcher follows from the start: the sim time, the vehicle's state (the truth,
+/// which it alone reads in flight, to score the run), the estimator's state to score it,
+/// the modules' heartbeats.
 struct Observer::Sim {
-  explicit Sim(dds::Participant& p) : state(p, topics::kSimState), clock(p), heartbeats(p, topics::kHeartbeat) {}
+  explicit Sim(dds::Participant& p)
+      : state(p, topics::kSimState), estimate(p, topics::kEstimatedState), clock(p), heartbeats(p, topics::kHeartbeat)
+  {
+  }
   dds::Subscriber<msg::VehicleState> state;
+  dds::Subscriber<msg::EstimatedState> estimate;
   dds::SimClockFollower clock;
   dds::Subscriber<msg::Heartbeat> heartbeats;
 };
@@ -176,9 +181,14 @@ void Observer::update()
     state_ns_ = s.header().stamp_ns();
     position_ = p;
     last_state_ns_ = common::steadyTimeNs();
+    score_.onTruth(state_ns_, p, dds::toQuaternion(s.q_WB()));
     if (tracker_) {
       tracker_->onState(common::toSeconds(s.header().stamp_ns()), p);
     }
+  }
+  for (const auto& e : sim_->estimate.takeAll()) {
+    score_.onEstimate(e.header().stamp_ns(), dds::toVector(e.p_W()), dds::toQuaternion(e.q_WB()),
+                      dds::toVector(e.p_std()), e.aligned());
   }
   if (!tracker_) {
     return;

@@ -402,9 +402,13 @@ std::optional<double> LaunchRun::knownMapOptimum()
     return std::nullopt;
   }
   try {
+    // The planner's parameters only: the node's own (state.source) do not shape a path.
+    const common::ParamSchema planner_schema = planning::planningSchema();
     std::vector<common::ParamOverride> overrides;
     for (const auto& [key, value] : planning->sets) {
-      overrides.push_back({key, value});
+      if (planner_schema.find(key) != nullptr) {
+        overrides.push_back({key, value});
+      }
     }
     const plan::PlanningSetup setup = plan::loadPlanningSetup(planning->config, overrides);
     const plan::KnownMapPlan best = plan::planOnKnownMap(setup.world, setup.params, m_.mission.land);
@@ -547,6 +551,8 @@ int LaunchRun::execute(RunExtension* extension)
   int code = failed_ ? 1 : 0;
   if (auto* mission = observer_->mission()) {
     summary_ = mission->summary(common::toSeconds(common::steadyTimeNs() - start_ns_));
+    summary_->state = m_.state;
+    summary_->estimate = observer_->estimateScore().errors();
     summary_->processes = processCosts();  // before the optimum's search, which the wall time leaves out
     summary_->optimum_m = knownMapOptimum();
     if (ended_by_ && !summary_->success && summary_->end == launch::MissionEnd::kUnfinished) {
@@ -593,6 +599,7 @@ std::optional<launch::Manifest> loadRunManifest(const LaunchOptions& options)
   } else if (options.lockstep) {
     overrides.mode = "lockstep";
   }
+  overrides.state = options.state;
   overrides.seed = options.seed;
   overrides.domain = options.domain;
   overrides.subnet = options.subnet;

@@ -98,6 +98,22 @@ TEST_F(ManifestTest, CommandLineOverridesWin)
   EXPECT_EQ(m.subnet, "10.99.1");
 }
 
+TEST_F(ManifestTest, TheStateFlownOnIsTheEstimateUnlessTheManifestOrTheCommandLineSaysTruth)
+{
+  const std::string text = "modules:\n  control: {set: {state.source: \"${state}\"}}\n";
+  const Manifest estimate = parse(text);
+  EXPECT_EQ(estimate.state, "estimate");
+  ASSERT_EQ(estimate.modules[0].sets.size(), 1U);
+  EXPECT_EQ(estimate.modules[0].sets[0].second, "estimate");
+  EXPECT_EQ(parse("state: truth\n" + text).modules[0].sets[0].second, "truth");
+  ManifestOverrides o;
+  o.state = "truth";
+  EXPECT_EQ(parse("state: estimate\n" + text, o).state, "truth");
+  const auto p = problems("state: guess\n" + text);
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find(":state: guess:"), std::string::npos) << p[0];
+}
+
 TEST_F(ManifestTest, UnknownKeyIsRefusedWithFileAndKey)
 {
   const auto p = problems("modules:\n  control: {respawns: 2}\n");

@@ -15,6 +15,7 @@
 #include "quad/common/geofence.hpp"
 #include "quad/control/dead_reckoning.hpp"
 #include "quad/control/geometric_controller.hpp"
+#include "quad/control/land_detector.hpp"
 #include "quad/control/mixer.hpp"
 #include "quad/control/modes.hpp"
 #include "quad/control/path_follower.hpp"
@@ -68,6 +69,8 @@ struct FlightControllerConfig {
   /// The keep-in volume: leaving it holds, then returns (ModeConfig::geofence_return_after).
   common::Geofence geofence;
   BatteryPolicy battery;
+  /// Judges ground contact when the states do not tell it (an estimate).
+  LandDetectorConfig land_detector;
   /// [s] the operator's station, once heard, silent this long: the link is lost and
   /// ModeConfig::link_loss acts (PX4's COM_DL_LOSS_T); 0: never.
   double link_loss_after = 10.0;
@@ -114,9 +117,12 @@ class FlightController {
 public:
   FlightController(const vehicle::VehicleParams& vehicle, FlightControllerConfig config);
 
-  /// A vehicle state at sim time t [s]. Rejected (false, counted) when non-finite, the
-  /// quaternion is not unit within 1e-3, or t goes back.
-  bool onState(const VehicleState& state, bool landed, double t);
+  /// A vehicle state at sim time t [s], with its ground contact when the source knows it (the
+  /// plant's truth); without, the land detector judges it. Rejected (false, counted) when
+  /// non-finite, the quaternion is not unit within 1e-3, or t goes back.
+  bool onState(const VehicleState& state, std::optional<bool> landed, double t);
+  /// Whether the vehicle is taken to rest on the ground.
+  bool landed() const { return landed_; }
   /// A planned path of the planner's status `kind` (waypoints are meaningful only when OK).
   /// The follower flies the path only up to `known_free_m` [m of arc length from its first
   /// waypoint]: there it leaves space the map knows free, and the vehicle must be able to stop
@@ -186,6 +192,9 @@ private:
 
   std::optional<VehicleState> state_;
   bool landed_ = true;
+  LandDetector land_detector_;
+  bool judge_landing_ = false;  ///< the states do not say; the land detector judges
+  double thrust_ratio_ = 0.0;   ///< the thrust last commanded, a fraction of the weight
   double state_t_ = -1.0;
   bool state_late_ = false;  // a deadline event since the last state
   bool path_late_ = false;   // a deadline event since the last path

@@ -22,7 +22,7 @@ inline constexpr auto kSimClock = makeTopic<SimClock>(
     "Simulation time, once per plant step");
 inline constexpr auto kSimState = makeTopic<VehicleState>(
     "quad/sim/state", "state", 250.0, Owner::kPlant,
-    "Ground-truth vehicle state", 0.1);
+    "Ground-truth vehicle state, for scoring: modules fly on it only with state.source: truth", 0.1);
 inline constexpr auto kSimImu = makeTopic<Imu>(
     "quad/sim/imu", "sensor", 250.0, Owner::kPlant,
     "Simulated IMU");
@@ -43,7 +43,7 @@ inline constexpr auto kSimBattery = makeTopic<BatteryState>(
     "Flight battery: voltage under load, current, charge left", 0.5);
 inline constexpr auto kSimDepth = makeTopic<PointCloud>(
     "quad/sim/depth", "scan", 10.0, Owner::kPlant,
-    "Depth sensor point cloud with the sensor pose");
+    "Depth sensor point cloud with the sensor's pose on the body");
 inline constexpr auto kSimEvents = makeTopic<SimEvent>(
     "quad/sim/events", "events", 0.0, Owner::kPlant,
     "Collisions, ground contact, faults applied");

@@ -87,6 +87,9 @@ struct MagReading {
 struct DepthReading {
   std::int64_t t_ns = 0;
   DepthScan scan;
+  /// The sensor's pose on the body at capture: its mount, turned by the gimbal (what the
+  /// gimbal's encoders report); where the body is, the state says.
+  geometry::Pose3 sensor_B;
 };
 
 /// What the pack's monitor reads.
@@ -180,6 +183,7 @@ private:
   SimulationConfig config_;
   DepthCamera camera_;
   std::optional<Gimbal> gimbal_;
+  std::optional<Vector3> imu_v_prev_;  ///< the velocity at the last IMU sample's time (delta velocity)
   CommandGuard guard_;
   std::mt19937_64 rng_;
   Wind wind_;  // its own generator: turbulence on or off leaves the sensors' draws as they were

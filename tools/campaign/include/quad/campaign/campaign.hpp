@@ -21,6 +21,7 @@ struct CampaignOptions {
   int domain = 0;                   ///< the DDS domain of every run (they run one at a time)
   std::filesystem::path dir;        ///< a folder per run (logs, summary.json)
   double wall_timeout_s = 600.0;    ///< a run still going after this fails
+  std::string state;                ///< `quad launch --state`: estimate or truth; empty: the manifest's
 };
 
 /// One run, from its summary and exit status.
@@ -39,6 +40,8 @@ struct CampaignRun {
   int replans = 0;                  ///< path versions the planner published
   double sim_s = 0.0;
   double wall_s = 0.0;
+  std::string state;                ///< what the run flew on (the summary's `state`)
+  std::optional<double> estimate_rms_m;  ///< the estimate's position error, RMS (summary's estimate)
 };
 
 /// The runs' summaries read back: a summary.json as `quad launch --summary` writes it.

@@ -117,6 +117,7 @@ struct Scenario {
   std::filesystem::path manifest;             ///< absolute
   std::optional<std::filesystem::path> world; ///< absolute; replaces the manifest's
   std::optional<std::string> mode;            ///< "realtime" | "lockstep"; replaces the manifest's
+  std::optional<std::string> state;           ///< "estimate" | "truth"; replaces the manifest's
   std::optional<common::Geofence> geofence;   ///< the keep-in volume; replaces the manifest's
   std::optional<double> end_s;                ///< sim time to end the run at (before the mission ends)
   /// Per module, parameters it gets over the manifest's (`--set key=value`): the weather,

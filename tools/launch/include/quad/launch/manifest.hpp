@@ -70,6 +70,8 @@ struct Manifest {
   std::string subnet = "10.77.0";   ///< netns hosts: <subnet>.1 the bridge, .2... the hosts
   std::filesystem::path world;      ///< ${world}; empty when the manifest names none
   std::string mode = "lockstep";    ///< ${mode}: lockstep | realtime
+  /// ${state}: what the stack flies on, estimate | truth (the modules' state.source)
+  std::string state = "estimate";
   std::uint64_t seed = 1;           ///< ${seed}: for the modules' random draws (the plant's sim.seed)
   double grace_s = 5.0;             ///< SIGTERM to SIGKILL
   /// DDS Security for every process of the run (QUAD_SECURITY_DIR): the folder of
@@ -104,6 +106,7 @@ inline constexpr const char* kRunStateVariable = "${run_state}";
 struct ManifestOverrides {
   std::optional<std::filesystem::path> world;
   std::optional<std::string> mode;
+  std::optional<std::string> state;
   std::optional<std::uint64_t> seed;
   std::optional<int> domain;
   std::optional<std::string> subnet;
@@ -124,7 +127,7 @@ struct ProgramLookup {
 std::filesystem::path findManifest(const std::string& name_or_path, const common::Layout& layout);
 
 /// Reads and validates a manifest. Relative paths are relative to the manifest's folder;
-/// `${world}`, `${mode}`, `${seed}` and `${root}` are expanded in module args, sets and environment;
+/// `${world}`, `${mode}`, `${state}`, `${seed}` and `${root}` are expanded in module args, sets and environment;
 /// `${run_state}` is left for the run (kRunStateVariable).
 /// Throws common::ConfigError listing every problem.
 Manifest loadManifest(const std::filesystem::path& file, const ManifestOverrides& overrides,

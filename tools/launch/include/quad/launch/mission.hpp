@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include "quad/launch/estimate_score.hpp"
 #include "quad/launch/manifest.hpp"
 #include "quad/world/world.hpp"
 
@@ -38,6 +39,7 @@ struct MissionSummary {
   std::string outcome;          ///< "landed at the goal", "timed out 3.2 m from the goal", ...
   std::string failure;          ///< why it failed, in words ("" when it succeeded)
   int collisions = 0;
+  std::string state;            ///< what the stack flew on: "estimate" or "truth" (the manifest's ${state})
   double sim_s = 0.0;           ///< sim time when the mission ended
   double wall_s = 0.0;
   double path_length_m = 0.0;   ///< flown, from the vehicle states
@@ -49,6 +51,7 @@ struct MissionSummary {
   std::vector<std::string> modes;  ///< "t MODE" in order
   double goal_distance_m = 0.0; ///< at the end
   std::vector<ProcessCost> processes;  ///< filled by the launcher once its processes ended
+  std::optional<EstimateErrors> estimate;  ///< the estimator against the truth; none without an estimator
 };
 
 class MissionTracker {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "quad/launch/estimate_score.hpp"
 #include "quad/launch/mission.hpp"
 #include "quad/dds/participant.hpp"
 
@@ -58,6 +59,8 @@ public:
   std::int64_t simTimeNs() const;  ///< the newest sim time the plant's clock told
   /// The vehicle's position in the newest state the clock vouches for.
   const Eigen::Vector3d& position() const { return position_; }
+  /// The estimator's state against the truth, so far (whatever the stack flies on).
+  const EstimateScore& estimateScore() const { return score_; }
 
 private:
   struct Sim;
@@ -71,6 +74,7 @@ private:
   std::int64_t next_operator_beat_ns_ = 0;  // sim time the station's next heartbeat is due
   std::int64_t state_ns_ = 0;  // stamp of the newest state taken
   Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
+  EstimateScore score_;
 };
 
 }  // namespace quad::launch

@@ -33,6 +33,7 @@ struct LaunchOptions {
   std::optional<std::string> world;    ///< replaces the manifest's world
   bool realtime = false;               ///< mode realtime instead of the manifest's
   bool lockstep = false;               ///< mode lockstep instead of the manifest's
+  std::optional<std::string> state;    ///< ${state} (estimate | truth) instead of the manifest's
   std::optional<std::uint64_t> seed;   ///< ${seed} instead of the manifest's
   std::optional<int> domain;           ///< replaces the manifest's and the environment's
   std::optional<std::string> subnet;   ///< replaces the manifest's netns subnet

@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/// @file
+/// Whether the vehicle rests on the ground, judged from what the controller knows (PX4's land
+/// detector, reduced to its core): a state estimate says where the vehicle is, not whether it
+/// touches the ground. In a landing it has landed once it stopped sinking while the controller
+/// asks for less thrust than its weight (the ground holds it up), for a while. Taking off, it
+/// leaves the ground. The first state, before any command, is judged by height and speed
+/// (a controller started while the vehicle flies must not take it for landed).
+
+#include "quad/control/geometric_controller.hpp"
+#include "quad/control/modes.hpp"
+
+namespace quad::control {
+
+struct LandDetectorConfig {
+  double max_vertical_speed = 0.2;  ///< [m/s] sinking or climbing slower than this ...
+  double max_thrust = 0.9;          ///< ... on less than this fraction of the weight ...
+  double hold_time = 0.5;           ///< [s] ... for this long: landed
+  /// [m] The first state: on the ground when below this height above the ground plane (z = 0)
+  /// and slower than max_vertical_speed in every direction.
+  double ground_clearance = 0.3;
+};
+
+class LandDetector {
+public:
+  explicit LandDetector(LandDetectorConfig config = {}) : config_(config) {}
+
+  /// A tick at time t [s] in `mode` with the state `s` and the thrust the controller last
+  /// commanded, as a fraction of the weight. Returns whether the vehicle is landed.
+  bool update(double t, Mode mode, const VehicleState& s, double thrust_ratio);
+  bool landed() const { return landed_; }
+
+private:
+  LandDetectorConfig config_;
+  bool judged_ = false;
+  bool landed_ = true;
+  double still_since_ = -1.0;  ///< [s] the landing conditions have held since; < 0: they do not
+};
+
+}  // namespace quad::control

@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "quad/control/land_detector.hpp"
+
+#include <gtest/gtest.h>
+
+namespace quad::control {
+namespace {
+
+VehicleState at(double z, double vz)
+{
+  VehicleState s;
+  s.p_W = Vector3(1.0, 2.0, z);
+  s.v_W = Vector3(0.0, 0.0, vz);
+  s.q_WB = Quaternion::identity();
+  return s;
+}
+
+TEST(LandDetector, TheFirstStateIsJudgedByHeightAndSpeed)
+{
+  LandDetector ground;
+  EXPECT_TRUE(ground.update(0.0, Mode::kDisarmed, at(0.05, 0.0), 0.0));
+  LandDetector flying;
+  EXPECT_FALSE(flying.update(0.0, Mode::kDisarmed, at(2.0, 0.0), 0.0));
+  LandDetector falling;
+  EXPECT_FALSE(falling.update(0.0, Mode::kDisarmed, at(0.1, -1.0), 0.0));
+}
+
+TEST(LandDetector, TakingOffLeavesTheGroundAndALandingEndsOnlyAfterTheHold)
+{
+  LandDetectorConfig c;
+  LandDetector d(c);
+  ASSERT_TRUE(d.update(0.0, Mode::kIdle, at(0.0, 0.0), 0.0));
+  EXPECT_FALSE(d.update(0.1, Mode::kTakeoff, at(0.0, 0.0), 1.1));
+  // Sinking at the landing speed, or still but holding its weight: not landed.
+  double t = 1.0;
+  for (; t < 5.0; t += 0.004) {
+    ASSERT_FALSE(d.update(t, Mode::kLand, at(1.0, -0.5), 0.95));
+  }
+  for (; t < 10.0; t += 0.004) {
+    ASSERT_FALSE(d.update(t, Mode::kLand, at(0.0, 0.0), 0.95));
+  }
+  // Still on less thrust than the limit: landed once it held for hold_time, not before.
+  const double still = t;
+  while (!d.update(t, Mode::kLand, at(0.0, 0.01), 0.5)) {
+    t += 0.004;
+    ASSERT_LT(t, still + 2.0);
+  }
+  EXPECT_GE(t - still, c.hold_time - 1e-9);
+  EXPECT_LT(t - still, c.hold_time + 0.01);
+  // It stays landed on the ground (IDLE), and takes off again.
+  EXPECT_TRUE(d.update(t + 1.0, Mode::kIdle, at(0.0, 0.0), 0.0));
+  EXPECT_FALSE(d.update(t + 2.0, Mode::kTakeoff, at(0.0, 0.0), 1.2));
+}
+
+TEST(LandDetector, AMomentOfStillnessInTheDescentIsNotALanding)
+{
+  LandDetector d;
+  d.update(0.0, Mode::kHover, at(2.0, 0.0), 1.0);
+  double t = 0.0;
+  for (int cycle = 0; cycle < 10; ++cycle) {
+    for (int i = 0; i < 50; ++i, t += 0.004) {  // 0.2 s still on low thrust (starting the descent)
+      ASSERT_FALSE(d.update(t, Mode::kLand, at(2.0, -0.05), 0.8));
+    }
+    ASSERT_FALSE(d.update(t, Mode::kLand, at(1.8, -0.5), 0.8));  // then sinking
+    t += 0.004;
+  }
+}
+
+}  // namespace
+}  // namespace quad::control

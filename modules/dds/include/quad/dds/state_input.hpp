@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/// @file
+/// The vehicle state a module flies on: the estimator's (quad/estimation/state), or, to
+/// compare against it, the plant's ground truth (quad/sim/state). One reader, either topic,
+/// one sample type, so control, planning and mapping switch with one parameter.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "quad/dds/subscriber.hpp"
+#include "quad/dds/topics.hpp"
+#include "quad/geometry/quaternion.hpp"
+
+namespace quad::dds {
+
+enum class StateSource { kEstimate, kTruth };
+
+/// "estimate", "truth": the names a config's `state.source` takes (common::ParamTable::choice).
+std::vector<std::pair<std::string, StateSource>> stateSourceNames();
+const char* toString(StateSource s);
+/// What `state.source` means, for every module's parameter table.
+inline constexpr const char* kStateSourceDescription =
+    "the vehicle state flown on: the estimator's (quad/estimation/state), or the plant's ground truth "
+    "(quad/sim/state) to compare against it";
+/// The topic a source is read from.
+const TopicInfo& stateTopic(StateSource s);
+
+/// One vehicle state, whichever the source.
+struct StateSample {
+  std::int64_t stamp_ns = 0;
+  std::uint64_t seq = 0;
+  /// The truth always; an estimate once the filter is aligned (before, nothing else holds).
+  bool aligned = true;
+  /// An estimate fit to fly on: aligned, IMU alive, covariance within its bounds (the truth: true).
+  bool healthy = true;
+  geometry::Vector3 p_W = geometry::Vector3::Zero();  ///< [m]
+  geometry::Vector3 v_W = geometry::Vector3::Zero();  ///< [m/s]
+  geometry::Quaternion q_WB;                          ///< body to world
+  geometry::Vector3 w_B = geometry::Vector3::Zero();  ///< [rad/s]
+  /// The plant's ground contact: the truth only. On an estimate the reader judges it.
+  std::optional<bool> landed;
+};
+
+/// Reads the chosen source's topic.
+class StateInput {
+public:
+  StateInput(Participant& participant, StateSource source, Waker* waker);
+
+  /// Every unread sample, oldest first.
+  std::vector<StateSample> takeAll();
+  StateSource source() const { return source_; }
+  const TopicInfo& topic() const { return stateTopic(source_); }
+
+private:
+  StateSource source_;
+  std::optional<Subscriber<msg::VehicleState>> truth_;
+  std::optional<Subscriber<msg::EstimatedState>> estimate_;
+};
+
+}  // namespace quad::dds

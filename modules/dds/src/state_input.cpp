@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "quad/dds/state_input.hpp"
+
+#include "quad/dds/geometry_messages.hpp"
+
+namespace quad::dds {
+
+std::vector<std::pair<std::string, StateSource>> stateSourceNames()
+{
+  return {{"estimate", StateSource::kEstimate}, {"truth", StateSource::kTruth}};
+}
+
+const char* toString(StateSource s) { return s == StateSource::kTruth ? "truth" : "estimate"; }
+
+const TopicInfo& stateTopic(StateSource s)
+{
+  return s == StateSource::kTruth ? topics::kSimState.info : topics::kEstimatedState.info;
+}
+
+StateInput::StateInput(Participant& participant, StateSource source, Waker* waker) : source_(source)
+{
+  if (source == StateSource::kTruth) {
+    truth_.emplace(participant, topics::kSimState, waker);
+  } else {
+    estimate_.emplace(participant, topics::kEstimatedState, waker);
+  }
+}
+
+std::vector<StateSample> StateInput::takeAll()
+{
+  std::vector<StateSample> out;
+  if (truth_) {
+    for (const auto& m : truth_->takeAll()) {
+      StateSample s;
+      s.stamp_ns = m.header().stamp_ns();
+      s.seq = m.header().seq();
+      s.p_W = toVector(m.p_W());
+      s.v_W = toVector(m.v_W());
+      s.q_WB = toQuaternion(m.q_WB());
+      s.w_B = toVector(m.w_B());
+      s.landed = m.landed();
+      out.push_back(s);
+    }
+    return out;
+  }
+  for (const auto& m : estimate_->takeAll()) {
+    StateSample s;
+    s.stamp_ns = m.header().stamp_ns();
+    s.seq = m.header().seq();
+    s.aligned = m.aligned();
+    s.healthy = m.aligned() && m.imu_ok() && m.covariance_ok();
+    s.p_W = toVector(m.p_W());
+    s.v_W = toVector(m.v_W());
+    s.q_WB = toQuaternion(m.q_WB());
+    s.w_B = toVector(m.w_B());
+    out.push_back(s);
+  }
+  return out;
+}
+
+}  // namespace quad::dds

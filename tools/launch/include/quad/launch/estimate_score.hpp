@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/// @file
+/// How far the estimator's state was from the truth over a run, and whether its own 1σ said
+/// so: each estimate is paired with the true state of the same stamp (both follow the plant's
+/// steps) and scored while the filter is aligned.
+
+#include <cstdint>
+#include <map>
+#include <optional>
+
+#include "quad/geometry/quaternion.hpp"
+
+namespace quad::launch {
+
+struct EstimateErrors {
+  std::uint64_t samples = 0;          ///< estimates paired with a true state
+  double position_rms_m = 0.0;        ///< of the position error's norm
+  double position_max_m = 0.0;
+  double attitude_rms_deg = 0.0;      ///< of the rotation between estimate and truth
+  double attitude_max_deg = 0.0;
+  double yaw_rms_deg = 0.0;           ///< of the heading error alone
+  /// Mean position NEES, Σ (e_i / σ_i)² over the axes with the estimate's per-axis 1σ: 3 for
+  /// a consistent filter, more for an overconfident one.
+  double position_nees_mean = 0.0;
+  /// Share of samples whose position error is within 3σ on every axis.
+  double within_3sigma = 0.0;
+};
+
+class EstimateScore {
+public:
+  /// The true body position [m] and attitude at `t_ns`.
+  void onTruth(std::int64_t t_ns, const geometry::Vector3& p_W, const geometry::Quaternion& q_WB);
+  /// An estimate at `t_ns` with its per-axis position 1σ [m]; not aligned: not scored.
+  void onEstimate(std::int64_t t_ns, const geometry::Vector3& p_W, const geometry::Quaternion& q_WB,
+                  const geometry::Vector3& p_std, bool aligned);
+  /// Nothing before the first pair.
+  std::optional<EstimateErrors> errors() const;
+
+private:
+  struct Pose {
+    geometry::Vector3 p;
+    geometry::Quaternion q;
+    geometry::Vector3 std;
+  };
+  void score(const Pose& truth, const Pose& estimate);
+  /// Samples waiting for their other half, by stamp; bounded.
+  std::map<std::int64_t, Pose> truths_;
+  std::map<std::int64_t, Pose> estimates_;
+  std::uint64_t n_ = 0;
+  double sum_p2_ = 0.0;
+  double max_p_ = 0.0;
+  double sum_a2_ = 0.0;
+  double max_a_ = 0.0;
+  double sum_yaw2_ = 0.0;
+  double sum_nees_ = 0.0;
+  std::uint64_t within_ = 0;
+};
+
+}  // namespace quad::launch

@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "quad/launch/estimate_score.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace quad::launch {
+namespace {
+
+using geometry::Quaternion;
+using geometry::Vector3;
+
+Quaternion yawed(double deg)
+{
+  const double half = deg * std::numbers::pi / 360.0;
+  return {std::cos(half), 0.0, 0.0, std::sin(half)};
+}
+
+TEST(EstimateScore, AConstantErrorIsItsOwnRmsAndMaxAndTheNeesFollowsTheSigma)
+{
+  EstimateScore s;
+  EXPECT_FALSE(s.errors()) << "nothing paired yet";
+  for (std::int64_t k = 0; k < 500; ++k) {
+    const std::int64_t t = k * 4'000'000;
+    const Vector3 p(0.1 * static_cast<double>(k), 1.0, 2.0);
+    // Either side may come first.
+    if (k % 2 == 0) {
+      s.onTruth(t, p, yawed(30.0));
+      s.onEstimate(t, p + Vector3(0.03, 0.0, 0.04), yawed(32.0), Vector3(0.015, 0.01, 0.02), true);
+    } else {
+      s.onEstimate(t, p + Vector3(0.03, 0.0, 0.04), yawed(32.0), Vector3(0.015, 0.01, 0.02), true);
+      s.onTruth(t, p, yawed(30.0));
+    }
+  }
+  const auto e = s.errors();
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->samples, 500U);
+  EXPECT_NEAR(e->position_rms_m, 0.05, 1e-9);
+  EXPECT_NEAR(e->position_max_m, 0.05, 1e-9);
+  EXPECT_NEAR(e->attitude_rms_deg, 2.0, 1e-6);
+  EXPECT_NEAR(e->attitude_max_deg, 2.0, 1e-6);
+  EXPECT_NEAR(e->yaw_rms_deg, 2.0, 1e-6);
+  EXPECT_NEAR(e->position_nees_mean, 4.0 + 0.0 + 4.0, 1e-6);  // 2σ on x and z
+  EXPECT_NEAR(e->within_3sigma, 1.0, 1e-12);
+}
+
+TEST(EstimateScore, OnlyAlignedEstimatesWithATruthOfTheirStampCount)
+{
+  EstimateScore s;
+  s.onTruth(0, Vector3::Zero(), Quaternion::identity());
+  s.onEstimate(0, Vector3(5, 0, 0), Quaternion::identity(), Vector3::Constant(0.1), false);  // still aligning
+  s.onEstimate(4'000'000, Vector3(5, 0, 0), Quaternion::identity(), Vector3::Constant(0.1), true);  // no truth
+  EXPECT_FALSE(s.errors());
+  s.onTruth(8'000'000, Vector3::Zero(), Quaternion::identity());
+  s.onEstimate(8'000'000, Vector3(0, 0.5, 0), Quaternion::identity(), Vector3::Constant(0.1), true);
+  const auto e = s.errors();
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->samples, 1U);
+  EXPECT_NEAR(e->position_max_m, 0.5, 1e-12);
+  EXPECT_NEAR(e->position_nees_mean, 25.0, 1e-9);
+  EXPECT_EQ(e->within_3sigma, 0.0) << "5σ off on y";
+}
+
+}  // namespace
+}  // namespace quad::launch

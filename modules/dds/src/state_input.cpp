@@ -26,34 +26,35 @@ StateInput::StateInput(Participant& participant, StateSource source, Waker* wake
   }
 }
 
+namespace {
+/// The fields both state messages have.
+template <typename Message>
+StateSample sampleOf(const Message& m)
+{
+  StateSample s;
+  s.stamp_ns = m.header().stamp_ns();
+  s.seq = m.header().seq();
+  s.p_W = toVector(m.p_W());
+  s.v_W = toVector(m.v_W());
+  s.q_WB = toQuaternion(m.q_WB());
+  s.w_B = toVector(m.w_B());
+  return s;
+}
+}  // namespace
+
 std::vector<StateSample> StateInput::takeAll()
 {
   std::vector<StateSample> out;
   if (truth_) {
     for (const auto& m : truth_->takeAll()) {
-      StateSample s;
-      s.stamp_ns = m.header().stamp_ns();
-      s.seq = m.header().seq();
-      s.p_W = toVector(m.p_W());
-      s.v_W = toVector(m.v_W());
-      s.q_WB = toQuaternion(m.q_WB());
-      s.w_B = toVector(m.w_B());
-      s.landed = m.landed();
-      out.push_back(s);
+      out.push_back(sampleOf(m));
+      out.back().landed = m.landed();
     }
     return out;
   }
   for (const auto& m : estimate_->takeAll()) {
-    StateSample s;
-    s.stamp_ns = m.header().stamp_ns();
-    s.seq = m.header().seq();
-    s.aligned = m.aligned();
-    s.healthy = m.aligned() && m.imu_ok() && m.covariance_ok();
-    s.p_W = toVector(m.p_W());
-    s.v_W = toVector(m.v_W());
-    s.q_WB = toQuaternion(m.q_WB());
-    s.w_B = toVector(m.w_B());
-    out.push_back(s);
+    out.push_back(sampleOf(m));
+    out.back().aligned = m.aligned();
   }
   return out;
 }

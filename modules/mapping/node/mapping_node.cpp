@@ -190,7 +190,8 @@ void MappingNode::integratePending()
       return;
     }
     integrate(cloud, body,
-              fmt::format("no {} at its time ({:.3f} s)", state_.topic().name, common::toSeconds(stamp)));
+              body ? std::string() : fmt::format("no {} at its time ({:.3f} s)", state_.topic().name,
+                                                 common::toSeconds(stamp)));
     pending_.pop_front();
   }
 }

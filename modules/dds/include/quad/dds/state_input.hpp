@@ -35,8 +35,6 @@ struct StateSample {
   std::uint64_t seq = 0;
   /// The truth always; an estimate once the filter is aligned (before, nothing else holds).
   bool aligned = true;
-  /// An estimate fit to fly on: aligned, IMU alive, covariance within its bounds (the truth: true).
-  bool healthy = true;
   geometry::Vector3 p_W = geometry::Vector3::Zero();  ///< [m]
   geometry::Vector3 v_W = geometry::Vector3::Zero();  ///< [m/s]
   geometry::Quaternion q_WB;                          ///< body to world

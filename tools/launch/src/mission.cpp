@@ -65,6 +65,11 @@ void MissionTracker::onMode(double t, const std::string& mode, const std::string
   progress_.push_back(fmt::format("t = {:.1f} s: {} -> {}", t, mode_.empty() ? "start" : mode_, mode));
   modes_.push_back(fmt::format("{:.2f} {}", t, mode));
   const bool was_landing = mode_ == "LAND" || mode_ == "FAILSAFE_LAND";
+  // The controller gives up on a goal the planner calls unreachable by returning (or
+  // landing); a path the planner finds again while it does so does not undo that.
+  if ((mode == "RETURN" || mode == "LAND") && gave_up_.empty()) {
+    gave_up_ = no_path_;
+  }
   mode_ = mode;
   if (was_landing && mode == "IDLE") {
     const double to_goal = last_p_ ? (last_p_->head<2>() - goal_.head<2>()).norm() : 0.0;
@@ -73,8 +78,8 @@ void MissionTracker::onMode(double t, const std::string& mode, const std::string
     } else if (!ended_by_.empty()) {
       const std::string why = fmt::format("{} at t = {:.1f} s", ended_by_, ended_by_t_);
       finish(MissionEnd::kFailed, fmt::format("landed {:.2f} m from the goal: {}", to_goal, why), why);
-    } else if (!no_path_.empty()) {
-      finish(MissionEnd::kNoPath, fmt::format("landed {:.2f} m from the goal: {}", to_goal, no_path_), no_path_);
+    } else if (const std::string& why = gave_up_.empty() ? no_path_ : gave_up_; !why.empty()) {
+      finish(MissionEnd::kNoPath, fmt::format("landed {:.2f} m from the goal: {}", to_goal, why), why);
     } else {
       finish(MissionEnd::kFailed, fmt::format("landed {:.2f} m from the goal", to_goal), "landed short of the goal");
     }

@@ -124,6 +124,43 @@ TEST(MissionTracker, LandingAfterLeavingTheGeofenceFailsSayingSo)
   EXPECT_EQ(s.failure, "the vehicle left the geofence at t = 4.0 s");
 }
 
+TEST(MissionTracker, AGoalGivenUpForNoPathStaysNoPathWhenThePlannerFindsOneOnTheWayBack)
+{
+  const auto w = world();
+  MissionTracker t(mission(true), w, 0.0);
+  t.onMode(0.0, "MISSION");
+  fly(t, 0.0, {0, 0, 2}, {4, 0, 2});
+  t.onPath(3, "no path: known-occupied space seals the goal off");
+  t.onMode(4.0, "HOVER");
+  t.onMode(6.0, "RETURN");
+  t.onPath(4);  // a cell of the map flickers free while the vehicle returns
+  fly(t, 6.0, {4, 0, 2}, {0, 0, 2});
+  t.onMode(10.0, "LAND");
+  fly(t, 10.0, {0, 0, 2}, {0, 0, 0});
+  t.onMode(12.0, "IDLE");
+  ASSERT_TRUE(t.finished());
+  const MissionSummary s = t.summary(1.0);
+  EXPECT_EQ(s.end, MissionEnd::kNoPath) << s.outcome;
+  EXPECT_EQ(s.failure, "no path: known-occupied space seals the goal off");
+}
+
+TEST(MissionTracker, LandingShortWithoutAReasonFailsAsSuch)
+{
+  const auto w = world();
+  MissionTracker t(mission(true), w, 0.0);
+  t.onMode(0.0, "MISSION");
+  t.onPath(3, "no path: known-occupied space seals the goal off");
+  fly(t, 0.0, {0, 0, 2}, {4, 0, 2});
+  t.onPath(4);  // the planner found a way again and the mission went on
+  t.onMode(4.0, "LAND");
+  fly(t, 4.0, {4, 0, 2}, {4, 0, 0});
+  t.onMode(6.0, "IDLE");
+  ASSERT_TRUE(t.finished());
+  const MissionSummary s = t.summary(1.0);
+  EXPECT_EQ(s.end, MissionEnd::kFailed) << s.outcome;
+  EXPECT_EQ(s.failure, "landed short of the goal");
+}
+
 TEST(GoalProblem, AGoalOrStartOutsideTheGeofenceIsNamed)
 {
   const auto w = world();  // start (0, 0, 0), goal (10, 0, 2)

@@ -107,9 +107,10 @@ private:
   MissionEnd end_ = MissionEnd::kUnfinished;
   std::string outcome_;
   std::string failure_;
-  std::string no_path_;  // the planner's last word that the goal cannot be reached
-  std::string ended_by_;                 // the first flight-ending failsafe the controller reported
-  double ended_by_t_ = 0.0;              // and when
+  std::string no_path_;   // the planner's last word that the goal cannot be reached
+  std::string gave_up_;   // the no-path word in force when the controller left for RETURN or LAND
+  std::string ended_by_;  // the first flight-ending failsafe the controller reported
+  double ended_by_t_ = 0.0;  // and when
   std::vector<std::string> progress_;
   double next_progress_t_ = 10.0;
 };

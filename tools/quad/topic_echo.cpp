@@ -20,7 +20,9 @@ int topicEcho(const TopicEchoOptions& options)
   dds::Waker waker;
   signals.onSignal([&waker](int) { waker.notify(); });
   participant.events().setNotifier([&waker] { waker.notify(); });
-  dds::RawSubscriber subscriber(participant, info, &waker);
+  // Every sample that arrives is printed: a deep history keeps the ones that come while the
+  // last were being printed (a "newest only" topic's own history keeps one).
+  dds::RawSubscriber subscriber(participant, info, &waker, dds::withDepth(participant.readerQos(info), 1024));
 
   const auto& schema = introspection::quadSchema();
   const introspection::DecodeOptions decode{.max_elements = options.max_elements};

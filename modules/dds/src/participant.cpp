@@ -4,6 +4,7 @@
 
 #include <arpa/inet.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cstdlib>
 #include <set>
@@ -513,6 +514,23 @@ fdds::DataReaderQos Participant::readerQos(const TopicInfo& info) const
   fdds::DataReaderQos qos = readerQos(info.qos_profile);
   if (info.stale_after_s > 0.0) {
     qos.deadline().period = eprosima::fastrtps::Duration_t(info.stale_after_s);
+  }
+  return qos;
+}
+
+fdds::DataReaderQos withDepth(fdds::DataReaderQos qos, std::int32_t depth)
+{
+  if (qos.history().kind != fdds::KEEP_LAST_HISTORY_QOS || qos.history().depth >= depth) {
+    return qos;
+  }
+  qos.history().depth = depth;
+  auto& limits = qos.resource_limits();
+  if (limits.max_samples_per_instance > 0 && limits.max_samples_per_instance < depth) {
+    limits.max_samples_per_instance = depth;
+  }
+  const std::int32_t needed = limits.max_samples_per_instance * std::max(1, limits.max_instances);
+  if (limits.max_samples > 0 && limits.max_samples < needed) {
+    limits.max_samples = needed;
   }
   return qos;
 }

@@ -64,18 +64,7 @@ int record(const RecordOptions& options, const std::atomic<int>& stop)
   const auto subscribe = [&](const dds::TopicInfo& contract) {
     const std::string topic(contract.name);
     const std::string type(contract.type_name);
-    auto qos = participant.readerQos(contract.qos_profile);
-    if (qos.history().kind == eprosima::fastdds::dds::KEEP_LAST_HISTORY_QOS && qos.history().depth < 4096) {
-      qos.history().depth = 4096;
-      auto& limits = qos.resource_limits();
-      if (limits.max_samples_per_instance > 0 && limits.max_samples_per_instance < 4096) {
-        limits.max_samples_per_instance = 4096;
-      }
-      const std::int32_t needed = limits.max_samples_per_instance * std::max(1, limits.max_instances);
-      if (limits.max_samples > 0 && limits.max_samples < needed) {
-        limits.max_samples = needed;
-      }
-    }
+    const auto qos = dds::withDepth(participant.readerQos(contract.qos_profile), 4096);
     std::unique_ptr<dds::RawSubscriber> subscriber;
     try {
       subscriber = std::make_unique<dds::RawSubscriber>(participant, contract, &waker, qos);

@@ -179,4 +179,9 @@ private:
   std::map<std::string, RemoteParticipant> participants_;  // by GUID prefix
 };
 
+/// `qos` keeping at least `depth` samples per instance: a KEEP_LAST history deepened and its
+/// resource limits widened to match. For a tool that reads every sample (a recorder, an echo)
+/// and must not lose the ones it falls a few behind on; KEEP_ALL is left as it is.
+eprosima::fastdds::dds::DataReaderQos withDepth(eprosima::fastdds::dds::DataReaderQos qos, std::int32_t depth);
+
 }  // namespace quad::dds

@@ -79,6 +79,11 @@ const common::ParamTable<ControlNodeConfig>& controlTable()
         .number("land_detector.ground_clearance",
                 [](C& c) -> double& { return c.flight.land_detector.ground_clearance; }, {0.0, 10.0}, "m",
                 "on an estimate, a controller started below this height (and still) takes the vehicle for landed")
+        .number("land_detector.rest_accel_tolerance",
+                [](C& c) -> double& { return c.flight.land_detector.rest_accel_tolerance; }, {0.01, 5.0}, "m/s^2",
+                "without any state, a landing has touched down once the accelerometer reads gravity within this ...")
+        .number("land_detector.rest_rate", [](C& c) -> double& { return c.flight.land_detector.rest_rate; },
+                {0.01, 5.0}, "rad/s", "... and the gyroscope less than this, on less than max_thrust, for hold_time")
         .number("timeouts.path", [](C& c) -> double& { return c.flight.path_timeout; }, {0.05, 600.0}, "s",
                 "path not republished for this long is stale (default: the quad/planning/path contract's)")
         .number("goal_tolerance", [](C& c) -> double& { return c.flight.goal_tolerance; }, {0.01, 10.0}, "m",
@@ -94,6 +99,9 @@ const common::ParamTable<ControlNodeConfig>& controlTable()
         .number("modes.geofence_return_after",
                 [](C& c) -> double& { return c.flight.modes.geofence_return_after; }, {0.0, 3600.0}, "s",
                 "hold after the vehicle left the geofence, then return to the take-off point and land")
+        .number("modes.uncertain_land_after",
+                [](C& c) -> double& { return c.flight.modes.uncertain_land_after; }, {0.0, 3600.0}, "s",
+                "hold (or return) on a state estimate whose 1-sigma is past the estimator's bounds, then land")
         .include(common::geofenceTable(), [](C& c) -> common::Geofence& { return c.flight.geofence; })
         .number("battery.reserve", [](C& c) -> double& { return c.flight.battery.reserve; }, {0.0, 0.9}, "",
                 "fraction of the capacity to land with: the vehicle returns when only the way back is left above it")

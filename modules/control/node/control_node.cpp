@@ -219,7 +219,7 @@ void ControlNode::onWake()
       }
       continue;
     }
-    if (!fc_.onState(fromSample(s), s.landed, t)) {
+    if (!fc_.onState(fromSample(s), s.landed, t, s.covariance_ok)) {
       counters().errors++;
       spdlog::warn("{}: sample seq {} rejected: invalid or out of order", state_.topic().name, s.seq);
       continue;

@@ -105,6 +105,8 @@ msg::FailsafeReason toMessage(Reason reason)
       return msg::FAILSAFE_BATTERY_CRITICAL;
     case Reason::kLinkLost:
       return msg::FAILSAFE_LINK_LOST;
+    case Reason::kEstimateUncertain:
+      return msg::FAILSAFE_ESTIMATE_UNCERTAIN;
   }
   return msg::FAILSAFE_NONE;
 }

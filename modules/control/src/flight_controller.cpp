@@ -48,7 +48,7 @@ FlightController::FlightController(const vehicle::VehicleParams& vehicle, Flight
 {
 }
 
-bool FlightController::onState(const VehicleState& s, std::optional<bool> landed, double t)
+bool FlightController::onState(const VehicleState& s, std::optional<bool> landed, double t, bool covariance_ok)
 {
   const double n = s.q_WB.norm();
   const bool valid = s.p_W.allFinite() && s.v_W.allFinite() && s.w_B.allFinite() && std::isfinite(n) &&
@@ -64,6 +64,7 @@ bool FlightController::onState(const VehicleState& s, std::optional<bool> landed
   }
   state_t_ = t;
   state_late_ = false;
+  covariance_ok_ = covariance_ok;
   reckoning_.anchor(*state_, t);
   return true;
 }
@@ -73,6 +74,10 @@ bool FlightController::onImu(const InertialSample& sample, double t)
   if (!reckoning_.onImu(sample, t)) {
     ++rejected_;
     return false;
+  }
+  if (!imu_ || t >= imu_t_) {
+    imu_ = sample;
+    imu_t_ = t;
   }
   return true;
 }
@@ -285,8 +290,11 @@ FlightOutput FlightController::update(double t)
   in.no_path = path_kind_ == PathKind::kUnreachable && path_heard;
   if (judge_landing_ && in.state_fresh) {
     landed_ = land_detector_.update(t, modes_.mode(), *state_, thrust_ratio_);
+  } else if (judge_landing_ && imu_ && t - imu_t_ <= config_.state_timeout) {
+    landed_ = land_detector_.update(t, modes_.mode(), *imu_, thrust_ratio_);  // blind: the IMU alone
   }
   in.landed = landed_;
+  in.estimate_uncertain = !covariance_ok_;
   in.takeoff_altitude_reached = modes_.mode() == Mode::kTakeoff && state_ && follower_.finished() &&
                                 std::abs(state_->p_W.z() - takeoff_target_.z()) < 0.1;
   // At the goal: within tolerance, and (in a mission) at the end of the path. Outside a

@@ -12,6 +12,22 @@ bool LandDetector::update(double t, Mode mode, const VehicleState& s, double thr
     landed_ = s.p_W.z() < config_.ground_clearance && s.v_W.norm() < config_.max_vertical_speed;
     return landed_;
   }
+  const bool still = std::abs(s.v_W.z()) < config_.max_vertical_speed && thrust_ratio < config_.max_thrust;
+  return judge(t, mode, still);
+}
+
+bool LandDetector::update(double t, Mode mode, const InertialSample& imu, double thrust_ratio)
+{
+  if (!judged_) {
+    return landed_;  // (judged first from a state: a controller that never had one has not flown)
+  }
+  const bool still = std::abs(imu.specific_force_B.norm() - gravity_) < config_.rest_accel_tolerance &&
+                     imu.angular_rate_B.norm() < config_.rest_rate && thrust_ratio < config_.max_thrust;
+  return judge(t, mode, still);
+}
+
+bool LandDetector::judge(double t, Mode mode, bool still)
+{
   switch (mode) {
     case Mode::kDisarmed:
     case Mode::kIdle:
@@ -20,8 +36,7 @@ bool LandDetector::update(double t, Mode mode, const VehicleState& s, double thr
       still_since_ = -1.0;
       return landed_;
     case Mode::kLand:
-    case Mode::kFailsafeLand: {
-      const bool still = std::abs(s.v_W.z()) < config_.max_vertical_speed && thrust_ratio < config_.max_thrust;
+    case Mode::kFailsafeLand:
       if (!still) {
         still_since_ = -1.0;
       } else if (still_since_ < 0.0) {
@@ -29,7 +44,6 @@ bool LandDetector::update(double t, Mode mode, const VehicleState& s, double thr
       }
       landed_ = landed_ || (still_since_ >= 0.0 && t - still_since_ >= config_.hold_time);
       return landed_;
-    }
     default:
       // Taking off or flying: the controller lifts it.
       still_since_ = -1.0;

@@ -51,6 +51,8 @@ std::string_view toString(Reason r)
       return "battery critical";
     case Reason::kLinkLost:
       return "link lost";
+    case Reason::kEstimateUncertain:
+      return "estimate uncertain";
   }
   return "?";
 }
@@ -109,6 +111,11 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
   if (airborne(mode_) && mode_ != Mode::kFailsafeLand && !in.state_fresh) {
     return go(Mode::kFailsafeLand, Reason::kStateStale, "vehicle state stale", in.t);
   }
+  if (!in.estimate_uncertain || !in.state_fresh) {
+    uncertain_since_ = -1.0;
+  } else if (uncertain_since_ < 0.0) {
+    uncertain_since_ = in.t;
+  }
   if (commanded(Command::kDisarm)) {
     if (mode_ == Mode::kDisarmed) {
       return std::nullopt;
@@ -143,6 +150,10 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
       if (commanded(Command::kTakeoff)) {
         if (!in.state_fresh) {
           refuse("no fresh vehicle state");
+          return std::nullopt;
+        }
+        if (in.estimate_uncertain) {
+          refuse("the state estimate is uncertain");
           return std::nullopt;
         }
         if (in.battery_low || in.battery_critical) {
@@ -229,6 +240,26 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
     }
     return std::nullopt;
   }
+  // The estimate's 1-sigma past its bounds (a position source lost for long, a filter gone
+  // astray): hold where the estimate says the vehicle is, for a fix to bring it back (the
+  // mission then resumes), and land there if none does. A return carries on, as far as the
+  // same time allows.
+  if (in.estimate_uncertain) {
+    const bool holding_for_estimate = mode_ == Mode::kHover && reason_ == Reason::kEstimateUncertain;
+    if (holding_for_estimate && commanded(Command::kStartMission)) {
+      refuse("holding on an uncertain state estimate");
+      return std::nullopt;
+    }
+    if ((holding_for_estimate || mode_ == Mode::kReturn) && in.t - uncertain_since_ >= config_.uncertain_land_after) {
+      return go(Mode::kLand, Reason::kEstimateUncertain, "state estimate uncertain too long: landing", in.t);
+    }
+    if (holding_for_estimate) {
+      return std::nullopt;
+    }
+    if (flying_out) {
+      return go(Mode::kHover, Reason::kEstimateUncertain, "state estimate uncertain: holding", in.t);
+    }
+  }
   switch (mode_) {
     case Mode::kTakeoff:
       if (commanded(Command::kStartMission)) {
@@ -292,7 +323,8 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
       }
       if (in.landed) {
         const bool told = reason_ == Reason::kNoPath || reason_ == Reason::kGeofence || reason_ == Reason::kBatteryLow ||
-                          reason_ == Reason::kBatteryCritical || reason_ == Reason::kLinkLost;  // why the flight ended
+                          reason_ == Reason::kBatteryCritical || reason_ == Reason::kLinkLost ||
+                          reason_ == Reason::kEstimateUncertain;  // why the flight ended
         return go(Mode::kIdle, told ? reason_ : Reason::kNone, "landed", in.t);
       }
       break;

@@ -66,5 +66,28 @@ TEST(LandDetector, AMomentOfStillnessInTheDescentIsNotALanding)
   }
 }
 
+// Without any state (the estimator lost), a blind descent on 0.85 of the weight reads less
+// than gravity and is not a landing; at rest the accelerometer reads gravity and the
+// gyroscope nothing, and after the hold it is.
+TEST(LandDetector, WithoutAStateTheImuJudgesABlindDescent)
+{
+  LandDetector d;
+  ASSERT_FALSE(d.update(0.0, Mode::kMission, at(3.0, 0.0), 1.0));
+  const auto imu = [](double f, double w) { return InertialSample{Vector3(0.0, 0.0, f), Vector3(w, 0.0, 0.0)}; };
+  double t = 0.0;
+  for (; t < 2.0; t += 0.004) {
+    ASSERT_FALSE(d.update(t, Mode::kFailsafeLand, imu(0.85 * 9.81, 0.0), 0.85)) << t;
+  }
+  // Touched down, but still rocking: not yet.
+  for (; t < 3.0; t += 0.004) {
+    ASSERT_FALSE(d.update(t, Mode::kFailsafeLand, imu(9.81, 0.5), 0.85)) << t;
+  }
+  const double rest = t;
+  for (; t < rest + 0.49; t += 0.004) {
+    ASSERT_FALSE(d.update(t, Mode::kFailsafeLand, imu(9.81 + 0.1, 0.01), 0.85)) << t;
+  }
+  EXPECT_TRUE(d.update(rest + 0.51, Mode::kFailsafeLand, imu(9.81, 0.01), 0.85));
+}
+
 }  // namespace
 }  // namespace quad::control

@@ -103,6 +103,11 @@ TEST(Modes, EveryConditionInEveryMode)
       // landing or returning already, nothing.
       {"return", [](ModeInputs& i) { i.command = Command::kReturn; }, {D, I, R, R, R, L, F, R}},
       {"link lost", [](ModeInputs& i) { i.link_lost = true; }, {D, I, R, R, R, L, F, R}},
+      // The estimate's 1-sigma past its bounds: hold (a take-off is refused); the landings
+      // and RETURN carry on.
+      {"estimate uncertain", [](ModeInputs& i) { i.estimate_uncertain = true; }, {D, I, H, H, H, L, F, R}},
+      {"estimate uncertain, takeoff", [](ModeInputs& i) { i.estimate_uncertain = true; i.command = Command::kTakeoff; },
+       {D, I, H, H, H, L, F, R}},
       // Only a controller started in flight is disarmed in the air: it takes over.
       {"in the air", [](ModeInputs& i) { i.landed = false; }, {H, I, T, M, H, L, F, R}},
   };
@@ -248,6 +253,75 @@ TEST(Modes, LeavingTheGeofenceHoldsThenReturnsAndLandsSayingWhy)
   ASSERT_TRUE(tr.has_value());
   EXPECT_EQ(tr->to, Mode::kIdle);
   EXPECT_EQ(tr->reason, Reason::kGeofence);
+}
+
+TEST(Modes, AnUncertainEstimateHoldsThenLandsUnlessItComesBack)
+{
+  ModeConfig config;
+  config.uncertain_land_after = 4.0;
+  config.auto_mission = true;
+  ModeMachine m = machineIn(Mode::kMission, config);
+  ModeInputs in;
+  in.landed = false;
+  in.path_fresh = true;
+  in.t = 10.0;
+  in.estimate_uncertain = true;
+  auto tr = m.update(in);
+  ASSERT_TRUE(tr.has_value());
+  EXPECT_EQ(tr->to, Mode::kHover);
+  EXPECT_EQ(tr->reason, Reason::kEstimateUncertain);
+  // Holding, with a fresh path: no mission starts by itself or by command.
+  in.t = 11.0;
+  EXPECT_FALSE(m.update(in).has_value());
+  in.command = Command::kStartMission;
+  EXPECT_FALSE(m.update(in).has_value());
+  EXPECT_EQ(m.refused(), "start mission refused in HOVER: holding on an uncertain state estimate");
+  in.command = Command::kNone;
+  // A fix brings the estimate back within its bounds: the mission resumes.
+  in.t = 13.0;
+  in.estimate_uncertain = false;
+  tr = m.update(in);
+  ASSERT_TRUE(tr.has_value());
+  EXPECT_EQ(tr->to, Mode::kMission);
+  // Uncertain again, for good: the hold counts anew, and lands after 4 s of it.
+  in.estimate_uncertain = true;
+  in.t = 20.0;
+  EXPECT_EQ(m.update(in)->to, Mode::kHover);
+  in.t = 23.9;
+  EXPECT_FALSE(m.update(in).has_value());
+  in.t = 24.0;
+  tr = m.update(in);
+  ASSERT_TRUE(tr.has_value());
+  EXPECT_EQ(tr->to, Mode::kLand);
+  EXPECT_EQ(tr->reason, Reason::kEstimateUncertain);
+  in.landed = true;
+  tr = m.update(in);
+  ASSERT_TRUE(tr.has_value());
+  EXPECT_EQ(tr->to, Mode::kIdle);
+  EXPECT_EQ(tr->reason, Reason::kEstimateUncertain);  // why the flight ended
+  // On the ground, no take-off on it.
+  in.command = Command::kTakeoff;
+  EXPECT_FALSE(m.update(in).has_value());
+  EXPECT_EQ(m.refused(), "takeoff refused in IDLE: the state estimate is uncertain");
+}
+
+TEST(Modes, AReturnOnAnUncertainEstimateLandsAfterTheSameTime)
+{
+  ModeConfig config;
+  config.uncertain_land_after = 4.0;
+  ModeMachine m = machineIn(Mode::kReturn, config);
+  ModeInputs in;
+  in.landed = false;
+  in.t = 2000.0;
+  in.estimate_uncertain = true;
+  EXPECT_FALSE(m.update(in).has_value());  // the return carries on
+  in.t = 2003.9;
+  EXPECT_FALSE(m.update(in).has_value());
+  in.t = 2004.0;
+  const auto tr = m.update(in);
+  ASSERT_TRUE(tr.has_value());
+  EXPECT_EQ(tr->to, Mode::kLand);
+  EXPECT_EQ(tr->reason, Reason::kEstimateUncertain);
 }
 
 TEST(Modes, ALowBatteryReturnsAndACriticalOneLandsWhereItIsSayingWhy)

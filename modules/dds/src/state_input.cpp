@@ -55,6 +55,7 @@ std::vector<StateSample> StateInput::takeAll()
   for (const auto& m : estimate_->takeAll()) {
     out.push_back(sampleOf(m));
     out.back().aligned = m.aligned();
+    out.back().covariance_ok = m.covariance_ok();
   }
   return out;
 }

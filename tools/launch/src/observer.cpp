@@ -129,6 +129,10 @@ std::string flightEndedBy(msg::FailsafeReason reason, msg::ControlMode mode)
       return "the battery failed (critical)";
     case msg::FAILSAFE_LINK_LOST:
       return "the operator's link was lost";
+    case msg::FAILSAFE_STATE_STALE:
+      return "the vehicle state was lost";
+    case msg::FAILSAFE_ESTIMATE_UNCERTAIN:
+      return "the state estimate grew uncertain";
     default:
       return "";
   }

@@ -118,9 +118,10 @@ public:
   FlightController(const vehicle::VehicleParams& vehicle, FlightControllerConfig config);
 
   /// A vehicle state at sim time t [s], with its ground contact when the source knows it (the
-  /// plant's truth); without, the land detector judges it. Rejected (false, counted) when
-  /// non-finite, the quaternion is not unit within 1e-3, or t goes back.
-  bool onState(const VehicleState& state, std::optional<bool> landed, double t);
+  /// plant's truth); without, the land detector judges it. `covariance_ok`: an estimate's
+  /// 1-sigma within the estimator's bounds (false: the uncertain-estimate failsafe). Rejected
+  /// (false, counted) when non-finite, the quaternion is not unit within 1e-3, or t goes back.
+  bool onState(const VehicleState& state, std::optional<bool> landed, double t, bool covariance_ok = true);
   /// Whether the vehicle is taken to rest on the ground.
   bool landed() const { return landed_; }
   /// A planned path of the planner's status `kind` (waypoints are meaningful only when OK).
@@ -197,6 +198,9 @@ private:
   double thrust_ratio_ = 0.0;   ///< the thrust last commanded, a fraction of the weight
   double state_t_ = -1.0;
   bool state_late_ = false;  // a deadline event since the last state
+  bool covariance_ok_ = true;  // the last state's 1-sigma within the estimator's bounds
+  std::optional<InertialSample> imu_;  // the last IMU sample, for the land detector without a state
+  double imu_t_ = 0.0;
   bool path_late_ = false;   // a deadline event since the last path
   std::vector<Vector3> path_;
   std::optional<std::uint32_t> path_version_;

@@ -7,7 +7,12 @@
 /// asks for less thrust than its weight (the ground holds it up), for a while. Taking off, it
 /// leaves the ground. The first state, before any command, is judged by height and speed
 /// (a controller started while the vehicle flies must not take it for landed).
+///
+/// Without any state (a blind failsafe descent: the estimator lost) the IMU alone judges it:
+/// at rest the accelerometer reads gravity and the gyroscope nothing, while a descent on less
+/// than the weight reads less than gravity.
 
+#include "quad/control/dead_reckoning.hpp"
 #include "quad/control/geometric_controller.hpp"
 #include "quad/control/modes.hpp"
 
@@ -20,19 +25,28 @@ struct LandDetectorConfig {
   /// [m] The first state: on the ground when below this height above the ground plane (z = 0)
   /// and slower than max_vertical_speed in every direction.
   double ground_clearance = 0.3;
+  /// Without a state: at rest when the specific force is within this of gravity [m/s²] ...
+  double rest_accel_tolerance = 0.5;
+  double rest_rate = 0.2;  ///< [rad/s] ... and the body turns slower than this
 };
 
 class LandDetector {
 public:
-  explicit LandDetector(LandDetectorConfig config = {}) : config_(config) {}
+  explicit LandDetector(LandDetectorConfig config = {}, double gravity = 9.81) : config_(config), gravity_(gravity) {}
 
   /// A tick at time t [s] in `mode` with the state `s` and the thrust the controller last
   /// commanded, as a fraction of the weight. Returns whether the vehicle is landed.
   bool update(double t, Mode mode, const VehicleState& s, double thrust_ratio);
+  /// The same without a state, from an IMU sample (specific force, angular rate).
+  bool update(double t, Mode mode, const InertialSample& imu, double thrust_ratio);
   bool landed() const { return landed_; }
 
 private:
+  /// A tick whose landing conditions (`still`, in a landing) did or did not hold.
+  bool judge(double t, Mode mode, bool still);
+
   LandDetectorConfig config_;
+  double gravity_;  ///< [m/s²]
   bool judged_ = false;
   bool landed_ = true;
   double still_since_ = -1.0;  ///< [s] the landing conditions have held since; < 0: they do not

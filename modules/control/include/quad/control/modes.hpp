@@ -20,6 +20,10 @@
 ///   any airborne but LAND and FAILSAFE_LAND --battery critical--> LAND, where it is
 ///   TAKEOFF, MISSION, HOVER --return commanded--> RETURN --back--> LAND
 ///   TAKEOFF, MISSION, HOVER --operator's link lost--> RETURN (or LAND, by ModeConfig::link_loss)
+///   TAKEOFF, MISSION, HOVER --estimate uncertain--> HOVER --still for uncertain_land_after--> LAND
+///     (the estimator's 1-sigma past its bounds: a position source lost for long; it holds
+///     where the estimate says it is, for a fix to come back, and resumes if one does)
+///   RETURN --estimate uncertain for uncertain_land_after--> LAND
 ///   any airborne --state stale--> FAILSAFE_LAND --landed--> IDLE --idle timeout--> DISARMED
 
 #include <optional>
@@ -40,7 +44,8 @@ enum class Reason {
   kGeofence,
   kBatteryLow,
   kBatteryCritical,
-  kLinkLost
+  kLinkLost,
+  kEstimateUncertain
 };
 enum class Command { kNone, kArm, kDisarm, kTakeoff, kStartMission, kHold, kLand, kReturn };
 /// What the controller does when the operator's station falls silent (PX4's NAV_DLL_ACT).
@@ -68,6 +73,8 @@ struct ModeInputs {
   bool battery_low = false;
   bool battery_critical = false;  ///< the pack is nearly empty or a cell has failed: land now
   bool link_lost = false;         ///< the operator's station, once heard, has been silent too long
+  /// The state is an estimate whose 1-sigma is past the estimator's bounds
+  bool estimate_uncertain = false;
 };
 
 struct ModeConfig {
@@ -75,6 +82,7 @@ struct ModeConfig {
   double no_path_land_after = 5.0;     ///< [s] in HOVER while the planner finds no path, before returning to land
   double idle_disarm_after = 10.0;     ///< [s] on the ground, armed, before disarming
   double geofence_return_after = 1.0;  ///< [s] holding after leaving the geofence, before returning
+  double uncertain_land_after = 5.0;   ///< [s] on an uncertain estimate, holding or returning, before landing
   /// HOVER with a fresh path starts the mission by itself, unless the operator commanded the hold
   bool auto_mission = false;
   LinkLossAction link_loss = LinkLossAction::kReturn;  ///< when the operator's link is lost
@@ -112,6 +120,7 @@ private:
   double entered_ = 0.0;          // time the current mode began
   double path_stale_since_ = -1;  // time the path went stale in HOVER, -1 if fresh
   double no_path_since_ = -1;     // time the planner first said no path in HOVER, -1 if it did not
+  double uncertain_since_ = -1;   // time the estimate became uncertain in the air, -1 if it is not
   std::string refused_;
 };
 

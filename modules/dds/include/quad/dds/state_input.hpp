@@ -41,6 +41,9 @@ struct StateSample {
   geometry::Vector3 w_B = geometry::Vector3::Zero();  ///< [rad/s]
   /// The plant's ground contact: the truth only. On an estimate the reader judges it.
   std::optional<bool> landed;
+  /// The estimator's position and attitude 1-sigma within its bounds (its `health.max_*_std`);
+  /// the truth always.
+  bool covariance_ok = true;
 };
 
 /// Reads the chosen source's topic.

@@ -4,6 +4,7 @@
 #include <signal.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -42,10 +43,7 @@ constexpr int kDeepHistory = 1000;         // samples a reader keeps between the
 /// before the next tick takes it.
 eprosima::fastdds::dds::DataReaderQos deepReader(dds::Participant& p, std::string_view qos_class)
 {
-  auto qos = p.readerQos(qos_class);
-  qos.history().kind = eprosima::fastdds::dds::KEEP_LAST_HISTORY_QOS;
-  qos.history().depth = kDeepHistory;
-  return qos;
+  return dds::withDepth(p.readerQos(qos_class), kDeepHistory);
 }
 
 /// `values` with each list field of `lengths` repeated to its length.
@@ -152,7 +150,8 @@ private:
           actuators(p, topics::kActuators, nullptr, deepReader(p, topics::kActuators.info.qos_profile)),
           heartbeat(p, topics::kHeartbeat, nullptr, deepReader(p, topics::kHeartbeat.info.qos_profile)),
           sim_events(p, topics::kSimEvents, nullptr, deepReader(p, topics::kSimEvents.info.qos_profile)),
-          fault_events(p, topics::kFaultEvents, nullptr, deepReader(p, topics::kFaultEvents.info.qos_profile))
+          fault_events(p, topics::kFaultEvents, nullptr, deepReader(p, topics::kFaultEvents.info.qos_profile)),
+          estimate(p, topics::kEstimatedState)
     {
     }
     dds::Publisher<msg::FaultCommand> command;
@@ -163,6 +162,7 @@ private:
     dds::Subscriber<msg::Heartbeat> heartbeat;
     dds::Subscriber<msg::SimEvent> sim_events;
     dds::Subscriber<msg::SimEvent> fault_events;  // our own, and the modules' fault layers'
+    dds::Subscriber<msg::EstimatedState> estimate;  // its counts of outliers: the newest sample says them all
   };
   struct PublishJob {
     dds::TopicInfo info;
@@ -247,6 +247,17 @@ private:
     }
     for (const auto& s : endpoints_->status.takeAll()) {
       judge_.mode(common::toSeconds(s.header().stamp_ns()), launch::controlModeName(static_cast<int>(s.mode())));
+    }
+    for (const auto& e : endpoints_->estimate.takeAll()) {
+      const double t = common::toSeconds(e.header().stamp_ns());
+      const std::array<std::pair<const char*, std::uint64_t>, 3> counts = {
+          {{"position", e.position_rejected()}, {"baro", e.baro_rejected()}, {"mag", e.mag_rejected()}}};
+      for (std::size_t i = 0; i < counts.size(); ++i) {
+        if (counts[i].second > outliers_[i]) {
+          outliers_[i] = counts[i].second;
+          judge_.outliers(counts[i].first, t);
+        }
+      }
     }
     for (const auto& a : endpoints_->actuators.takeAll()) {
       ++actuator_commands_;
@@ -594,6 +605,7 @@ private:
   std::vector<Clear> clears_;
   std::map<std::size_t, std::vector<std::string>> cleared_;  // acknowledgements by step
   double t_ = 0.0;
+  std::array<std::uint64_t, 3> outliers_{};  // the estimator's refused position, baro and mag samples so far
   msg::Vector3 p_W_;
   std::uint64_t actuator_commands_ = 0;
   std::uint64_t nonfinite_actuators_ = 0;

@@ -111,9 +111,16 @@ void Judge::clock(double t, std::int64_t wall_ns)
 void Judge::mode(double t, const std::string& mode)
 {
   mode_ = mode;
+  meetAt(Expectation::Kind::kMode, mode, t);
+}
+
+void Judge::outliers(const std::string& sensor, double t) { meetAt(Expectation::Kind::kOutliers, sensor, t); }
+
+void Judge::meetAt(Expectation::Kind kind, const std::string& subject, double t)
+{
   for (std::size_t i = 0; i < steps_.size(); ++i) {
-    if (steps_[i].applied) {
-      meet(i, Expectation::Kind::kMode, mode, std::max(0.0, t - steps_[i].t));
+    if (steps_[i].applied && (kind == Expectation::Kind::kMode || t >= steps_[i].t)) {
+      meet(i, kind, subject, std::max(0.0, t - steps_[i].t));
     }
   }
 }

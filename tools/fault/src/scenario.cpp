@@ -32,7 +32,10 @@ const std::vector<std::pair<std::string, Expectation::Kind>> kExpectations = {
     {"back", Expectation::Kind::kBack},
     {"rejected", Expectation::Kind::kRejected},
     {"altitude_lost", Expectation::Kind::kAltitudeLost},
-    {"run_ended", Expectation::Kind::kRunEnded}};
+    {"run_ended", Expectation::Kind::kRunEnded},
+    {"outliers", Expectation::Kind::kOutliers}};
+/// The sensors whose outliers the estimator counts (quad/estimation/state's *_rejected).
+const std::vector<std::string> kGatedSensors = {"position", "baro", "mag"};
 
 template <class Kind>
 std::string nameOf(const std::vector<std::pair<std::string, Kind>>& table, Kind kind)
@@ -492,7 +495,7 @@ private:
       }
     }
     if (!kind) {
-      r_.problem(key, node, "expected one of mode, noticed, back, rejected, altitude_lost, run_ended");
+      r_.problem(key, node, "expected one of mode, noticed, back, rejected, altitude_lost, run_ended, outliers");
       return std::nullopt;
     }
     r_.onlyKeys(node, key + ".", {*kind, "within", "since"});
@@ -512,7 +515,10 @@ private:
       return e;
     }
     if (!isName(value)) {
-      r_.problem(key + "." + *kind, value, e.kind == Expectation::Kind::kMode ? "expected a mode" : "expected a module");
+      r_.problem(key + "." + *kind, value,
+                 e.kind == Expectation::Kind::kMode       ? "expected a mode"
+                 : e.kind == Expectation::Kind::kOutliers ? "expected a sensor"
+                                                          : "expected a module");
       return std::nullopt;
     }
     if (e.kind == Expectation::Kind::kMode) {
@@ -521,6 +527,10 @@ private:
         return std::nullopt;
       }
       e.mode = value.Scalar();
+    } else if (e.kind == Expectation::Kind::kOutliers &&
+               std::find(kGatedSensors.begin(), kGatedSensors.end(), value.Scalar()) == kGatedSensors.end()) {
+      r_.problem(key + ".outliers", value, "not a sensor the estimator gates (" + joined(kGatedSensors) + ")");
+      return std::nullopt;
     } else {
       e.module = value.Scalar();
     }
@@ -710,7 +720,8 @@ std::vector<std::string> checkAgainstModules(const Scenario& s, const std::vecto
     }
     for (std::size_t j = 0; j < st.expect.size(); ++j) {
       const Expectation& e = st.expect[j];
-      const bool names_module = e.kind != Expectation::Kind::kMode && e.kind != Expectation::Kind::kAltitudeLost;
+      const bool names_module = e.kind != Expectation::Kind::kMode && e.kind != Expectation::Kind::kAltitudeLost &&
+                                e.kind != Expectation::Kind::kOutliers;
       if (names_module && !has(e.module)) {
         problem(key + ".expect[" + std::to_string(j) + "]." + nameOf(kExpectations, e.kind), e.module, known);
       }

@@ -82,6 +82,9 @@ steps:
   - {at: 11, plant: {kind: cell_loss, cells: 2}}
   - {at: 12, mark: "a small battery", expect: [{mode: LAND, within: 30}]}
   - {at: 13, operator_link: {lost: true, duration: 6}}
+  - at: 14
+    plant: {kind: sensor_offset, sensor: position, offset: [0, 3, 0], duration: 0.5}
+    expect: [{outliers: position, within: 0.3}]
 outcome: {mission: failure, collisions: 2, finite_actuators: false, recording_loss: any}
 )");
   EXPECT_EQ(s.name, "all");
@@ -89,7 +92,11 @@ outcome: {mission: failure, collisions: 2, finite_actuators: false, recording_lo
   EXPECT_EQ(s.sets.at("plant"), (std::vector<std::pair<std::string, std::string>>{
                                     {"wind.steady", "[0, 5, 0]"}, {"wind.turbulence_w20", "7.7"}}));
   EXPECT_EQ(s.mode, "realtime");
-  ASSERT_EQ(s.steps.size(), 9U);
+  ASSERT_EQ(s.steps.size(), 10U);
+  ASSERT_EQ(s.steps[9].expect.size(), 1U);
+  EXPECT_EQ(s.steps[9].expect[0].kind, Expectation::Kind::kOutliers);
+  EXPECT_EQ(s.steps[9].expect[0].describe(), "outliers position");
+  EXPECT_TRUE(s.steps[9].expect[0].simTime());
   EXPECT_EQ(s.steps[8].action.describe(), "operator link lost for 6 s");
   EXPECT_TRUE(s.steps[8].action.lasts());
   EXPECT_EQ(s.steps[0].action.describe(), "kill planning");
@@ -142,6 +149,7 @@ steps:
   - {at: 10, kill: control, expect: [{altitude_lost: -1, within: 2}, {altitude_lost: 0.5}, {altitude_lost: 0.5, within: 1, since: last_path}]}
   - {at: 11, mark: [a, list]}
   - {at: 12, operator_link: {lost: false, for: 3}}
+  - {at: 13, mark: "x", expect: [{outliers: imu, within: 1}]}
 outcome: {mission: maybe, colisions: 1}
 )");
   EXPECT_TRUE(mentions(p, "s.yaml:manifest: nowhere.yaml: no such file")) << ::testing::PrintToString(p);
@@ -162,6 +170,7 @@ outcome: {mission: maybe, colisions: 1}
   EXPECT_TRUE(mentions(p, "steps[8].mark: [a, list]: expected what the scenario's set-up does"));
   EXPECT_TRUE(mentions(p, "steps[9].operator_link.lost: false: expected true"));
   EXPECT_TRUE(mentions(p, "steps[9].operator_link.for: 3: unknown key"));
+  EXPECT_TRUE(mentions(p, "steps[10].expect[0].outliers: imu: not a sensor the estimator gates (position, baro, mag)"));
   EXPECT_TRUE(mentions(p, "outcome.mission: maybe: expected success, failure or any"));
   EXPECT_TRUE(mentions(p, "outcome.colisions: 1: unknown key"));
 }
@@ -390,6 +399,28 @@ TEST(Judge, AModeAlreadyHeldWhenTheFaultTakesEffectIsMetAtOnce)
   j.applied(0, 5.0, 0, "x");
   EXPECT_TRUE(j.settled());
   EXPECT_TRUE(passed(j.finish(goodRun())));
+}
+
+TEST(Judge, OutliersAreMeasuredInSimTimeFromTheFaultAndOnlyAfterIt)
+{
+  Scenario s = killScenario();
+  s.steps[0].expect = {{Expectation::Kind::kOutliers, "", "position", 0.3}};
+  Judge j(s);
+  ASSERT_EQ(j.due(5.0).size(), 1U);
+  j.applied(0, 5.0, 0, "x");
+  j.outliers("position", 4.9);  // a false alarm before the fault is no reaction to it
+  j.outliers("mag", 5.05);      // another sensor's
+  EXPECT_FALSE(j.settled());
+  j.outliers("position", 5.15);
+  EXPECT_TRUE(j.settled());
+  const auto rows = j.finish(goodRun());
+  EXPECT_TRUE(passed(rows)) << toTable("o", rows);
+  EXPECT_NE(toTable("o", rows).find("0.150 s"), std::string::npos) << toTable("o", rows);
+  Judge late(s);
+  ASSERT_EQ(late.due(5.0).size(), 1U);
+  late.applied(0, 5.0, 0, "x");
+  late.clock(5.4, 0);
+  EXPECT_FALSE(passed(late.finish(goodRun())));
 }
 
 TEST(Judge, AModeAfterTheLastPathIsMeasuredFromThatPathsStamp)

@@ -68,6 +68,8 @@ public:
   void runEnded(const std::string& module, std::int64_t wall_ns);
   /// `module`'s count of rejected inputs grew.
   void rejected(const std::string& module, std::int64_t wall_ns);
+  /// The estimator's count of refused `sensor` samples grew, in its state stamped at sim time `t`.
+  void outliers(const std::string& sensor, double t);
 
   /// Every step applied (or refused) and every expectation decided.
   bool settled() const;
@@ -106,6 +108,8 @@ private:
   void meet(std::size_t step, Expectation::Kind kind, const std::string& subject, double measured_s);
   /// A kMode expectation's reference time: its step's fault, or the last path.
   double modeOrigin(const StepState& s, const Pending& p) const;
+  /// An event at sim time `t`, measured from every step applied (a mode: at once if already in it).
+  void meetAt(Expectation::Kind kind, const std::string& subject, double t);
   /// A module's event at wall time `wall_ns`, measured from every step applied before it.
   void meetAfter(Expectation::Kind kind, const std::string& module, std::int64_t wall_ns);
 

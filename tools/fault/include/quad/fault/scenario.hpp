@@ -76,6 +76,9 @@ struct Expectation {
     /// `within_s` of sim time
     kAltitudeLost,
     kRunEnded,  ///< the launcher ends the run because `module` (ends_run) is gone, within `within_s` wall seconds
+    /// the estimator's count of refused samples of the sensor `module` names (position, baro,
+    /// mag: its gate's outliers, quad/estimation/state) grows within `within_s` of sim time
+    kOutliers,
   };
   /// Where a kMode bound is measured from.
   enum class Since {
@@ -85,12 +88,12 @@ struct Expectation {
   };
   Kind kind = Kind::kMode;
   std::string mode;    ///< kMode: a ControlMode name without its prefix ("HOVER")
-  std::string module;  ///< kNoticed, kBack, kRejected, kRunEnded
+  std::string module;  ///< kNoticed, kBack, kRejected, kRunEnded: a module; kOutliers: a sensor
   double within_s = 1.0;
   Since since = Since::kFault;
   double metres = 0.0;  ///< kAltitudeLost: the most altitude the vehicle may lose
 
-  bool simTime() const { return kind == Kind::kMode || kind == Kind::kAltitudeLost; }
+  bool simTime() const { return kind == Kind::kMode || kind == Kind::kAltitudeLost || kind == Kind::kOutliers; }
   /// "mode HOVER", "noticed planning", "altitude lost", ...
   std::string describe() const;
 };

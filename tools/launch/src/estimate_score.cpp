@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <fmt/format.h>
+
 #include "quad/geometry/distance.hpp"
 
 namespace quad::launch {
@@ -31,7 +33,7 @@ void EstimateScore::onTruth(std::int64_t t_ns, const geometry::Vector3& p_W, con
 {
   const Pose truth{p_W, q_WB.normalized(), geometry::Vector3::Zero()};
   if (const auto e = estimates_.find(t_ns); e != estimates_.end()) {
-    score(truth, e->second);
+    score(t_ns, truth, e->second);
     estimates_.erase(estimates_.begin(), std::next(e));
     return;
   }
@@ -47,7 +49,7 @@ void EstimateScore::onEstimate(std::int64_t t_ns, const geometry::Vector3& p_W, 
   }
   const Pose estimate{p_W, q_WB.normalized(), p_std};
   if (const auto t = truths_.find(t_ns); t != truths_.end()) {
-    score(t->second, estimate);
+    score(t_ns, t->second, estimate);
     truths_.erase(truths_.begin(), std::next(t));
     return;
   }
@@ -55,7 +57,7 @@ void EstimateScore::onEstimate(std::int64_t t_ns, const geometry::Vector3& p_W, 
   bound(estimates_);
 }
 
-void EstimateScore::score(const Pose& truth, const Pose& estimate)
+void EstimateScore::score(std::int64_t t_ns, const Pose& truth, const Pose& estimate)
 {
   const geometry::Vector3 e = estimate.p - truth.p;
   const double p = e.norm();
@@ -71,6 +73,10 @@ void EstimateScore::score(const Pose& truth, const Pose& estimate)
   sum_yaw2_ += yaw * yaw;
   sum_nees_ += z.squaredNorm();
   within_ += (z.cwiseAbs().array() <= 3.0).all() ? 1U : 0U;
+  if (t_ns >= next_point_ns_) {
+    series_.push_back({static_cast<double>(t_ns) * 1e-9, p, 3.0 * estimate.std.norm(), a, yaw});
+    next_point_ns_ = (t_ns / kSeriesPeriodNs + 1) * kSeriesPeriodNs;
+  }
 }
 
 std::optional<EstimateErrors> EstimateScore::errors() const
@@ -88,6 +94,16 @@ std::optional<EstimateErrors> EstimateScore::errors() const
   out.yaw_rms_deg = std::sqrt(sum_yaw2_ / n);
   out.position_nees_mean = sum_nees_ / n;
   out.within_3sigma = static_cast<double>(within_) / n;
+  return out;
+}
+
+std::string toCsv(const std::vector<EstimateErrorPoint>& series)
+{
+  std::string out = "t_s,position_m,position_3sigma_m,attitude_deg,yaw_deg\n";
+  for (const auto& p : series) {
+    out += fmt::format("{:.3f},{:.4f},{:.4f},{:.3f},{:.3f}\n", p.t_s, p.position_m, p.position_3sigma_m,
+                       p.attitude_deg, p.yaw_deg);
+  }
   return out;
 }
 

@@ -14,6 +14,7 @@
 #include <fmt/chrono.h>
 #include <fmt/format.h>
 
+#include "quad/launch/estimate_plot.hpp"
 #include "quad/launch/shm.hpp"
 #include "quad/common/layout.hpp"
 #include "quad/common/params.hpp"
@@ -561,6 +562,13 @@ int LaunchRun::execute(RunExtension* extension)
     }
     const std::string json = launch::toJson(*summary_);
     std::ofstream(supervisor_.logDir() / "summary.json") << json;
+    if (const auto& series = observer_->estimateScore().series(); !series.empty()) {
+      std::ofstream(supervisor_.logDir() / "estimate_error.csv") << launch::toCsv(series);
+      std::ofstream(supervisor_.logDir() / "estimate_error.svg")
+          << launch::estimateErrorSvg(series, fmt::format("{}, world {}: the estimate against the truth (flown on the {})",
+                                                          m_.file.filename().string(), m_.world.filename().string(),
+                                                          m_.state));
+    }
     if (options_.summary) {
       std::ofstream out(*options_.summary);
       out << json;

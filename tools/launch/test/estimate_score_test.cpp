@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -44,6 +45,17 @@ TEST(EstimateScore, AConstantErrorIsItsOwnRmsAndMaxAndTheNeesFollowsTheSigma)
   EXPECT_NEAR(e->yaw_rms_deg, 2.0, 1e-6);
   EXPECT_NEAR(e->position_nees_mean, 4.0 + 0.0 + 4.0, 1e-6);  // 2σ on x and z
   EXPECT_NEAR(e->within_3sigma, 1.0, 1e-12);
+  // 2 s of pairs every 4 ms: one point each 0.1 s, the first pair of each.
+  ASSERT_EQ(s.series().size(), 20U);
+  EXPECT_DOUBLE_EQ(s.series()[0].t_s, 0.0);
+  EXPECT_NEAR(s.series()[1].t_s, 0.1, 1e-9);
+  EXPECT_NEAR(s.series()[19].t_s, 1.9, 1e-9);
+  EXPECT_NEAR(s.series()[5].position_m, 0.05, 1e-9);
+  EXPECT_NEAR(s.series()[5].position_3sigma_m, 3.0 * std::sqrt(0.015 * 0.015 + 0.01 * 0.01 + 0.02 * 0.02), 1e-9);
+  EXPECT_NEAR(s.series()[5].yaw_deg, 2.0, 1e-6);
+  const std::string csv = toCsv(s.series());
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "t_s,position_m,position_3sigma_m,attitude_deg,yaw_deg");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 21);
 }
 
 TEST(EstimateScore, OnlyAlignedEstimatesWithATruthOfTheirStampCount)

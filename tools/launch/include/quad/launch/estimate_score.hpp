@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "quad/geometry/quaternion.hpp"
 
@@ -27,8 +29,19 @@ struct EstimateErrors {
   double within_3sigma = 0.0;
 };
 
+/// One point of the error against time: the first pair scored in each `kSeriesPeriodNs` of
+/// sim time.
+struct EstimateErrorPoint {
+  double t_s = 0.0;             ///< [s] sim time
+  double position_m = 0.0;      ///< the position error's norm
+  double position_3sigma_m = 0.0;  ///< the norm of the estimate's per-axis 3σ: its own bound on that
+  double attitude_deg = 0.0;
+  double yaw_deg = 0.0;         ///< signed, estimate less truth
+};
+
 class EstimateScore {
 public:
+  static constexpr std::int64_t kSeriesPeriodNs = 100'000'000;  ///< 10 points a second
   /// The true body position [m] and attitude at `t_ns`.
   void onTruth(std::int64_t t_ns, const geometry::Vector3& p_W, const geometry::Quaternion& q_WB);
   /// An estimate at `t_ns` with its per-axis position 1σ [m]; not aligned: not scored.
@@ -36,6 +49,8 @@ public:
                   const geometry::Vector3& p_std, bool aligned);
   /// Nothing before the first pair.
   std::optional<EstimateErrors> errors() const;
+  /// The error against time (10 points a second; a run of an hour holds 36,000).
+  const std::vector<EstimateErrorPoint>& series() const { return series_; }
 
 private:
   struct Pose {
@@ -43,7 +58,7 @@ private:
     geometry::Quaternion q;
     geometry::Vector3 std;
   };
-  void score(const Pose& truth, const Pose& estimate);
+  void score(std::int64_t t_ns, const Pose& truth, const Pose& estimate);
   /// Samples waiting for their other half, by stamp; bounded.
   std::map<std::int64_t, Pose> truths_;
   std::map<std::int64_t, Pose> estimates_;
@@ -55,6 +70,11 @@ private:
   double sum_yaw2_ = 0.0;
   double sum_nees_ = 0.0;
   std::uint64_t within_ = 0;
+  std::vector<EstimateErrorPoint> series_;
+  std::int64_t next_point_ns_ = 0;
 };
+
+/// The series as CSV with a header line: t_s, position_m, position_3sigma_m, attitude_deg, yaw_deg.
+std::string toCsv(const std::vector<EstimateErrorPoint>& series);
 
 }  // namespace quad::launch

@@ -69,7 +69,7 @@ Update BasicErrorStateFilter<Rotations>::imu(std::int64_t t_ns, const Vector3& f
 template <class Rotations>
 void BasicErrorStateFilter<Rotations>::align(std::int64_t t_ns)
 {
-  if (!first_fix_ || !first_accel_ || !first_field_) {
+  if (!first_fix_ || !prior_fix_ || !first_accel_ || !first_field_) {
     return;
   }
   // At rest the accelerometer reads −g in the body: roll and pitch. The magnetometer, levelled
@@ -77,15 +77,20 @@ void BasicErrorStateFilter<Rotations>::align(std::int64_t t_ns)
   // Not at rest (a start in the air, falling: the accelerometer reads less than gravity), the
   // tilt cannot be told: level, with a wide 1σ, and the velocity's wide too; the fixes and the
   // accelerometer then pull both in.
+  // The last two fixes tell a vehicle in motion (a restart in flight, braking) whose
+  // accelerometer may still read gravity's magnitude at a tilt.
   const Vector3& f = *first_accel_;
-  const bool at_rest = std::abs(f.norm() - params_.gravity_W.norm()) <= params_.rest_tolerance;
+  const Vector3 fix_velocity = (first_fix_->second - prior_fix_->second) /
+                               common::toSeconds(first_fix_->first - prior_fix_->first);
+  const bool at_rest = std::abs(f.norm() - params_.gravity_W.norm()) <= params_.rest_tolerance &&
+                       fix_velocity.norm() <= params_.rest_speed;
   const double roll = at_rest ? std::atan2(f.y(), f.z()) : 0.0;
   const double pitch = at_rest ? std::atan2(-f.x(), std::hypot(f.y(), f.z())) : 0.0;
   const Matrix3 tilt = geometry::rotY(pitch) * geometry::rotX(roll);
   const double yaw = geometry::wrapToPi(headingOf(params_.mag_field_W) - headingOf(tilt * *first_field_));
   R_ = geometry::rotZ(yaw) * tilt;
   p_ = first_fix_->second;
-  v_.setZero();
+  v_ = at_rest ? Vector3::Zero() : fix_velocity;
   ba_.setZero();
   bg_.setZero();
   P_.setZero();
@@ -93,7 +98,15 @@ void BasicErrorStateFilter<Rotations>::align(std::int64_t t_ns)
   block(kPosition, 0.05);
   block(kVelocity, at_rest ? params_.initial_velocity_std : params_.moving_velocity_std);
   block(kAttitude, at_rest ? params_.initial_tilt_std : params_.moving_tilt_std);
-  P_(kAttitude + 2, kAttitude + 2) = params_.initial_yaw_std * params_.initial_yaw_std;
+  // The heading is the field's levelled with the tilt: a tilt off by δ turns it by about
+  // δ times the field's vertical over its horizontal part (2 here, the field dipping 64°).
+  const Vector3& m = params_.mag_field_W;
+  const double yaw_std =
+      at_rest ? params_.initial_yaw_std
+              : std::min(std::numbers::pi, std::hypot(params_.initial_yaw_std,
+                                                      params_.moving_tilt_std * std::abs(m.z()) /
+                                                          std::max(m.head<2>().norm(), 1e-9)));
+  P_(kAttitude + 2, kAttitude + 2) = yaw_std * yaw_std;
   block(kAccelBias, params_.accel_bias_prior);
   block(kGyroBias, params_.gyro_bias_prior);
   if (first_baro_) {
@@ -199,6 +212,9 @@ Update BasicErrorStateFilter<Rotations>::position(std::int64_t t_ns, const Vecto
     return Update::kBadInput;
   }
   if (!aligned_) {
+    if (first_fix_ && t_ns > first_fix_->first) {
+      prior_fix_ = first_fix_;
+    }
     first_fix_ = {t_ns, p_W};
     align(t_ns_);
     return aligned_ ? Update::kAccepted : Update::kNotAligned;

@@ -36,6 +36,8 @@ const common::ParamTable<EstimatorParams>& estimatorTable()
                 "1-sigma of the yaw at alignment")
         .number("initial.rest_tolerance", [](P& p) -> double& { return p.rest_tolerance; }, {0.01, 9.0}, "m/s^2",
                 "at alignment the accelerometer reads gravity within this: at rest (else: moving, level assumed)")
+        .number("initial.rest_speed", [](P& p) -> double& { return p.rest_speed; }, {0.01, 100.0}, "m/s",
+                "... and the last two fixes before it move slower than this (else: moving, their velocity)")
         .number("initial.moving_velocity_std", [](P& p) -> double& { return p.moving_velocity_std; }, {1e-3, 100.0},
                 "m/s", "1-sigma of the velocity at an alignment not at rest")
         .number("initial.moving_tilt_std", [](P& p) -> double& { return p.moving_tilt_std; }, {1e-4, 1.5}, "rad",

@@ -119,7 +119,8 @@ private:
   double gate_1_;  // χ² quantiles of the gate probability, 1 and 3 degrees of freedom
   double gate_3_;
   bool aligned_ = false;
-  std::optional<std::pair<std::int64_t, Vector3>> first_fix_;   // before alignment
+  std::optional<std::pair<std::int64_t, Vector3>> first_fix_;   // before alignment: the newest fix
+  std::optional<std::pair<std::int64_t, Vector3>> prior_fix_;   // and the one before it
   std::optional<Vector3> first_accel_;
   std::optional<Vector3> first_field_;
   std::optional<double> first_baro_;

@@ -30,6 +30,9 @@ struct EstimatorParams {
   /// [m/s²] At alignment the accelerometer reads gravity within this: at rest. Otherwise (a
   /// start in the air, falling) the tilt is taken as level and the two below apply.
   double rest_tolerance = 1.0;
+  /// [m/s] ... and the last two position fixes before it move slower than this (a restart in
+  /// flight, braking, can read gravity at a tilt). Otherwise the velocity starts at theirs.
+  double rest_speed = 1.0;
   double moving_velocity_std = 5.0;   ///< [m/s] 1σ of the velocity at an alignment not at rest
   double moving_tilt_std = 0.3;       ///< [rad] 1σ of roll and pitch at an alignment not at rest
   // Gates and health.

@@ -144,16 +144,17 @@ TEST(Flight, InRealTimeTheStatesDeadlineEventReachesTheFailsafeBeforeTheControll
   std::this_thread::sleep_for(1s);
   // WHEN the plant stops (SIGSTOP: no state, no IMU sample, no clock)
   plant.signal(SIGSTOP);
-  // THEN the controller lands on the failsafe, judged on the state's last sim time plus the
-  // silence: the state topic's DDS deadline (its contract's 0.1 s) fires at the timeout, while
-  // the controller's own wall-clock tick would judge no sooner than 0.14 s (its 0.04 s
-  // backstop past the timeout)
+  // THEN the controller takes the state for stale (holding on the IMU's last samples, then
+  // landing when they end too), judged on the state's last sim time plus the silence: the
+  // state topic's DDS deadline (its contract's 0.1 s) fires at the timeout, while the
+  // controller's own wall-clock tick would judge no sooner than 0.14 s (its 0.04 s backstop
+  // past the timeout)
   ASSERT_TRUE(status.waitForOutput("CONTROL_FAILSAFE_LAND", 10s)) << status.output();
   std::this_thread::sleep_for(500ms);
   const std::int64_t last_state_ns = lastStamp(clock.output());
   nlohmann::json failsafe;
   for (const auto& s : quad::test::jsonLines(status.output())) {
-    if (s["mode"] == "CONTROL_FAILSAFE_LAND" && failsafe.is_null()) {
+    if (s["failsafe_reason"] == "FAILSAFE_STATE_STALE" && failsafe.is_null()) {
       failsafe = s;
     }
   }

@@ -48,20 +48,20 @@ void BM_FlightControllerTickInMission(benchmark::State& state)
   FlightController fc(v, config);
   double t = 0.0;
   VehicleState s;
-  fc.onState(s, true, t);
+  fc.onState(s, t, {.landed = true});
   fc.onCommand(Command::kArm);
   fc.update(t);
   fc.onCommand(Command::kTakeoff);
   for (int k = 0; k < 2000 && fc.mode() != Mode::kHover; ++k) {  // the state follows the reference
     t += 0.004;
-    fc.onState(s, false, t);
+    fc.onState(s, t, {.landed = false});
     s.p_W = fc.update(t).reference.p_W;
   }
   fc.onPath({{0, 0, 2}, {100, 0, 2}, {100, 50, 2}}, 1, PathKind::kOk, t);
   fc.onCommand(Command::kStartMission);
   for (auto _ : state) {
     t += 0.004;
-    fc.onState(s, false, t);
+    fc.onState(s, t, {.landed = false});
     fc.onPath({{0, 0, 2}, {100, 0, 2}, {100, 50, 2}}, 1, PathKind::kOk, t);
     const FlightOutput out = fc.update(t);
     s.p_W = out.reference.p_W;

@@ -94,6 +94,9 @@ const common::ParamTable<ControlNodeConfig>& controlTable()
                 {0.0, 30.0}, "s", "how long the IMU may carry the last state on while it is stale (0: never)")
         .number("modes.path_stale_land_after", [](C& c) -> double& { return c.flight.modes.path_stale_land_after; },
                 {0.0, 3600.0}, "s", "hover without a path, then land")
+        .number("modes.state_stale_land_after",
+                [](C& c) -> double& { return c.flight.modes.state_stale_land_after; }, {0.0, 30.0}, "s",
+                "hold on dead reckoning without a vehicle state (for it to come back), then land")
         .number("modes.no_path_land_after", [](C& c) -> double& { return c.flight.modes.no_path_land_after; },
                 {0.0, 3600.0}, "s", "hover while the planner says the goal cannot be reached, then land")
         .number("modes.geofence_return_after",

@@ -219,7 +219,7 @@ void ControlNode::onWake()
       }
       continue;
     }
-    if (!fc_.onState(fromSample(s), s.landed, t, s.covariance_ok)) {
+    if (!fc_.onState(fromSample(s), t, {s.landed, s.covariance_ok, s.accel_bias_B, s.gyro_bias_B})) {
       counters().errors++;
       spdlog::warn("{}: sample seq {} rejected: invalid or out of order", state_.topic().name, s.seq);
       continue;

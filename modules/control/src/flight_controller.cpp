@@ -48,30 +48,33 @@ FlightController::FlightController(const vehicle::VehicleParams& vehicle, Flight
 {
 }
 
-bool FlightController::onState(const VehicleState& s, std::optional<bool> landed, double t, bool covariance_ok)
+bool FlightController::onState(const VehicleState& s, double t, const StateNotes& notes)
 {
   const double n = s.q_WB.norm();
   const bool valid = s.p_W.allFinite() && s.v_W.allFinite() && s.w_B.allFinite() && std::isfinite(n) &&
-                     std::abs(n - 1.0) < 1e-3 && std::isfinite(t) && t >= state_t_;
+                     std::abs(n - 1.0) < 1e-3 && std::isfinite(t) && t >= state_t_ &&
+                     notes.accel_bias_B.allFinite() && notes.gyro_bias_B.allFinite();
   if (!valid) {
     ++rejected_;
     return false;
   }
   state_ = VehicleState{s.p_W, s.v_W, s.q_WB.normalized(), s.w_B};
-  judge_landing_ = !landed.has_value();
-  if (landed) {
-    landed_ = *landed;
+  judge_landing_ = !notes.landed.has_value();
+  if (notes.landed) {
+    landed_ = *notes.landed;
   }
   state_t_ = t;
   state_late_ = false;
-  covariance_ok_ = covariance_ok;
+  notes_ = notes;
   reckoning_.anchor(*state_, t);
   return true;
 }
 
 bool FlightController::onImu(const InertialSample& sample, double t)
 {
-  if (!reckoning_.onImu(sample, t)) {
+  const InertialSample corrected{sample.specific_force_B - notes_.accel_bias_B,
+                                 sample.angular_rate_B - notes_.gyro_bias_B};
+  if (!reckoning_.onImu(corrected, t)) {
     ++rejected_;
     return false;
   }
@@ -294,7 +297,7 @@ FlightOutput FlightController::update(double t)
     landed_ = land_detector_.update(t, modes_.mode(), *imu_, thrust_ratio_);  // blind: the IMU alone
   }
   in.landed = landed_;
-  in.estimate_uncertain = !covariance_ok_;
+  in.estimate_uncertain = !notes_.covariance_ok;
   in.takeoff_altitude_reached = modes_.mode() == Mode::kTakeoff && state_ && follower_.finished() &&
                                 std::abs(state_->p_W.z() - takeoff_target_.z()) < 0.1;
   // At the goal: within tolerance, and (in a mission) at the end of the path. Outside a
@@ -327,6 +330,7 @@ FlightOutput FlightController::update(double t)
   // over in the moments before it counts as stale. Once stale, only up to the horizon.
   const std::optional<VehicleState> state = reckoning_.estimate(
       t, config_.state_timeout, in.state_fresh ? config_.state_timeout : config_.dead_reckoning_horizon);
+  in.dead_reckoning = !in.state_fresh && state.has_value();
   out.transition = modes_.update(in);
   out.refused = takeoff_refused.empty() ? modes_.refused() : takeoff_refused;
   if (!takeoff_refused.empty() || in.command != Command::kNone) {

@@ -107,9 +107,25 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
     refused_ = std::string(toString(in.command)) + " refused in " + std::string(toString(mode_)) + ": " + why;
   };
 
-  // Safety first: losing the state while flying lands, whatever was asked.
-  if (airborne(mode_) && mode_ != Mode::kFailsafeLand && !in.state_fresh) {
-    return go(Mode::kFailsafeLand, Reason::kStateStale, "vehicle state stale", in.t);
+  // Safety first: losing the state while flying lands, whatever was asked; while the IMU
+  // carries the last state on, after a hold for it to come back (a restarted estimator).
+  if (in.state_fresh) {
+    stale_since_ = -1.0;
+  } else if (airborne(mode_) && mode_ != Mode::kFailsafeLand) {
+    if (stale_since_ < 0.0) {
+      stale_since_ = in.t;
+    }
+    const bool holding = mode_ == Mode::kHover && reason_ == Reason::kStateStale;
+    if (!in.dead_reckoning || mode_ == Mode::kLand || commanded(Command::kLand) ||
+        in.t - stale_since_ >= config_.state_stale_land_after) {
+      return go(Mode::kFailsafeLand, Reason::kStateStale,
+                holding ? "vehicle state stale too long: landing" : "vehicle state stale", in.t);
+    }
+    if (in.command != Command::kNone) {
+      refuse("holding without a vehicle state");
+    }
+    return holding ? std::nullopt
+                   : go(Mode::kHover, Reason::kStateStale, "vehicle state stale: holding on dead reckoning", in.t);
   }
   if (!in.estimate_uncertain || !in.state_fresh) {
     uncertain_since_ = -1.0;

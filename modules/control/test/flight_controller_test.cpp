@@ -73,8 +73,8 @@ struct Rig {
       }
       if (out.state && feed_state) {
         const auto& s = out.state->state;
-        fc.onState({s.p_W, s.v_W, s.q_WB, s.w_B}, tell_landed ? std::optional<bool>(s.landed) : std::nullopt,
-                   common::toSeconds(out.state->t_ns));
+        fc.onState({s.p_W, s.v_W, s.q_WB, s.w_B}, common::toSeconds(out.state->t_ns),
+                   {.landed = tell_landed ? std::optional<bool>(s.landed) : std::nullopt});
       }
       if (out.state) {
         log.push_back(fc.update(t()));
@@ -325,6 +325,45 @@ TEST(FlightController, StaleStateLandsWithinATickOfItsTimeout)
   }
 }
 
+// GIVEN a mission flying WHEN the state stops (an estimator killed) while the IMU goes on
+// THEN the controller holds on dead reckoning within a tick of the timeout; a state back
+// within the hold (a restarted estimator) resumes the mission; none back lands once the
+// hold is over, the vehicle held near where the state went stale.
+TEST(FlightController, AStaleStateIsHeldOnDeadReckoningThenLandsUnlessItComesBack)
+{
+  FlightControllerConfig config = Rig::defaults();
+  config.modes.auto_mission = true;  // as the shipped config: a path resumes the mission
+  Rig rig(config);
+  intoMission(rig);
+  rig.feed_state = false;
+  const double lost = rig.t();
+  rig.run(1.0, [&] { return rig.mode() == Mode::kHover; });
+  ASSERT_EQ(rig.mode(), Mode::kHover);
+  EXPECT_EQ(rig.fc.reason(), Reason::kStateStale);
+  EXPECT_LE(rig.t() - lost, 0.1 + 0.008);
+  EXPECT_TRUE(rig.log.back().dead_reckoning);
+  rig.run(1.0);
+  EXPECT_EQ(rig.mode(), Mode::kHover);  // within the 1.5 s hold
+  rig.fc.onPath({{0, 0, 2}, {40, 0, 2}}, 1, PathKind::kOk, rig.t());
+  rig.feed_state = true;
+  rig.run(0.5, [&] { return rig.mode() == Mode::kMission; });
+  EXPECT_EQ(rig.mode(), Mode::kMission);
+
+  Rig gone;
+  intoMission(gone);
+  gone.feed_state = false;
+  const double stale_at = gone.t();
+  const Vector3 p0 = gone.sim.state().p_W;
+  double farthest = 0.0;
+  gone.run(3.0, [&] {
+    farthest = std::max(farthest, (gone.sim.state().p_W - p0).norm());
+    return gone.mode() == Mode::kFailsafeLand;
+  });
+  ASSERT_EQ(gone.mode(), Mode::kFailsafeLand);
+  EXPECT_NEAR(gone.t() - stale_at, 0.1 + 1.5, 0.01);
+  EXPECT_LT(farthest, 1.5);  // braking from 2 m/s at the tilt limit, then holding
+}
+
 TEST(FlightController, ADeadlineEventMakesItsInputStaleAtTheNextTickUntilTheNextSample)
 {
   // The state: the middleware's deadline event (wall clock) comes before the sim-time timeout.
@@ -335,7 +374,7 @@ TEST(FlightController, ADeadlineEventMakesItsInputStaleAtTheNextTickUntilTheNext
   ASSERT_EQ(rig.mode(), Mode::kMission);  // 20 ms: well within the 0.1 s timeout
   rig.fc.onStateLate();
   rig.run(0.005);
-  EXPECT_EQ(rig.mode(), Mode::kFailsafeLand);
+  EXPECT_EQ(rig.mode(), Mode::kHover);  // held on dead reckoning: the IMU still comes
   EXPECT_EQ(rig.log.back().reason, Reason::kStateStale);
 
   // The path: HOVER at the next tick, saying so; a path again clears it.
@@ -383,24 +422,27 @@ TEST(FlightController, AStateDropoutIsFlownOnDeadReckoningBrakingWhereTheStateWa
   plant::SimulationConfig plant;
   plant.imu.accel_turn_on_std = 0.0;
   plant.imu.gyro_turn_on_std = 0.0;
-  Rig rig(Rig::defaults(), plant);
+  FlightControllerConfig config = Rig::defaults();
+  config.modes.auto_mission = true;  // as the shipped config: a path resumes the mission
+  Rig rig(config, plant);
   const double drift = driftThroughAStateDropout(rig, 1.5);
-  // THEN the failsafe landing is flown on the IMU's estimate: the vehicle brakes (0.2 m in
-  // the 0.1 s the state takes to go stale, then turning round and braking at the tilt
-  // limit: 0.88 m at most here) and comes back over where it was when the state went stale;
-  // the estimate stays within 5 cm of the truth
-  ASSERT_EQ(rig.mode(), Mode::kFailsafeLand);
+  // THEN the hold is flown on the IMU's estimate: the vehicle brakes (0.2 m in the 0.1 s the
+  // state takes to go stale, then braking at the tilt limit) and holds near where it was when
+  // the state went stale; the estimate stays within 5 cm of the truth
+  ASSERT_EQ(rig.mode(), Mode::kHover);
+  EXPECT_EQ(rig.fc.reason(), Reason::kStateStale);
   const FlightOutput& last = rig.log.back();
   EXPECT_TRUE(last.dead_reckoning);
   EXPECT_LT(drift, 1.0);
   const Vector3 estimate = last.reference.p_W - last.position_error_W;
   EXPECT_LT((estimate - rig.sim.state().p_W).norm(), 0.05);
   EXPECT_LT((last.reference.p_W - rig.sim.state().p_W).head<2>().norm(), 0.2);
-  // AND when the state comes back the landing goes on, on the state, to the ground
+  // AND when the state comes back within the hold the mission goes on, on the state
   rig.feed_state = true;
-  rig.run(20.0, [&] { return rig.mode() == Mode::kIdle; });
+  rig.fc.onPath({{0, 0, 2}, {40, 0, 2}}, 1, PathKind::kOk, rig.t());
+  rig.run(1.0, [&] { return rig.mode() == Mode::kMission; });
+  EXPECT_EQ(rig.mode(), Mode::kMission);
   EXPECT_FALSE(rig.log.back().dead_reckoning);
-  EXPECT_TRUE(rig.sim.state().landed);
   EXPECT_EQ(rig.sim.collisionCount(), 0U);
 }
 
@@ -432,8 +474,8 @@ TEST(FlightController, DeadReckoningEndsAtItsHorizon)
 TEST(FlightController, InvalidInputsAreRejectedCountedAndTheLastGoodKept)
 {
   Rig rig;
-  EXPECT_FALSE(rig.fc.onState({Vector3(NAN, 0, 0), Vector3::Zero(), Quaternion::identity(), Vector3::Zero()}, true, 0.0));
-  EXPECT_FALSE(rig.fc.onState({Vector3::Zero(), Vector3::Zero(), Quaternion{2, 0, 0, 0}, Vector3::Zero()}, true, 0.0));
+  EXPECT_FALSE(rig.fc.onState({Vector3(NAN, 0, 0), Vector3::Zero(), Quaternion::identity(), Vector3::Zero()}, 0.0, {.landed = true}));
+  EXPECT_FALSE(rig.fc.onState({Vector3::Zero(), Vector3::Zero(), Quaternion{2, 0, 0, 0}, Vector3::Zero()}, 0.0, {.landed = true}));
   EXPECT_FALSE(rig.fc.onPath({{0, 0, 0}, {INFINITY, 0, 0}}, 3, PathKind::kOk, 0.0));
   EXPECT_FALSE(rig.fc.onPath({}, 4, PathKind::kOk, 0.0));
   EXPECT_FALSE(rig.fc.onGoal(Vector3(NAN, 0, 0), 0.3));
@@ -457,7 +499,7 @@ TEST(FlightController, FuzzedInputsNeverProduceANonFiniteCommand)
       case 0:
         rig.fc.onState({Vector3(value(), value(), value()), Vector3(value(), value(), value()),
                         Quaternion{value(), value(), value(), value()}, Vector3(value(), value(), value())},
-                       rng() % 2 == 0, t);
+                       t, {.landed = rng() % 2 == 0, .accel_bias_B = Vector3(value(), value(), value())});
         break;
       case 1:
         rig.fc.onPath({Vector3(value(), value(), value()), Vector3(value(), value(), value())},

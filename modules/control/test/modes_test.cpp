@@ -81,6 +81,9 @@ TEST(Modes, EveryConditionInEveryMode)
       {"hold", [](ModeInputs& i) { i.command = Command::kHold; }, {D, I, H, H, H, H, F, H}},
       {"land", [](ModeInputs& i) { i.command = Command::kLand; }, {D, I, L, L, L, L, F, L}},
       {"state stale", [](ModeInputs& i) { i.state_fresh = false; }, {D, I, F, F, F, F, F, F}},
+      // The IMU carries the last state on: hold, for it to come back; a landing goes on.
+      {"state stale, dead reckoning", [](ModeInputs& i) { i.state_fresh = false; i.dead_reckoning = true; },
+       {D, I, H, H, H, F, F, H}},
       {"path stale", [](ModeInputs& i) { i.path_fresh = false; }, {D, I, T, H, H, L, F, R}},
       {"landed", [](ModeInputs& i) { i.landed = true; }, {D, I, T, M, H, I, I, R}},
       {"altitude reached", [](ModeInputs& i) { i.takeoff_altitude_reached = true; }, {D, I, H, M, H, L, F, R}},
@@ -408,6 +411,55 @@ TEST(Modes, TransitionsCarryTheirReason)
   EXPECT_EQ(tr->reason, Reason::kPathStale);
   in.state_fresh = false;
   EXPECT_EQ(m.update(in)->reason, Reason::kStateStale);
+}
+
+TEST(Modes, AStaleStateIsHeldOnDeadReckoningUntilItComesBackOrTheHoldEnds)
+{
+  ModeConfig config;
+  config.state_stale_land_after = 1.5;
+  config.auto_mission = true;
+  ModeMachine m = machineIn(Mode::kMission, config);
+  ModeInputs in;
+  in.landed = false;
+  in.path_fresh = true;
+  in.t = 10.0;
+  in.state_fresh = false;
+  in.dead_reckoning = true;
+  auto tr = m.update(in);
+  ASSERT_TRUE(tr.has_value());
+  EXPECT_EQ(tr->to, Mode::kHover);
+  EXPECT_EQ(tr->reason, Reason::kStateStale);
+  in.t = 11.0;
+  in.command = Command::kStartMission;
+  EXPECT_FALSE(m.update(in).has_value());
+  EXPECT_EQ(m.refused(), "start mission refused in HOVER: holding without a vehicle state");
+  in.command = Command::kNone;
+  // Back: the mission resumes.
+  in.state_fresh = true;
+  in.dead_reckoning = false;
+  EXPECT_EQ(m.update(in)->to, Mode::kMission);
+  // Stale again, the hold counts anew; the reckoning's end lands at once.
+  in.t = 20.0;
+  in.state_fresh = false;
+  in.dead_reckoning = true;
+  EXPECT_EQ(m.update(in)->to, Mode::kHover);
+  in.t = 21.0;
+  in.dead_reckoning = false;
+  tr = m.update(in);
+  ASSERT_TRUE(tr.has_value());
+  EXPECT_EQ(tr->to, Mode::kFailsafeLand);
+  // And the hold's end lands too.
+  ModeMachine again = machineIn(Mode::kMission, config);
+  in.t = 30.0;
+  in.dead_reckoning = true;
+  EXPECT_EQ(again.update(in)->to, Mode::kHover);
+  in.t = 31.49;
+  EXPECT_FALSE(again.update(in).has_value());
+  in.t = 31.5;
+  tr = again.update(in);
+  ASSERT_TRUE(tr.has_value());
+  EXPECT_EQ(tr->to, Mode::kFailsafeLand);
+  EXPECT_EQ(tr->why, "vehicle state stale too long: landing");
 }
 
 TEST(Modes, StalePathInHoverLandsAfterItsTimeout)

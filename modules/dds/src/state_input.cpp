@@ -56,6 +56,8 @@ std::vector<StateSample> StateInput::takeAll()
     out.push_back(sampleOf(m));
     out.back().aligned = m.aligned();
     out.back().covariance_ok = m.covariance_ok();
+    out.back().accel_bias_B = toVector(m.accel_bias_B());
+    out.back().gyro_bias_B = toVector(m.gyro_bias_B());
   }
   return out;
 }

@@ -63,7 +63,7 @@ struct FlightControllerConfig {
   double failsafe_thrust = 0.85;  ///< fraction of the weight for a blind failsafe descent
   /// [s] how long after the last state the IMU may carry it on (0: never; then a stale state
   /// means a blind descent at once)
-  double dead_reckoning_horizon = 2.0;
+  double dead_reckoning_horizon = 3.0;
   /// [m] the camera gimbal looks at the path this far ahead of the vehicle
   double camera_look_ahead = 3.0;
   /// The keep-in volume: leaving it holds, then returns (ModeConfig::geofence_return_after).
@@ -113,15 +113,25 @@ struct FlightOutput {
   CameraAim camera;
 };
 
+/// What a state's source says besides the state itself.
+struct StateNotes {
+  /// The plant's ground contact, when the source knows it (the truth); without, the land
+  /// detector judges it.
+  std::optional<bool> landed;
+  /// An estimate's 1σ within the estimator's bounds (false: the uncertain-estimate failsafe).
+  bool covariance_ok = true;
+  /// The estimator's IMU biases, taken off the samples the dead reckoning integrates.
+  Vector3 accel_bias_B = Vector3::Zero();  ///< [m/s²]
+  Vector3 gyro_bias_B = Vector3::Zero();   ///< [rad/s]
+};
+
 class FlightController {
 public:
   FlightController(const vehicle::VehicleParams& vehicle, FlightControllerConfig config);
 
-  /// A vehicle state at sim time t [s], with its ground contact when the source knows it (the
-  /// plant's truth); without, the land detector judges it. `covariance_ok`: an estimate's
-  /// 1-sigma within the estimator's bounds (false: the uncertain-estimate failsafe). Rejected
-  /// (false, counted) when non-finite, the quaternion is not unit within 1e-3, or t goes back.
-  bool onState(const VehicleState& state, std::optional<bool> landed, double t, bool covariance_ok = true);
+  /// A vehicle state at sim time t [s], with what its source says of it. Rejected (false,
+  /// counted) when non-finite (a bias too), the quaternion is not unit within 1e-3, or t goes back.
+  bool onState(const VehicleState& state, double t, const StateNotes& notes = {});
   /// Whether the vehicle is taken to rest on the ground.
   bool landed() const { return landed_; }
   /// A planned path of the planner's status `kind` (waypoints are meaningful only when OK).
@@ -131,8 +141,8 @@ public:
   /// none, or the known-free length is negative or NaN.
   bool onPath(const std::vector<Vector3>& waypoints, std::uint32_t version, PathKind kind, double t,
               double known_free_m = std::numeric_limits<double>::infinity());
-  /// An IMU sample at sim time t [s], carrying the last state on while the state is stale.
-  /// Rejected (false, counted) when non-finite.
+  /// An IMU sample at sim time t [s], carrying the last state on while the state is stale
+  /// (less the last state's biases). Rejected (false, counted) when non-finite.
   bool onImu(const InertialSample& sample, double t);
   /// A battery reading at sim time t [s]; rejected (false, counted) when a value is
   /// non-finite or out of its range (negative voltage or current, charge outside 0 … 1, no
@@ -172,6 +182,7 @@ public:
   /// An input the node refused before it reached the controller (published in the status).
   void countRejected() { ++rejected_; }
   Mode mode() const { return modes_.mode(); }
+  Reason reason() const { return modes_.reason(); }
   std::optional<std::uint32_t> pathVersion() const { return path_version_; }
   double lastStateTime() const { return state_t_; }
 
@@ -198,7 +209,7 @@ private:
   double thrust_ratio_ = 0.0;   ///< the thrust last commanded, a fraction of the weight
   double state_t_ = -1.0;
   bool state_late_ = false;  // a deadline event since the last state
-  bool covariance_ok_ = true;  // the last state's 1-sigma within the estimator's bounds
+  StateNotes notes_;  // of the last state
   std::optional<InertialSample> imu_;  // the last IMU sample, for the land detector without a state
   double imu_t_ = 0.0;
   bool path_late_ = false;   // a deadline event since the last path

@@ -24,7 +24,12 @@
 ///     (the estimator's 1-sigma past its bounds: a position source lost for long; it holds
 ///     where the estimate says it is, for a fix to come back, and resumes if one does)
 ///   RETURN --estimate uncertain for uncertain_land_after--> LAND
-///   any airborne --state stale--> FAILSAFE_LAND --landed--> IDLE --idle timeout--> DISARMED
+///   TAKEOFF, MISSION, HOVER, RETURN --state stale, dead reckoning--> HOVER
+///     --stale for state_stale_land_after (or the reckoning ends)--> FAILSAFE_LAND
+///     (the IMU carries the last state on: it holds, for the state to come back, as a
+///     restarted estimator's does, and the mission resumes)
+///   any airborne --state stale, no dead reckoning--> FAILSAFE_LAND --landed--> IDLE
+///     --idle timeout--> DISARMED
 
 #include <optional>
 #include <string>
@@ -61,6 +66,8 @@ struct ModeInputs {
   double t = 0.0;                 ///< [s] now
   Command command = Command::kNone;
   bool state_fresh = true;        ///< a valid state within its timeout
+  /// The state is stale but the IMU carries the last one on (within its horizon)
+  bool dead_reckoning = false;
   bool path_fresh = false;        ///< a valid path (status OK) within its timeout
   bool no_path = false;           ///< the planner's latest word: the goal cannot be reached
   bool landed = true;
@@ -79,6 +86,7 @@ struct ModeInputs {
 
 struct ModeConfig {
   double path_stale_land_after = 5.0;  ///< [s] in HOVER without a path before landing
+  double state_stale_land_after = 1.5; ///< [s] holding on dead reckoning without a state before landing
   double no_path_land_after = 5.0;     ///< [s] in HOVER while the planner finds no path, before returning to land
   double idle_disarm_after = 10.0;     ///< [s] on the ground, armed, before disarming
   double geofence_return_after = 1.0;  ///< [s] holding after leaving the geofence, before returning
@@ -121,6 +129,7 @@ private:
   double path_stale_since_ = -1;  // time the path went stale in HOVER, -1 if fresh
   double no_path_since_ = -1;     // time the planner first said no path in HOVER, -1 if it did not
   double uncertain_since_ = -1;   // time the estimate became uncertain in the air, -1 if it is not
+  double stale_since_ = -1;       // time the state went stale in the air, -1 if it is fresh
   std::string refused_;
 };
 

@@ -44,6 +44,10 @@ struct StateSample {
   /// The estimator's position and attitude 1-sigma within its bounds (its `health.max_*_std`);
   /// the truth always.
   bool covariance_ok = true;
+  /// The estimator's IMU biases (zero for the truth): a reader that integrates the IMU itself
+  /// (the controller's dead reckoning) takes them off.
+  geometry::Vector3 accel_bias_B = geometry::Vector3::Zero();  ///< [m/s²]
+  geometry::Vector3 gyro_bias_B = geometry::Vector3::Zero();   ///< [rad/s]
 };
 
 /// Reads the chosen source's topic.

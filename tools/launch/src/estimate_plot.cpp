@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "quad/common/xml_text.hpp"
+
 namespace quad::launch {
 
 namespace {
@@ -18,21 +20,6 @@ constexpr double kPanelHeight = 200.0;
 constexpr double kTop = 50.0;     // room for the title
 constexpr double kGap = 60.0;     // between the panels: the first one's time labels, the second's legend
 constexpr int kTicks = 5;         // about this many labelled ticks on an axis
-
-std::string escaped(const std::string& text)
-{
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 /// A round step (1, 2 or 5 times a power of ten) giving about kTicks ticks over `span`.
 double tickStep(double span)
@@ -97,7 +84,7 @@ public:
     out += fmt::format(
         R"svg(<text x="16" y="{:.1f}" font-size="12" transform="rotate(-90 16 {:.1f})" text-anchor="middle">{}</text>)svg"
         "\n",
-        top_ + kPanelHeight / 2.0, top_ + kPanelHeight / 2.0, escaped(unit));
+        top_ + kPanelHeight / 2.0, top_ + kPanelHeight / 2.0, common::xmlEscaped(unit));
     return out;
   }
 
@@ -115,7 +102,7 @@ public:
                        R"(<text x="{:.1f}" y="{:.1f}" font-size="12">{}</text>)"
                        "\n",
                        l.colour, l.dash, points, lx, ly - 4.0, lx + 20.0, ly - 4.0, l.colour, l.dash, lx + 26.0, ly,
-                       escaped(l.label));
+                       common::xmlEscaped(l.label));
   }
 
 private:
@@ -136,7 +123,7 @@ std::string estimateErrorSvg(const std::vector<EstimateErrorPoint>& series, cons
       "\n"
       R"(<text x="{:.1f}" y="22" font-size="15" text-anchor="middle">{}</text>)"
       "\n",
-      kWidth, height, kWidth / 2.0, escaped(title));
+      kWidth, height, kWidth / 2.0, common::xmlEscaped(title));
   if (series.size() < 2) {
     return svg + R"(<text x="20" y="80" font-size="13">fewer than two scored estimates: nothing to draw</text>)"
                  "\n</svg>\n";

@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "quad/common/xml_text.hpp"
+
 namespace quad::security {
 
 namespace {
@@ -21,21 +23,6 @@ std::string isoTime(Clock::time_point t)
   return text;
 }
 
-std::string escape(const std::string& text)
-{
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
 std::string topicList(const char* element, const std::vector<std::string>& topics)
 {
   if (topics.empty()) {
@@ -43,7 +30,7 @@ std::string topicList(const char* element, const std::vector<std::string>& topic
   }
   std::string out = fmt::format("        <{}>\n          <topics>\n", element);
   for (const auto& t : topics) {
-    out += fmt::format("            <topic>{}</topic>\n", escape(t));
+    out += fmt::format("            <topic>{}</topic>\n", common::xmlEscaped(t));
   }
   return out + fmt::format("          </topics>\n        </{}>\n", element);
 }
@@ -103,7 +90,7 @@ std::string permissionsXml(const Grant& grant)
   </permissions>
 </dds>
 )",
-                     escape(grant.identity), escape(grant.subject), isoTime(grant.not_before),
+                     common::xmlEscaped(grant.identity), common::xmlEscaped(grant.subject), isoTime(grant.not_before),
                      isoTime(grant.not_after), kDomains, topicList("publish", grant.publish),
                      topicList("subscribe", grant.subscribe));
 }

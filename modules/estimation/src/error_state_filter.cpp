@@ -21,6 +21,53 @@ bool finite(const Vector3& v) { return v.allFinite(); }
 /// Heading of a vector's horizontal part [rad], from world x towards y.
 double headingOf(const Vector3& v) { return std::atan2(v.y(), v.x()); }
 
+using Samples = std::deque<std::pair<std::int64_t, Vector3>>;
+
+/// The least-squares slope [per s] of the samples stamped at or after `from_ns` (zero for
+/// fewer than two).
+Vector3 slopeSince(const Samples& samples, std::int64_t from_ns)
+{
+  Vector3 mean = Vector3::Zero();
+  double t_mean = 0.0;
+  int n = 0;
+  for (const auto& [t, x] : samples) {
+    if (t >= from_ns) {
+      mean += x;
+      t_mean += common::toSeconds(t - from_ns);
+      ++n;
+    }
+  }
+  if (n < 2) {
+    return Vector3::Zero();
+  }
+  mean /= n;
+  t_mean /= n;
+  Vector3 tx = Vector3::Zero();
+  double tt = 0.0;
+  for (const auto& [t, x] : samples) {
+    if (t >= from_ns) {
+      const double dt = common::toSeconds(t - from_ns) - t_mean;
+      tx += dt * (x - mean);
+      tt += dt * dt;
+    }
+  }
+  return tt > 0.0 ? Vector3(tx / tt) : Vector3::Zero();
+}
+
+/// The mean of the samples stamped at or after `from_ns`; none without one.
+std::optional<Vector3> meanSince(const Samples& samples, std::int64_t from_ns)
+{
+  Vector3 sum = Vector3::Zero();
+  int n = 0;
+  for (const auto& [t, x] : samples) {
+    if (t >= from_ns) {
+      sum += x;
+      ++n;
+    }
+  }
+  return n > 0 ? std::optional<Vector3>(sum / n) : std::nullopt;
+}
+
 }  // namespace
 
 std::string_view toString(Update u)
@@ -57,7 +104,7 @@ Update BasicErrorStateFilter<Rotations>::imu(std::int64_t t_ns, const Vector3& f
   }
   ++imu_counts_.accepted;
   if (!aligned_) {
-    first_accel_ = f_B;
+    keepForAlignment(t_ns, f_B, w_B);
     t_ns_ = t_ns;
     align(t_ns);
     return aligned_ ? Update::kAccepted : Update::kNotAligned;
@@ -67,30 +114,61 @@ Update BasicErrorStateFilter<Rotations>::imu(std::int64_t t_ns, const Vector3& f
 }
 
 template <class Rotations>
-void BasicErrorStateFilter<Rotations>::align(std::int64_t t_ns)
+void BasicErrorStateFilter<Rotations>::keepForAlignment(std::int64_t t_ns, const Vector3& f_B, const Vector3& w_B)
 {
-  if (!first_fix_ || !prior_fix_ || !first_accel_ || !first_field_) {
+  newest_force_ = f_B;
+  const bool still = std::abs(f_B.norm() - params_.gravity_W.norm()) <= params_.rest_tolerance &&
+                     w_B.norm() <= params_.rest_rate;
+  if (!still) {
+    rest_since_ns_ = -1;
+    rest_forces_.clear();
     return;
   }
+  if (rest_since_ns_ < 0) {
+    rest_since_ns_ = t_ns;
+  }
+  rest_forces_.emplace_back(t_ns, f_B);
+  // The fixes come late (their latency): a second more than the window is kept for them.
+  while (rest_forces_.front().first < t_ns - common::toNanoseconds(params_.rest_window + 1.0)) {
+    rest_forces_.pop_front();
+  }
+}
+
+template <class Rotations>
+void BasicErrorStateFilter<Rotations>::align(std::int64_t t_ns)
+{
+  if (fixes_.size() < 2 || !newest_force_ || !newest_field_) {
+    return;
+  }
+  // The fixes of the rest window (two at least), fitted with a line: their velocity.
+  const std::int64_t newest_ns = fixes_.back().first;
+  const std::int64_t window_ns =
+      std::min(newest_ns - common::toNanoseconds(params_.rest_window), fixes_[fixes_.size() - 2].first);
+  const Vector3 fix_velocity = slopeSince(fixes_, window_ns);
+
   // At rest the accelerometer reads −g in the body: roll and pitch. The magnetometer, levelled
-  // with them, gives the yaw against the local field's heading.
-  // Not at rest (a start in the air, falling: the accelerometer reads less than gravity), the
-  // tilt cannot be told: level, with a wide 1σ, and the velocity's wide too; the fixes and the
-  // accelerometer then pull both in.
-  // The last two fixes tell a vehicle in motion (a restart in flight, braking) whose
-  // accelerometer may still read gravity's magnitude at a tilt.
-  const Vector3& f = *first_accel_;
-  const Vector3 fix_velocity = (first_fix_->second - prior_fix_->second) /
-                               common::toSeconds(first_fix_->first - prior_fix_->first);
-  const bool at_rest = std::abs(f.norm() - params_.gravity_W.norm()) <= params_.rest_tolerance &&
+  // with them, gives the yaw against the local field's heading. In flight it reads the thrust,
+  // along the body's z whatever the tilt: alignment waits for rest (the controller holds the
+  // vehicle while it has no state), all of the window long.
+  // Falling (a start in the air), the tilt cannot be told and nothing is worth waiting for:
+  // level, with a wide 1σ, and the velocity's wide too; the fixes and the accelerometer then
+  // pull both in. The same after moving_after without rest.
+  const bool at_rest = rest_since_ns_ >= 0 && rest_since_ns_ <= window_ns &&
                        fix_velocity.norm() <= params_.rest_speed;
+  const bool falling = newest_force_->norm() < params_.gravity_W.norm() - params_.rest_tolerance;
+  const bool waited = newest_ns - first_fix_ns_ >= common::toNanoseconds(params_.moving_after);
+  if (!at_rest && !falling && !waited) {
+    return;
+  }
+  // At rest, the tilt from the window's mean force (the noise averaged out).
+  const Vector3 f = at_rest ? meanSince(rest_forces_, window_ns).value_or(*newest_force_) : *newest_force_;
   const double roll = at_rest ? std::atan2(f.y(), f.z()) : 0.0;
   const double pitch = at_rest ? std::atan2(-f.x(), std::hypot(f.y(), f.z())) : 0.0;
   const Matrix3 tilt = geometry::rotY(pitch) * geometry::rotX(roll);
-  const double yaw = geometry::wrapToPi(headingOf(params_.mag_field_W) - headingOf(tilt * *first_field_));
+  const double yaw = geometry::wrapToPi(headingOf(params_.mag_field_W) - headingOf(tilt * *newest_field_));
   R_ = geometry::rotZ(yaw) * tilt;
-  p_ = first_fix_->second;
-  v_ = at_rest ? Vector3::Zero() : fix_velocity;
+  p_ = fixes_.back().second + fix_velocity * common::toSeconds(t_ns - newest_ns);  // a fix is late
+  v_ = fix_velocity;
   ba_.setZero();
   bg_.setZero();
   P_.setZero();
@@ -115,7 +193,7 @@ void BasicErrorStateFilter<Rotations>::align(std::int64_t t_ns)
   }
   P_(kBaroOffset, kBaroOffset) = params_.baro_offset_prior * params_.baro_offset_prior;
   t_ns_ = t_ns;
-  last_fix_ns_ = first_fix_->first;
+  last_fix_ns_ = newest_ns;
   last_heading_ns_ = t_ns;
   history_.assign(1, {t_ns, p_});
   aligned_ = true;
@@ -212,10 +290,15 @@ Update BasicErrorStateFilter<Rotations>::position(std::int64_t t_ns, const Vecto
     return Update::kBadInput;
   }
   if (!aligned_) {
-    if (first_fix_ && t_ns > first_fix_->first) {
-      prior_fix_ = first_fix_;
+    if (!fixes_.empty() && t_ns <= fixes_.back().first) {
+      ++position_counts_.bad;
+      return Update::kBadInput;
     }
-    first_fix_ = {t_ns, p_W};
+    fixes_.emplace_back(t_ns, p_W);
+    first_fix_ns_ = first_fix_ns_ < 0 ? t_ns : first_fix_ns_;
+    while (fixes_.size() > 2 && fixes_[1].first < t_ns - common::toNanoseconds(params_.rest_window)) {
+      fixes_.pop_front();
+    }
     align(t_ns_);
     return aligned_ ? Update::kAccepted : Update::kNotAligned;
   }
@@ -301,7 +384,7 @@ Update BasicErrorStateFilter<Rotations>::mag(std::int64_t t_ns, const Vector3& f
     return Update::kBadInput;
   }
   if (!aligned_) {
-    first_field_ = field_B;
+    newest_field_ = field_B;
     align(t_ns_);
     return aligned_ ? Update::kAccepted : Update::kNotAligned;
   }

@@ -29,15 +29,21 @@ const common::ParamTable<EstimatorParams>& estimatorTable()
         .vector("mag.field", [](P& p) -> Vector3& { return p.mag_field_W; }, {-100.0, 100.0}, "uT",
                 "the local magnetic field, world frame (ENU)")
         .number("initial.velocity_std", [](P& p) -> double& { return p.initial_velocity_std; }, {1e-4, 100.0}, "m/s",
-                "1-sigma of the velocity at alignment (zero)")
+                "1-sigma of the velocity at an alignment at rest")
         .number("initial.tilt_std", [](P& p) -> double& { return p.initial_tilt_std; }, {1e-5, 1.0}, "rad",
                 "1-sigma of roll and pitch at alignment")
         .number("initial.yaw_std", [](P& p) -> double& { return p.initial_yaw_std; }, {1e-5, 3.2}, "rad",
                 "1-sigma of the yaw at alignment")
         .number("initial.rest_tolerance", [](P& p) -> double& { return p.rest_tolerance; }, {0.01, 9.0}, "m/s^2",
-                "at alignment the accelerometer reads gravity within this: at rest (else: moving, level assumed)")
+                "at rest the accelerometer reads gravity within this (below it by more: falling, aligned as moving)")
+        .number("initial.rest_rate", [](P& p) -> double& { return p.rest_rate; }, {1e-3, 10.0}, "rad/s",
+                "... and the gyroscope reads less than this")
         .number("initial.rest_speed", [](P& p) -> double& { return p.rest_speed; }, {0.01, 100.0}, "m/s",
-                "... and the last two fixes before it move slower than this (else: moving, their velocity)")
+                "... and the fixes, fitted with a line, move slower than this")
+        .number("initial.rest_window", [](P& p) -> double& { return p.rest_window; }, {0.0, 10.0}, "s",
+                "... all of it for this long: then aligned at rest, the tilt from the accelerometer")
+        .number("initial.moving_after", [](P& p) -> double& { return p.moving_after; }, {0.0, 600.0}, "s",
+                "no rest this long after the first fix: aligned as moving (level, the fixes' velocity)")
         .number("initial.moving_velocity_std", [](P& p) -> double& { return p.moving_velocity_std; }, {1e-3, 100.0},
                 "m/s", "1-sigma of the velocity at an alignment not at rest")
         .number("initial.moving_tilt_std", [](P& p) -> double& { return p.moving_tilt_std; }, {1e-4, 1.5}, "rad",

@@ -102,8 +102,9 @@ TEST(ErrorStateFilter, AnAlignmentInAFallIsTakenForMovingAndTracksTheBraking)
   for (const bool assume_rest : {false, true}) {
     EstimatorParams params;
     if (assume_rest) {
-      params.rest_tolerance = 100.0;  // any accelerometer reading counts as at rest
+      params.rest_tolerance = 100.0;  // any accelerometer reading counts as at rest, at once
       params.rest_speed = 1e3;
+      params.rest_window = 0.0;
     }
     ErrorStateFilter filter(params);
     // The worst tilt while the rotors take over (the first half second of braking): what a
@@ -132,22 +133,27 @@ TEST(ErrorStateFilter, AnAlignmentInAFallIsTakenForMovingAndTracksTheBraking)
 }
 
 // GIVEN an estimator started while the vehicle brakes from 3 m/s at 2 m/s² (a restart in
-// flight: pitched back 0.2 rad, the accelerometer reads gravity's magnitude within 0.2 m/s²)
-// WHEN it aligns THEN the fixes' speed tells it moving: it starts level with a wide 1σ and
-// their velocity (and a heading as wide as the tilt makes it), and within a second the tilt
-// is right. Taken for at rest, it would fly the 0.2 rad of pitch as level, sure of it.
-TEST(ErrorStateFilter, AnAlignmentWhileBrakingIsTakenForMovingByTheFixes)
+// flight: pitched back 0.2 rad, the accelerometer reads gravity's magnitude within 0.2 m/s²
+// and the gyroscope nothing), pitches level in 0.2 s and holds still WHEN it aligns THEN it waits through the braking, whose fixes move, and
+// aligns once the vehicle has been still for the rest window, with the tilt within its
+// at-rest 1σ and the heading within 3°. Not waiting, it would fly the 0.2 rad of pitch as
+// level, sure of it (its 1σ 0.02 rad).
+TEST(ErrorStateFilter, AnEstimatorStartedWhileBrakingAlignsOnceTheVehicleIsStill)
 {
   static constexpr double g = 9.81;
   static constexpr double decel = 2.0;
+  static constexpr double t_stop = 1.5;
+  static constexpr double t_level = 0.2;  // to pitch back level
   const double pitch = std::atan2(-decel, g);
   const test::Motion braking = [pitch](double t) {
     Truth x;
-    const double tb = std::min(t, 1.5);  // stopped at 1.5 s
+    const double tb = std::min(t, t_stop);
+    const double levelling = std::clamp((t - t_stop) / t_level, 0.0, 1.0);
     x.p_W = Vector3(3.0 * tb - 0.5 * decel * tb * tb, 0.0, 3.0);
     x.v_W = Vector3(3.0 - decel * tb, 0.0, 0.0);
-    x.a_W = Vector3(t < 1.5 ? -decel : 0.0, 0.0, 0.0);
-    x.R_WB = geometry::rotY(t < 1.5 ? pitch : 0.0);
+    x.a_W = Vector3(t < t_stop ? -decel : 0.0, 0.0, 0.0);
+    x.R_WB = geometry::rotY(pitch * (1.0 - levelling));
+    x.w_B = Vector3(0.0, levelling > 0.0 && levelling < 1.0 ? -pitch / t_level : 0.0, 0.0);
     return x;
   };
   for (const bool assume_rest : {false, true}) {
@@ -156,23 +162,58 @@ TEST(ErrorStateFilter, AnAlignmentWhileBrakingIsTakenForMovingByTheFixes)
       params.rest_speed = 1e3;
     }
     ErrorStateFilter filter(params);
-    double tilt_late = 0.0;   // the worst in 1.2-1.45 s, still braking
-    double v_late = 0.0;
-    test::fly(filter, braking, 1.5, {}, 11, [&](double t, const Truth& x) {
-      if (t >= 1.2 && t < 1.45 && filter.aligned()) {
+    double aligned_at = -1.0;
+    double tilt_error = 0.0;  // the worst in the first half second aligned
+    double yaw_error = 0.0;
+    test::fly(filter, braking, 3.0, {}, 11, [&](double t, const Truth& x) {
+      if (!filter.aligned()) {
+        return;
+      }
+      aligned_at = aligned_at < 0.0 ? t : aligned_at;
+      if (t < aligned_at + 0.5) {
         const Estimate now = filter.estimate(static_cast<std::int64_t>(t * 1e9));
-        tilt_late = std::max(tilt_late, test::attitudeError(x, now).head<2>().norm());
-        v_late = std::max(v_late, (now.v_W - x.v_W).norm());
+        const Vector3 e = test::attitudeError(x, now);
+        tilt_error = std::max(tilt_error, e.head<2>().norm());
+        yaw_error = std::max(yaw_error, std::abs(e.z()));
       }
     });
+    ASSERT_GT(aligned_at, 0.0);
     if (assume_rest) {
-      EXPECT_GT(tilt_late, 0.1) << "the braking's pitch, flown as level";
+      EXPECT_LT(aligned_at, t_stop);
+      EXPECT_GT(tilt_error, 0.1) << "the braking's pitch, flown as level";
       continue;
     }
-    EXPECT_LT(tilt_late, 0.05);
-    EXPECT_LT(v_late, 0.2);
+    EXPECT_GE(aligned_at, t_stop + t_level + params.rest_window);
+    EXPECT_LT(aligned_at, t_stop + t_level + params.rest_window + 0.3);
+    EXPECT_LT(tilt_error, 2.0 * params.initial_tilt_std);
+    EXPECT_LT(yaw_error, 3.0 * M_PI / 180);
     EXPECT_EQ(filter.positionCounts().rejected, 0U);
   }
+}
+
+// GIVEN a vehicle that never comes to rest (a straight line at 2 m/s) WHEN the filter waits
+// for rest THEN it aligns as moving after initial.moving_after, not before, and tracks the
+// line within the goals once settled.
+TEST(ErrorStateFilter, AVehicleNeverAtRestIsAlignedAsMovingAfterTheWait)
+{
+  const EstimatorParams params;
+  ErrorStateFilter filter(params);
+  double aligned_at = -1.0;
+  Errors e;
+  test::fly(filter, test::constantVelocity({0, 0, 2}, {2.0, 0.5, 0.1}, 0.3), 20.0, {}, 4,
+            [&](double t, const Truth& x) {
+              if (filter.aligned() && aligned_at < 0.0) {
+                aligned_at = t;
+              }
+              if (t >= 10.0) {
+                e.add(x, filter.estimate(static_cast<std::int64_t>(t * 1e9)));
+              }
+            });
+  e.finish();
+  EXPECT_GE(aligned_at, params.moving_after);
+  EXPECT_LT(aligned_at, params.moving_after + 0.3);
+  EXPECT_LT(e.p_rms, 0.05);
+  EXPECT_LT(e.yaw_rms, 1.0 * M_PI / 180);
 }
 
 // GIVEN a level circle of 10 m radius at 3 m/s (a constant turn rate and a centripetal

@@ -106,7 +106,10 @@ public:
   std::uint64_t positionResets() const { return position_resets_; }
 
 private:
+  /// Aligns when the samples kept allow it (at rest, falling, or waited moving_after).
   void align(std::int64_t t_ns);
+  /// Before alignment: whether the IMU sample reads as at rest, kept for it.
+  void keepForAlignment(std::int64_t t_ns, const Vector3& f_B, const Vector3& w_B);
   void predict(std::int64_t t_ns, const Vector3& f_B, const Vector3& w_B);
   /// The gated update with innovation `y`, Jacobian `H` and noise `R`; applies it when the
   /// innovation passes `gate`.
@@ -119,10 +122,15 @@ private:
   double gate_1_;  // χ² quantiles of the gate probability, 1 and 3 degrees of freedom
   double gate_3_;
   bool aligned_ = false;
-  std::optional<std::pair<std::int64_t, Vector3>> first_fix_;   // before alignment: the newest fix
-  std::optional<std::pair<std::int64_t, Vector3>> prior_fix_;   // and the one before it
-  std::optional<Vector3> first_accel_;
-  std::optional<Vector3> first_field_;
+  // Before alignment: the newest fixes (the rest window's, two at least) and the first one's
+  // time; the run of IMU samples that read as at rest (since when, and the forces of its
+  // last second and rest window); the newest force and field.
+  std::deque<std::pair<std::int64_t, Vector3>> fixes_;
+  std::int64_t first_fix_ns_ = -1;
+  std::int64_t rest_since_ns_ = -1;
+  std::deque<std::pair<std::int64_t, Vector3>> rest_forces_;
+  std::optional<Vector3> newest_force_;
+  std::optional<Vector3> newest_field_;
   std::optional<double> first_baro_;
 
   Vector3 p_ = Vector3::Zero();

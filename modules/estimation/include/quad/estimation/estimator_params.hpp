@@ -27,12 +27,19 @@ struct EstimatorParams {
   double initial_velocity_std = 0.5;  ///< [m/s]
   double initial_tilt_std = 0.02;     ///< [rad] roll and pitch, from the accelerometer at rest
   double initial_yaw_std = 0.05;      ///< [rad] from the magnetometer
-  /// [m/s²] At alignment the accelerometer reads gravity within this: at rest. Otherwise (a
-  /// start in the air, falling) the tilt is taken as level and the two below apply.
+  /// Alignment waits for the vehicle at rest, where the accelerometer reads gravity alone and
+  /// gives the tilt: for rest_window every IMU sample reads gravity's magnitude within
+  /// rest_tolerance [m/s²] and turns slower than rest_rate [rad/s], and the position fixes of
+  /// that window, fitted with a line, move slower than rest_speed [m/s]. (A multirotor braking
+  /// or cruising reads its thrust, along its own z, whatever its tilt.)
   double rest_tolerance = 1.0;
-  /// [m/s] ... and the last two position fixes before it move slower than this (a restart in
-  /// flight, braking, can read gravity at a tilt). Otherwise the velocity starts at theirs.
-  double rest_speed = 1.0;
+  double rest_rate = 0.1;
+  double rest_speed = 0.2;
+  double rest_window = 0.5;  ///< [s]
+  /// Two cases align without rest, level with the wide 1σ below and the fixes' velocity: an
+  /// accelerometer reading less than gravity by more than rest_tolerance (falling: a start in
+  /// the air, nothing holds it up), and no rest moving_after [s] after the first fix.
+  double moving_after = 3.0;
   double moving_velocity_std = 5.0;   ///< [m/s] 1σ of the velocity at an alignment not at rest
   double moving_tilt_std = 0.3;       ///< [rad] 1σ of roll and pitch at an alignment not at rest
   // Gates and health.

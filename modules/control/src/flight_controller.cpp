@@ -256,6 +256,14 @@ void FlightController::enter(Mode from, Mode mode, double t, const std::optional
         follower_.hold(p, yaw);
         break;
       }
+      // Holding for the state to come back (on dead reckoning): where the vehicle stops,
+      // braking as hard as the follower may, not a point passed that it would fly back to
+      // (still sooner: a restarted estimator aligns once the vehicle is still).
+      if (modes_.reason() == Reason::kStateStale && state) {
+        const Vector3& v = state->v_W;
+        follower_.hold(p + v * v.norm() / (2.0 * follower_.limits().max_braking), follower_.reference().yaw);
+        break;
+      }
       const Vector3 hold = (follower_.reference().p_W - p).norm() < 1.0 ? follower_.reference().p_W : p;
       follower_.hold(hold, follower_.reference().yaw);
       break;

@@ -63,7 +63,7 @@ struct FlightControllerConfig {
   double failsafe_thrust = 0.85;  ///< fraction of the weight for a blind failsafe descent
   /// [s] how long after the last state the IMU may carry it on (0: never; then a stale state
   /// means a blind descent at once)
-  double dead_reckoning_horizon = 3.0;
+  double dead_reckoning_horizon = 5.0;
   /// [m] the camera gimbal looks at the path this far ahead of the vehicle
   double camera_look_ahead = 3.0;
   /// The keep-in volume: leaving it holds, then returns (ModeConfig::geofence_return_after).

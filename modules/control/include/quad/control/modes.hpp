@@ -86,7 +86,7 @@ struct ModeInputs {
 
 struct ModeConfig {
   double path_stale_land_after = 5.0;  ///< [s] in HOVER without a path before landing
-  double state_stale_land_after = 1.5; ///< [s] holding on dead reckoning without a state before landing
+  double state_stale_land_after = 2.5; ///< [s] holding on dead reckoning without a state before landing
   double no_path_land_after = 5.0;     ///< [s] in HOVER while the planner finds no path, before returning to land
   double idle_disarm_after = 10.0;     ///< [s] on the ground, armed, before disarming
   double geofence_return_after = 1.0;  ///< [s] holding after leaving the geofence, before returning

@@ -13,6 +13,28 @@ namespace {
 constexpr std::array kModes = {Mode::kDisarmed, Mode::kIdle,         Mode::kTakeoff, Mode::kMission,
                                Mode::kHover,    Mode::kLand,         Mode::kFailsafeLand, Mode::kReturn};
 
+/// Inputs of a vehicle in the air at `t` [s], with a fresh state and a fresh path.
+ModeInputs flying(double t)
+{
+  ModeInputs in;
+  in.landed = false;
+  in.path_fresh = true;
+  in.t = t;
+  return in;
+}
+
+/// Whether `tr` is a transition to `to` for `reason`.
+testing::AssertionResult goes(const std::optional<Transition>& tr, Mode to, Reason reason)
+{
+  if (!tr) {
+    return testing::AssertionFailure() << "no transition";
+  }
+  if (tr->to != to || tr->reason != reason) {
+    return testing::AssertionFailure() << "to " << toString(tr->to) << " for " << toString(tr->reason);
+  }
+  return testing::AssertionSuccess();
+}
+
 /// A machine put into `mode` through legal transitions.
 ModeMachine machineIn(Mode mode, ModeConfig config = {})
 {
@@ -223,15 +245,10 @@ TEST(Modes, LeavingTheGeofenceHoldsThenReturnsAndLandsSayingWhy)
   ModeConfig config;
   config.geofence_return_after = 2.0;
   ModeMachine m = machineIn(Mode::kMission, config);
-  ModeInputs in;
-  in.landed = false;
-  in.path_fresh = true;
-  in.t = 10.0;
+  ModeInputs in = flying(10.0);
   in.outside_geofence = true;
   auto tr = m.update(in);
-  ASSERT_TRUE(tr.has_value());
-  EXPECT_EQ(tr->to, Mode::kHover);
-  EXPECT_EQ(tr->reason, Reason::kGeofence);
+  ASSERT_TRUE(goes(tr, Mode::kHover, Reason::kGeofence));
   // Back inside, with a path: the hold still runs its course, and no mission starts.
   in.outside_geofence = false;
   in.t = 11.0;
@@ -243,9 +260,7 @@ TEST(Modes, LeavingTheGeofenceHoldsThenReturnsAndLandsSayingWhy)
   EXPECT_FALSE(m.update(in).has_value());
   in.t = 12.0;
   tr = m.update(in);
-  ASSERT_TRUE(tr.has_value());
-  EXPECT_EQ(tr->to, Mode::kReturn);
-  EXPECT_EQ(tr->reason, Reason::kGeofence);
+  ASSERT_TRUE(goes(tr, Mode::kReturn, Reason::kGeofence));
   // Outside again on the way back: RETURN carries on.
   in.outside_geofence = true;
   EXPECT_FALSE(m.update(in).has_value());
@@ -253,9 +268,7 @@ TEST(Modes, LeavingTheGeofenceHoldsThenReturnsAndLandsSayingWhy)
   EXPECT_EQ(m.update(in)->to, Mode::kLand);
   in.landed = true;
   tr = m.update(in);
-  ASSERT_TRUE(tr.has_value());
-  EXPECT_EQ(tr->to, Mode::kIdle);
-  EXPECT_EQ(tr->reason, Reason::kGeofence);
+  ASSERT_TRUE(goes(tr, Mode::kIdle, Reason::kGeofence));
 }
 
 TEST(Modes, AnUncertainEstimateHoldsThenLandsUnlessItComesBack)
@@ -264,15 +277,10 @@ TEST(Modes, AnUncertainEstimateHoldsThenLandsUnlessItComesBack)
   config.uncertain_land_after = 4.0;
   config.auto_mission = true;
   ModeMachine m = machineIn(Mode::kMission, config);
-  ModeInputs in;
-  in.landed = false;
-  in.path_fresh = true;
-  in.t = 10.0;
+  ModeInputs in = flying(10.0);
   in.estimate_uncertain = true;
   auto tr = m.update(in);
-  ASSERT_TRUE(tr.has_value());
-  EXPECT_EQ(tr->to, Mode::kHover);
-  EXPECT_EQ(tr->reason, Reason::kEstimateUncertain);
+  ASSERT_TRUE(goes(tr, Mode::kHover, Reason::kEstimateUncertain));
   // Holding, with a fresh path: no mission starts by itself or by command.
   in.t = 11.0;
   EXPECT_FALSE(m.update(in).has_value());
@@ -294,14 +302,10 @@ TEST(Modes, AnUncertainEstimateHoldsThenLandsUnlessItComesBack)
   EXPECT_FALSE(m.update(in).has_value());
   in.t = 24.0;
   tr = m.update(in);
-  ASSERT_TRUE(tr.has_value());
-  EXPECT_EQ(tr->to, Mode::kLand);
-  EXPECT_EQ(tr->reason, Reason::kEstimateUncertain);
+  ASSERT_TRUE(goes(tr, Mode::kLand, Reason::kEstimateUncertain));
   in.landed = true;
   tr = m.update(in);
-  ASSERT_TRUE(tr.has_value());
-  EXPECT_EQ(tr->to, Mode::kIdle);
-  EXPECT_EQ(tr->reason, Reason::kEstimateUncertain);  // why the flight ended
+  ASSERT_TRUE(goes(tr, Mode::kIdle, Reason::kEstimateUncertain));  // why the flight ended
   // On the ground, no take-off on it.
   in.command = Command::kTakeoff;
   EXPECT_FALSE(m.update(in).has_value());
@@ -322,23 +326,16 @@ TEST(Modes, AReturnOnAnUncertainEstimateLandsAfterTheSameTime)
   EXPECT_FALSE(m.update(in).has_value());
   in.t = 2004.0;
   const auto tr = m.update(in);
-  ASSERT_TRUE(tr.has_value());
-  EXPECT_EQ(tr->to, Mode::kLand);
-  EXPECT_EQ(tr->reason, Reason::kEstimateUncertain);
+  ASSERT_TRUE(goes(tr, Mode::kLand, Reason::kEstimateUncertain));
 }
 
 TEST(Modes, ALowBatteryReturnsAndACriticalOneLandsWhereItIsSayingWhy)
 {
   ModeMachine m = machineIn(Mode::kMission);
-  ModeInputs in;
-  in.landed = false;
-  in.path_fresh = true;
-  in.t = 20.0;
+  ModeInputs in = flying(20.0);
   in.battery_low = true;
   auto tr = m.update(in);
-  ASSERT_TRUE(tr.has_value());
-  EXPECT_EQ(tr->to, Mode::kReturn);
-  EXPECT_EQ(tr->reason, Reason::kBatteryLow);
+  ASSERT_TRUE(goes(tr, Mode::kReturn, Reason::kBatteryLow));
   EXPECT_EQ(tr->why, "battery low: returning to land at the take-off point");
   // On the way back the operator cannot send it off again, nor park it.
   for (const Command c : {Command::kStartMission, Command::kHold}) {
@@ -351,15 +348,11 @@ TEST(Modes, ALowBatteryReturnsAndACriticalOneLandsWhereItIsSayingWhy)
   // The pack fails on the way: land where it is.
   in.battery_critical = true;
   tr = m.update(in);
-  ASSERT_TRUE(tr.has_value());
-  EXPECT_EQ(tr->to, Mode::kLand);
-  EXPECT_EQ(tr->reason, Reason::kBatteryCritical);
+  ASSERT_TRUE(goes(tr, Mode::kLand, Reason::kBatteryCritical));
   EXPECT_EQ(tr->why, "battery critical: landing where it is");
   in.landed = true;
   tr = m.update(in);
-  ASSERT_TRUE(tr.has_value());
-  EXPECT_EQ(tr->to, Mode::kIdle);
-  EXPECT_EQ(tr->reason, Reason::kBatteryCritical);
+  ASSERT_TRUE(goes(tr, Mode::kIdle, Reason::kBatteryCritical));
   // On the ground, no take-off on that pack.
   in.command = Command::kTakeoff;
   EXPECT_FALSE(m.update(in).has_value());
@@ -419,16 +412,11 @@ TEST(Modes, AStaleStateIsHeldOnDeadReckoningUntilItComesBackOrTheHoldEnds)
   config.state_stale_land_after = 1.5;
   config.auto_mission = true;
   ModeMachine m = machineIn(Mode::kMission, config);
-  ModeInputs in;
-  in.landed = false;
-  in.path_fresh = true;
-  in.t = 10.0;
+  ModeInputs in = flying(10.0);
   in.state_fresh = false;
   in.dead_reckoning = true;
   auto tr = m.update(in);
-  ASSERT_TRUE(tr.has_value());
-  EXPECT_EQ(tr->to, Mode::kHover);
-  EXPECT_EQ(tr->reason, Reason::kStateStale);
+  ASSERT_TRUE(goes(tr, Mode::kHover, Reason::kStateStale));
   in.t = 11.0;
   in.command = Command::kStartMission;
   EXPECT_FALSE(m.update(in).has_value());

@@ -138,6 +138,29 @@ void flyMission(const std::string& manifest, int domain, const std::vector<std::
     EXPECT_EQ(path["missing"], 0) << bag;
     EXPECT_EQ(path["duplicated"], 0) << bag;
     EXPECT_EQ(path["reordered"], 0) << bag;
+    // The run's report, drawn from that recording: a page showing every figure, each written.
+    const std::string html = quad::test::readFile(dir / "run" / "report.html");
+    for (const char* figure : {"top_view.svg", "side_view.svg", "motion.svg", "tracking.svg", "timeline.svg",
+                               "replanning.svg", "rates.svg", "estimate_error.svg"}) {
+      EXPECT_NE(html.find(std::string("<img src=\"") + figure + "\""), std::string::npos) << figure << "\n" << html;
+      const std::string svg = quad::test::readFile(dir / "run" / figure);
+      EXPECT_EQ(svg.rfind("<svg ", 0), 0U) << figure;
+      EXPECT_NE(svg.find("</svg>"), std::string::npos) << figure;
+    }
+    // The top view draws the mapped obstacles and the flown trajectory over the world's trees.
+    const std::string top = quad::test::readFile(dir / "run" / "top_view.svg");
+    EXPECT_NE(top.find("mapped occupied voxels"), std::string::npos);
+    EXPECT_NE(top.find("true obstacles"), std::string::npos);
+    // quad report redraws it from the recording alone, elsewhere.
+    ChildProcess redraw({QUAD_TOOL, "report", (dir / "run.mcap").string(), "-o", (dir / "again").string(), "-q"});
+    ASSERT_EQ(redraw.wait(120s), 0) << redraw.output();
+    EXPECT_TRUE(fs::exists(dir / "again" / "report.html"));
+    EXPECT_TRUE(fs::exists(dir / "again" / "top_view.svg"));
+  } else {
+    // Unasked, a run records into its folder and ends with its report.
+    EXPECT_TRUE(fs::exists(dir / "run" / "recording.mcap"));
+    EXPECT_TRUE(fs::exists(dir / "run" / "report.html"));
+    EXPECT_TRUE(fs::exists(dir / "run" / "top_view.svg"));
   }
   if (!::testing::Test::HasFailure()) {
     fs::remove_all(dir);  // kept to look into otherwise

@@ -17,6 +17,7 @@
 #include "launch_command.hpp"
 #include "manual.hpp"
 #include "plan_command.hpp"
+#include "report_command.hpp"
 #include "security_command.hpp"
 #include "bag_commands.hpp"
 #include "quad/common/layout.hpp"
@@ -84,7 +85,10 @@ int main(int argc, char** argv)
       ->check(CLI::Range(0, 232));
   launch->add_option("--subnet", launch_options.subnet, "First three numbers of the /24 for network-namespace hosts");
   launch->add_option("--summary", launch_options.summary, "Write the mission's summary as JSON to this file");
-  launch->add_option("--record", launch_options.record, "Record every topic of the run to this MCAP file (quad record)");
+  auto* launch_record = launch->add_option("--record", launch_options.record,
+                                           "Record every topic to this MCAP file (default: the run folder's recording.mcap)");
+  launch->add_flag("--no-record", launch_options.no_record, "Record nothing (and so write no report)")->excludes(launch_record);
+  launch->add_flag("--no-report", launch_options.no_report, "Write no report.html at the end of the run");
   launch->add_option("--log-dir", launch_options.log_dir, "The run's folder (default: log/<name>-<time>-<pid>)");
   launch->add_option("--wall-timeout", launch_options.wall_timeout_s, "Stop and fail after this many seconds")
       ->check(CLI::NonNegativeNumber);
@@ -98,6 +102,14 @@ int main(int argc, char** argv)
   plan->add_option("--config", plan_options.config, "Planning config (radius, margin, lattice)")->capture_default_str();
   plan->add_flag("--no-land", plan_options.no_land, "The mission does not land at the goal");
   plan->add_option("--json", plan_options.json, "Write the result as JSON to this file");
+
+  quad::report::ReportOptions report_options;
+  bool report_quiet = false;
+  auto* report = app.add_subcommand("report", "A run's report: report.html and its figures, from the run's recording");
+  report->add_option("input", report_options.input, "A run folder (log/<run>/, with its recording.mcap) or a recording")->required();
+  report->add_option("-o,--output", report_options.output, "Folder for report.html and the figures (default: the input's)");
+  report->add_option("--world", report_options.world, "World whose obstacles the views draw (default: the run's, from run.json)");
+  report->add_flag("-q,--quiet", report_quiet, "No progress lines");
 
   quad::tools::CampaignCommandOptions campaign_options;
   campaign_options.manifest = (quad::common::layout().data / "bringup" / "demo.yaml").string();
@@ -123,6 +135,7 @@ int main(int argc, char** argv)
   fault->add_option("--wall-timeout", fault_options.wall_timeout_s, "Stop and fail after this many seconds")
       ->check(CLI::NonNegativeNumber);
   fault->add_flag("-q,--quiet", fault_options.quiet, "Modules' output to their log files only");
+  fault->add_flag("--no-report", fault_options.no_report, "Write no report.html at the end of the run");
   fault->add_flag("--check", fault_options.check, "Validate the scenario and its manifest and exit");
 
   quad::record::RecordOptions record_options;
@@ -349,6 +362,9 @@ int main(int argc, char** argv)
     }
     if (plan->parsed()) {
       return quad::tools::plan(plan_options);
+    }
+    if (report->parsed()) {
+      return quad::tools::report(report_options, report_quiet);
     }
     if (fault->parsed()) {
       return quad::tools::fault(fault_options);

@@ -56,6 +56,7 @@ int runScenario(const FaultOptions& options)
   lo.domain = options.domain;
   lo.wall_timeout_s = options.wall_timeout_s;
   lo.quiet = options.quiet;
+  lo.no_report = options.no_report;
   auto manifest = launch::loadRunManifest(lo);
   if (!manifest) {
     std::fprintf(stderr, "fault: %s: refusing to run with an invalid manifest\n", scenario.file.string().c_str());

@@ -23,6 +23,7 @@
 #include "quad/dds/environment.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/topics.hpp"
+#include "quad/report/report.hpp"
 #include "quad/world/world_file.hpp"
 #include "quad/vehicle/vehicle.hpp"
 
@@ -113,6 +114,7 @@ LaunchRun::LaunchRun(const Manifest& m, const LaunchOptions& o, fs::path dir, in
   fs::remove_all(state_dir_);
   fs::create_directories(state_dir_);
   record_.manifest = m.file.string();
+  record_.world = m.world.empty() ? std::string() : fs::absolute(m.world).string();
   record_.domain = domain;
   for (const auto& mod : m.modules) {
     record_.order.push_back(mod.name);
@@ -591,9 +593,33 @@ int LaunchRun::execute(RunExtension* extension)
   record_.phase = RunPhase::kEnded;
   record_.exit_code = code;
   saveRecord();
+  if (options_.record && !options_.no_report) {
+    writeReport();
+  }
   std::printf("launch: logs in %s\n", supervisor_.logDir().string().c_str());
   std::fflush(stdout);
   return code;
+}
+
+void LaunchRun::writeReport()
+{
+  const fs::path recording(*options_.record);
+  if (!fs::exists(recording)) {
+    return;  // the recorder never started: the run ended first
+  }
+  report::ReportOptions o;
+  o.input = supervisor_.logDir();
+  o.recording = recording;
+  if (!m_.world.empty()) {
+    o.world = m_.world;
+  }
+  try {
+    const report::ReportResult r = report::writeReport(o);
+    say(fmt::format("report: {} ({} figures; quad report redraws it)", r.html.string(), r.figures));
+  } catch (const report::ReportError& e) {
+    // The run's verdict stands: the report only shows it.
+    say(fmt::format("no report: {}", e.what()));
+  }
 }
 
 std::optional<launch::Manifest> loadRunManifest(const LaunchOptions& options)
@@ -634,8 +660,12 @@ int runManifest(const launch::Manifest& manifest, const LaunchOptions& options, 
     return kExitInvalid;
   }
   const fs::path dir = options.log_dir ? fs::path(*options.log_dir) : fs::path("log") / runFolderName(manifest.name);
+  LaunchOptions o = options;
+  if (!o.record && !o.no_record) {
+    o.record = (dir / report::kRecordingFile).string();
+  }
   try {
-    LaunchRun run(manifest, options, dir, domain);
+    LaunchRun run(manifest, o, dir, domain);
     return run.execute(extension);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "launch: %s\n", e.what());

@@ -23,6 +23,7 @@ std::string toJson(const RunRecord& r)
 {
   nlohmann::ordered_json j;
   j["manifest"] = r.manifest;
+  j["world"] = r.world;
   j["domain"] = r.domain;
   j["phase"] = toString(r.phase);
   j["failure"] = r.failure;

@@ -6,17 +6,12 @@
 #include <cmath>
 #include <string>
 
+#include "occurrences.hpp"
+
 namespace quad::launch {
 namespace {
 
-int count(const std::string& text, const std::string& what)
-{
-  int n = 0;
-  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) {
-    ++n;
-  }
-  return n;
-}
+using test::occurrences;
 
 TEST(EstimateErrorSvg, EverySeriesPointIsDrawnOnBothPanelsUnderItsTitle)
 {
@@ -29,12 +24,12 @@ TEST(EstimateErrorSvg, EverySeriesPointIsDrawnOnBothPanelsUnderItsTitle)
   EXPECT_EQ(svg.rfind("<svg ", 0), 0U);
   EXPECT_NE(svg.find("</svg>"), std::string::npos);
   EXPECT_NE(svg.find("demo &lt;forest&gt; &amp; co"), std::string::npos);  // escaped
-  EXPECT_EQ(count(svg, "<polyline"), 4);  // position, 3-sigma, attitude, heading
+  EXPECT_EQ(occurrences(svg, "<polyline"), 4);  // position, 3-sigma, attitude, heading
   // Each line has a point per sample: 4 lines of 50.
   const auto polyline = svg.find("points=\"");
   ASSERT_NE(polyline, std::string::npos);
   const std::string points = svg.substr(polyline + 8, svg.find('"', polyline + 8) - polyline - 8);
-  EXPECT_EQ(count(points, ","), 50);
+  EXPECT_EQ(occurrences(points, ","), 50);
   EXPECT_EQ(svg.find("nan"), std::string::npos);
 }
 
@@ -42,7 +37,7 @@ TEST(EstimateErrorSvg, TooShortASeriesSaysSo)
 {
   const std::string svg = estimateErrorSvg({{1.0, 0.1, 0.2, 0.3, 0.4}}, "t");
   EXPECT_NE(svg.find("nothing to draw"), std::string::npos);
-  EXPECT_EQ(count(svg, "<polyline"), 0);
+  EXPECT_EQ(occurrences(svg, "<polyline"), 0);
 }
 
 }  // namespace

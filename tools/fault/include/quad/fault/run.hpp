@@ -18,6 +18,7 @@ struct FaultOptions {
   std::optional<std::string> log_dir; ///< the run's folder; default log/fault-<name>-<time>
   double wall_timeout_s = 0.0;        ///< stop and fail after this long; 0 = never
   bool quiet = false;                 ///< modules' output to their logs only
+  bool no_report = false;             ///< no report.html at the end (the run always records: the checks read it)
   bool check = false;                 ///< validate the scenario and its manifest, then exit
 };
 

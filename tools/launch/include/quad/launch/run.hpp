@@ -40,7 +40,9 @@ struct LaunchOptions {
   std::optional<common::Geofence> geofence;  ///< replaces the manifest's keep-in volume
   std::optional<std::string> summary;  ///< JSON summary of the mission to this file
   std::optional<std::string> log_dir;  ///< the run's folder; default log/<name>-<time>
-  std::optional<std::string> record;   ///< record every topic of the run to this MCAP file
+  std::optional<std::string> record;   ///< record every topic to this MCAP file; default <run folder>/recording.mcap
+  bool no_record = false;              ///< record nothing (and so write no report)
+  bool no_report = false;              ///< no report.html at the end (docs/report.md)
   double wall_timeout_s = 0.0;         ///< stop and fail after this long; 0 = never
   bool quiet = false;                  ///< modules' output to their logs only
   bool check = false;                  ///< validate the manifest and exit
@@ -96,6 +98,8 @@ public:
   void restartModule(const std::string& module);
   /// A line of the launcher's, on the console and in launch.log.
   void say(const std::string& line) { supervisor_.say(line); }
+  /// report.html and its figures in the run's folder, from the run's recording.
+  void writeReport();
   /// Why the run failed (a module, the recorder, a timeout); empty while nothing failed.
   const std::string& failure() const { return failure_; }
   /// A module marked `ends_run` whose exit ended the run (normally, or killed by a fault):

@@ -52,6 +52,7 @@ struct HostRecord {
 
 struct RunRecord {
   std::string manifest;
+  std::string world;                       ///< the world file flown (absolute); "" when none
   int domain = 0;
   RunPhase phase = RunPhase::kStarting;
   std::string failure;                     ///< why the run failed; "" while nothing did

@@ -1,0 +1,252 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "quad/report/flight.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <span>
+
+#include <fmt/format.h>
+
+#include "quad/bag/audit.hpp"
+#include "quad/geometry/grid.hpp"
+#include "quad/introspection/cdr.hpp"
+#include "quad/introspection/idl.hpp"
+#include "quad/mapping/mapper.hpp"
+
+namespace quad::report {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+constexpr double kKeepPeriodS = 0.04;  // trajectories: a sample per 40 ms of sim time
+
+/// A recorded channel and the schema its messages decode with.
+struct Decoder {
+  std::string topic;
+  std::string type;
+  introspection::Schema schema;
+  std::optional<double> contract_hz;
+
+  Json decode(const bag::Message& m, std::string_view type_name) const
+  {
+    try {
+      return introspection::decodeCdr(schema, type_name, std::span<const std::uint8_t>(m.data));
+    } catch (const std::exception& e) {
+      throw FlightError(fmt::format("{}: a {} message does not decode: {}", topic, type_name, e.what()));
+    }
+  }
+  Json decode(const bag::Message& m) const { return decode(m, type); }
+};
+
+/// A member of a decoded message, or a FlightError naming the topic and the member.
+const Json& field(const Json& message, const char* name, const std::string& topic)
+{
+  const auto it = message.find(name);
+  if (it == message.end()) {
+    throw FlightError(fmt::format("{}: the recorded messages have no member '{}'", topic, name));
+  }
+  return *it;
+}
+
+Vector3 vector(const Json& v, const std::string& topic)
+{
+  return {field(v, "x", topic).get<double>(), field(v, "y", topic).get<double>(), field(v, "z", topic).get<double>()};
+}
+
+geometry::Quaternion quaternion(const Json& q, const std::string& topic)
+{
+  return {field(q, "w", topic).get<double>(), field(q, "x", topic).get<double>(), field(q, "y", topic).get<double>(),
+          field(q, "z", topic).get<double>()};
+}
+
+double stampOf(const Json& message, const std::string& topic)
+{
+  return static_cast<double>(field(field(message, "header", topic), "stamp_ns", topic).get<std::int64_t>()) * 1e-9;
+}
+
+std::map<std::uint16_t, Decoder> decoders(const bag::McapContents& recording)
+{
+  std::map<std::uint16_t, const bag::Schema*> schemas;
+  for (const auto& s : recording.schemas) {
+    schemas[s.id] = &s;
+  }
+  std::map<std::uint16_t, Decoder> out;
+  for (const auto& ch : recording.channels) {
+    const auto s = schemas.find(ch.schema_id);
+    if (s == schemas.end() || s->second->encoding != "omgidl" || ch.message_encoding != "cdr") {
+      continue;  // not a quad channel: nothing the report reads
+    }
+    Decoder d;
+    d.topic = ch.topic;
+    d.type = s->second->name;
+    try {
+      d.schema.addFile(d.type, s->second->data);
+      d.schema.link();
+    } catch (const std::exception& e) {
+      throw FlightError(fmt::format("{}: its schema {} does not parse: {}", ch.topic, d.type, e.what()));
+    }
+    if (const auto rate = ch.metadata.find("rate_hz"); rate != ch.metadata.end()) {
+      try {
+        const double hz = std::stod(rate->second);
+        if (hz > 0.0 && std::isfinite(hz)) {
+          d.contract_hz = hz;
+        }
+      } catch (const std::exception&) {
+        // a channel without a readable rate is drawn without its contract
+      }
+    }
+    out.emplace(ch.id, std::move(d));
+  }
+  return out;
+}
+
+/// Appends `s` when it is kKeepPeriodS past the last kept sample.
+void keep(std::vector<FlightData::State>& series, const FlightData::State& s)
+{
+  if (series.empty() || s.t_s >= series.back().t_s + kKeepPeriodS || s.t_s < series.back().t_s) {
+    series.push_back(s);
+  }
+}
+
+}  // namespace
+
+FlightData readFlight(const bag::McapContents& recording, const Progress& progress)
+{
+  const std::map<std::uint16_t, Decoder> channels = decoders(recording);
+  FlightData f;
+  f.messages = recording.messages.size();
+  launch::EstimateScore score;
+  struct Span {
+    std::uint64_t n = 0;
+    std::uint64_t at_first = 0;  // samples stamped with the first stamp (sim time held before the start)
+    double first = 0.0;
+    double last = 0.0;
+  };
+  std::map<std::uint16_t, Span> spans;
+  const bag::Message* last_snapshot = nullptr;
+  bool any_state = false;
+  const std::size_t total = recording.messages.size();
+  for (std::size_t k = 0; k < total; ++k) {
+    if (progress && k % 20000 == 0) {
+      progress(k, total);
+    }
+    const bag::Message& m = recording.messages[k];
+    const auto ch = channels.find(m.channel_id);
+    if (ch == channels.end()) {
+      continue;
+    }
+    const Decoder& d = ch->second;
+    const std::string& topic = d.topic;
+    // Every quad message starts with its Header: the rate of each topic from its stamps.
+    const double header_t = stampOf(Json{{"header", d.decode(m, "quad::msg::Header")}}, topic);
+    Span& span = spans[m.channel_id];
+    if (span.n == 0 || header_t < span.first) {
+      span.first = header_t;
+      span.at_first = 0;
+    }
+    span.at_first += header_t == span.first ? 1 : 0;
+    span.last = span.n == 0 ? header_t : std::max(span.last, header_t);
+    ++span.n;
+
+    if (topic == "quad/sim/state") {
+      const Json msg = d.decode(m);
+      const double t = stampOf(msg, topic);
+      const Vector3 p = vector(field(msg, "p_W", topic), topic);
+      score.onTruth(static_cast<std::int64_t>(std::llround(t * 1e9)), p, quaternion(field(msg, "q_WB", topic), topic));
+      keep(f.truth, {t, p, vector(field(msg, "v_W", topic), topic)});
+      if (!any_state) {
+        f.t_first_s = t;
+      }
+      f.t_first_s = std::min(f.t_first_s, t);
+      f.t_last_s = std::max(f.t_last_s, t);
+      any_state = true;
+    } else if (topic == "quad/estimation/state") {
+      const Json msg = d.decode(m);
+      const double t = stampOf(msg, topic);
+      const bool aligned = field(msg, "aligned", topic).get<bool>();
+      const Vector3 p = vector(field(msg, "p_W", topic), topic);
+      score.onEstimate(static_cast<std::int64_t>(std::llround(t * 1e9)), p, quaternion(field(msg, "q_WB", topic), topic),
+                       vector(field(msg, "p_std", topic), topic), aligned);
+      if (aligned) {
+        keep(f.estimate, {t, p, vector(field(msg, "v_W", topic), topic)});
+      }
+    } else if (topic == "quad/planning/goal") {
+      const Json msg = d.decode(m);
+      f.goals.push_back({stampOf(msg, topic), vector(field(msg, "p_W", topic), topic), field(msg, "tolerance", topic).get<double>()});
+    } else if (topic == "quad/planning/path") {
+      const Json msg = d.decode(m);
+      FlightData::Path p;
+      p.t_s = stampOf(msg, topic);
+      p.version = field(msg, "version", topic).get<std::uint32_t>();
+      p.status = field(msg, "status", topic).get<std::string>();
+      for (const Json& w : field(msg, "waypoints_W", topic)) {
+        p.waypoints_W.push_back(vector(w, topic));
+      }
+      p.expansions = field(msg, "expansions", topic).get<std::uint64_t>();
+      p.replan_time_s = field(msg, "replan_time_s", topic).get<double>();
+      f.paths.push_back(std::move(p));
+    } else if (topic == "quad/control/status") {
+      const Json msg = d.decode(m);
+      f.status.push_back({stampOf(msg, topic), field(msg, "mode", topic).get<std::string>(),
+                          field(msg, "failsafe_reason", topic).get<std::string>(),
+                          vector(field(msg, "position_error_W", topic), topic).norm(),
+                          field(msg, "attitude_error", topic).get<double>() * 180.0 / std::numbers::pi});
+    } else if (topic == "quad/sim/events" || topic == "quad/system/fault_events") {
+      const Json msg = d.decode(m);
+      f.events.push_back({stampOf(msg, topic), field(msg, "kind", topic).get<std::string>(),
+                          field(msg, "detail", topic).get<std::string>(), topic == "quad/system/fault_events"});
+    } else if (topic == "quad/mapping/octomap") {
+      last_snapshot = &m;
+    }
+  }
+  if (progress) {
+    progress(total, total);
+  }
+  if (!any_state) {
+    throw FlightError("quad/sim/state: the recording holds no vehicle state (was the plant recorded?)");
+  }
+  if (last_snapshot != nullptr) {
+    const Decoder& d = channels.at(last_snapshot->channel_id);
+    const Json msg = d.decode(*last_snapshot);
+    const double resolution = field(msg, "resolution", d.topic).get<double>();
+    const std::vector<std::uint8_t> bytes = field(msg, "octree", d.topic).get<std::vector<std::uint8_t>>();
+    const auto voxels = mapping::classificationOf(bytes, resolution);
+    if (!voxels) {
+      throw FlightError(fmt::format("{}: the last snapshot is no OctoMap tree of resolution {} m", d.topic, resolution));
+    }
+    const geometry::VoxelGrid grid(resolution);
+    for (const auto& v : *voxels) {
+      if (v.state == mapping::VoxelState::kOccupied) {
+        f.occupied_W.push_back(grid.centre(v.index));
+      }
+    }
+    f.map_resolution_m = resolution;
+  }
+  // A contract's rate is each writer's (every module sends its heartbeat): the recorder's loss
+  // figures count the writers.
+  const auto loss = bag::metadataValues(recording, bag::kLossMetadata);
+  for (const auto& [id, span] : spans) {
+    const Decoder& d = channels.at(id);
+    FlightData::TopicRate r{d.topic, span.n, 0.0, d.contract_hz, 1};
+    if (const auto l = loss.find(d.topic); l != loss.end()) {
+      if (const auto at = l->second.find("writers "); at != std::string::npos) {
+        r.writers = std::max(1, std::atoi(l->second.c_str() + at + 8));
+      }
+    }
+    if (span.n > span.at_first && span.last > span.first) {
+      // Samples after the first stamp, over the time after it: a clock held at its start
+      // (lockstep waiting for every module) adds samples but no time.
+      r.rate_hz = static_cast<double>(span.n - span.at_first) / (span.last - span.first) / r.writers;
+    }
+    f.rates.push_back(r);
+  }
+  std::sort(f.events.begin(), f.events.end(), [](const auto& a, const auto& b) { return a.t_s < b.t_s; });
+  f.estimate_error = score.series();
+  return f;
+}
+
+}  // namespace quad::report

@@ -1,0 +1,214 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "quad/report/report.hpp"
+
+#include <fstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "quad/bag/mcap.hpp"
+#include "quad/common/xml_text.hpp"
+#include "quad/report/figures.hpp"
+#include "quad/world/world_file.hpp"
+
+namespace quad::report {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+std::string esc(const std::string& text) { return common::xmlEscaped(text); }
+
+/// A JSON file of the run's folder, or nothing when it is not there. One that does not parse
+/// is a ReportError naming it.
+std::optional<Json> readJson(const fs::path& file)
+{
+  std::ifstream in(file);
+  if (!in) {
+    return std::nullopt;
+  }
+  try {
+    return Json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw ReportError(fmt::format("{}: not JSON: {}", file.string(), e.what()));
+  }
+}
+
+std::string cell(const Json& v)
+{
+  if (v.is_null()) {
+    return "-";
+  }
+  if (v.is_string()) {
+    return v.get<std::string>();
+  }
+  if (v.is_number_float()) {
+    return fmt::format("{:.4g}", v.get<double>());
+  }
+  if (v.is_array()) {
+    std::string out;
+    for (const auto& e : v) {
+      out += (out.empty() ? "" : ", ") + cell(e);
+    }
+    return out;
+  }
+  return v.dump();
+}
+
+/// summary.json as table rows: nested objects' members under dotted names.
+void rows(const Json& j, const std::string& prefix, std::string& out)
+{
+  for (const auto& [key, value] : j.items()) {
+    const std::string name = prefix.empty() ? key : prefix + "." + key;
+    if (value.is_object()) {
+      rows(value, name, out);
+    } else {
+      out += fmt::format("<tr><th>{}</th><td>{}</td></tr>\n", esc(name), esc(cell(value)));
+    }
+  }
+}
+
+struct Inputs {
+  fs::path recording;
+  fs::path output;
+  std::optional<Json> summary;
+  std::optional<fs::path> world;
+  std::string name;  ///< the run's folder or the recording's name
+};
+
+Inputs resolve(const ReportOptions& options)
+{
+  Inputs in;
+  std::error_code ec;
+  if (fs::is_directory(options.input, ec)) {
+    in.recording = options.recording.value_or(options.input / kRecordingFile);
+    if (!fs::exists(in.recording)) {
+      throw ReportError(fmt::format("{}: no recording (a run records unless --no-record; or name a recording)",
+                                    in.recording.string()));
+    }
+    in.output = options.input;
+    in.summary = readJson(options.input / "summary.json");
+    if (const auto run = readJson(options.input / "run.json"); run && run->contains("world") && (*run)["world"].is_string() &&
+                                                             !(*run)["world"].get<std::string>().empty()) {
+      in.world = (*run)["world"].get<std::string>();
+    }
+    in.name = fs::absolute(options.input).lexically_normal().filename().string();
+    if (in.name.empty()) {
+      in.name = fs::absolute(options.input).lexically_normal().parent_path().filename().string();
+    }
+  } else if (fs::exists(options.input, ec)) {
+    in.recording = options.input;
+    in.output = options.input.has_parent_path() ? options.input.parent_path() : fs::path(".");
+    in.name = options.input.filename().string();
+  } else {
+    throw ReportError(fmt::format("{}: no such run folder or recording", options.input.string()));
+  }
+  if (options.output) {
+    in.output = *options.output;
+  }
+  if (options.world) {
+    in.world = *options.world;
+  }
+  return in;
+}
+
+std::string page(const Inputs& in, const FlightData& flight, const std::vector<Figure>& figures)
+{
+  std::string html = fmt::format(R"(<!DOCTYPE html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<title>quad report: {0}</title>
+<style>
+body {{ font-family: sans-serif; margin: 2em auto; max-width: 960px; color: #222; }}
+table {{ border-collapse: collapse; margin: 1em 0; }}
+th, td {{ text-align: left; padding: 2px 12px 2px 0; border-bottom: 1px solid #eee; font-size: 14px; }}
+th {{ font-weight: normal; color: #555; }}
+figure {{ margin: 2em 0; }}
+figure img {{ max-width: 100%; border: 1px solid #ddd; }}
+figcaption {{ font-size: 14px; color: #444; }}
+</style>
+</head>
+<body>
+<h1>quad report: {0}</h1>
+<p>Recording <code>{1}</code>: {2} messages, sim time {3:.2f} s to {4:.2f} s.{5}</p>
+)",
+                                 esc(in.name), esc(in.recording.filename().string()), flight.messages, flight.t_first_s,
+                                 flight.t_last_s, in.world ? " World <code>" + esc(in.world->filename().string()) + "</code>." : "");
+  if (in.summary) {
+    html += "<h2>Summary</h2>\n<table>\n";
+    rows(*in.summary, "", html);
+    html += "</table>\n";
+  }
+  html += "<h2>Figures</h2>\n";
+  for (const Figure& f : figures) {
+    html += fmt::format("<figure><img src=\"{0}\" alt=\"{1}\"><figcaption>{1}</figcaption></figure>\n", esc(f.file), esc(f.caption));
+  }
+  html += "</body>\n</html>\n";
+  return html;
+}
+
+void writeFile(const fs::path& file, const std::string& text)
+{
+  std::ofstream out(file, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) {
+    throw ReportError(fmt::format("{}: cannot write", file.string()));
+  }
+}
+
+}  // namespace
+
+ReportResult writeReport(const ReportOptions& options, const std::function<void(const std::string&)>& say)
+{
+  const auto tell = [&](const std::string& line) {
+    if (say) {
+      say(line);
+    }
+  };
+  const Inputs in = resolve(options);
+  std::optional<world::World> world;
+  if (in.world) {
+    try {
+      world = world::loadWorld(*in.world);
+    } catch (const std::exception& e) {
+      throw ReportError(fmt::format("{}: the world does not load: {}", in.world->string(), e.what()));
+    }
+  }
+  std::error_code ec;
+  const auto bytes = fs::file_size(in.recording, ec);
+  tell(fmt::format("reading {} ({:.1f} MB)", in.recording.string(), ec ? 0.0 : static_cast<double>(bytes) / 1e6));
+  bag::McapContents contents;
+  try {
+    // Tolerant: a recording a killed recorder left is reported up to its last whole chunk.
+    contents = bag::readMcap(in.recording, true);
+  } catch (const bag::BagError& e) {
+    throw ReportError(e.what());
+  }
+  if (!contents.problem.empty()) {
+    tell(fmt::format("{}: {}: reporting what came before", in.recording.string(), contents.problem));
+  }
+  FlightData flight;
+  try {
+    flight = readFlight(contents, [&](std::size_t done, std::size_t total) {
+      tell(fmt::format("decoded {} of {} messages ({:.0f}%)", done, total, total == 0 ? 100.0 : 100.0 * static_cast<double>(done) / static_cast<double>(total)));
+    });
+  } catch (const FlightError& e) {
+    throw ReportError(fmt::format("{}: {}", in.recording.string(), e.what()));
+  }
+  const std::vector<Figure> figures = flightFigures(flight, world ? &*world : nullptr);
+  fs::create_directories(in.output, ec);
+  int k = 0;
+  for (const Figure& f : figures) {
+    writeFile(in.output / f.file, f.svg);
+    tell(fmt::format("figure {} of {}: {}", ++k, figures.size(), (in.output / f.file).string()));
+  }
+  const fs::path html = in.output / "report.html";
+  writeFile(html, page(in, flight, figures));
+  return {html, static_cast<int>(figures.size())};
+}
+
+}  // namespace quad::report

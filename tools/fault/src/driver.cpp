@@ -136,6 +136,7 @@ public:
     const std::string table = fault::toTable(scenario_.name, rows);
     std::printf("\n%s", table.c_str());
     std::ofstream(run.logDir() / "fault_report.txt") << table;
+    std::ofstream(run.logDir() / "fault_report.json") << fault::toJson(scenario_.name, rows);
     std::fflush(stdout);
     return fault::passed(rows) ? 0 : 1;
   }

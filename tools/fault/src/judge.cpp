@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "quad/common/time.hpp"
 
@@ -253,6 +254,9 @@ std::vector<Judge::Row> Judge::finish(const RunFacts& facts)
       const bool altitude = p.expect.kind == Expectation::Kind::kAltitudeLost;
       if (altitude) {
         r.bound = fmt::format("<= {:.2f} m in {:.2f} s (sim)", p.expect.metres, p.expect.within_s);
+      } else {
+        r.within_s = p.expect.within_s;
+        r.measured_s = p.measured_s;
       }
       if (p.measured_s) {
         r.measured = altitude ? fmt::format("{:.2f} m", p.drop) : fmt::format("{:.3f} s", *p.measured_s);
@@ -294,6 +298,26 @@ std::vector<Judge::Row> Judge::finish(const RunFacts& facts)
     end("no loss in the modules' readers", "0", measured, lossless);
   }
   return rows;
+}
+
+std::string toJson(const std::string& scenario_name, const std::vector<Judge::Row>& rows)
+{
+  nlohmann::ordered_json j;
+  j["scenario"] = scenario_name;
+  j["passed"] = passed(rows);
+  j["rows"] = nlohmann::ordered_json::array();
+  const auto optional = [](const std::optional<double>& v) { return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr); };
+  for (const auto& r : rows) {
+    j["rows"].push_back({{"step", r.step},
+                         {"fault", r.fault},
+                         {"expectation", r.expectation},
+                         {"bound", r.bound},
+                         {"measured", r.measured},
+                         {"pass", r.pass},
+                         {"within_s", optional(r.within_s)},
+                         {"measured_s", optional(r.measured_s)}});
+  }
+  return j.dump(2) + "\n";
 }
 
 bool passed(const std::vector<Judge::Row>& rows)

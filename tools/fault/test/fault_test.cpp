@@ -3,6 +3,8 @@
 // judge of a timeline: reaction times measured from when each fault took effect.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <fstream>
 
 #include "quad/fault/judge.hpp"
@@ -364,6 +366,19 @@ TEST(Judge, ReactionsAreMeasuredFromWhenTheFaultTookEffect)
   EXPECT_NE(table.find("1.100 s"), std::string::npos) << table;  // HOVER
   EXPECT_NE(table.find("1.500 s"), std::string::npos) << table;  // back
   EXPECT_NE(table.find("scenario k: PASS"), std::string::npos) << table;
+  // The same verdict for programs (fault_report.json), with each reaction's time and bound.
+  const auto json = nlohmann::json::parse(toJson("k", rows));
+  EXPECT_EQ(json["scenario"], "k");
+  EXPECT_EQ(json["passed"], true);
+  ASSERT_EQ(json["rows"].size(), rows.size());
+  int timed = 0;
+  for (const auto& r : json["rows"]) {
+    if (!r["measured_s"].is_null()) {
+      EXPECT_LE(r["measured_s"].get<double>(), r["within_s"].get<double>()) << r;
+      ++timed;
+    }
+  }
+  EXPECT_EQ(timed, 3) << json.dump(2);  // noticed 0.48 s, HOVER 1.1 s, back 1.5 s
 }
 
 TEST(Judge, LateOrMissingReactionsAndABadOutcomeFail)

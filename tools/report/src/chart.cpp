@@ -2,6 +2,7 @@
 #include "quad/report/chart.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -18,6 +19,7 @@ constexpr double kLeft = 80.0;   // room for the value labels
 constexpr double kRight = 20.0;
 constexpr double kTop = 50.0;    // room for the title
 constexpr int kTicks = 5;        // about this many labelled ticks on an axis
+constexpr int kMaxTicks = 60;    // never more (a log axis spans at most this many decades)
 
 std::string esc(const std::string& text) { return common::xmlEscaped(text); }
 
@@ -47,6 +49,22 @@ double legendWidth(const std::string& label) { return 40.0 + 6.5 * static_cast<d
 bool finite(const Point& p) { return std::isfinite(p.first) && std::isfinite(p.second); }
 
 }  // namespace
+
+std::vector<double> ticks(const Axis& a)
+{
+  std::vector<double> out;
+  if (!std::isfinite(a.lo) || !std::isfinite(a.hi) || !(a.step > 0.0)) {
+    return out;
+  }
+  for (int k = 0; k <= kMaxTicks; ++k) {
+    const double v = a.lo + k * a.step;
+    if (v > a.hi + a.step * 1e-6) {
+      break;
+    }
+    out.push_back(std::abs(v) < a.step * 1e-9 ? 0.0 : v);
+  }
+  return out;
+}
 
 Axis axisOver(double lo, double hi)
 {
@@ -93,18 +111,18 @@ public:
     std::string out = fmt::format(R"(<rect x="{:.1f}" y="{:.1f}" width="{:.1f}" height="{:.1f}" fill="none" stroke="#444"/>)"
                                   "\n",
                                   kLeft, top_, kWidth - kLeft - kRight, kPanelHeight);
-    for (double u = y_.lo; u <= y_.hi + y_.step * 1e-6; u += y_.step) {
-      const double v = log_ ? std::pow(10.0, u) : (std::abs(u) < y_.step * 1e-9 ? 0.0 : u);
+    for (const double u : ticks(y_)) {
+      const double v = log_ ? std::pow(10.0, u) : u;
       const double at = y(log_ ? v : u);
       out += fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="#ddd"/>)"
                          R"(<text x="{:.1f}" y="{:.1f}" text-anchor="end" font-size="11">{:g}</text>)"
                          "\n",
                          kLeft, at, kWidth - kRight, at, kLeft - 6.0, at + 4.0, v);
     }
-    for (double t = x_.lo; t <= x_.hi + x_.step * 1e-6; t += x_.step) {
+    for (const double t : ticks(x_)) {
       out += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" text-anchor="middle" font-size="11">{:g}</text>)"
                          "\n",
-                         x(t), top_ + kPanelHeight + 15.0, std::abs(t) < x_.step * 1e-9 ? 0.0 : t);
+                         x(t), top_ + kPanelHeight + 15.0, t);
     }
     out += fmt::format(R"svg(<text x="16" y="{:.1f}" font-size="12" transform="rotate(-90 16 {:.1f})" text-anchor="middle">{}</text>)svg"
                        "\n",
@@ -188,7 +206,7 @@ std::string stackedChartSvg(const std::string& title, const std::string& x_label
       }
     }
     Axis y_axis = axisOver(lo, hi);
-    if (panel.log_scale) {  // whole decades
+    if (panel.log_scale && any) {  // whole decades
       y_axis = {std::floor(lo), std::max(std::ceil(hi), std::floor(lo) + 1.0), 1.0};
     }
     const PanelFrame frame(top, x_axis, y_axis, panel.log_scale);
@@ -323,19 +341,19 @@ std::string PlanView::svg() const
                      "\n",
                      left, top, right - left, bottom - top);
   const Axis xs = axisOver(lo_.first, hi_.first);
-  for (double v = xs.lo; v <= xs.hi + xs.step * 1e-6; v += xs.step) {
+  for (const double v : ticks(xs)) {
     if (v >= lo_.first - 1e-9 && v <= hi_.first + 1e-9) {
       out += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" text-anchor="middle" font-size="11">{:g}</text>)"
                          "\n",
-                         px(v), bottom + 15.0, std::abs(v) < xs.step * 1e-9 ? 0.0 : v);
+                         px(v), bottom + 15.0, v);
     }
   }
   const Axis ys = axisOver(lo_.second, hi_.second);
-  for (double v = ys.lo; v <= ys.hi + ys.step * 1e-6; v += ys.step) {
+  for (const double v : ticks(ys)) {
     if (v >= lo_.second - 1e-9 && v <= hi_.second + 1e-9) {
       out += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" text-anchor="end" font-size="11">{:g}</text>)"
                          "\n",
-                         left - 6.0, py(v) + 4.0, std::abs(v) < ys.step * 1e-9 ? 0.0 : v);
+                         left - 6.0, py(v) + 4.0, v);
     }
   }
   out += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" font-size="12" text-anchor="middle">{}</text>)"
@@ -375,30 +393,41 @@ std::string timelineSvg(const std::string& title, const std::string& x_label, do
       svg += fmt::format(R"(<rect x="{:.1f}" y="{:.1f}" width="{:.1f}" height="{:.1f}" fill="{}"><title>{}: {:.2f} to {:.2f} s</title></rect>)"
                          "\n",
                          x0, top, w, kLaneHeight, i.colour, esc(i.label), i.from, i.to);
-      if (w > 6.5 * static_cast<double>(i.label.size()) + 6.0) {
+      if (w > 7.0 * static_cast<double>(i.label.size()) + 6.0) {
         svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" font-size="11" fill="white">{}</text>)"
                            "\n",
                            x0 + 3.0, top + kLaneHeight / 2.0 + 4.0, esc(i.label));
       }
     }
+    // Labels on two rows under the lane; one that would overlap its row's last is left to the
+    // marker's hover text.
+    std::array<double, 2> row_end{-1e300, -1e300};
     for (std::size_t k = 0; k < lane.instants.size(); ++k) {
       const Instant& e = lane.instants[k];
       const double at = x(e.at);
-      const double label_y = top + kLaneHeight + 12.0 + 10.0 * static_cast<double>(k % 2);
+      svg += fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="{}" stroke-width="2"><title>{} at {:.2f} s</title></line>)"
+                         "\n",
+                         at, top, at, top + kLaneHeight, e.colour, esc(e.label), e.at);
       // Labels past the middle end at their instant, so that none runs off the figure.
       const bool right_half = at > kLaneLeft + plot_width / 2.0;
-      svg += fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="{}" stroke-width="2"><title>{} at {:.2f} s</title></line>)"
-                         R"(<text x="{:.1f}" y="{:.1f}" font-size="10" fill="{}" text-anchor="{}">{}</text>)"
+      const double width = 5.6 * static_cast<double>(e.label.size());
+      const double from = right_half ? at - 2.0 - width : at + 2.0;
+      const std::size_t row = from > row_end[0] ? 0 : (from > row_end[1] ? 1 : 2);
+      if (row == 2) {
+        continue;
+      }
+      row_end[row] = from + width + 6.0;
+      svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" font-size="10" fill="{}" text-anchor="{}">{}</text>)"
                          "\n",
-                         at, top, at, top + kLaneHeight, e.colour, esc(e.label), e.at, right_half ? at - 2.0 : at + 2.0, label_y,
-                         e.colour, right_half ? "end" : "start", esc(e.label));
+                         right_half ? at - 2.0 : at + 2.0, top + kLaneHeight + 12.0 + 10.0 * static_cast<double>(row), e.colour,
+                         right_half ? "end" : "start", esc(e.label));
     }
     top += kLaneHeight + 30.0;
   }
-  for (double t = axis.lo; t <= axis.hi + axis.step * 1e-6; t += axis.step) {
+  for (const double t : ticks(axis)) {
     svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" text-anchor="middle" font-size="11">{:g}</text>)"
                        "\n",
-                       x(t), top + 6.0, std::abs(t) < axis.step * 1e-9 ? 0.0 : t);
+                       x(t), top + 6.0, t);
   }
   svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" font-size="12" text-anchor="middle">{}</text>)"
                      "\n</svg>\n",
@@ -409,7 +438,8 @@ std::string timelineSvg(const std::string& title, const std::string& x_label, do
 // ---------------------------------------------------------------------------------------------
 // Bars
 
-std::string barChartSvg(const std::string& title, const std::string& unit, const std::vector<Bar>& bars)
+std::string barChartSvg(const std::string& title, const std::string& unit, const std::vector<Bar>& bars,
+                        const std::string& value_label, const std::string& reference_label)
 {
   constexpr double kRow = 22.0;
   constexpr double kNames = 260.0;
@@ -422,7 +452,8 @@ std::string barChartSvg(const std::string& title, const std::string& unit, const
   const auto x = [&](double v) { return kNames + std::clamp(v, 0.0, axis.hi) / axis.hi * plot_width; };
   const double height = kTop + static_cast<double>(bars.size()) * kRow + 60.0;
   std::string svg = header(kWidth, height, title);
-  svg += legendEntry(kNames, 42.0, "#1f5fbf", "", "measured") + legendEntry(kNames + 110.0, 42.0, "#c0392b", "", "contract");
+  svg += legendEntry(kNames, 42.0, "#1f5fbf", "", value_label) +
+         legendEntry(kNames + legendWidth(value_label), 42.0, "#c0392b", "", reference_label);
   double top = kTop;
   for (const Bar& b : bars) {
     const double value = std::isfinite(b.value) ? b.value : 0.0;
@@ -439,7 +470,7 @@ std::string barChartSvg(const std::string& title, const std::string& unit, const
     }
     top += kRow;
   }
-  for (double v = axis.lo; v <= axis.hi + axis.step * 1e-6; v += axis.step) {
+  for (const double v : ticks(axis)) {
     svg += fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="#ddd"/>)"
                        R"(<text x="{:.1f}" y="{:.1f}" text-anchor="middle" font-size="11">{:g}</text>)"
                        "\n",

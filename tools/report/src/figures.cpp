@@ -396,6 +396,20 @@ Figure rates(const FlightData& f)
 
 }  // namespace
 
+Figure reactionsFigure(const std::string& scenario, const std::vector<Reaction>& reactions)
+{
+  std::vector<Bar> bars;
+  for (const auto& r : reactions) {
+    // One that did not come is drawn at its bound's end, its label saying so.
+    bars.push_back({r.measured_s ? r.label : r.label + " (not in time)", r.measured_s.value_or(r.within_s), r.within_s});
+  }
+  return {"reactions.svg",
+          fmt::format("Scenario {}: each reaction's measured time (blue) against its bound (red tick); the table below "
+                      "has every check.",
+                      scenario),
+          barChartSvg("Injected faults: the stack's reactions", "time after the fault [s]", bars, "measured", "bound")};
+}
+
 std::vector<Figure> flightFigures(const FlightData& flight, const world::World* world)
 {
   std::vector<Figure> out;

@@ -70,10 +70,59 @@ void rows(const Json& j, const std::string& prefix, std::string& out)
   }
 }
 
+/// A fault run's verdict as reactions to draw, checked: a malformed file names its key.
+std::vector<Reaction> reactionsOf(const Json& verdict, const fs::path& file)
+{
+  const auto bad = [&](const std::string& what) { return ReportError(fmt::format("{}: {}", file.string(), what)); };
+  if (!verdict.is_object() || !verdict.contains("rows") || !verdict["rows"].is_array()) {
+    throw bad("no 'rows' list");
+  }
+  std::vector<Reaction> out;
+  std::string step;
+  for (std::size_t k = 0; k < verdict["rows"].size(); ++k) {
+    const Json& r = verdict["rows"][k];
+    for (const char* key : {"step", "expectation", "bound", "measured"}) {
+      if (!r.contains(key) || !r[key].is_string()) {
+        throw bad(fmt::format("rows[{}].{}: not a string", k, key));
+      }
+    }
+    if (!r.contains("pass") || !r["pass"].is_boolean()) {
+      throw bad(fmt::format("rows[{}].pass: not true or false", k));
+    }
+    step = r["step"].get<std::string>().empty() ? step : r["step"].get<std::string>();
+    if (r.contains("within_s") && r["within_s"].is_number()) {
+      Reaction reaction{fmt::format("{}: {}", step, r["expectation"].get<std::string>()), r["within_s"].get<double>(), std::nullopt};
+      if (r.contains("measured_s") && r["measured_s"].is_number()) {
+        reaction.measured_s = r["measured_s"].get<double>();
+      }
+      out.push_back(reaction);
+    }
+  }
+  return out;
+}
+
+std::string verdictTable(const Json& verdict)
+{
+  std::string html = fmt::format("<h2>Faults and reactions</h2>\n<p>Scenario <code>{}</code>: {}.</p>\n<table>\n"
+                                 "<tr><th>step</th><th>fault</th><th>expectation</th><th>bound</th><th>measured</th><th>result</th></tr>\n",
+                                 esc(verdict.value("scenario", std::string())),
+                                 verdict.value("passed", false) ? "every check passed" : "<b>checks failed</b>");
+  for (const Json& r : verdict["rows"]) {
+    const bool pass = r["pass"].get<bool>();
+    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td style=\"color:{}\">{}</td></tr>\n",
+                        esc(r["step"].get<std::string>()), esc(r.value("fault", std::string())),
+                        esc(r["expectation"].get<std::string>()), esc(r["bound"].get<std::string>()),
+                        esc(r["measured"].get<std::string>()), pass ? "#27864a" : "#c0392b", pass ? "PASS" : "FAIL");
+  }
+  return html + "</table>\n";
+}
+
 struct Inputs {
   fs::path recording;
   fs::path output;
   std::optional<Json> summary;
+  std::optional<Json> faults;  ///< quad fault's verdict (fault_report.json)
+  fs::path faults_file;
   std::optional<fs::path> world;
   std::string name;  ///< the run's folder or the recording's name
 };
@@ -90,6 +139,8 @@ Inputs resolve(const ReportOptions& options)
     }
     in.output = options.input;
     in.summary = readJson(options.input / "summary.json");
+    in.faults_file = options.input / "fault_report.json";
+    in.faults = readJson(in.faults_file);
     if (const auto run = readJson(options.input / "run.json"); run && run->contains("world") && (*run)["world"].is_string() &&
                                                              !(*run)["world"].get<std::string>().empty()) {
       in.world = (*run)["world"].get<std::string>();
@@ -121,6 +172,7 @@ std::string page(const Inputs& in, const FlightData& flight, const std::vector<F
 <head>
 <meta charset="utf-8">
 <title>quad report: {0}</title>
+<link rel="icon" href="data:,">
 <style>
 body {{ font-family: sans-serif; margin: 2em auto; max-width: 960px; color: #222; }}
 table {{ border-collapse: collapse; margin: 1em 0; }}
@@ -141,6 +193,9 @@ figcaption {{ font-size: 14px; color: #444; }}
     html += "<h2>Summary</h2>\n<table>\n";
     rows(*in.summary, "", html);
     html += "</table>\n";
+  }
+  if (in.faults) {
+    html += verdictTable(*in.faults);
   }
   html += "<h2>Figures</h2>\n";
   for (const Figure& f : figures) {
@@ -199,7 +254,13 @@ ReportResult writeReport(const ReportOptions& options, const std::function<void(
   } catch (const FlightError& e) {
     throw ReportError(fmt::format("{}: {}", in.recording.string(), e.what()));
   }
-  const std::vector<Figure> figures = flightFigures(flight, world ? &*world : nullptr);
+  std::vector<Figure> figures = flightFigures(flight, world ? &*world : nullptr);
+  if (in.faults) {
+    const std::vector<Reaction> reactions = reactionsOf(*in.faults, in.faults_file);
+    if (!reactions.empty()) {
+      figures.push_back(reactionsFigure(in.faults->value("scenario", std::string()), reactions));
+    }
+  }
   fs::create_directories(in.output, ec);
   int k = 0;
   for (const Figure& f : figures) {

@@ -56,6 +56,18 @@ TEST(StackedChart, DrawsEveryPointOfEverySeriesAndSaysWhenAPanelIsEmpty)
   EXPECT_EQ(occurrences(points, ","), 30);
 }
 
+TEST(StackedChart, AnEmptyLogPanelSaysSoWithFiniteTicks)
+{
+  Panel empty{"count", {Series{}}, {}, {}};
+  empty.log_scale = true;
+  const std::string svg = stackedChartSvg("t", "x", {empty});
+  EXPECT_NE(svg.find("no data"), std::string::npos);
+  EXPECT_EQ(svg.find("inf"), std::string::npos);
+  EXPECT_LE(occurrences(svg, "<text"), 40);
+  EXPECT_TRUE(ticks({INFINITY, INFINITY, 1.0}).empty());
+  EXPECT_LE(ticks({0.0, 1e9, 1e-9}).size(), 61U);
+}
+
 TEST(StackedChart, StepsHoldEachValueUntilTheNext)
 {
   Series steps{{{0.0, 1.0}, {1.0, 2.0}, {2.0, 3.0}}, "#000", "s"};

@@ -186,6 +186,60 @@ TEST(WriteReport, ARunFolderGetsAPageThatShowsEveryFigureItWrote)
   EXPECT_NE(top.find("mapped occupied voxels"), std::string::npos);
 }
 
+TEST(WriteReport, AVehicleThatOnlyStoodStillStillGetsEveryFigure)
+{
+  // A plant alone: no goal, path, status, map or estimate; its state never moves.
+  const fs::path dir = test::scratchDir("report_still");
+  {
+    Recording r(dir / kRecordingFile);
+    for (int k = 0; k < 500; ++k) {
+      r.write("quad/sim/state", "quad::msg::VehicleState", 250.0,
+              {{"p_W", vec(0, 0, 0)}, {"v_W", vec(0, 0, 0)}, {"q_WB", {{"w", 1.0}, {"x", 0.0}, {"y", 0.0}, {"z", 0.0}}}},
+              k * 4 * kMs);
+    }
+    r.close();
+  }
+  const ReportResult r = writeReport({dir, {}, {}});
+  EXPECT_EQ(r.figures, 7);  // no estimate: no estimate figure
+  for (const char* figure : {"top_view.svg", "side_view.svg", "motion.svg", "tracking.svg", "timeline.svg", "replanning.svg", "rates.svg"}) {
+    const std::string svg = test::readFile(dir / figure);
+    EXPECT_NE(svg.find("</svg>"), std::string::npos) << figure;
+    EXPECT_EQ(svg.find("nan"), std::string::npos) << figure;
+    EXPECT_EQ(svg.find("inf"), std::string::npos) << figure;
+  }
+  EXPECT_NE(test::readFile(dir / "replanning.svg").find("no data"), std::string::npos);
+}
+
+TEST(WriteReport, AFaultRunsVerdictIsTabledAndItsReactionsDrawn)
+{
+  const fs::path dir = test::scratchDir("report_fault");
+  writeFlight(dir / kRecordingFile);
+  std::ofstream(dir / "fault_report.json") << R"json({"scenario": "kill_planning", "passed": false, "rows": [
+    {"step": "1", "fault": "t=5.0 kill planning", "expectation": "applied", "bound": "", "measured": "at 5.02 s", "pass": true,
+     "within_s": null, "measured_s": null},
+    {"step": "", "fault": "", "expectation": "mode HOVER", "bound": "<= 1.50 s (sim)", "measured": "1.100 s", "pass": true,
+     "within_s": 1.5, "measured_s": 1.1},
+    {"step": "", "fault": "", "expectation": "planning back", "bound": "<= 2.00 s (wall)", "measured": "not seen", "pass": false,
+     "within_s": 2.0, "measured_s": null}]})json";
+  const ReportResult r = writeReport({dir, {}, {}});
+  EXPECT_EQ(r.figures, 9);
+  const std::string html = test::readFile(r.html);
+  EXPECT_NE(html.find("<h2>Faults and reactions</h2>"), std::string::npos);
+  EXPECT_NE(html.find("<b>checks failed</b>"), std::string::npos);
+  EXPECT_NE(html.find("src=\"reactions.svg\""), std::string::npos);
+  const std::string svg = test::readFile(dir / "reactions.svg");
+  EXPECT_NE(svg.find("1: mode HOVER"), std::string::npos);
+  EXPECT_NE(svg.find("1: planning back (not in time)"), std::string::npos);
+
+  std::ofstream(dir / "fault_report.json") << R"({"rows": [{"step": 1}]})";
+  try {
+    (void)writeReport({dir, {}, {}});
+    FAIL() << "no error";
+  } catch (const ReportError& e) {
+    EXPECT_NE(std::string(e.what()).find("fault_report.json: rows[0].step: not a string"), std::string::npos) << e.what();
+  }
+}
+
 TEST(WriteReport, WhatCannotBeReportedIsAnErrorNamingTheFile)
 {
   const fs::path dir = test::scratchDir("report_bad");

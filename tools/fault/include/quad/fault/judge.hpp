@@ -81,6 +81,8 @@ public:
     std::string bound;        ///< "<= 0.50 s (sim)"
     std::string measured;     ///< "0.31 s", "not seen", ...
     bool pass = false;
+    std::optional<double> within_s;    ///< a reaction's time bound [s]
+    std::optional<double> measured_s;  ///< the reaction's measured time [s], when it came
   };
   /// The verdict, once the run is over: pending expectations fail, then the outcome checks.
   std::vector<Row> finish(const RunFacts& facts);
@@ -122,6 +124,11 @@ private:
 
 /// The rows as an aligned table, PASS/FAIL in the last column, and a last line with the verdict.
 std::string toTable(const std::string& scenario_name, const std::vector<Judge::Row>& rows);
+
+/// The verdict as one JSON object (`fault_report.json`): the scenario, whether it passed,
+/// and the rows (`step`, `fault`, `expectation`, `bound`, `measured`, `pass`, and for a
+/// reaction `within_s` and `measured_s`, null when it did not come).
+std::string toJson(const std::string& scenario_name, const std::vector<Judge::Row>& rows);
 
 /// True when every row passed.
 bool passed(const std::vector<Judge::Row>& rows);

@@ -19,8 +19,11 @@ struct Axis {
   double hi = 1.0;
   double step = 0.2;
 };
-/// About five ticks over [lo, hi]; a flat or empty span gets a span of 1.
+/// About five ticks over [lo, hi]; a flat or empty span gets a span of 1, a non-finite one
+/// [0, 1].
 Axis axisOver(double lo, double hi);
+/// The axis's tick values, lo first (none for a non-finite axis; never more than 61).
+std::vector<double> ticks(const Axis& axis);
 
 using Point = std::pair<double, double>;  ///< (x, y) in the data's units
 
@@ -101,6 +104,7 @@ struct Bar {
   double value = 0.0;
   std::optional<double> reference;
 };
-std::string barChartSvg(const std::string& title, const std::string& unit, const std::vector<Bar>& bars);
+std::string barChartSvg(const std::string& title, const std::string& unit, const std::vector<Bar>& bars,
+                        const std::string& value_label = "measured", const std::string& reference_label = "contract");
 
 }  // namespace quad::report

@@ -3,6 +3,7 @@
 /// @file
 /// The report's figures of a flight, each an SVG document with its file name and caption.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,5 +22,14 @@ struct Figure {
 /// `world`'s obstacles when given), altitude, speed and distance to goal, tracking error, the
 /// modes' timeline, replanning, topic rates, and the estimate's error when an estimator ran.
 std::vector<Figure> flightFigures(const FlightData& flight, const world::World* world);
+
+/// A reaction a fault scenario timed (quad fault's fault_report.json).
+struct Reaction {
+  std::string label;  ///< "2: mode HOVER"
+  double within_s = 0.0;
+  std::optional<double> measured_s;  ///< nothing: it did not come in time
+};
+/// The reactions' measured times against their bounds.
+Figure reactionsFigure(const std::string& scenario, const std::vector<Reaction>& reactions);
 
 }  // namespace quad::report

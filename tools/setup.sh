@@ -31,7 +31,7 @@ packages=(
   libeigen3-dev liboctomap-dev libmrpt-poses-dev libmrpt-math-dev
   libspdlog-dev libfmt-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev liblz4-dev libzstd-dev libssl-dev openssl
-  nodejs
+  nodejs chromium
 )
 # npm for the test that reads recordings with Foxglove's own MCAP reader; a Node.js from
 # elsewhere (NodeSource) brings its own npm and conflicts with Debian's.

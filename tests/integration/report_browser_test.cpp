@@ -1,0 +1,94 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The report as a browser shows it: the demo is flown (DDS domain 129), its run folder's
+// report.html is opened in Debian's Chromium, headless, through playwright-core (npm, installed
+// here with npm ci), and every figure must be drawn: loaded, at the size its SVG declares, not
+// blank, with no console or script error and no failed request.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "process.hpp"
+#include "scratch.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+using quad::test::ChildProcess;
+namespace fs = std::filesystem;
+
+/// npm ci of tests/browser into the build tree, once; check.mjs refreshed every time.
+fs::path browserTools()
+{
+  const fs::path dir = fs::path(QUAD_BUILD_DIR) / "browser";
+  if (!fs::exists(dir / "node_modules/playwright-core")) {
+    fs::create_directories(dir);
+    for (const char* f : {"package.json", "package-lock.json"}) {
+      fs::copy_file(fs::path(QUAD_SOURCE_DIR) / "tests/browser" / f, dir / f, fs::copy_options::overwrite_existing);
+    }
+    ChildProcess npm({QUAD_NPM, "ci", "--no-audit", "--no-fund", "--prefix", dir.string()});
+    const auto status = npm.wait(300s);
+    EXPECT_TRUE(status && *status == 0) << npm.output();
+  }
+  fs::copy_file(fs::path(QUAD_SOURCE_DIR) / "tests/browser/check.mjs", dir / "check.mjs", fs::copy_options::overwrite_existing);
+  return dir;
+}
+
+/// Width and height of a PNG file, from its IHDR chunk.
+std::pair<int, int> pngSize(const fs::path& file)
+{
+  std::ifstream in(file, std::ios::binary);
+  unsigned char b[24] = {};
+  in.read(reinterpret_cast<char*>(b), sizeof b);
+  const auto be = [&](int at) { return (b[at] << 24) | (b[at + 1] << 16) | (b[at + 2] << 8) | b[at + 3]; };
+  return {be(16), be(20)};
+}
+
+TEST(Report, TheDemosReportIsDrawnByAHeadlessBrowser)
+{
+  const fs::path tools = browserTools();
+  ASSERT_TRUE(fs::exists(tools / "node_modules/playwright-core"));
+  const fs::path dir = quad::test::scratchDir("quad_report_browser");
+  const fs::path run = dir / "run";
+  ChildProcess launch({QUAD_TOOL, "launch", std::string(QUAD_SOURCE_DIR) + "/bringup/demo.yaml", "--domain", "129", "--quiet",
+                       "--wall-timeout", "300", "--log-dir", run.string()});
+  const auto flown = launch.wait(330s);
+  ASSERT_TRUE(flown) << launch.output();
+  ASSERT_EQ(*flown, 0) << launch.output();
+  ASSERT_TRUE(fs::exists(run / "report.html")) << launch.output();
+
+  ChildProcess check({QUAD_NODE, (tools / "check.mjs").string(), run.string(), (dir / "report.png").string()},
+                     {{"QUAD_CHROMIUM", QUAD_CHROMIUM}});
+  const auto status = check.wait(120s);
+  ASSERT_TRUE(status) << check.output();
+  EXPECT_EQ(*status, 0) << check.output();
+  const std::string out = check.output();
+  const auto json = nlohmann::json::parse(out.substr(out.rfind("{\"figures\"") == std::string::npos ? 0 : out.rfind("{\"figures\"")),
+                                          nullptr, false);
+  ASSERT_TRUE(json.is_object()) << out;
+  EXPECT_TRUE(json["problems"].empty()) << json.dump(2);
+  std::set<std::string> drawn;
+  for (const auto& f : json["figures"]) {
+    EXPECT_TRUE(f["loaded"].get<bool>()) << f;
+    EXPECT_GE(f["width"].get<int>(), 800) << f;
+    EXPECT_GE(f["height"].get<int>(), 200) << f;
+    EXPECT_GT(f["ink"].get<double>(), 0.003) << f;
+    drawn.insert(f["src"].get<std::string>());
+  }
+  EXPECT_EQ(drawn, (std::set<std::string>{"top_view.svg", "side_view.svg", "motion.svg", "tracking.svg", "timeline.svg",
+                                          "replanning.svg", "rates.svg", "estimate_error.svg"}));
+  // The screenshot holds the whole page: the summary and eight figures, one under the other.
+  const auto [width, height] = pngSize(dir / "report.png");
+  EXPECT_EQ(width, 1000);
+  EXPECT_GT(height, 3000);
+  if (!::testing::Test::HasFailure()) {
+    fs::remove_all(dir);
+  }
+}
+
+}  // namespace

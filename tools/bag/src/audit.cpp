@@ -52,10 +52,18 @@ std::string toText(const LossFigures& f, std::size_t writers)
          std::to_string(writers);
 }
 
-std::optional<LossFigures> parseLossFigures(std::string_view text)
+namespace {
+
+struct LossText {
+  LossFigures figures;
+  std::optional<std::size_t> writers;  // when the text goes on to say
+};
+
+std::optional<LossText> parseLossText(std::string_view text)
 {
   std::istringstream in{std::string(text)};
-  LossFigures f;
+  LossText t;
+  LossFigures& f = t.figures;
   const std::pair<const char*, std::uint64_t*> fields[] = {
       {"received", &f.received}, {"missing", &f.missing}, {"duplicated", &f.duplicated}, {"reordered", &f.reordered}};
   for (const auto& [name, value] : fields) {
@@ -64,7 +72,26 @@ std::optional<LossFigures> parseLossFigures(std::string_view text)
       return std::nullopt;
     }
   }
-  return f;
+  std::string word;
+  std::size_t writers = 0;
+  if (in >> word >> writers && word == "writers") {
+    t.writers = writers;
+  }
+  return t;
+}
+
+}  // namespace
+
+std::optional<LossFigures> parseLossFigures(std::string_view text)
+{
+  const auto t = parseLossText(text);
+  return t ? std::optional<LossFigures>(t->figures) : std::nullopt;
+}
+
+std::optional<std::size_t> parseLossWriters(std::string_view text)
+{
+  const auto t = parseLossText(text);
+  return t ? t->writers : std::nullopt;
 }
 
 }  // namespace quad::bag

@@ -46,6 +46,8 @@ TEST(LossFigures, TextRoundTripsAndOtherTextIsRefused)
   EXPECT_EQ(back->missing, 3U);
   EXPECT_EQ(back->duplicated, 1U);
   EXPECT_EQ(back->reordered, 2U);
+  EXPECT_EQ(parseLossWriters(text), 2U);
+  EXPECT_FALSE(parseLossWriters("received 1 missing 0 duplicated 0 reordered 0").has_value());
   EXPECT_FALSE(parseLossFigures("(not recorded)").has_value());
   EXPECT_FALSE(parseLossFigures("received 1 lost 2").has_value());
 }

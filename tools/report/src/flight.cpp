@@ -2,10 +2,10 @@
 #include "quad/report/flight.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <set>
 #include <span>
 
 #include <fmt/format.h>
@@ -141,8 +141,14 @@ FlightData readFlight(const bag::McapContents& recording, const Progress& progre
     }
     const Decoder& d = ch->second;
     const std::string& topic = d.topic;
-    // Every quad message starts with its Header: the rate of each topic from its stamps.
-    const double header_t = stampOf(Json{{"header", d.decode(m, "quad::msg::Header")}}, topic);
+    // The topics drawn are decoded whole; of the others, every quad message starts with its
+    // Header: the rate of each topic from its stamps.
+    static const std::set<std::string, std::less<>> kDrawn{"quad/sim/state",       "quad/estimation/state",
+                                                            "quad/planning/goal",   "quad/planning/path",
+                                                            "quad/control/status",  "quad/sim/events",
+                                                            "quad/system/fault_events"};
+    const Json msg = kDrawn.contains(topic) ? d.decode(m) : Json{{"header", d.decode(m, "quad::msg::Header")}};
+    const double header_t = stampOf(msg, topic);
     Span& span = spans[m.channel_id];
     if (span.n == 0 || header_t < span.first) {
       span.first = header_t;
@@ -153,8 +159,7 @@ FlightData readFlight(const bag::McapContents& recording, const Progress& progre
     ++span.n;
 
     if (topic == "quad/sim/state") {
-      const Json msg = d.decode(m);
-      const double t = stampOf(msg, topic);
+      const double t = header_t;
       const Vector3 p = vector(field(msg, "p_W", topic), topic);
       score.onTruth(static_cast<std::int64_t>(std::llround(t * 1e9)), p, quaternion(field(msg, "q_WB", topic), topic));
       keep(f.truth, {t, p, vector(field(msg, "v_W", topic), topic)});
@@ -165,8 +170,7 @@ FlightData readFlight(const bag::McapContents& recording, const Progress& progre
       f.t_last_s = std::max(f.t_last_s, t);
       any_state = true;
     } else if (topic == "quad/estimation/state") {
-      const Json msg = d.decode(m);
-      const double t = stampOf(msg, topic);
+      const double t = header_t;
       const bool aligned = field(msg, "aligned", topic).get<bool>();
       const Vector3 p = vector(field(msg, "p_W", topic), topic);
       score.onEstimate(static_cast<std::int64_t>(std::llround(t * 1e9)), p, quaternion(field(msg, "q_WB", topic), topic),
@@ -175,12 +179,10 @@ FlightData readFlight(const bag::McapContents& recording, const Progress& progre
         keep(f.estimate, {t, p, vector(field(msg, "v_W", topic), topic)});
       }
     } else if (topic == "quad/planning/goal") {
-      const Json msg = d.decode(m);
-      f.goals.push_back({stampOf(msg, topic), vector(field(msg, "p_W", topic), topic), field(msg, "tolerance", topic).get<double>()});
+      f.goals.push_back({header_t, vector(field(msg, "p_W", topic), topic), field(msg, "tolerance", topic).get<double>()});
     } else if (topic == "quad/planning/path") {
-      const Json msg = d.decode(m);
       FlightData::Path p;
-      p.t_s = stampOf(msg, topic);
+      p.t_s = header_t;
       p.version = field(msg, "version", topic).get<std::uint32_t>();
       p.status = field(msg, "status", topic).get<std::string>();
       for (const Json& w : field(msg, "waypoints_W", topic)) {
@@ -190,14 +192,12 @@ FlightData readFlight(const bag::McapContents& recording, const Progress& progre
       p.replan_time_s = field(msg, "replan_time_s", topic).get<double>();
       f.paths.push_back(std::move(p));
     } else if (topic == "quad/control/status") {
-      const Json msg = d.decode(m);
-      f.status.push_back({stampOf(msg, topic), field(msg, "mode", topic).get<std::string>(),
+      f.status.push_back({header_t, field(msg, "mode", topic).get<std::string>(),
                           field(msg, "failsafe_reason", topic).get<std::string>(),
                           vector(field(msg, "position_error_W", topic), topic).norm(),
                           field(msg, "attitude_error", topic).get<double>() * 180.0 / std::numbers::pi});
     } else if (topic == "quad/sim/events" || topic == "quad/system/fault_events") {
-      const Json msg = d.decode(m);
-      f.events.push_back({stampOf(msg, topic), field(msg, "kind", topic).get<std::string>(),
+      f.events.push_back({header_t, field(msg, "kind", topic).get<std::string>(),
                           field(msg, "detail", topic).get<std::string>(), topic == "quad/system/fault_events"});
     } else if (topic == "quad/mapping/octomap") {
       last_snapshot = &m;
@@ -233,9 +233,7 @@ FlightData readFlight(const bag::McapContents& recording, const Progress& progre
     const Decoder& d = channels.at(id);
     FlightData::TopicRate r{d.topic, span.n, 0.0, d.contract_hz, 1};
     if (const auto l = loss.find(d.topic); l != loss.end()) {
-      if (const auto at = l->second.find("writers "); at != std::string::npos) {
-        r.writers = std::max(1, std::atoi(l->second.c_str() + at + 8));
-      }
+      r.writers = std::max(1, static_cast<int>(bag::parseLossWriters(l->second).value_or(1)));
     }
     if (span.n > span.at_first && span.last > span.first) {
       // Samples after the first stamp, over the time after it: a clock held at its start

@@ -30,6 +30,8 @@ inline constexpr std::string_view kLossMetadata = "quad.loss";
 std::string toText(const LossFigures& f, std::size_t writers);
 /// The figures of such a text; nothing when it is not one.
 std::optional<LossFigures> parseLossFigures(std::string_view text);
+/// The writers such a text counts; nothing when it is not one.
+std::optional<std::size_t> parseLossWriters(std::string_view text);
 
 class SequenceAudit {
 public:

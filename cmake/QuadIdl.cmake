@@ -2,7 +2,8 @@
 # quad_add_idl_library(<target> IDL_ROOT <dir> FILES <relative .idl paths...>)
 #
 # Runs fastddsgen on every file at build time into the build tree (never committed) and
-# compiles the result into one library. Consumers include <quad/msg/XPubSubTypes.h>.
+# compiles the result into one library. Consumers include <quad/msg/XPubSubTypes.h> (the
+# folder of the file under IDL_ROOT).
 # Also builds <target>_idl, a library without DDS that embeds each IDL text
 # (quad::msg::idlSources()), so that tools decode samples and recordings carry their schema
 # without reading files at run time.
@@ -10,35 +11,45 @@ function(quad_add_idl_library target)
   cmake_parse_arguments(ARG "" "IDL_ROOT" "FILES" ${ARGN})
   set(gen_root ${CMAKE_CURRENT_BINARY_DIR}/generated)
   set(outputs)
-  set(inputs)
   set(embedded "")
+  set(dirs)
   foreach(rel IN LISTS ARG_FILES)
     get_filename_component(dir ${rel} DIRECTORY)
-    get_filename_component(stem ${rel} NAME_WE)
-    set(out_dir ${gen_root}/${dir})
-    list(APPEND inputs ${ARG_IDL_ROOT}/${rel})
+    list(APPEND dirs ${dir})
     file(READ ${ARG_IDL_ROOT}/${rel} text)
-    list(APPEND outputs ${out_dir}/${stem}.cxx)
-    # fastddsgen writes a TopicDataType only for files that define a struct.
-    if(text MATCHES "struct ")
-      list(APPEND outputs ${out_dir}/${stem}PubSubTypes.cxx)
-    endif()
     string(APPEND embedded "    {\"${rel}\", R\"quadidl(${text})quadidl\"},\n")
     set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${ARG_IDL_ROOT}/${rel})
   endforeach()
-  list(GET ARG_FILES 0 first)
-  get_filename_component(first_dir ${first} DIRECTORY)
-
+  # One fastddsgen run per directory: it writes every output into one folder, and two
+  # directories may hold files of one name (quad/msg/Vector3.idl, foxglove/Vector3.idl).
   # -cs: a member named like its type is legal; -replace: never keep stale output.
   # No -typeobject: it makes every generated constructor ~1000x slower.
-  add_custom_command(
-    OUTPUT ${outputs}
-    COMMAND ${CMAKE_COMMAND} -E make_directory ${gen_root}/${first_dir}
-    COMMAND ${QUAD_FASTDDSGEN} -cs -replace -d ${gen_root}/${first_dir}
-            -I ${ARG_IDL_ROOT}/${first_dir} ${inputs}
-    DEPENDS ${inputs}
-    COMMENT "fastddsgen: generating ${target} from ${CMAKE_CURRENT_SOURCE_DIR}"
-    VERBATIM)
+  list(REMOVE_DUPLICATES dirs)
+  foreach(dir IN LISTS dirs)
+    set(dir_inputs)
+    set(dir_outputs)
+    foreach(rel IN LISTS ARG_FILES)
+      get_filename_component(rel_dir ${rel} DIRECTORY)
+      if(rel_dir STREQUAL dir)
+        get_filename_component(stem ${rel} NAME_WE)
+        list(APPEND dir_inputs ${ARG_IDL_ROOT}/${rel})
+        list(APPEND dir_outputs ${gen_root}/${dir}/${stem}.cxx)
+        file(READ ${ARG_IDL_ROOT}/${rel} text)
+        # fastddsgen writes a TopicDataType only for files that define a struct.
+        if(text MATCHES "struct ")
+          list(APPEND dir_outputs ${gen_root}/${dir}/${stem}PubSubTypes.cxx)
+        endif()
+      endif()
+    endforeach()
+    add_custom_command(
+      OUTPUT ${dir_outputs}
+      COMMAND ${CMAKE_COMMAND} -E make_directory ${gen_root}/${dir}
+      COMMAND ${QUAD_FASTDDSGEN} -cs -replace -d ${gen_root}/${dir} -I ${ARG_IDL_ROOT}/${dir} ${dir_inputs}
+      DEPENDS ${dir_inputs}
+      COMMENT "fastddsgen: generating ${target} from ${ARG_IDL_ROOT}/${dir}"
+      VERBATIM)
+    list(APPEND outputs ${dir_outputs})
+  endforeach()
 
   set(sources_cpp ${gen_root}/${target}_sources.cpp)
   file(CONFIGURE OUTPUT ${sources_cpp} CONTENT [[

@@ -95,7 +95,7 @@ int bagInfo(const std::string& file, bool json)
   for (const Topic& t : topics) {
     const std::string rate = t.rate_hz ? fmt::format("{:.1f} Hz", *t.rate_hz) : "-";
     std::printf("%-26s %-28s %9llu %9s  %s\n", t.topic.c_str(), t.type.c_str(), static_cast<unsigned long long>(t.messages),
-                rate.c_str(), t.loss ? t.loss->c_str() : "(not recorded)");
+                rate.c_str(), t.loss ? t.loss->c_str() : t.type.starts_with("quad::msg::") ? "(not recorded)" : "(no Header to audit)");
   }
   return c.complete ? 0 : 1;
 }

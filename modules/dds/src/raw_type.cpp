@@ -68,7 +68,7 @@ bool RawType::getKey(void* data, frtps::InstanceHandle_t* handle, bool /*force_m
 
 fdds::TypeSupport rawTypeFor(const TopicInfo& info)
 {
-  return fdds::TypeSupport(new RawType(std::string(info.type_name), true,
+  return fdds::TypeSupport(new RawType(std::string(info.type_name), info.has_header,
                                        info.max_serialized_size != nullptr
                                            ? info.max_serialized_size()
                                            : 64U * 1024U * 1024U));

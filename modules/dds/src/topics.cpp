@@ -18,6 +18,8 @@ std::string_view toString(Owner owner)
       return "planning";
     case Owner::kControl:
       return "control";
+    case Owner::kDisplay:
+      return "display";
     case Owner::kOperator:
       return "operator";
     case Owner::kFaultTool:

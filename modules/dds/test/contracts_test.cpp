@@ -33,7 +33,7 @@ double seconds(const eprosima::fastrtps::Duration_t& d)
 
 TEST(Contracts, NamesAreUniqueAndFollowTheConvention)
 {
-  const std::regex pattern("quad/(sim|estimation|mapping|planning|control|system)/[a-z_]+");
+  const std::regex pattern("quad/(sim|estimation|mapping|planning|control|system|display)/[a-z_]+");
   std::set<std::string_view> names;
   for (const auto& t : topics::kAll) {
     EXPECT_TRUE(std::regex_match(std::string(t.name), pattern)) << t.name;
@@ -43,13 +43,19 @@ TEST(Contracts, NamesAreUniqueAndFollowTheConvention)
   }
 }
 
-TEST(Contracts, EveryTypeIsAKeyedIdlStructWithItsFile)
+TEST(Contracts, EveryTypeIsAnIdlStructWithItsFile)
 {
   const auto& schema = introspection::quadSchema();
   for (const auto& t : topics::kAll) {
     const auto* def = schema.findStruct(t.type_name);
     ASSERT_NE(def, nullptr) << t.name << ": " << t.type_name;
     EXPECT_EQ(def->file, t.idl_file) << t.name;
+    // quad's own messages lead with the keyed Header; only the display topics carry
+    // Foxglove's schemas, which do not.
+    const bool display = t.name.starts_with("quad/display/");
+    EXPECT_EQ(t.has_header, !display) << t.name;
+    EXPECT_EQ(t.type_name.starts_with("foxglove::"), display) << t.name;
+    EXPECT_EQ(t.owner == Owner::kDisplay, display) << t.name;
   }
 }
 

@@ -68,9 +68,11 @@ std::vector<Token> tokenize(std::string_view text, std::string_view file)
       }
       i = end + 2;
     } else if (std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_') {
+      // A word, or a number (a decimal point in a literal: @default(1.0)).
       const std::size_t start = i;
-      while (i < text.size() &&
-             (std::isalnum(static_cast<unsigned char>(text[i])) != 0 || text[i] == '_')) {
+      const bool number = std::isdigit(static_cast<unsigned char>(c)) != 0;
+      while (i < text.size() && (std::isalnum(static_cast<unsigned char>(text[i])) != 0 || text[i] == '_' ||
+                                 (number && text[i] == '.'))) {
         ++i;
       }
       tokens.push_back({std::string(text.substr(start, i - start)), line, start});
@@ -368,6 +370,15 @@ const EnumDef* Schema::findEnum(std::string_view scoped_name) const
 {
   const auto it = enums_.find(scoped_name);
   return it == enums_.end() ? nullptr : &it->second;
+}
+
+std::string Schema::enumeratorName(std::string_view enum_name, std::int64_t value) const
+{
+  const EnumDef* e = findEnum(enum_name);
+  if (e == nullptr || value < 0 || static_cast<std::uint64_t>(value) >= e->enumerators.size()) {
+    return std::string(enum_name) + " " + std::to_string(value);
+  }
+  return e->enumerators[static_cast<std::size_t>(value)];
 }
 
 std::optional<std::string> Schema::resolve(std::string_view name, std::string_view scope) const

@@ -20,10 +20,36 @@ TEST(Idl, EveryQuadMessageParsesAndLinks)
   EXPECT_EQ(mode->enumerators.front(), "CONTROL_DISARMED");
 }
 
+TEST(Idl, EnumeratorsAreNamedByValueAndUnknownValuesSaySo)
+{
+  const Schema& schema = quadSchema();
+  EXPECT_EQ(schema.enumeratorName("quad::msg::FailsafeReason", 0), "FAILSAFE_NONE");
+  EXPECT_EQ(schema.enumeratorName("foxglove::LogLevel", 4), "ERROR");
+  EXPECT_EQ(schema.enumeratorName("quad::msg::FailsafeReason", 999), "quad::msg::FailsafeReason 999");
+  EXPECT_EQ(schema.enumeratorName("quad::msg::Nope", 1), "quad::msg::Nope 1");
+}
+
+TEST(Idl, FoxglovesDisplaySchemasParseWithEveryPrimitive)
+{
+  const Schema& schema = quadSchema();
+  const StructDef* entity = schema.findStruct("foxglove::SceneEntity");
+  ASSERT_NE(entity, nullptr);
+  EXPECT_EQ(entity->members.size(), 14U);  // Foxglove's members, none left out
+  const std::string flat = schema.flattenedIdl("foxglove::SceneUpdate");
+  for (const char* part : {"struct CubePrimitive", "struct ModelPrimitive", "enum LineType", "struct Time"}) {
+    EXPECT_NE(flat.find(part), std::string::npos) << part;
+  }
+  EXPECT_EQ(flat.find("quad"), std::string::npos) << "a display schema stands alone";
+}
+
 TEST(Idl, EveryMessageStartsWithTheKeyedHeader)
 {
   // The convention every tool relies on (loss audits, the vehicle key): Header first.
+  // Foxglove's display schemas (foxglove::*) keep Foxglove's own layout.
   for (const auto& [name, def] : quadSchema().structs()) {
+    if (name.starts_with("foxglove::")) {
+      continue;
+    }
     const bool is_part = name == "quad::msg::Header" || name == "quad::msg::Vector3" ||
                          name == "quad::msg::Quaternion" || name == "quad::msg::Point3f" ||
                          name == "quad::msg::VoxelChange";

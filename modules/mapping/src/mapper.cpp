@@ -240,4 +240,21 @@ std::optional<std::vector<VoxelChange>> classificationOf(const std::vector<std::
   return classificationOf(tree);
 }
 
+std::optional<std::vector<geometry::Vector3>> occupiedCentres(const std::vector<std::uint8_t>& snapshot,
+                                                              double resolution)
+{
+  const auto voxels = classificationOf(snapshot, resolution);
+  if (!voxels) {
+    return std::nullopt;
+  }
+  const geometry::VoxelGrid grid(resolution);
+  std::vector<geometry::Vector3> centres;
+  for (const auto& v : *voxels) {
+    if (v.state == VoxelState::kOccupied) {
+      centres.push_back(grid.centre(v.index));
+    }
+  }
+  return centres;
+}
+
 }  // namespace quad::mapping

@@ -34,6 +34,7 @@ struct Recorded {
   std::unique_ptr<dds::RawSubscriber> subscriber;
   std::uint16_t channel = 0;
   bag::SequenceAudit audit;
+  bool has_header = true;  ///< a display schema has none: no seq to audit, no publish time
 };
 
 }  // namespace
@@ -78,6 +79,7 @@ int record(const RecordOptions& options, const std::atomic<int>& stop)
     }
     Recorded& r = recorded[topic];
     r.subscriber = std::move(subscriber);
+    r.has_header = contract.has_header;
     r.channel = files->addChannel(
         schemas[type], topic,
         {{"qos_profile", std::string(contract.qos_profile)},
@@ -104,7 +106,7 @@ int record(const RecordOptions& options, const std::atomic<int>& stop)
       std::uint64_t writer_id = 0;
       while (r.subscriber->take(sample, writer_id)) {
         const auto log_time = static_cast<std::uint64_t>(common::wallTimeNs());
-        const auto header = common::payloadHeader(sample.payload);
+        const auto header = r.has_header ? common::payloadHeader(sample.payload) : std::nullopt;
         const std::uint64_t publish = header && header->publish_ns > 0 ? static_cast<std::uint64_t>(header->publish_ns)
                                                                         : log_time;
         if (header) {
@@ -161,10 +163,12 @@ int record(const RecordOptions& options, const std::atomic<int>& stop)
     std::fprintf(stderr, "\nrecord: %s: stopping\n", e.what());
     code = 1;
   }
-  // Loss figures of the recording, for quad bag info.
+  // Loss figures of the recording, for quad bag info (a display schema has no seq to count).
   std::map<std::string, std::string> loss;
   for (const auto& [topic, r] : recorded) {
-    loss[topic] = bag::toText(r.audit.figures(), r.audit.writers());
+    if (r.has_header) {
+      loss[topic] = bag::toText(r.audit.figures(), r.audit.writers());
+    }
   }
   try {
     files->finish(loss);

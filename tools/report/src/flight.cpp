@@ -11,7 +11,6 @@
 #include <fmt/format.h>
 
 #include "quad/bag/audit.hpp"
-#include "quad/geometry/grid.hpp"
 #include "quad/introspection/cdr.hpp"
 #include "quad/introspection/idl.hpp"
 #include "quad/mapping/mapper.hpp"
@@ -77,8 +76,9 @@ std::map<std::uint16_t, Decoder> decoders(const bag::McapContents& recording)
   std::map<std::uint16_t, Decoder> out;
   for (const auto& ch : recording.channels) {
     const auto s = schemas.find(ch.schema_id);
-    if (s == schemas.end() || s->second->encoding != "omgidl" || ch.message_encoding != "cdr") {
-      continue;  // not a quad channel: nothing the report reads
+    if (s == schemas.end() || s->second->encoding != "omgidl" || ch.message_encoding != "cdr" ||
+        !s->second->name.starts_with("quad::msg::")) {
+      continue;  // not a quad message (a display topic's Foxglove schema): nothing the report reads
     }
     Decoder d;
     d.topic = ch.topic;
@@ -214,16 +214,11 @@ FlightData readFlight(const bag::McapContents& recording, const Progress& progre
     const Json msg = d.decode(*last_snapshot);
     const double resolution = field(msg, "resolution", d.topic).get<double>();
     const std::vector<std::uint8_t> bytes = field(msg, "octree", d.topic).get<std::vector<std::uint8_t>>();
-    const auto voxels = mapping::classificationOf(bytes, resolution);
-    if (!voxels) {
+    auto centres = mapping::occupiedCentres(bytes, resolution);
+    if (!centres) {
       throw FlightError(fmt::format("{}: the last snapshot is no OctoMap tree of resolution {} m", d.topic, resolution));
     }
-    const geometry::VoxelGrid grid(resolution);
-    for (const auto& v : *voxels) {
-      if (v.state == mapping::VoxelState::kOccupied) {
-        f.occupied_W.push_back(grid.centre(v.index));
-      }
-    }
+    f.occupied_W = std::move(*centres);
     f.map_resolution_m = resolution;
   }
   // A contract's rate is each writer's (every module sends its heartbeat): the recorder's loss

@@ -30,7 +30,8 @@ std::vector<Role> quadRoles()
   const std::vector<std::string> all{kEveryQuadTopic};
   std::vector<Role> roles;
   for (const auto& [identity, owner] : {std::pair{"plant", Owner::kPlant}, std::pair{"estimation", Owner::kEstimation}, std::pair{"mapping", Owner::kMapping},
-                                        std::pair{"planning", Owner::kPlanning}, std::pair{"control", Owner::kControl}}) {
+                                        std::pair{"planning", Owner::kPlanning}, std::pair{"control", Owner::kControl},
+                                        std::pair{"display", Owner::kDisplay}}) {
     auto publish = ownedBy({owner, Owner::kEveryModule});
     publish.emplace_back(dds::topics::kFaultEvents.info.name);  // a fault layer's acknowledgements
     roles.push_back({identity, publish, all});

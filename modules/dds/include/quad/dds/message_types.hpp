@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
-/// Compile-time facts about each generated message type: its TopicDataType and IDL file.
+/// Compile-time facts about each generated message type: its TopicDataType, its IDL file,
+/// and whether it leads with quad's Header (quad's messages do; Foxglove's display schemas,
+/// foxglove::*, do not).
 ///
 /// fastddsgen 2.3 serialises a nested `@key Header header` member whole as the key, so every
 /// sample (new stamp, new seq) would become a new DDS instance. VehicleKeyedType computes the
@@ -40,6 +42,12 @@
 #include <quad/msg/VehicleCommandPubSubTypes.h>
 #include <quad/msg/VehicleStatePubSubTypes.h>
 
+#include <foxglove/FrameTransformsPubSubTypes.h>
+#include <foxglove/LogPubSubTypes.h>
+#include <foxglove/PointCloudPubSubTypes.h>
+#include <foxglove/PosesInFramePubSubTypes.h>
+#include <foxglove/SceneUpdatePubSubTypes.h>
+
 namespace quad::dds {
 
 /// Writes the key hash of a vehicle id into a DDS instance handle.
@@ -65,10 +73,9 @@ std::uint64_t rejectedPayloadCount(std::string_view type_name);
 /// Counts a payload refused for another reason than its IDL (payloadKeepsToIdl counts those).
 void countRejectedPayload(std::string_view type_name, const std::string& why);
 
-/// The generated TopicDataType with the key computed from header.vehicle_id, refusing
-/// payloads that break their IDL's bounds.
-template <class Generated, class Message>
-class VehicleKeyedType : public Generated {
+/// The generated TopicDataType, refusing payloads that break their IDL's bounds.
+template <class Generated>
+class CheckedType : public Generated {
 public:
   bool deserialize(eprosima::fastrtps::rtps::SerializedPayload_t* payload, void* data) override
   {
@@ -84,7 +91,12 @@ public:
       return false;
     }
   }
+};
 
+/// A checked type whose key is computed from header.vehicle_id.
+template <class Generated, class Message>
+class VehicleKeyedType : public CheckedType<Generated> {
+public:
   bool getKey(void* data, eprosima::fastrtps::rtps::InstanceHandle_t* handle,
               bool /*force_md5*/) override
   {
@@ -101,6 +113,7 @@ struct MessageTraits;
   template <>                                                                             \
   struct MessageTraits<quad::msg::Name> {                                                 \
     using PubSubType = VehicleKeyedType<quad::msg::Name##PubSubType, quad::msg::Name>;    \
+    static constexpr bool kHasHeader = true;                                              \
     static constexpr std::string_view kTypeName = "quad::msg::" #Name;                   \
     static constexpr std::string_view kIdlFile = "quad/msg/" #Name ".idl";               \
     static std::uint32_t maxSerializedSize()                                              \
@@ -135,5 +148,27 @@ QUAD_DDS_MESSAGE(VehicleCommand);
 QUAD_DDS_MESSAGE(VehicleState);
 
 #undef QUAD_DDS_MESSAGE
+
+/// Foxglove's display schemas: no Header, no key (a display topic carries one vehicle's).
+#define QUAD_DDS_DISPLAY_MESSAGE(Name)                                                    \
+  template <>                                                                             \
+  struct MessageTraits<foxglove::Name> {                                                  \
+    using PubSubType = CheckedType<foxglove::Name##PubSubType>;                           \
+    static constexpr bool kHasHeader = false;                                             \
+    static constexpr std::string_view kTypeName = "foxglove::" #Name;                    \
+    static constexpr std::string_view kIdlFile = "foxglove/" #Name ".idl";               \
+    static std::uint32_t maxSerializedSize()                                              \
+    {                                                                                     \
+      return static_cast<std::uint32_t>(foxglove::Name::getMaxCdrSerializedSize()) + 4;   \
+    }                                                                                     \
+  }
+
+QUAD_DDS_DISPLAY_MESSAGE(FrameTransforms);
+QUAD_DDS_DISPLAY_MESSAGE(Log);
+QUAD_DDS_DISPLAY_MESSAGE(PointCloud);
+QUAD_DDS_DISPLAY_MESSAGE(PosesInFrame);
+QUAD_DDS_DISPLAY_MESSAGE(SceneUpdate);
+
+#undef QUAD_DDS_DISPLAY_MESSAGE
 
 }  // namespace quad::dds

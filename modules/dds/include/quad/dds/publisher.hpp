@@ -13,7 +13,8 @@ namespace quad::dds {
 
 /// Writes samples of one topic. It owns its DataWriter (RAII) and fills each sample's
 /// Header: per-writer sequence number, publish time and vehicle id. The caller sets
-/// header().stamp_ns(), the time the sample is about.
+/// header().stamp_ns(), the time the sample is about. (A display schema has no Header: its
+/// sample is written as it is.)
 template <class Message>
 class Publisher : public WriterEndpoint {
 public:
@@ -30,10 +31,12 @@ public:
   /// Returns false (counted, reported as an event) when the middleware refused the sample.
   bool write(Message& sample)
   {
-    auto& header = sample.header();
-    header.vehicle_id(vehicle_id_);
-    header.seq(seq_ + 1);  // a number is used only by a sample the middleware took
-    header.publish_ns(common::wallTimeNs());
+    if constexpr (MessageTraits<Message>::kHasHeader) {
+      auto& header = sample.header();
+      header.vehicle_id(vehicle_id_);
+      header.seq(seq_ + 1);  // a number is used only by a sample the middleware took
+      header.publish_ns(common::wallTimeNs());
+    }
     const bool written = writeSample(&sample);
     if (written) {
       ++seq_;

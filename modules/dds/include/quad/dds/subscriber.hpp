@@ -26,12 +26,15 @@ public:
 
   /// The next unread sample of this participant's vehicle, if any; `writer`, when given,
   /// receives its writer's id (the one takeLivelinessChanges names). Samples of another
-  /// vehicle (Header.vehicle_id) are dropped and counted (foreignSamples()).
+  /// vehicle (Header.vehicle_id) are dropped and counted (foreignSamples()); a display
+  /// schema, without a Header, is taken whole.
   std::optional<Message> take(std::uint64_t* writer = nullptr)
   {
     Message sample;
     while (takeSample(&sample, writer)) {
-      if (ownVehicle(sample.header().vehicle_id())) {
+      if constexpr (!MessageTraits<Message>::kHasHeader) {
+        return sample;
+      } else if (ownVehicle(sample.header().vehicle_id())) {
         return sample;
       }
     }

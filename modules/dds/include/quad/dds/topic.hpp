@@ -11,7 +11,7 @@
 namespace quad::dds {
 
 /// The module that owns (writes) a topic.
-enum class Owner { kPlant, kEstimation, kMapping, kPlanning, kControl, kOperator, kFaultTool, kEveryModule };
+enum class Owner { kPlant, kEstimation, kMapping, kPlanning, kControl, kDisplay, kOperator, kFaultTool, kEveryModule };
 
 std::string_view toString(Owner owner);
 
@@ -29,6 +29,9 @@ struct TopicInfo {
   /// The deadline: a reader judges the topic stale once its newest sample is older than this
   /// (in sim time) [s]; its writers publish, or republish, well within it. 0: not judged.
   double stale_after_s = 0.0;
+  /// The type leads with quad's Header (stamp, per-writer seq, the vehicle as its key); the
+  /// display topics' Foxglove schemas do not.
+  bool has_header = true;
 };
 
 /// A typed topic contract. Publisher<T> and Subscriber<T> accept only a Topic<T>, so a topic
@@ -47,7 +50,8 @@ constexpr Topic<Message> makeTopic(std::string_view name, std::string_view qos_p
 {
   return Topic<Message>{TopicInfo{name, MessageTraits<Message>::kTypeName,
                                   MessageTraits<Message>::kIdlFile, qos_profile, rate_hz, owner,
-                                  description, &MessageTraits<Message>::maxSerializedSize, stale_after_s}};
+                                  description, &MessageTraits<Message>::maxSerializedSize, stale_after_s,
+                                  MessageTraits<Message>::kHasHeader}};
 }
 
 }  // namespace quad::dds

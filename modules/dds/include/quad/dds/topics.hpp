@@ -15,6 +15,12 @@ namespace quad::dds::topics {
 using msg::ActuatorCommand, msg::BaroAltitude, msg::BatteryState, msg::CommandAck, msg::ControlReference, msg::ControlStatus, msg::EstimatedState, msg::FaultCommand, msg::Goal, msg::GoalAck, msg::Heartbeat,
     msg::Imu, msg::LockstepReport, msg::MagneticField, msg::MapSnapshot, msg::MapStats, msg::MapUpdate, msg::Path,
     msg::PointCloud, msg::PositionFix, msg::SimClock, msg::SimEvent, msg::VehicleCommand, msg::VehicleState;
+// The display topics carry Foxglove's schemas (foxglove::*), for viewers: docs/recording.md.
+using FrameTransforms = foxglove::FrameTransforms;
+using DisplayLog = foxglove::Log;
+using DisplayCloud = foxglove::PointCloud;
+using PosesInFrame = foxglove::PosesInFrame;
+using SceneUpdate = foxglove::SceneUpdate;
 
 // clang-format off
 inline constexpr auto kSimClock = makeTopic<SimClock>(
@@ -96,6 +102,31 @@ inline constexpr auto kFaultEvents = makeTopic<SimEvent>(
     "quad/system/fault_events", "events", 0.0, Owner::kFaultTool,
     "Faults applied outside the plant, when they took effect: by the fault tool (processes, "
     "inputs) or a module's datagram fault layer");
+inline constexpr auto kDisplayTransforms = makeTopic<FrameTransforms>(
+    "quad/display/transforms", "display", 30.0, Owner::kDisplay,
+    "Frames for viewers: world to body (the state the stack flies on), to body_true (the "
+    "simulator's truth) and body to each depth sensor");
+inline constexpr auto kDisplayTrajectory = makeTopic<PosesInFrame>(
+    "quad/display/trajectory", "display_latched", 2.0, Owner::kDisplay,
+    "The trajectory flown as the stack knows it, in the world frame, whole each time");
+inline constexpr auto kDisplayTrueTrajectory = makeTopic<PosesInFrame>(
+    "quad/display/true_trajectory", "display_latched", 2.0, Owner::kDisplay,
+    "The trajectory flown, from the simulator's truth, in the world frame, whole each time");
+inline constexpr auto kDisplayPath = makeTopic<PosesInFrame>(
+    "quad/display/path", "display_latched", 0.0, Owner::kDisplay,
+    "The planner's current path, in the world frame, per replan");
+inline constexpr auto kDisplayMap = makeTopic<DisplayCloud>(
+    "quad/display/map", "display_latched", 1.0, Owner::kDisplay,
+    "The map's occupied voxels as points at their centres, in the world frame, whole when they changed");
+inline constexpr auto kDisplayScene = makeTopic<SceneUpdate>(
+    "quad/display/scene", "display_latched", 0.0, Owner::kDisplay,
+    "The world's obstacles and the goal, whole at each change");
+inline constexpr auto kDisplayDepth = makeTopic<DisplayCloud>(
+    "quad/display/depth", "display", 10.0, Owner::kDisplay,
+    "Each depth scan's hits, in its sensor's frame");
+inline constexpr auto kDisplayLog = makeTopic<DisplayLog>(
+    "quad/display/log", "display", 0.0, Owner::kDisplay,
+    "The flight's events as log lines: modes, failsafes, plans refused, faults, collisions");
 // clang-format on
 
 /// How far a true vehicle state may be stamped past the newest sim clock a reader took: the
@@ -109,7 +140,9 @@ inline constexpr std::array kAll{
     kEstimatedState.info, kSimBattery.info, kSimDepth.info, kSimEvents.info, kLockstep.info, kMapUpdate.info,
     kMapSnapshot.info, kMapStats.info, kGoal.info, kGoalAck.info, kPath.info, kActuators.info,
     kControlStatus.info, kCommandAck.info, kControlReference.info, kHeartbeat.info, kOperatorHeartbeat.info,
-    kVehicleCommand.info, kFault.info, kFaultEvents.info};
+    kVehicleCommand.info, kFault.info, kFaultEvents.info, kDisplayTransforms.info, kDisplayTrajectory.info,
+    kDisplayTrueTrajectory.info, kDisplayPath.info, kDisplayMap.info, kDisplayScene.info, kDisplayDepth.info,
+    kDisplayLog.info};
 
 /// The contract of a topic name, if quad declares one.
 std::optional<TopicInfo> find(std::string_view name);

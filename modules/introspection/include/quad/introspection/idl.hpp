@@ -72,6 +72,9 @@ public:
 
   const StructDef* findStruct(std::string_view scoped_name) const;
   const EnumDef* findEnum(std::string_view scoped_name) const;
+  /// The name of an enum's value ("CONTROL_HOVER"), or "<enum> <value>" when the enum or the
+  /// value is not defined.
+  std::string enumeratorName(std::string_view enum_name, std::int64_t value) const;
 
   /// Resolves a name used inside `scope` ("Header" inside quad::msg -> quad::msg::Header) by
   /// the IDL rule: innermost enclosing scope first. Nothing if no definition matches.

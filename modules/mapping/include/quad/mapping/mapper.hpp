@@ -117,4 +117,9 @@ std::vector<VoxelChange> classificationOf(const octomap::OcTree& tree);
 /// resolution.
 std::optional<std::vector<VoxelChange>> classificationOf(const std::vector<std::uint8_t>& snapshot, double resolution);
 
+/// The centres of a snapshot's occupied voxels [m], in classificationOf's order; nothing when
+/// the bytes are not an OctoMap binary tree of this resolution.
+std::optional<std::vector<geometry::Vector3>> occupiedCentres(const std::vector<std::uint8_t>& snapshot,
+                                                              double resolution);
+
 }  // namespace quad::mapping

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The independent check: a quad recording read with Foxglove's own MCAP reader and OMG IDL
-// decoder (npm packages, installed here with npm ci), every message decoded, and the decoded
-// values equal to what quad topic echo printed for the same samples.
+// The independent check: quad recordings read with Foxglove's own MCAP reader and OMG IDL
+// decoder (npm packages, installed here with npm ci): every message decoded, the decoded
+// values equal to what quad topic echo printed for the same samples, and the demo's display
+// topics what Foxglove's 3D panel needs to draw the flight.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -12,7 +14,11 @@
 #include <sstream>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
+#include "npm_package.hpp"
 #include "process.hpp"
+#include "quad/world/world_file.hpp"
 #include "scratch.hpp"
 
 namespace {
@@ -23,22 +29,10 @@ namespace fs = std::filesystem;
 
 const std::map<std::string, std::string> kEnv{{"QUAD_DOMAIN_ID", "196"}, {"QUAD_TRANSPORT", "udp"}};
 
-/// npm ci of tests/foxglove into the build tree, once.
 fs::path foxgloveTools()
 {
-  const fs::path dir = fs::path(QUAD_BUILD_DIR) / "foxglove";
-  if (!fs::exists(dir / "node_modules/@mcap/core")) {
-    fs::create_directories(dir);
-    for (const char* f : {"package.json", "package-lock.json", "check.mjs"}) {
-      fs::copy_file(fs::path(QUAD_SOURCE_DIR) / "tests/foxglove" / f, dir / f, fs::copy_options::overwrite_existing);
-    }
-    ChildProcess npm({QUAD_NPM, "ci", "--no-audit", "--no-fund", "--prefix", dir.string()});
-    const auto status = npm.wait(300s);
-    EXPECT_TRUE(status && *status == 0) << npm.output();
-  }
-  fs::copy_file(fs::path(QUAD_SOURCE_DIR) / "tests/foxglove/check.mjs", dir / "check.mjs",
-                fs::copy_options::overwrite_existing);
-  return dir;
+  return quad::test::installNpmPackage({QUAD_NPM, QUAD_SOURCE_DIR, QUAD_BUILD_DIR, "foxglove", "@mcap/core"},
+                                       {"check.mjs", "display_topics.mjs"});
 }
 
 TEST(Foxglove, ItsReaderDecodesEveryRecordedMessageToWhatQuadTopicEchoPrinted)
@@ -72,6 +66,85 @@ TEST(Foxglove, ItsReaderDecodesEveryRecordedMessageToWhatQuadTopicEchoPrinted)
   ASSERT_TRUE(std::regex_search(out, m, std::regex(R"(; (\d+) quad/sim/state samples equal to the echo)"))) << out;
   EXPECT_GE(std::stoi(m[1].str()), 50) << out;  // the samples both the recorder and the echo got
   fs::remove_all(dir);
+}
+
+TEST(Foxglove, TheDemosDisplayTopicsHoldTheFlightAsFoxglovesPanelsReadIt)
+{
+  const fs::path tools = foxgloveTools();
+  ASSERT_TRUE(fs::exists(tools / "node_modules/@mcap/core"));
+  const fs::path dir = quad::test::scratchDir("quad_foxglove_display");
+  const fs::path run = dir / "run";
+  ChildProcess launch({QUAD_TOOL, "launch", std::string(QUAD_SOURCE_DIR) + "/bringup/demo.yaml", "--domain", "161", "--quiet",
+                       "--wall-timeout", "300", "--no-report", "--log-dir", run.string()});
+  const auto flown = launch.wait(330s);
+  ASSERT_TRUE(flown && *flown == 0) << launch.output();
+  ChildProcess check({QUAD_NODE, (tools / "display_topics.mjs").string(), (run / "recording.mcap").string()});
+  const auto status = check.wait(120s);
+  ASSERT_TRUE(status) << check.output();
+  ASSERT_EQ(*status, 0) << check.output();
+  const auto out = check.output();
+  const auto summary = nlohmann::json::parse(out.substr(out.find('{')), nullptr, false);
+  ASSERT_TRUE(summary.is_object()) << out;
+
+  // Every display topic recorded in Foxglove's schema, and every message decoded.
+  for (const char* topic : {"quad/display/transforms", "quad/display/trajectory", "quad/display/true_trajectory",
+                            "quad/display/path", "quad/display/map", "quad/display/scene", "quad/display/depth",
+                            "quad/display/log"}) {
+    const auto& c = summary["channels"][topic];
+    ASSERT_TRUE(c.is_object()) << topic << "\n" << out;
+    EXPECT_TRUE(c["schema"].get<std::string>().starts_with("foxglove::")) << topic;
+    EXPECT_EQ(c["schema_encoding"], "omgidl") << topic;
+    EXPECT_EQ(c["message_encoding"], "cdr") << topic;
+    EXPECT_GT(c["messages"].get<int>(), 0) << topic;
+    EXPECT_EQ(c["decoded"], c["messages"]) << topic;
+  }
+  // The frames a 3D panel resolves: the body (the estimate flown on) and the truth in the
+  // world, the depth camera on the body; unit rotations; the estimate near the truth.
+  const auto frames = summary["transforms"]["frames"].get<std::vector<std::string>>();
+  for (const char* f : {"world>body", "world>body_true", "body>depth_front"}) {
+    EXPECT_NE(std::find(frames.begin(), frames.end(), f), frames.end()) << f << "\n" << out;
+  }
+  EXPECT_LT(summary["transforms"]["max_quaternion_norm_error"].get<double>(), 1e-9);
+  EXPECT_LT(summary["transforms"]["max_body_truth_gap_m"].get<double>(), 0.5);
+  // The trajectories cover the ~55 m flight, a pose at least every 25 cm, in the world frame.
+  EXPECT_EQ(summary["trajectory"]["frame"], "world");
+  EXPECT_GT(summary["trajectory"]["poses"].get<int>(), 220);
+  EXPECT_GT(summary["true_trajectory"]["poses"].get<int>(), 220);
+  // The map: coloured points in the world frame, within its bounds and the mapper's margin.
+  const quad::world::World world = quad::world::loadWorld(QUAD_CONFIG_DIR "/worlds/demo.yaml");
+  const auto& map = summary["map"];
+  EXPECT_EQ(map["frame"], "world");
+  EXPECT_EQ(map["stride"], 16);
+  EXPECT_GT(map["points"].get<int>(), 1000);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const auto axis = static_cast<Eigen::Index>(i);
+    EXPECT_GE(map["min"][i].get<double>(), world.bounds().min[axis] - 1.0) << i;
+    EXPECT_LE(map["max"][i].get<double>(), world.bounds().max[axis] + 1.0) << i;
+  }
+  // Depth: hits only, within the camera's range, in its own frame.
+  EXPECT_EQ(summary["depth"]["frames"], nlohmann::json::array({"depth_front"}));
+  EXPECT_LE(summary["depth"]["max_range_m"].get<double>(), 20.0 + 1e-3);
+  // The scene: every obstacle of the world, and the goal where the world puts it.
+  const auto& scene = summary["scene"];
+  EXPECT_EQ(scene["cubes"].get<std::size_t>() + scene["cylinders"].get<std::size_t>() +
+                scene["spheres"].get<std::size_t>() - 1,  // the goal's sphere
+            world.obstacles().size());
+  EXPECT_NEAR(scene["goal"]["x"].get<double>(), world.goal().x(), 1e-9);
+  EXPECT_NEAR(scene["goal"]["y"].get<double>(), world.goal().y(), 1e-9);
+  EXPECT_NEAR(scene["goal"]["z"].get<double>(), world.goal().z(), 1e-9);
+  // The log: the modes and the plan, from control and planning, at Foxglove's levels.
+  EXPECT_GE(summary["log"]["lines"].get<int>(), 5);
+  const auto names = summary["log"]["names"].get<std::vector<std::string>>();
+  for (const char* n : {"control", "planning"}) {
+    EXPECT_NE(std::find(names.begin(), names.end(), n), names.end()) << n;
+  }
+  for (const auto& [level, n] : summary["log"]["levels"].items()) {
+    EXPECT_GE(std::stoi(level), 1) << level;  // DEBUG..FATAL, never UNKNOWN
+    EXPECT_LE(std::stoi(level), 5) << level;
+  }
+  if (!::testing::Test::HasFailure()) {
+    fs::remove_all(dir);
+  }
 }
 
 }  // namespace

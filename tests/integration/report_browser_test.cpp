@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "npm_package.hpp"
 #include "process.hpp"
 #include "scratch.hpp"
 
@@ -22,21 +23,10 @@ using namespace std::chrono_literals;
 using quad::test::ChildProcess;
 namespace fs = std::filesystem;
 
-/// npm ci of tests/browser into the build tree, once; check.mjs refreshed every time.
 fs::path browserTools()
 {
-  const fs::path dir = fs::path(QUAD_BUILD_DIR) / "browser";
-  if (!fs::exists(dir / "node_modules/playwright-core")) {
-    fs::create_directories(dir);
-    for (const char* f : {"package.json", "package-lock.json"}) {
-      fs::copy_file(fs::path(QUAD_SOURCE_DIR) / "tests/browser" / f, dir / f, fs::copy_options::overwrite_existing);
-    }
-    ChildProcess npm({QUAD_NPM, "ci", "--no-audit", "--no-fund", "--prefix", dir.string()});
-    const auto status = npm.wait(300s);
-    EXPECT_TRUE(status && *status == 0) << npm.output();
-  }
-  fs::copy_file(fs::path(QUAD_SOURCE_DIR) / "tests/browser/check.mjs", dir / "check.mjs", fs::copy_options::overwrite_existing);
-  return dir;
+  return quad::test::installNpmPackage({QUAD_NPM, QUAD_SOURCE_DIR, QUAD_BUILD_DIR, "browser", "playwright-core"},
+                                       {"check.mjs"});
 }
 
 /// Width and height of a PNG file, from its IHDR chunk.

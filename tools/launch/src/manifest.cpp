@@ -55,6 +55,7 @@ const std::map<std::string, std::string> kBuiltModules{
     {"mapping", "modules/mapping/node/quad_mapping_node"},
     {"planning", "modules/planning/node/quad_planning_node"},
     {"control", "modules/control/node/quad_control_node"},
+    {"display", "modules/display/node/quad_display_node"},
     {"quad", "tools/quad/quad"},
 };
 

@@ -1,0 +1,91 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+/// @file
+/// The display participant: watches the flight and publishes it in Foxglove's display
+/// schemas (the quad/display/* topics), so that Foxglove and Lichtblick draw it live or from
+/// a recording. It flies nothing: no module reads what it writes.
+
+#include <map>
+#include <optional>
+#include <string>
+
+#include "quad/dds/node.hpp"
+#include "quad/dds/state_input.hpp"
+#include "quad/mapping/map_follower.hpp"
+#include "quad/display/display_params.hpp"
+#include "quad/display/event_log.hpp"
+#include "quad/display/occupied_voxels.hpp"
+#include "quad/display/packed_cloud.hpp"
+#include "quad/display/scene.hpp"
+
+namespace quad::display {
+
+struct DisplayNodeConfig : DisplayParams {
+  dds::StateSource state_source = dds::StateSource::kEstimate;
+};
+
+const common::ParamTable<DisplayNodeConfig>& displayNodeTable();
+common::ParamSchema displayNodeSchema();
+DisplayNodeConfig displayConfigFrom(const common::Params& params);
+
+class DisplayNode : public dds::Node {
+public:
+  DisplayNode(DisplayNodeConfig config, dds::ParticipantOptions options);
+
+protected:
+  void onTick(std::int64_t steady_ns) override;
+
+private:
+  void takeStates();
+  void takeDepth();
+  void takeMap();
+  /// Whether map messages of `resolution` can be followed (the first sets the map's).
+  bool followMap(double resolution, std::string_view topic);
+  void takeScene();
+  void takePaths();
+  void takeLogLines();
+  void publishTransforms(std::int64_t t_ns);
+  void publishTrajectories(std::int64_t t_ns);
+  void log(const LogLine& line);
+
+  DisplayNodeConfig config_;
+  std::vector<Shape> obstacles_;
+  Trace trace_;
+  Trace true_trace_;
+  EventLog events_;
+
+  dds::StateInput state_;
+  std::optional<dds::Subscriber<msg::VehicleState>> truth_;  // when the stack flies on the estimate
+  dds::Subscriber<msg::PointCloud> depth_;
+  dds::Subscriber<msg::MapUpdate> updates_;
+  dds::Subscriber<msg::MapSnapshot> snapshots_;
+  dds::Subscriber<msg::Goal> goals_;
+  dds::Subscriber<msg::GoalAck> goal_acks_;
+  dds::Subscriber<msg::Path> paths_;
+  dds::Subscriber<msg::ControlStatus> status_;
+  dds::Subscriber<msg::CommandAck> command_acks_;
+  dds::Subscriber<msg::SimEvent> sim_events_;
+  dds::Subscriber<msg::SimEvent> fault_events_;
+
+  dds::Publisher<foxglove::FrameTransforms> transforms_;
+  dds::Publisher<foxglove::PosesInFrame> trajectory_;
+  dds::Publisher<foxglove::PosesInFrame> true_trajectory_;
+  dds::Publisher<foxglove::PosesInFrame> path_;
+  dds::Publisher<foxglove::PointCloud> map_;
+  dds::Publisher<foxglove::SceneUpdate> scene_;
+  dds::Publisher<foxglove::PointCloud> depth_cloud_;
+  dds::Publisher<foxglove::Log> log_;
+
+  std::optional<dds::StateSample> body_;   // the newest state flown on
+  std::optional<TracePose> body_true_;     // the newest true state
+  std::map<std::string, foxglove::FrameTransform> sensors_;  // body to each depth sensor, by frame
+  std::int64_t next_transforms_ns_ = 0;
+  std::int64_t next_trajectory_ns_ = 0;
+  std::optional<mapping::MapFollower> follower_;  // from the first map message's resolution
+  std::optional<OccupiedVoxels> occupied_;
+  std::int64_t map_ns_ = 0;  // the newest map message's stamp
+  std::int64_t next_map_ns_ = 0;
+  bool scene_sent_ = false;
+};
+
+}  // namespace quad::display

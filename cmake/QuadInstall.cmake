@@ -7,6 +7,7 @@
 # move. The folders are fixed (no lib64 or multiarch folder): layout.hpp looks for them so.
 install(TARGETS quad RUNTIME DESTINATION bin)
 install(TARGETS quad_plant_node quad_estimation_node quad_mapping_node quad_planning_node quad_control_node
+  quad_display_node
   RUNTIME DESTINATION lib/quad)
 install(DIRECTORY configs bringup DESTINATION share/quad)
 install(DIRECTORY idl/ DESTINATION share/quad/idl FILES_MATCHING PATTERN "*.idl")

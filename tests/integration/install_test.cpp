@@ -41,7 +41,8 @@ TEST(Install, APrefixMovedElsewhereFliesTheDemoFromAnyFolder)
   // Relocatable: the prefix moves, nothing in it names where it was.
   fs::rename(dir / "first", dir / "prefix");
   const fs::path quad = dir / "prefix/bin/quad";
-  for (const char* file : {"lib/quad/quad_plant_node", "lib/quad/quad_control_node", "share/quad/configs/dds/quad_qos.xml",
+  for (const char* file : {"lib/quad/quad_plant_node", "lib/quad/quad_control_node", "lib/quad/quad_display_node",
+                           "share/quad/configs/dds/quad_qos.xml",
                            "share/quad/bringup/demo.yaml", "share/quad/idl/quad/msg/VehicleState.idl",
                            "share/man/man1/quad.1", "share/man/man1/quad-launch.1",
                            "share/bash-completion/completions/quad"}) {

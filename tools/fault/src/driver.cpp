@@ -564,6 +564,9 @@ private:
           continue;
         }
         const auto contract = topics::find(ch.topic);
+        if (contract && !contract->has_header) {
+          continue;  // a display topic: no seq to audit
+        }
         if (contract) {
           const auto history = participant.writerQos(contract->qos_profile).history();
           if (history.kind == eprosima::fastdds::dds::KEEP_LAST_HISTORY_QOS && history.depth == 1) {

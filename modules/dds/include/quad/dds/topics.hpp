@@ -125,7 +125,7 @@ inline constexpr auto kDisplayDepth = makeTopic<DisplayCloud>(
     "quad/display/depth", "display", 10.0, Owner::kDisplay,
     "Each depth scan's hits, in its sensor's frame");
 inline constexpr auto kDisplayLog = makeTopic<DisplayLog>(
-    "quad/display/log", "display", 0.0, Owner::kDisplay,
+    "quad/display/log", "events", 0.0, Owner::kDisplay,
     "The flight's events as log lines: modes, failsafes, plans refused, faults, collisions");
 // clang-format on
 

@@ -35,6 +35,7 @@ quad_require(CLI11 libcli11-dev)
 quad_require(nlohmann_json nlohmann-json3-dev)
 quad_require(zstd libzstd-dev)
 quad_require(OpenSSL libssl-dev)
+quad_require(Boost libboost-dev 1.74 CONFIG)  # Boost.Beast (header-only): quad bridge's WebSockets
 find_package(Threads REQUIRED)
 if(QUAD_BUILD_TESTS)
   quad_require(GTest libgtest-dev)

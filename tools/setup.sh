@@ -30,7 +30,7 @@ packages=(
   cyclonedds-dev cyclonedds-tools
   libeigen3-dev liboctomap-dev libmrpt-poses-dev libmrpt-math-dev
   libspdlog-dev libfmt-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
-  libgtest-dev libgmock-dev libbenchmark-dev liblz4-dev libzstd-dev libssl-dev openssl
+  libgtest-dev libgmock-dev libbenchmark-dev liblz4-dev libzstd-dev libssl-dev openssl libboost-dev
   nodejs chromium
 )
 # npm for the test that reads recordings with Foxglove's own MCAP reader; a Node.js from

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <csignal>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +19,7 @@
 
 #include "npm_package.hpp"
 #include "process.hpp"
+#include "quad/dds/topics.hpp"
 #include "quad/world/world_file.hpp"
 #include "scratch.hpp"
 
@@ -31,8 +33,8 @@ const std::map<std::string, std::string> kEnv{{"QUAD_DOMAIN_ID", "196"}, {"QUAD_
 
 fs::path foxgloveTools()
 {
-  return quad::test::installNpmPackage({QUAD_NPM, QUAD_SOURCE_DIR, QUAD_BUILD_DIR, "foxglove", "@mcap/core"},
-                                       {"check.mjs", "display_topics.mjs"});
+  return quad::test::installNpmPackage({QUAD_NPM, QUAD_SOURCE_DIR, QUAD_BUILD_DIR, "foxglove", "@foxglove/ws-protocol"},
+                                       {"bridge_client.mjs", "check.mjs", "display_topics.mjs", "slow_client.mjs"});
 }
 
 TEST(Foxglove, ItsReaderDecodesEveryRecordedMessageToWhatQuadTopicEchoPrinted)
@@ -142,6 +144,92 @@ TEST(Foxglove, TheDemosDisplayTopicsHoldTheFlightAsFoxglovesPanelsReadIt)
     EXPECT_GE(std::stoi(level), 1) << level;  // DEBUG..FATAL, never UNKNOWN
     EXPECT_LE(std::stoi(level), 5) << level;
   }
+  if (!::testing::Test::HasFailure()) {
+    fs::remove_all(dir);
+  }
+}
+
+TEST(Foxglove, ItsWebSocketClientSeesTheStackThroughQuadBridgeAndItsGoalIsTaken)
+{
+  const fs::path tools = foxgloveTools();
+  ASSERT_TRUE(fs::exists(tools / "node_modules/@foxglove/ws-protocol"));
+  const fs::path dir = quad::test::scratchDir("quad_foxglove_bridge");
+  ChildProcess bridge({QUAD_TOOL, "bridge", "--domain", "162", "--port", "0", "-q"});
+  ASSERT_TRUE(bridge.waitForOutput("listening on ws://", 20s)) << bridge.output();
+  std::smatch port;
+  const std::string listening = bridge.output();
+  ASSERT_TRUE(std::regex_search(listening, port, std::regex(R"(ws://127\.0\.0\.1:(\d+))"))) << listening;
+  // The client connects first, then the demo flies; once the state and the map flow, the
+  // client sends goal 7 halfway along the forest and waits for the planner's answer.
+  ChildProcess client({QUAD_NODE, (tools / "bridge_client.mjs").string(), "ws://127.0.0.1:" + port[1].str(), "7", "30",
+                       "0", "2", "120"});
+  ChildProcess launch({QUAD_TOOL, "launch", std::string(QUAD_SOURCE_DIR) + "/bringup/demo.yaml", "--domain", "162",
+                       "--quiet", "--wall-timeout", "200", "--no-record", "--log-dir", (dir / "run").string()});
+  const auto answered = client.wait(150s);
+  launch.signal(SIGINT);
+  EXPECT_TRUE(launch.wait(60s)) << launch.output();
+  bridge.signal(SIGINT);
+  const auto bridge_status = bridge.wait(30s);
+  ASSERT_TRUE(answered) << client.output();
+  const auto out = client.output();
+  const auto summary = nlohmann::json::parse(out.substr(out.find('{')), nullptr, false);
+  ASSERT_TRUE(summary.is_object()) << out;
+  EXPECT_EQ(*answered, 0) << out;
+  EXPECT_TRUE(summary["errors"].empty()) << out;
+  EXPECT_EQ(summary["capabilities"], nlohmann::json::array({"clientPublish"}));
+  // Every contract is a channel, the display topics among them.
+  EXPECT_EQ(summary["channels"].get<std::size_t>(), quad::dds::topics::kAll.size()) << out;
+  EXPECT_GE(summary["decoded"]["quad/sim/state"].get<int>(), 20) << out;
+  EXPECT_GE(summary["decoded"]["quad/display/map"].get<int>(), 1) << out;
+  // The goal published through the bridge reached the planner, which took it.
+  ASSERT_TRUE(summary["goal_answer"].is_object()) << out;
+  EXPECT_TRUE(summary["goal_answer"]["accepted"].get<bool>()) << out;
+  // A topic the stack does not take from outside is refused, naming it.
+  bool refused = false;
+  for (const auto& s : summary["statuses"]) {
+    refused |= s["level"] == 2 && s["message"].get<std::string>().find("quad/control/actuators") != std::string::npos;
+  }
+  EXPECT_TRUE(refused) << out;
+  ASSERT_TRUE(bridge_status) << bridge.output();
+  EXPECT_EQ(*bridge_status, 0) << bridge.output();
+  if (!::testing::Test::HasFailure()) {
+    fs::remove_all(dir);
+  }
+}
+
+TEST(Foxglove, AClientThatStopsReadingDoesNotHoldTheMissionBack)
+{
+  const fs::path tools = foxgloveTools();
+  const fs::path dir = quad::test::scratchDir("quad_foxglove_slow");
+  // A 1 MiB queue per client: the slow client's fills within seconds of the flight.
+  ChildProcess bridge({QUAD_TOOL, "bridge", "--domain", "163", "--port", "0", "-q", "--client-queue", "1048576"});
+  ASSERT_TRUE(bridge.waitForOutput("listening on ws://", 20s)) << bridge.output();
+  std::smatch port;
+  const std::string listening = bridge.output();
+  ASSERT_TRUE(std::regex_search(listening, port, std::regex(R"(ws://127\.0\.0\.1:(\d+))"))) << listening;
+  ChildProcess slow({QUAD_NODE, (tools / "slow_client.mjs").string(), "ws://127.0.0.1:" + port[1].str()});
+  ASSERT_TRUE(slow.waitForOutput("stalled", 20s)) << slow.output();
+  // The mission flies to the end while every topic is sent to a client that reads nothing.
+  ChildProcess launch({QUAD_TOOL, "launch", std::string(QUAD_SOURCE_DIR) + "/bringup/demo.yaml", "--domain", "163",
+                       "--quiet", "--wall-timeout", "200", "--no-record", "--summary", (dir / "summary.json").string(),
+                       "--log-dir", (dir / "run").string()});
+  const auto flown = launch.wait(230s);
+  bridge.signal(SIGINT);
+  const auto bridge_status = bridge.wait(30s);
+  slow.signal(SIGKILL);
+  slow.wait(10s);
+  ASSERT_TRUE(flown) << launch.output();
+  EXPECT_EQ(*flown, 0) << launch.output();
+  const auto summary = nlohmann::json::parse(quad::test::readFile(dir / "summary.json"), nullptr, false);
+  ASSERT_TRUE(summary.is_object());
+  EXPECT_TRUE(summary["success"].get<bool>()) << summary.dump(1);
+  // The bridge dropped what the slow client could not take, and ended cleanly.
+  ASSERT_TRUE(bridge_status) << bridge.output();
+  EXPECT_EQ(*bridge_status, 0) << bridge.output();
+  std::smatch dropped;
+  const std::string out = bridge.output();
+  ASSERT_TRUE(std::regex_search(out, dropped, std::regex(R"(client 127\.0\.0\.1:\d+( left)?: (\d+) messages dropped)"))) << out;
+  EXPECT_GT(std::stoull(dropped[2].str()), 0U) << out;
   if (!::testing::Test::HasFailure()) {
     fs::remove_all(dir);
   }

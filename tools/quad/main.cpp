@@ -20,6 +20,7 @@
 #include "report_command.hpp"
 #include "security_command.hpp"
 #include "bag_commands.hpp"
+#include "bridge_command.hpp"
 #include "quad/common/layout.hpp"
 #include "quad/so3/so3.hpp"
 #include "topic_commands.hpp"
@@ -156,6 +157,16 @@ int main(int argc, char** argv)
       ->check(CLI::NonNegativeNumber);
   record->add_option("--chunk-size", record_options.chunk_size, "Bytes of messages per chunk (a killed recorder keeps every complete chunk)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 30));
+
+  quad::bridge::BridgeOptions bridge_options;
+  auto* bridge = app.add_subcommand("bridge", "Serve the stack live to Foxglove or Lichtblick (Foxglove WebSocket protocol; Ctrl-C stops)");
+  addConnectionOptions(bridge, bridge_options.connection);
+  bridge->add_option("--address", bridge_options.address, "Address to listen on (default 127.0.0.1; 0.0.0.0 for every interface)");
+  bridge->add_option("--port", bridge_options.port, "Port (default 8765; 0: any free one)");
+  bridge->add_option("--client-queue", bridge_options.client_queue_bytes,
+                     "Bytes queued per client at most; past it what a slow client is sent is dropped")
+      ->check(CLI::Range(std::size_t{1} << 16, std::size_t{1} << 32));
+  bridge->add_flag("-q,--quiet", bridge_options.quiet, "No progress line");
 
   quad::tools::ReplayOptions replay_options;
   auto* replay = app.add_subcommand("replay", "Republish a recording with its original timing");
@@ -368,6 +379,9 @@ int main(int argc, char** argv)
     }
     if (fault->parsed()) {
       return quad::tools::fault(fault_options);
+    }
+    if (bridge->parsed()) {
+      return quad::tools::bridge(bridge_options);
     }
     if (record->parsed()) {
       return quad::tools::record(record_options);

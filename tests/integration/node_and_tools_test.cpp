@@ -148,14 +148,14 @@ TEST(NodeAndTools, NodeAnswersHelpAndVersionAndRefusesAnUnknownArgumentWithExitC
 
 TEST(NodeAndTools, QuadRefusesAnUnknownSubcommandEvenWithHelpNamingIt)
 {
-  for (const std::vector<std::string>& words : {std::vector<std::string>{"bridge", "--help"},
-                                                std::vector<std::string>{"bridge"},
+  for (const std::vector<std::string>& words : {std::vector<std::string>{"teleport", "--help"},
+                                                std::vector<std::string>{"teleport"},
                                                 std::vector<std::string>{"topic", "lst"}}) {
     std::vector<std::string> argv{QUAD_TOOL};
     argv.insert(argv.end(), words.begin(), words.end());
     ChildProcess quad(argv);
     EXPECT_EQ(quad.wait(10s), 2) << quad.output();
-    EXPECT_NE(quad.output().find("unknown subcommand '" + std::string(words.front() == "topic" ? "topic lst" : "bridge")),
+    EXPECT_NE(quad.output().find("unknown subcommand '" + std::string(words.front() == "topic" ? "topic lst" : "teleport")),
               std::string::npos)
         << quad.output();
   }

@@ -41,11 +41,15 @@ function(quad_add_idl_library target)
         endif()
       endif()
     endforeach()
+    # -t: a temporary folder of its own. fastddsgen preprocesses each file into a temporary
+    # file named after it, in /tmp by default: two runs at once (two folders, two build
+    # trees) holding a Vector3.idl each would overwrite each other's.
+    set(tmp_dir ${CMAKE_CURRENT_BINARY_DIR}/fastddsgen_tmp/${dir})
     add_custom_command(
       OUTPUT ${dir_outputs}
-      COMMAND ${CMAKE_COMMAND} -E make_directory ${gen_root}/${dir}
-      COMMAND ${QUAD_FASTDDSGEN} -cs -replace -d ${gen_root}/${dir} -I ${ARG_IDL_ROOT}/${dir} ${dir_inputs}
-      DEPENDS ${dir_inputs}
+      COMMAND ${CMAKE_COMMAND} -E make_directory ${gen_root}/${dir} ${tmp_dir}
+      COMMAND ${QUAD_FASTDDSGEN} -cs -replace -t ${tmp_dir} -d ${gen_root}/${dir} -I ${ARG_IDL_ROOT}/${dir} ${dir_inputs}
+      DEPENDS ${dir_inputs} ${outputs}  # one run after the other: none overlaps
       COMMENT "fastddsgen: generating ${target} from ${ARG_IDL_ROOT}/${dir}"
       VERBATIM)
     list(APPEND outputs ${dir_outputs})

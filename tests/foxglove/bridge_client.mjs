@@ -83,6 +83,8 @@ client.on("message", ({ subscriptionId, data }) => {
   // Once the state and the map flow, publish the goal (and try a topic that is not the operator's).
   if (!summary.goal_sent && (summary.decoded["quad/sim/state"] ?? 0) >= 20 && summary.decoded["quad/display/map"]) {
     summary.goal_sent = true;
+    // The refused topic first: its status is queued before anything the goal brings back.
+    client.advertise({ topic: "quad/control/actuators", encoding: "cdr", schemaName: "quad::msg::ActuatorCommand" });
     const goalChannel = byTopic.get("quad/planning/goal");
     const writer = new MessageWriter(goalChannel.schemaName, parseIDL(goalChannel.schema));
     const channel = client.advertise({ topic: "quad/planning/goal", encoding: "cdr", schemaName: goalChannel.schemaName });
@@ -94,6 +96,5 @@ client.on("message", ({ subscriptionId, data }) => {
       yaw: 0,
       tolerance: 0.4,
     }));
-    client.advertise({ topic: "quad/control/actuators", encoding: "cdr", schemaName: "quad::msg::ActuatorCommand" });
   }
 });

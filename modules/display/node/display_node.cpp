@@ -17,9 +17,6 @@ namespace quad::display {
 
 namespace {
 
-constexpr const char* kWorldFrame = "world";
-constexpr const char* kBodyFrame = "body";
-constexpr const char* kTrueBodyFrame = "body_true";
 /// Shapes per scene entity: within every primitive list's bound (foxglove/SceneEntity.idl).
 constexpr std::size_t kShapesPerEntity = 4096;
 constexpr std::size_t kEntitiesPerScene = 32;  // foxglove/SceneUpdate.idl

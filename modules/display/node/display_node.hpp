@@ -20,6 +20,11 @@
 
 namespace quad::display {
 
+/// The frames of the display topics, as viewers show them (and configs/viewer/ names them).
+inline constexpr const char* kWorldFrame = "world";
+inline constexpr const char* kBodyFrame = "body";          ///< the state the stack flies on
+inline constexpr const char* kTrueBodyFrame = "body_true";  ///< the simulator's truth
+
 struct DisplayNodeConfig : DisplayParams {
   dds::StateSource state_source = dds::StateSource::kEstimate;
 };

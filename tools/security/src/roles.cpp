@@ -37,6 +37,8 @@ std::vector<Role> quadRoles()
     roles.push_back({identity, publish, all});
   }
   roles.push_back({"launch", ownedBy({Owner::kOperator, Owner::kFaultTool}), all});
+  // quad bridge: what its WebSocket clients may publish (the operator's topics), and reads all.
+  roles.push_back({"bridge", ownedBy({Owner::kOperator}), all});
   roles.push_back({"fault", all, all});
   roles.push_back({"replay", all, {}});
   roles.push_back({"topic_pub", all, {}});

@@ -119,6 +119,22 @@ TEST_F(Security, InitWritesPrivateKeysAndSignedDocuments)
   EXPECT_EQ(record.find("<publish>"), std::string::npos);  // the recorder only reads
 }
 
+TEST_F(Security, TheBridgeMayPublishOnlyTheOperatorsTopics)
+{
+  EXPECT_EQ(dds::securityIdentity("quad_bridge"), "bridge");
+  const std::string permissions = test::readFile(domainDir() / "bridge.permissions.xml");
+  const auto from = permissions.find("<publish>");
+  const auto to = permissions.find("</publish>");
+  ASSERT_NE(from, std::string::npos);
+  ASSERT_NE(to, std::string::npos);
+  const std::string publish = permissions.substr(from, to - from);
+  for (const auto& t : dds::topics::kAll) {
+    const bool granted = publish.find("<topic>" + std::string(t.name) + "</topic>") != std::string::npos;
+    EXPECT_EQ(granted, t.owner == dds::Owner::kOperator) << t.name;
+  }
+  EXPECT_NE(permissions.find("<subscribe>"), std::string::npos);
+}
+
 TEST_F(Security, AuthorisedModulesTalk)
 {
   dds::Participant plant(options("plant", kTalkDomain, domainDir()));

@@ -36,6 +36,10 @@ public:
       : ws_(std::move(socket)), id_(id), limit_(limit), callbacks_(callbacks)
   {
     beast::error_code ec;
+    // Small frames, sent as samples arrive: without this, Nagle's algorithm holds a frame
+    // back until the client acknowledges the one before, which the client's delayed
+    // acknowledgement postpones by up to 40 ms.
+    beast::get_lowest_layer(ws_).socket().set_option(tcp::no_delay(true), ec);
     const auto ep = beast::get_lowest_layer(ws_).socket().remote_endpoint(ec);
     peer_ = ec ? "?" : ep.address().to_string() + ":" + std::to_string(ep.port());
   }

@@ -52,7 +52,6 @@ void ControlNode::takeInputs()
       continue;
     }
     imu_ns_ = std::max(imu_ns_, m->header().stamp_ns());
-    imu_wall_ns_ = common::steadyTimeNs();
   }
   while (auto b = battery_.take()) {
     counters().samples_in++;
@@ -97,6 +96,7 @@ void ControlNode::takeInputs()
     counters().samples_in++;
     path_wall_ns_ = common::steadyTimeNs();
     const double t = latest_t_ >= 0.0 ? latest_t_ : common::toSeconds(p->header().stamp_ns());
+    path_t_ = t;
     if (!fc_.onPath(waypointsOf(*p), p->version(), pathKind(p->status()), t, p->known_free_m())) {
       counters().errors++;
       spdlog::warn("{}: version {} rejected: invalid waypoints or known-free length ({})", dds::topics::kPath.info.name,
@@ -247,26 +247,27 @@ void ControlNode::controlWithoutState()
   }
 }
 
-void ControlNode::onTick(std::int64_t steady_ns)
+void ControlNode::onTick(std::int64_t /*steady_ns*/)
 {
   takeInputs();
-  controlSilentPlant(steady_ns, config_.flight.state_timeout + kTickBackstopS);
+  controlSilentPlant(config_.flight.state_timeout + kTickBackstopS);
 }
 
-void ControlNode::controlSilentPlant(std::int64_t steady_ns, double after_s)
+void ControlNode::controlSilentPlant(double after_s)
 {
-  // In real time a silent plant (or a lost link) must still reach the failsafe: advance the
-  // controller's clock by the wall time since the plant was last heard (a state or an IMU
-  // sample). In lockstep the plant waits.
+  // In real time, states that stop while the plant's clock runs on (a sensor's outage, a lost
+  // estimator, a link that drops them) must still reach the failsafe: fly it at the clock's
+  // time. A clock that stops with them is the simulator falling behind (starved, stopped): the
+  // vehicle's time stands still with it, nothing went stale in it, and the controller waits.
+  // (A controller cut off from a running plant is the plant's to judge: it holds a late
+  // command only briefly, docs/plant.md.) In lockstep the plant waits for the controller.
   if (!simClock().seen() || lockstep() || latest_t_ < 0.0) {
     return;  // (until a clock says which, a quiet plant may be a lockstep one waiting for us)
   }
-  const bool imu_newer = imu_wall_ns_ > latest_wall_ns_;
-  const double heard_t = imu_newer ? common::toSeconds(imu_ns_) : latest_t_;
-  const double silent = common::toSeconds(steady_ns - std::max(latest_wall_ns_, imu_wall_ns_));
-  if (silent > after_s) {
-    const double t = heard_t + silent;
-    control(t, common::toNanoseconds(t));
+  const std::int64_t heard_ns = std::max(common::toNanoseconds(latest_t_), imu_ns_);
+  const std::int64_t clock_ns = simClock().ns();
+  if (common::toSeconds(clock_ns - heard_ns) > after_s) {
+    control(common::toSeconds(clock_ns), clock_ns);
   }
 }
 
@@ -280,16 +281,21 @@ void ControlNode::onEvent(const dds::EndpointEvent& event)
   // A timeout set longer than the contract's (timeouts.* in the config, for hand-fed inputs)
   // is the operator's word: the contract's deadline event then says nothing.
   const auto judged = [](double timeout, const dds::TopicInfo& topic) { return timeout <= topic.stale_after_s + 1e-9; };
+  // A deadline is missed in wall time; it counts once the plant's clock, the vehicle's time,
+  // has run past it too: a plant behind real time slows its clock and starves nobody.
   const std::int64_t now = common::steadyTimeNs();
+  const double clock_t = common::toSeconds(simClock().ns());
+  const auto late = [&](std::int64_t taken_wall_ns, double taken_t, const dds::TopicInfo& topic) {
+    const double slack = topic.stale_after_s - kDeadlineEventSlackS;
+    return common::toSeconds(now - taken_wall_ns) >= slack && clock_t - taken_t >= slack;
+  };
   if (event.topic == state_.topic().name && latest_t_ >= 0.0 && judged(config_.flight.state_timeout, state_.topic())) {
-    const double silent = common::toSeconds(now - latest_wall_ns_);
-    if (silent < state_.topic().stale_after_s - kDeadlineEventSlackS) {
-      return;
+    if (late(latest_wall_ns_, latest_t_, state_.topic())) {
+      fc_.onStateLate();
+      controlSilentPlant(0.0);  // the failsafe's tick, now
     }
-    fc_.onStateLate();
-    controlSilentPlant(now, 0.0);  // the failsafe's tick, now
   } else if (event.topic == dds::topics::kPath.info.name && judged(config_.flight.path_timeout, dds::topics::kPath.info) &&
-             common::toSeconds(now - path_wall_ns_) >= dds::topics::kPath.info.stale_after_s - kDeadlineEventSlackS) {
+             path_t_ >= 0.0 && late(path_wall_ns_, path_t_, dds::topics::kPath.info)) {
     fc_.onPathLate();
   }
 }

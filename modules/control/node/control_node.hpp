@@ -32,9 +32,9 @@ private:
   void control(double t, std::int64_t stamp_ns);
   /// A command when states stopped coming, on the clock's time (lockstep) or the IMU's.
   void controlWithoutState();
-  /// In real time, a plant silent (no state, no IMU sample) for more than `after_s` [s] of
-  /// wall time: the controller's clock advanced by that silence, and a command on it.
-  void controlSilentPlant(std::int64_t steady_ns, double after_s);
+  /// In real time, no state and no IMU sample for more than `after_s` [s] of the plant's
+  /// clock: a command at the clock's time (nothing while the clock stands still too).
+  void controlSilentPlant(double after_s);
   void publishStatus(const FlightOutput& out, std::int64_t stamp_ns);
 
   void autostart();
@@ -66,11 +66,11 @@ private:
   void acknowledge(const QueuedCommand& command, const CommandAnswer& answer, Mode mode, std::int64_t stamp_ns);
 
   std::int64_t imu_ns_ = 0;                // the newest IMU sample's sim time
-  std::int64_t imu_wall_ns_ = 0;           // steady time it arrived
   std::int64_t last_stateless_ns_ = 0;     // the sim time last commanded without a state
   double latest_t_ = -1.0;                 // sim time of the newest state [s]
   std::int64_t latest_wall_ns_ = 0;        // steady time it arrived
   std::int64_t path_wall_ns_ = 0;          // steady time the newest path arrived
+  double path_t_ = -1.0;                   // sim time it arrived at [s]
   double next_status_t_ = 0.0;
   FlightOutput last_;
   int autostart_stage_ = 0;

@@ -216,6 +216,7 @@ void Node::run()
     if (stop_) {
       break;
     }
+    takeSimClock();  // events are judged against the clock as it is now
     for (const auto& event : participant_.events().drain()) {
       countLoss(event);
       onEvent(event);

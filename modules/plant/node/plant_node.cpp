@@ -13,7 +13,7 @@ namespace quad::plant {
 
 namespace {
 constexpr std::int64_t kRealTimeTickNs = 1'000'000;      // pace in 1 ms slices
-constexpr std::int64_t kMaxCatchUpNs = 100'000'000;      // further behind than this: drop time
+constexpr std::int64_t kBehindReportNs = 100'000'000;    // a lag worth a line in the log
 constexpr std::int64_t kRepublishNs = 20'000'000;        // lockstep: resend a round's state this often
 std::string verdictText(CommandGuard::Verdict v)
 {
@@ -226,11 +226,18 @@ void PlantNode::runRealTime(std::int64_t steady_ns)
   const auto target = static_cast<std::int64_t>(
       static_cast<double>(steady_ns - wall_start_ns_) * config_.real_time_factor);
   const std::int64_t behind = target - sim_->timeNs() - static_cast<std::int64_t>(dropped_steps_) * config_.simulation.step_ns;
-  if (behind > kMaxCatchUpNs) {
-    // Too far behind the wall clock (a stalled process): skip the lost time, count it.
-    const std::int64_t skip = (behind - kMaxCatchUpNs) / config_.simulation.step_ns;
+  // Behind the wall clock (a late wake, a starved or stopped process), the plant catches up
+  // in a burst only as far as a held rotor command is flown whole: the controller cannot
+  // answer steps run faster than real time, and a burst past that would fly the vehicle on
+  // commands it no longer steers. Further behind, the clock slows instead: the lost time is
+  // not simulated, and counted (the achieved factor is the run's sim time over its wall time).
+  const std::int64_t max_catch_up = config_.simulation.command_failsafe_ns;
+  if (behind > max_catch_up) {
+    const std::int64_t skip = (behind - max_catch_up) / config_.simulation.step_ns;
     dropped_steps_ += static_cast<std::uint64_t>(skip);
-    spdlog::warn("plant: {:.3f} s behind real time; skipping {} steps", common::toSeconds(behind), skip);
+    if (behind > kBehindReportNs) {
+      spdlog::warn("plant: {:.3f} s behind real time; the clock slows by {} steps", common::toSeconds(behind), skip);
+    }
   }
   while (!stopping() &&
          sim_->timeNs() + static_cast<std::int64_t>(dropped_steps_) * config_.simulation.step_ns < target) {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "quad/dds/endpoint.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -41,6 +42,7 @@ public:
   void on_publication_matched(fdds::DataWriter*, const fdds::PublicationMatchedStatus& s) override
   {
     owner_.matched_ = s.current_count;
+    owner_.peers_.update(s.last_subscription_handle.value, s.current_count_change);
     push(s.current_count_change > 0 ? EventKind::kMatched : EventKind::kUnmatched,
          "writer now matches " + std::to_string(s.current_count) + " reader(s)");
   }
@@ -113,6 +115,31 @@ void WriterEndpoint::assertLiveliness()
   }
 }
 
+void MatchedPeers::update(const std::uint8_t* guid, int change)
+{
+  std::array<std::uint8_t, 16> g;
+  std::copy_n(guid, g.size(), g.begin());
+  std::lock_guard lock(mutex_);
+  const auto it = std::find(guids_.begin(), guids_.end(), g);
+  if (change > 0 && it == guids_.end()) {
+    guids_.push_back(g);
+  } else if (change < 0 && it != guids_.end()) {
+    guids_.erase(it);
+  }
+}
+
+std::vector<ParticipantPrefix> MatchedPeers::participants() const
+{
+  std::lock_guard lock(mutex_);
+  std::vector<ParticipantPrefix> out;
+  for (const auto& g : guids_) {
+    ParticipantPrefix p;
+    std::copy_n(g.begin(), p.size(), p.begin());  // the prefix; the entity id follows
+    out.push_back(p);
+  }
+  return out;
+}
+
 bool WriterEndpoint::waitForAcknowledgments(std::chrono::milliseconds timeout)
 {
   const auto ms = timeout.count();
@@ -134,6 +161,7 @@ public:
   void on_subscription_matched(fdds::DataReader*, const fdds::SubscriptionMatchedStatus& s) override
   {
     owner_.matched_ = s.current_count;
+    owner_.peers_.update(s.last_publication_handle.value, s.current_count_change);
     push(s.current_count_change > 0 ? EventKind::kMatched : EventKind::kUnmatched,
          "reader now matches " + std::to_string(s.current_count) + " writer(s)");
   }

@@ -67,6 +67,19 @@ std::uint32_t freshCommandId()
   std::uniform_int_distribution<std::uint32_t> id(1u << 16, 0xffffffffu);
   return id(random);
 }
+/// Whether one participant both writes what `answers` reads and reads what `requests` writes:
+/// the module that will answer has its own reader of the request matched (other modules may
+/// read the same topic, and a request written before the answerer's reader matched is lost
+/// to it).
+bool answererReads(const dds::ReaderEndpoint& answers, const dds::WriterEndpoint& requests)
+{
+  const auto answering = answers.matchedWriterParticipants();
+  const auto reading = requests.matchedReaderParticipants();
+  return std::any_of(answering.begin(), answering.end(), [&](const dds::ParticipantPrefix& p) {
+    return std::find(reading.begin(), reading.end(), p) != reading.end();
+  });
+}
+
 }  // namespace
 
 struct OperatorStation::Endpoints {
@@ -127,8 +140,8 @@ std::string OperatorStation::mode()
 OperatorAnswer OperatorStation::command(OperatorCommand command, double takeoff_altitude)
 {
   Endpoints& e = *endpoints_;
-  // The controller is there when its answers' writer is; the command's readers include it.
-  if (!waitUntil(deadlineNs(), [&] { return e.acks.matchedWriters() > 0 && e.command.matchedReaders() > 0; })) {
+  // The controller is there when the participant that answers commands reads them.
+  if (!waitUntil(deadlineNs(), [&] { return answererReads(e.acks, e.command); })) {
     return {OperatorAnswer::Outcome::kNoAnswer,
             fmt::format("no controller found (no writer of {}) within {} s", topics::kCommandAck.info.name, timeout_s_),
             ""};
@@ -171,7 +184,7 @@ OperatorAnswer OperatorStation::setGoal(const Eigen::Vector3d& p_W, double toler
   }
   goal_ = std::make_unique<GoalEndpoints>(participant_);
   GoalEndpoints& g = *goal_;
-  if (!waitUntil(deadlineNs(), [&] { return g.acks.matchedWriters() > 0 && g.goal.matchedReaders() > 0; })) {
+  if (!waitUntil(deadlineNs(), [&] { return answererReads(g.acks, g.goal); })) {
     return {OperatorAnswer::Outcome::kNoAnswer,
             fmt::format("no planner found (no writer of {}) within {} s", topics::kGoalAck.info.name, timeout_s_), ""};
   }

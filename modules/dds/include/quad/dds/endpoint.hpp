@@ -3,6 +3,7 @@
 /// @file
 /// The untyped halves of Publisher<T> and Subscriber<T>: entity ownership and status listeners.
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -28,6 +29,23 @@ namespace quad::dds {
 /// it drops the writer's samples.
 inline constexpr std::chrono::milliseconds kReaderMatchSettle{300};
 
+/// A participant's GUID prefix: which process (participant) an endpoint belongs to.
+using ParticipantPrefix = std::array<std::uint8_t, 12>;
+
+/// The endpoints an endpoint is matched with, by GUID, kept from its match callbacks (Fast DDS
+/// 2.9 does not list them: get_matched_subscriptions is unsupported).
+class MatchedPeers {
+public:
+  /// A peer matched (`change` > 0) or went away (< 0); `guid` is its 16-byte GUID.
+  void update(const std::uint8_t* guid, int change);
+  /// The participants of the peers matched now.
+  std::vector<ParticipantPrefix> participants() const;
+
+private:
+  mutable std::mutex mutex_;
+  std::vector<std::array<std::uint8_t, 16>> guids_;
+};
+
 /// Owns one DataWriter; reports matches, offered deadlines, liveliness and incompatible QoS
 /// to the participant's event queue.
 class WriterEndpoint {
@@ -42,6 +60,8 @@ public:
 
   /// Number of readers matched now.
   int matchedReaders() const { return matched_.load(); }
+  /// The participants of the readers matched now.
+  std::vector<ParticipantPrefix> matchedReaderParticipants() const { return peers_.participants(); }
   std::uint64_t written() const { return written_.load(); }
   std::uint64_t failed() const { return failed_.load(); }
   const TopicInfo& info() const { return info_; }
@@ -63,6 +83,7 @@ private:
   std::unique_ptr<Listener> listener_;
   eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
   std::atomic<int> matched_{0};
+  MatchedPeers peers_;
   std::atomic<std::uint64_t> written_{0};
   std::atomic<std::uint64_t> failed_{0};
 };
@@ -78,6 +99,8 @@ public:
   ReaderEndpoint& operator=(const ReaderEndpoint&) = delete;
 
   int matchedWriters() const { return matched_.load(); }
+  /// The participants of the writers matched now.
+  std::vector<ParticipantPrefix> matchedWriterParticipants() const { return peers_.participants(); }
   std::uint64_t deadlinesMissed() const { return deadlines_missed_.load(); }
   const TopicInfo& info() const { return info_; }
 
@@ -109,6 +132,7 @@ private:
   std::unique_ptr<Listener> listener_;
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
   std::atomic<int> matched_{0};
+  MatchedPeers peers_;
   std::atomic<std::uint64_t> deadlines_missed_{0};
   std::mutex liveliness_mutex_;
   std::vector<WriterLiveliness> liveliness_changes_;

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <optional>
@@ -9,7 +10,10 @@
 
 #include "bag_commands.hpp"
 #include "quad/bag/audit.hpp"
+#include "quad/bag/compare.hpp"
 #include "quad/bag/mcap.hpp"
+#include "quad/dds/topics.hpp"
+#include "quad/topic/connection.hpp"
 
 namespace quad::tools {
 
@@ -114,6 +118,54 @@ int bagRecover(const std::string& file, std::string output)
     return 1;
   }
   return 0;
+}
+
+int bagDiff(const BagDiffOptions& options)
+{
+  bag::McapContents first, second;
+  try {
+    first = bag::readMcap(options.first);
+    second = bag::readMcap(options.second);
+  } catch (const bag::BagError& e) {
+    std::fprintf(stderr, "bag diff: %s\n", e.what());
+    return 2;
+  }
+  bag::CompareOptions compare;
+  compare.selected = [&](const std::string& topic) {
+    if (!options.topics.empty() && !topic::matchesAnyGlob(topic, options.topics)) {
+      return false;
+    }
+    if (topic::matchesAnyGlob(topic, options.exclude)) {
+      return false;
+    }
+    return options.all_topics || std::find(dds::topics::kWallPaced.begin(), dds::topics::kWallPaced.end(), topic) ==
+                                     dds::topics::kWallPaced.end();
+  };
+  compare.clock_topic = dds::topics::kSimClock.info.name;
+  compare.ignored_fields.assign(dds::topics::kWallClockFields.begin(), dds::topics::kWallClockFields.end());
+  const bag::Comparison c = bag::compareRecordings(first, second, compare);
+  if (options.json) {
+    nlohmann::ordered_json j;
+    j["identical"] = c.differences.empty();
+    j["topics"] = c.topics;
+    j["equal_messages"] = c.messages;
+    j["differences"] = nlohmann::ordered_json::array();
+    for (const auto& d : c.differences) {
+      j["differences"].push_back({{"topic", d.topic}, {"index", d.index}, {"stamp_ns", d.stamp_ns}, {"field", d.field},
+                                  {"first", d.first}, {"second", d.second}});
+    }
+    std::printf("%s\n", j.dump(2).c_str());
+  } else if (c.differences.empty()) {
+    std::printf("identical: %zu topics, %llu messages each\n", c.topics, static_cast<unsigned long long>(c.messages));
+  } else {
+    std::printf("differ: %zu of %zu topics (%llu messages agree before the first difference of each)\n",
+                c.differences.size(), c.topics, static_cast<unsigned long long>(c.messages));
+    for (const auto& d : c.differences) {
+      std::printf("  %s #%llu (t = %.3f s): %s: %s / %s\n", d.topic.c_str(), static_cast<unsigned long long>(d.index),
+                  static_cast<double>(d.stamp_ns) * 1e-9, d.field.c_str(), d.first.c_str(), d.second.c_str());
+    }
+  }
+  return c.differences.empty() ? 0 : 1;
 }
 
 }  // namespace quad::tools

@@ -37,6 +37,18 @@ int record(const record::RecordOptions& options);
 /// object when `json` (docs/quad-command.md).
 int bagInfo(const std::string& file, bool json);
 
+struct BagDiffOptions {
+  std::string first, second;
+  std::vector<std::string> topics;   ///< names or globs; empty: every topic
+  std::vector<std::string> exclude;
+  bool all_topics = false;           ///< also the topics paced by wall time
+  bool json = false;
+};
+
+/// Compares two recordings message by message; 0 when they agree, 1 when they differ, 2 when
+/// one cannot be read (docs/recording.md).
+int bagDiff(const BagDiffOptions& options);
+
 /// Rewrites a recording cut short (a killed recorder) whole, with index and summary.
 int bagRecover(const std::string& file, std::string output);
 

@@ -195,6 +195,16 @@ int main(int argc, char** argv)
   auto* bag_recover = bag->add_subcommand("recover", "Rewrite a recording cut short (killed recorder) whole");
   bag_recover->add_option("file", bag_file, "MCAP file")->required();
   bag_recover->add_option("-o,--output", recover_output, "Output (default: FILE.recovered.mcap)");
+  quad::tools::BagDiffOptions diff_options;
+  auto* bag_diff = bag->add_subcommand(
+      "diff", "Compare two recordings message by message (wall-clock and compute-time fields aside)");
+  bag_diff->add_option("first", diff_options.first, "MCAP file")->required();
+  bag_diff->add_option("second", diff_options.second, "MCAP file")->required();
+  bag_diff->add_option("--topics", diff_options.topics, "Topics or globs to compare (default: every topic)");
+  bag_diff->add_option("--exclude", diff_options.exclude, "Topics or globs not to compare");
+  bag_diff->add_flag("--all-topics", diff_options.all_topics,
+                     "Also the topics paced by wall time (heartbeats, display), left out by default");
+  bag_diff->add_flag("--json", diff_options.json, "One JSON object instead of text");
 
   quad::security::InitOptions security_options;
   auto* security = app.add_subcommand("security", "DDS Security: authorities, identities and permissions");
@@ -397,6 +407,9 @@ int main(int argc, char** argv)
     }
     if (bag_recover->parsed()) {
       return quad::tools::bagRecover(bag_file, recover_output);
+    }
+    if (bag_diff->parsed()) {
+      return quad::tools::bagDiff(diff_options);
     }
     if (list->parsed()) {
       return quad::tools::topicList(list_options);

@@ -134,6 +134,19 @@ inline constexpr auto kDisplayLog = makeTopic<DisplayLog>(
 /// it would make every true state after it look out of order).
 inline constexpr std::int64_t kStateAheadOfClockNs = 500'000'000;
 
+/// In lockstep, an operator's goal or command (quad/planning/goal, quad/system/command) stamped
+/// t takes effect with the first vehicle state at or after t plus this: an operator's station
+/// waits for no round, and a fixed delay after its stamp, not its arrival, makes the round it
+/// lands in the same in every run.
+inline constexpr std::int64_t kOperatorInputDelayNs = 100'000'000;
+
+/// When such an input stamped `stamp_ns` and taken at the clock's `clock_ns` takes effect: the
+/// delay after its stamp, or after the clock's time for one stamped ahead of it.
+constexpr std::int64_t operatorInputDueNs(std::int64_t stamp_ns, std::int64_t clock_ns)
+{
+  return (stamp_ns < 0 ? 0 : stamp_ns > clock_ns ? clock_ns : stamp_ns) + kOperatorInputDelayNs;
+}
+
 /// Every contract, for tools that iterate over topics.
 inline constexpr std::array kAll{
     kSimClock.info, kSimState.info, kSimImu.info, kSimPosition.info, kSimBaro.info, kSimMag.info,
@@ -143,6 +156,21 @@ inline constexpr std::array kAll{
     kVehicleCommand.info, kFault.info, kFaultEvents.info, kDisplayTransforms.info, kDisplayTrajectory.info,
     kDisplayTrueTrajectory.info, kDisplayPath.info, kDisplayMap.info, kDisplayScene.info, kDisplayDepth.info,
     kDisplayLog.info};
+
+/// Topics whose samples come on wall-clock time (liveliness, what the display draws at its
+/// tick) or in the order participants finish (lockstep's reports): two lockstep runs of one
+/// seed need not agree on them.
+inline constexpr std::array kWallPaced{
+    kLockstep.info.name, kHeartbeat.info.name, kOperatorHeartbeat.info.name, kDisplayTransforms.info.name, kDisplayTrajectory.info.name,
+    kDisplayTrueTrajectory.info.name, kDisplayPath.info.name, kDisplayMap.info.name, kDisplayScene.info.name,
+    kDisplayDepth.info.name, kDisplayLog.info.name};
+
+/// Members that hold wall-clock or measured compute times ("<scoped struct>.<member>"), and
+/// the writer's sample number, which counts the resends of a participant waiting in wall time
+/// for a reader: in two lockstep runs of one seed every other member of every sim-paced topic
+/// agrees.
+inline constexpr std::array<std::string_view, 4> kWallClockFields{
+    "quad::msg::Header.publish_ns", "quad::msg::Header.seq", "quad::msg::Path.replan_time_s", "quad::msg::MapStats.insert_time_s"};
 
 /// The contract of a topic name, if quad declares one.
 std::optional<TopicInfo> find(std::string_view name);

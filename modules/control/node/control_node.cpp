@@ -83,11 +83,19 @@ void ControlNode::takeInputs()
                   c->header().stamp_ns());
       continue;
     }
-    commands_.push_back({c->command_id(), c->kind(), command, c->altitude()});
+    commands_.push_back({c->command_id(), c->kind(), command, c->altitude(),
+                         dds::topics::operatorInputDueNs(c->header().stamp_ns(), simClock().ns())});
   }
+  // In lockstep a path, goal or command takes effect at a sim time fixed by its stamp, not
+  // when it happens to arrive, so that runs repeat: a path planned on the state of time t
+  // with the next state (the plant's round waits for the planner, so it has come by then);
+  // an operator's goal or command, whose station waits for no round, the contract's delay
+  // after its stamp.
   while (auto g = goal_.take()) {
     counters().samples_in++;
-    if (!fc_.onGoal(dds::toVector(g->p_W()), g->tolerance())) {
+    if (lockstep()) {
+      goals_due_.emplace_back(dds::topics::operatorInputDueNs(g->header().stamp_ns(), simClock().ns()), std::move(*g));
+    } else if (!fc_.onGoal(dds::toVector(g->p_W()), g->tolerance())) {
       counters().errors++;
       spdlog::warn("{}: goal {} rejected: non-finite", dds::topics::kGoal.info.name, g->goal_id());
     }
@@ -95,13 +103,37 @@ void ControlNode::takeInputs()
   while (auto p = path_.take()) {
     counters().samples_in++;
     path_wall_ns_ = common::steadyTimeNs();
-    const double t = latest_t_ >= 0.0 ? latest_t_ : common::toSeconds(p->header().stamp_ns());
-    path_t_ = t;
-    if (!fc_.onPath(waypointsOf(*p), p->version(), pathKind(p->status()), t, p->known_free_m())) {
-      counters().errors++;
-      spdlog::warn("{}: version {} rejected: invalid waypoints or known-free length ({})", dds::topics::kPath.info.name,
-                   p->version(), p->known_free_m());
+    if (lockstep()) {
+      paths_due_.emplace_back(p->header().stamp_ns() + 1, std::move(*p));
+    } else {
+      applyPath(*p, latest_t_ >= 0.0 ? latest_t_ : common::toSeconds(p->header().stamp_ns()));
     }
+  }
+}
+
+void ControlNode::applyPath(const msg::Path& p, double t)
+{
+  path_t_ = t;
+  if (!fc_.onPath(waypointsOf(p), p.version(), pathKind(p.status()), t, p.known_free_m())) {
+    counters().errors++;
+    spdlog::warn("{}: version {} rejected: invalid waypoints or known-free length ({})", dds::topics::kPath.info.name,
+                 p.version(), p.known_free_m());
+  }
+}
+
+void ControlNode::applyDueInputs(std::int64_t stamp_ns)
+{
+  while (!goals_due_.empty() && goals_due_.front().first <= stamp_ns) {
+    const msg::Goal& g = goals_due_.front().second;
+    if (!fc_.onGoal(dds::toVector(g.p_W()), g.tolerance())) {
+      counters().errors++;
+      spdlog::warn("{}: goal {} rejected: non-finite", dds::topics::kGoal.info.name, g.goal_id());
+    }
+    goals_due_.pop_front();
+  }
+  while (!paths_due_.empty() && paths_due_.front().first <= stamp_ns) {
+    applyPath(paths_due_.front().second, common::toSeconds(stamp_ns));
+    paths_due_.pop_front();
   }
 }
 
@@ -127,7 +159,8 @@ void ControlNode::autostart()
 void ControlNode::control(double t, std::int64_t stamp_ns)
 {
   autostart();
-  if (!commands_.empty()) {
+  applyDueInputs(stamp_ns);
+  if (!commands_.empty() && (!lockstep() || commands_.front().due_ns <= stamp_ns)) {
     applying_ = commands_.front();
     commands_.pop_front();
     fc_.onCommand(applying_->command, applying_->takeoff_altitude);
@@ -144,6 +177,8 @@ void ControlNode::control(double t, std::int64_t stamp_ns)
   cmd.gimbal_yaw_W(out.camera.yaw_W);
   cmd.gimbal_pitch(out.camera.pitch);
   actuators_.write(cmd);
+  answered_ns_ = stamp_ns;
+  answer_ = cmd;
   msg::ControlReference ref = toMessage(out.reference, out.progress);
   ref.header().stamp_ns(stamp_ns);
   reference_.write(ref);
@@ -203,6 +238,12 @@ void ControlNode::onWake()
   for (const auto& s : state_.takeAll()) {
     counters().samples_in++;
     const double t = common::toSeconds(s.stamp_ns);
+    if (lockstep() && s.stamp_ns == answered_ns_) {
+      // Sent again by a plant still waiting for the round: the answer it may have lost, again.
+      actuators_.write(answer_);
+      counters().samples_out++;
+      continue;
+    }
     if (simClock().seen() && !simClock().vouchesFor(s.stamp_ns)) {
       // Accepted, it would make every state after it look out of order.
       counters().errors++;
@@ -214,7 +255,7 @@ void ControlNode::onWake()
     if (!s.aligned) {
       // An estimator still aligning: nothing to fly on yet, but in lockstep the round waits
       // for the answer to its time (the rotors stay as the mode has them).
-      if (t > latest_t_ && lockstep()) {
+      if (lockstep() && s.stamp_ns > answered_ns_) {
         control(t, s.stamp_ns);
       }
       continue;

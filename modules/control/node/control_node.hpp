@@ -29,6 +29,9 @@ protected:
 
 private:
   void takeInputs();
+  /// In lockstep, the paths, goals and commands taken that are due at `stamp_ns` (see the .cpp).
+  void applyDueInputs(std::int64_t stamp_ns);
+  void applyPath(const msg::Path& path, double t);
   void control(double t, std::int64_t stamp_ns);
   /// A command when states stopped coming, on the clock's time (lockstep) or the IMU's.
   void controlWithoutState();
@@ -59,12 +62,18 @@ private:
     msg::CommandKind kind;
     Command command;
     double takeoff_altitude;
+    std::int64_t due_ns = 0;  // in lockstep, the sim time it takes effect at
   };
   std::deque<QueuedCommand> commands_;
   std::optional<QueuedCommand> applying_;  // fed to the controller, answered by its next update
   /// Answers `command` on quad/control/command_ack.
   void acknowledge(const QueuedCommand& command, const CommandAnswer& answer, Mode mode, std::int64_t stamp_ns);
 
+  /// In lockstep, paths and goals taken but not yet due, with the sim time each is due at.
+  std::deque<std::pair<std::int64_t, msg::Path>> paths_due_;
+  std::deque<std::pair<std::int64_t, msg::Goal>> goals_due_;
+  std::int64_t answered_ns_ = -1;          // in lockstep, the stamp of the last command sent
+  msg::ActuatorCommand answer_;            // that command, sent again for a state sent again
   std::int64_t imu_ns_ = 0;                // the newest IMU sample's sim time
   std::int64_t last_stateless_ns_ = 0;     // the sim time last commanded without a state
   double latest_t_ = -1.0;                 // sim time of the newest state [s]

@@ -58,12 +58,27 @@ void EstimationNode::onWake()
     return a.first != b.first ? a.first < b.first : a.second.index() < b.second.index();
   });
   for (const auto& [stamp, sample] : samples) {
+    // Aids stamped before the first IMU sample taken are not used: whether they came depends
+    // on when this participant matched the plant's writers, and a run would not repeat.
+    if (sample.index() != 0 && (first_imu_ns_ < 0 || stamp < first_imu_ns_)) {
+      counters().samples_in++;
+      continue;
+    }
     if (const auto* m = std::get_if<msg::Imu>(&sample)) {
+      if (first_imu_ns_ < 0) {
+        first_imu_ns_ = stamp;
+      }
       // Every IMU sample is answered, aligned or not (a lockstep round waits for the answer);
-      // one sent again (a lockstep plant resends while it waits) with the same estimate.
+      // one sent again (a lockstep plant resends while it waits) with the answer it had, even
+      // if an aid came since.
       if (stamp == filter_.timeNs()) {
         counters().samples_in++;
-        publish();
+        if (last_ && last_->header().stamp_ns() == stamp) {
+          state_.write(*last_);
+          counters().samples_out++;
+        } else {
+          publish();
+        }
         continue;
       }
       const Update u = filter_.imu(stamp, dds::toVector(m->specific_force_B()), dds::toVector(m->angular_rate_B()));
@@ -117,6 +132,7 @@ void EstimationNode::publish()
   m.mag_rejected(filter_.magCounts().rejected);
   m.position_resets(filter_.positionResets());
   state_.write(m);
+  last_ = m;
   counters().samples_out++;
 }
 

@@ -5,6 +5,8 @@
 /// magnetometer to the error-state filter in time order and publishes its state after every
 /// IMU sample.
 
+#include <optional>
+
 #include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
@@ -33,6 +35,8 @@ private:
   dds::Subscriber<msg::MagneticField> mag_;
   dds::Publisher<msg::EstimatedState> state_;
   bool announced_alignment_ = false;
+  std::optional<msg::EstimatedState> last_;  // the newest estimate published
+  std::int64_t first_imu_ns_ = -1;           // the stamp of the first IMU sample taken
 };
 
 }  // namespace quad::estimation

@@ -306,6 +306,36 @@ void PlanningNode::replan(std::int64_t t_ns)
   }
 }
 
+void PlanningNode::takeGoal(const msg::Goal& g)
+{
+  const Vector3 p = dds::toVector(g.p_W());
+  const auto cell = p.allFinite() ? planner_.lattice().cellAt(p) : std::nullopt;
+  if (!cell) {
+    counters().errors++;
+    const Vector3& lo = config_.bounds_min;
+    const Vector3& hi = config_.bounds_max;
+    const std::string why = fmt::format(
+        "goal {} at ({}, {}, {}) is outside the planning bounds ({:g}, {:g}, {:g}) ... ({:g}, {:g}, {:g}); refused{}",
+        g.goal_id(), p.x(), p.y(), p.z(), lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z(),
+        goal_id_ ? fmt::format(" (still flying to goal {})", *goal_id_) : "");
+    spdlog::error("{}: {}", dds::topics::kGoal.info.name, why);
+    answerGoal(g.goal_id(), false, why);
+    if (goal_id_) {
+      return;  // a refused goal does not replace the one being flown
+    }
+    current_.status(msg::PLAN_OUT_OF_BOUNDS);
+    current_.goal_id(g.goal_id());
+    current_.waypoints_W().clear();
+    publish(now_ns_, true);
+    return;
+  }
+  goal_id_ = g.goal_id();
+  planner_.setGoal(*cell);
+  goal_changed_ = true;
+  spdlog::info("planning: goal {} at ({}, {}, {})", g.goal_id(), p.x(), p.y(), p.z());
+  answerGoal(g.goal_id(), true, fmt::format("planning to goal {} at ({}, {}, {})", g.goal_id(), p.x(), p.y(), p.z()));
+}
+
 void PlanningNode::onWake()
 {
   // Snapshots first: one sent with the updates it contains must not undo newer ones.
@@ -326,34 +356,15 @@ void PlanningNode::onWake()
     spdlog::warn("{}: an update was refused on receipt: a gap until the next snapshot",
                  dds::topics::kMapUpdate.info.name);
   }
+  // In lockstep an operator's goal takes effect a fixed delay after its stamp, not when it
+  // happens to arrive: the replans that follow it, and so the runs, repeat.
   while (auto g = goal_.take()) {
     counters().samples_in++;
-    const Vector3 p = dds::toVector(g->p_W());
-    const auto cell = p.allFinite() ? planner_.lattice().cellAt(p) : std::nullopt;
-    if (!cell) {
-      counters().errors++;
-      const Vector3& lo = config_.bounds_min;
-      const Vector3& hi = config_.bounds_max;
-      const std::string why = fmt::format(
-          "goal {} at ({}, {}, {}) is outside the planning bounds ({:g}, {:g}, {:g}) ... ({:g}, {:g}, {:g}); refused{}",
-          g->goal_id(), p.x(), p.y(), p.z(), lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z(),
-          goal_id_ ? fmt::format(" (still flying to goal {})", *goal_id_) : "");
-      spdlog::error("{}: {}", dds::topics::kGoal.info.name, why);
-      answerGoal(g->goal_id(), false, why);
-      if (goal_id_) {
-        continue;  // a refused goal does not replace the one being flown
-      }
-      current_.status(msg::PLAN_OUT_OF_BOUNDS);
-      current_.goal_id(g->goal_id());
-      current_.waypoints_W().clear();
-      publish(now_ns_, true);
-      continue;
+    if (lockstep()) {
+      goals_due_.emplace_back(dds::topics::operatorInputDueNs(g->header().stamp_ns(), simClock().ns()), std::move(*g));
+    } else {
+      takeGoal(*g);
     }
-    goal_id_ = g->goal_id();
-    planner_.setGoal(*cell);
-    goal_changed_ = true;
-    spdlog::info("planning: goal {} at ({}, {}, {})", g->goal_id(), p.x(), p.y(), p.z());
-    answerGoal(g->goal_id(), true, fmt::format("planning to goal {} at ({}, {}, {})", g->goal_id(), p.x(), p.y(), p.z()));
   }
   for (const auto& s : state_.takeAll()) {
     // The sim time and the start of every replan: a state stamped past the clock, older than
@@ -370,6 +381,10 @@ void PlanningNode::onWake()
       position_ = s.p_W;
     }
     now_ns_ = s.stamp_ns;
+  }
+  while (!goals_due_.empty() && goals_due_.front().first <= now_ns_) {
+    takeGoal(goals_due_.front().second);
+    goals_due_.pop_front();
   }
   // In lockstep a replan sees every depth cloud published up to its time, so that runs
   // repeat; the clock waits for this node's report. A lost update is not waited for (it

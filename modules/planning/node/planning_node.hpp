@@ -5,6 +5,7 @@
 /// (catching up from snapshots), replans from the vehicle's position to the goal, and
 /// publishes the shortened path (republished periodically, so followers know it is alive).
 
+#include <deque>
 #include <memory>
 #include <optional>
 
@@ -47,6 +48,8 @@ private:
   void applyUpdate(const msg::MapUpdate& update);
   /// In lockstep: an update the mapper sent that never came (see the .cpp) is declared lost.
   void noticeLostUpdate();
+  /// A goal taking effect (or refused, and answered).
+  void takeGoal(const msg::Goal& goal);
   void replan(std::int64_t t_ns);
   void publish(std::int64_t t_ns, bool changed);
 
@@ -72,6 +75,7 @@ private:
   bool mapper_lost_ = false;            // last said in the log
   std::int64_t reported_ns_ = -1;
   bool goal_changed_ = false;
+  std::deque<std::pair<std::int64_t, msg::Goal>> goals_due_;  // in lockstep: goals taken, not yet due
   std::optional<std::uint32_t> goal_id_;
   /// Answers a goal on quad/planning/goal_ack.
   void answerGoal(std::uint32_t goal_id, bool accepted, const std::string& reason);

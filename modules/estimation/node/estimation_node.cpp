@@ -35,16 +35,20 @@ void EstimationNode::judge(Update u, const dds::TopicInfo& topic, std::uint64_t 
   }
 }
 
+namespace {
+/// [ns] Wall time a lockstep estimator waits for an aid its IMU sample says was written before
+/// it; one that has not come by then was lost (a best-effort datagram), and is not waited for.
+constexpr std::int64_t kAidGraceNs = 200'000'000;
+
+std::uint64_t seqOf(const EstimationNode::Sample& s)
+{
+  return std::visit([](const auto& m) { return m.header().seq(); }, s);
+}
+}  // namespace
+
 void EstimationNode::onWake()
 {
-  // Every sample taken, in the order of its stamp: the aids between IMU samples land where
-  // they belong (a fix stamped in the past is the filter's to place). At equal stamps the
-  // IMU first, so an aid corrects the state of its own time.
-  using Sample = std::variant<msg::Imu, msg::PositionFix, msg::BaroAltitude, msg::MagneticField>;
-  std::vector<std::pair<std::int64_t, Sample>> samples;
-  for (auto& m : imu_.takeAll()) {
-    samples.emplace_back(m.header().stamp_ns(), std::move(m));
-  }
+  std::vector<Timed> samples;
   for (auto& m : position_.takeAll()) {
     samples.emplace_back(m.header().stamp_ns(), std::move(m));
   }
@@ -54,23 +58,101 @@ void EstimationNode::onWake()
   for (auto& m : mag_.takeAll()) {
     samples.emplace_back(m.header().stamp_ns(), std::move(m));
   }
+  if (!lockstep()) {
+    for (auto& m : imu_.takeAll()) {
+      samples.emplace_back(m.header().stamp_ns(), std::move(m));
+    }
+    process(std::move(samples));
+    return;
+  }
+  // In lockstep each IMU sample is answered with exactly the aids the plant wrote before it
+  // (its *_seq), whenever they arrive, so that runs repeat.
+  for (auto& a : samples) {
+    held_aids_.push_back(std::move(a));
+    const auto& aid = held_aids_.back().second;
+    newest_aid_seq_[aid.index() - 1] = std::max(newest_aid_seq_[aid.index() - 1], seqOf(aid));
+  }
+  for (auto& m : imu_.takeAll()) {
+    held_imu_.push_back(std::move(m));
+  }
+  answerHeldImu();
+}
+
+void EstimationNode::answerHeldImu()
+{
+  while (!held_imu_.empty()) {
+    const msg::Imu m = held_imu_.front();
+    const std::int64_t stamp = m.header().stamp_ns();
+    if (answered_any_ && stamp <= filter_.timeNs()) {
+      // Sent again by a plant still waiting for the round: the answer it had.
+      held_imu_.pop_front();
+      counters().samples_in++;
+      if (last_ && last_->header().stamp_ns() == stamp) {
+        state_.write(*last_);
+        counters().samples_out++;
+      }
+      continue;
+    }
+    const std::array<std::uint64_t, 3> wanted{m.position_seq(), m.baro_seq(), m.mag_seq()};
+    if (!answered_any_) {
+      // The first answer waits until every aid's writer matched: the aids written before it
+      // (lost or not, depending on when this participant matched) are left out; every one
+      // after it reaches a matched reader.
+      if (position_.matchedWriters() == 0 || baro_.matchedWriters() == 0 || mag_.matchedWriters() == 0) {
+        return;  // the plant resends the sample meanwhile
+      }
+      first_aid_seq_ = wanted;
+    }
+    bool complete = true;
+    for (std::size_t i = 0; i < wanted.size(); ++i) {
+      complete = complete && (wanted[i] <= first_aid_seq_[i] || newest_aid_seq_[i] >= wanted[i]);
+    }
+    const std::int64_t now = common::steadyTimeNs();
+    if (!complete) {
+      if (aid_wait_since_ns_ == 0) {
+        aid_wait_since_ns_ = now;
+      }
+      if (now - aid_wait_since_ns_ < kAidGraceNs) {
+        return;  // woken by the aid, or by the plant resending the IMU sample
+      }
+      counters().errors++;
+      spdlog::warn("estimation: the IMU sample at {:.3f} s follows aids that have not come within {} ms "
+                   "(position {} barometer {} magnetometer {}, the newest taken {} {} {}): lost; answered without them",
+                   common::toSeconds(stamp), kAidGraceNs / 1'000'000, wanted[0], wanted[1], wanted[2],
+                   newest_aid_seq_[0], newest_aid_seq_[1], newest_aid_seq_[2]);
+    }
+    aid_wait_since_ns_ = 0;
+    held_imu_.pop_front();
+    std::vector<Timed> due;
+    std::vector<Timed> later;
+    for (auto& a : held_aids_) {
+      const std::size_t kind = a.second.index() - 1;
+      const std::uint64_t seq = seqOf(a.second);
+      if (seq <= first_aid_seq_[kind]) {
+        counters().samples_in++;  // before the first answer: left out
+      } else {
+        (seq <= wanted[kind] ? due : later).push_back(std::move(a));
+      }
+    }
+    held_aids_ = std::move(later);
+    due.emplace_back(stamp, m);
+    answered_any_ = true;
+    process(std::move(due));
+  }
+}
+
+void EstimationNode::process(std::vector<Timed> samples)
+{
+  // Every sample, in the order of its stamp: the aids between IMU samples land where they
+  // belong (a fix stamped in the past is the filter's to place). At equal stamps the IMU
+  // first, so an aid corrects the state of its own time.
   std::stable_sort(samples.begin(), samples.end(), [](const auto& a, const auto& b) {
     return a.first != b.first ? a.first < b.first : a.second.index() < b.second.index();
   });
   for (const auto& [stamp, sample] : samples) {
-    // Aids stamped before the first IMU sample taken are not used: whether they came depends
-    // on when this participant matched the plant's writers, and a run would not repeat.
-    if (sample.index() != 0 && (first_imu_ns_ < 0 || stamp < first_imu_ns_)) {
-      counters().samples_in++;
-      continue;
-    }
     if (const auto* m = std::get_if<msg::Imu>(&sample)) {
-      if (first_imu_ns_ < 0) {
-        first_imu_ns_ = stamp;
-      }
       // Every IMU sample is answered, aligned or not (a lockstep round waits for the answer);
-      // one sent again (a lockstep plant resends while it waits) with the answer it had, even
-      // if an aid came since.
+      // one sent again (a lockstep plant resends while it waits) with the answer it had.
       if (stamp == filter_.timeNs()) {
         counters().samples_in++;
         if (last_ && last_->header().stamp_ns() == stamp) {

@@ -5,7 +5,12 @@
 /// magnetometer to the error-state filter in time order and publishes its state after every
 /// IMU sample.
 
+#include <array>
+#include <deque>
 #include <optional>
+#include <utility>
+#include <variant>
+#include <vector>
 
 #include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
@@ -19,6 +24,10 @@ class EstimationNode : public dds::Node {
 public:
   EstimationNode(EstimatorParams params, dds::ParticipantOptions options);
 
+  /// The IMU first: its index orders samples of equal stamps; an aid's kind is its index - 1.
+  using Sample = std::variant<msg::Imu, msg::PositionFix, msg::BaroAltitude, msg::MagneticField>;
+  using Timed = std::pair<std::int64_t, Sample>;
+
 protected:
   void onWake() override;
 
@@ -27,6 +36,10 @@ private:
   /// filter's own judgement, published in the state).
   void judge(Update u, const dds::TopicInfo& topic, std::uint64_t seq);
   void publish();
+  /// Feeds samples to the filter in the order of their stamps, answering each IMU sample.
+  void process(std::vector<Timed> samples);
+  /// In lockstep: answers the IMU samples held whose aids have come (see the .cpp).
+  void answerHeldImu();
 
   ErrorStateFilter filter_;
   dds::Subscriber<msg::Imu> imu_;
@@ -36,7 +49,14 @@ private:
   dds::Publisher<msg::EstimatedState> state_;
   bool announced_alignment_ = false;
   std::optional<msg::EstimatedState> last_;  // the newest estimate published
-  std::int64_t first_imu_ns_ = -1;           // the stamp of the first IMU sample taken
+  // In lockstep: IMU samples not yet answered and aids not yet fed, the newest aid number
+  // taken per kind (position, barometer, magnetometer), those the first answer left out.
+  std::deque<msg::Imu> held_imu_;
+  std::vector<Timed> held_aids_;
+  std::array<std::uint64_t, 3> newest_aid_seq_{};
+  std::array<std::uint64_t, 3> first_aid_seq_{};
+  bool answered_any_ = false;
+  std::int64_t aid_wait_since_ns_ = 0;  // steady time the front IMU sample began waiting (0: not)
 };
 
 }  // namespace quad::estimation

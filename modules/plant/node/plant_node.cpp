@@ -97,6 +97,9 @@ void PlantNode::takeInputs()
 {
   while (auto cmd = actuators_.take()) {
     counters().samples_in++;
+    if (config_.mode == PlantNodeConfig::Mode::kLockstep && cmd->header().stamp_ns() == latest_command_stamp_ns_) {
+      continue;  // the answer to a state sent again, again
+    }
     const RotorArray speeds{cmd->rotor_speed()[0], cmd->rotor_speed()[1], cmd->rotor_speed()[2],
                             cmd->rotor_speed()[3]};
     const auto verdict = sim_->commands().submit(speeds, cmd->armed(), cmd->header().stamp_ns(), sim_->timeNs());
@@ -187,6 +190,10 @@ void PlantNode::publish(const StepOutputs& out)
     counters().samples_out++;
   }
   if (out.imu) {
+    // The aids written before it, which a lockstep estimator answers it with (Imu.idl).
+    last_imu_->position_seq(position_.lastSeq());
+    last_imu_->baro_seq(baro_.lastSeq());
+    last_imu_->mag_seq(mag_.lastSeq());
     imu_.write(*last_imu_);
     counters().samples_out++;
   }

@@ -51,6 +51,9 @@ public:
     return write(filled);
   }
 
+  /// The Header.seq of the newest sample the middleware took (0: none yet).
+  std::uint64_t lastSeq() const { return seq_; }
+
 private:
   std::uint32_t vehicle_id_;
   std::uint64_t seq_ = 0;

@@ -135,7 +135,7 @@ void PlanningNode::applySnapshot(const msg::MapSnapshot& snapshot)
     return;
   }
   for (const auto& c : *diff) {
-    planner_.updateVoxel(c.index, static_cast<Occupancy>(c.state));
+    pending_.emplace_back(c.index, static_cast<Occupancy>(c.state));
   }
   spdlog::info("planning: caught up from snapshot {} and {} later updates ({} voxels differed)", snapshot.update_seq(),
                follower_.replayed(), diff->size());
@@ -169,7 +169,7 @@ void PlanningNode::applyUpdate(const msg::MapUpdate& update)
   const std::uint64_t restarts = follower_.restarts();
   bool bad = false;
   for (const auto& c : follower_.update(update.update_seq(), std::move(changes), &bad)) {
-    planner_.updateVoxel(c.index, static_cast<Occupancy>(c.state));
+    pending_.emplace_back(c.index, static_cast<Occupancy>(c.state));
   }
   if (follower_.restarts() > restarts) {
     spdlog::warn("{}: numbered from 1 again: the mapper started again with an empty map (no checkpoint); "
@@ -187,6 +187,22 @@ void PlanningNode::applyUpdate(const msg::MapUpdate& update)
   // Covered by a snapshot or applied now, what it accounts for is in the map.
   frames_applied_ = std::max(frames_applied_, update.depth_frames());
   update_lost_ = false;
+}
+
+void PlanningNode::applyPending()
+{
+  // Each voxel's newest state, in the order of the voxels' indices: the graph a replan
+  // searches (and its ties) is then the same however the changes were split into updates
+  // and snapshots, and whenever each came.
+  std::stable_sort(pending_.begin(), pending_.end(), [](const auto& a, const auto& b) {
+    return std::lexicographical_compare(a.first.data(), a.first.data() + 3, b.first.data(), b.first.data() + 3);
+  });
+  for (std::size_t i = 0; i < pending_.size(); ++i) {
+    if (i + 1 == pending_.size() || pending_[i + 1].first != pending_[i].first) {
+      planner_.updateVoxel(pending_[i].first, pending_[i].second);
+    }
+  }
+  pending_.clear();
 }
 
 void PlanningNode::noticeLostUpdate()
@@ -235,6 +251,7 @@ void PlanningNode::replan(std::int64_t t_ns)
   // Outside the lattice (below the ground clearance taking off, or between the geofence and
   // its margin), plan from its nearest cell: the controller, not the planner, answers for a
   // vehicle outside the geofence.
+  applyPending();
   std::optional<Cell> start;
   if (position_->allFinite()) {
     start = planner_.lattice().nearestCell(*position_);
@@ -431,6 +448,9 @@ void PlanningNode::onWake()
     current_.replan_time_s(0.0);
     current_.waypoints_W().clear();
     publish(now_ns_, changed);
+  }
+  if (!goal_id_) {
+    applyPending();  // no search to keep in step: the map only
   }
   if (goal_id_ && position_ && caught_up && map_whole && !mapper_lost &&
       (goal_changed_ || now_ns_ >= next_replan_ns_)) {

@@ -8,6 +8,8 @@
 #include <deque>
 #include <memory>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "quad/dds/lockstep.hpp"
 #include "quad/dds/module_watch.hpp"
@@ -46,6 +48,8 @@ protected:
 private:
   void applySnapshot(const msg::MapSnapshot& snapshot);
   void applyUpdate(const msg::MapUpdate& update);
+  /// The voxel changes taken since the last replan, into the planner's graph (see the .cpp).
+  void applyPending();
   /// In lockstep: an update the mapper sent that never came (see the .cpp) is declared lost.
   void noticeLostUpdate();
   /// A goal taking effect (or refused, and answered).
@@ -66,6 +70,7 @@ private:
   dds::ModuleWatch mapper_;
   dds::LockstepReporter lockstep_;
 
+  std::vector<std::pair<VoxelIndex, Occupancy>> pending_;  // voxel changes not yet in the graph
   std::uint64_t frames_applied_ = 0;    // depth clouds the applied updates account for
   std::uint64_t refused_updates_ = 0;   // MapUpdate payloads refused on receipt, so far
   bool update_lost_ = false;            // one was refused or never came since the last update applied

@@ -95,7 +95,7 @@ void ControlNode::takeInputs()
     counters().samples_in++;
     if (lockstep()) {
       goals_due_.emplace_back(dds::topics::operatorInputDueNs(g->header().stamp_ns(), simClock().ns()), std::move(*g));
-    } else if (!fc_.onGoal(dds::toVector(g->p_W()), g->tolerance())) {
+    } else if (!fc_.onGoal(dds::toVector(g->p_W()), g->tolerance(), g->land())) {
       counters().errors++;
       spdlog::warn("{}: goal {} rejected: non-finite", dds::topics::kGoal.info.name, g->goal_id());
     }
@@ -125,7 +125,7 @@ void ControlNode::applyDueInputs(std::int64_t stamp_ns)
 {
   while (!goals_due_.empty() && goals_due_.front().first <= stamp_ns) {
     const msg::Goal& g = goals_due_.front().second;
-    if (!fc_.onGoal(dds::toVector(g.p_W()), g.tolerance())) {
+    if (!fc_.onGoal(dds::toVector(g.p_W()), g.tolerance(), g.land())) {
       counters().errors++;
       spdlog::warn("{}: goal {} rejected: non-finite", dds::topics::kGoal.info.name, g.goal_id());
     }

@@ -214,7 +214,7 @@ std::string FlightController::checkTakeoff(double altitude) const
   return why.str();
 }
 
-bool FlightController::onGoal(const Vector3& p, double tolerance)
+bool FlightController::onGoal(const Vector3& p, double tolerance, bool land)
 {
   if (!p.allFinite() || !std::isfinite(tolerance)) {
     ++rejected_;
@@ -222,6 +222,7 @@ bool FlightController::onGoal(const Vector3& p, double tolerance)
   }
   goal_ = p;
   goal_tolerance_ = tolerance > 0.0 ? tolerance : config_.goal_tolerance;
+  land_at_goal_ = land;
   return true;
 }
 
@@ -312,6 +313,7 @@ FlightOutput FlightController::update(double t)
   // mission this keeps auto_mission from starting again for a goal already reached.
   in.goal_reached = state_ && goal_ && (state_->p_W - *goal_).norm() <= goal_tolerance_ &&
                     (modes_.mode() != Mode::kMission || follower_.finished());
+  in.land_at_goal = land_at_goal_;
   in.returned = modes_.mode() == Mode::kReturn && follower_.finished();
   if (state_) {
     // Taking off from a floor at the ground, an estimate a centimetre below it is no breach.

@@ -330,7 +330,8 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
         return go(Mode::kHover, Reason::kPathStale, "path stale", in.t);
       }
       if (in.goal_reached) {
-        return go(Mode::kHover, Reason::kNone, "goal reached", in.t);
+        return in.land_at_goal ? go(Mode::kLand, Reason::kNone, "goal reached: landing there", in.t)
+                               : go(Mode::kHover, Reason::kNone, "goal reached", in.t);
       }
       break;
     case Mode::kLand:

@@ -110,6 +110,9 @@ TEST(Modes, EveryConditionInEveryMode)
       {"landed", [](ModeInputs& i) { i.landed = true; }, {D, I, T, M, H, I, I, R}},
       {"altitude reached", [](ModeInputs& i) { i.takeoff_altitude_reached = true; }, {D, I, H, M, H, L, F, R}},
       {"goal reached", [](ModeInputs& i) { i.goal_reached = true; }, {D, I, T, H, H, L, F, R}},
+      // A goal that ends the mission: land there (only a mission reaches it).
+      {"goal reached, land there", [](ModeInputs& i) { i.goal_reached = true; i.land_at_goal = true; },
+       {D, I, T, L, H, L, F, R}},
       {"no path", [](ModeInputs& i) { i.no_path = true; i.path_fresh = false; }, {D, I, T, H, H, L, F, R}},
       {"returned", [](ModeInputs& i) { i.returned = true; }, {D, I, T, M, H, L, F, L}},
       // Pushed out of the keep-in volume: hold (HOVER, reason geofence); the landings and

@@ -36,7 +36,6 @@ void MissionTracker::onState(double t, const Eigen::Vector3d& p)
   if (!goal_reached_ && to_goal <= mission_.tolerance_m) {
     goal_reached_ = true;
     progress_.push_back(fmt::format("t = {:.1f} s: goal reached ({:.2f} m from it)", t, to_goal));
-    land_requested_ = mission_.land;
     if (!mission_.land) {
       finishAtGoal("reached the goal");
     }
@@ -103,15 +102,6 @@ void MissionTracker::onCollision(double t)
 {
   ++collisions_;
   progress_.push_back(fmt::format("t = {:.1f} s: COLLISION", t));
-}
-
-bool MissionTracker::takeLandRequest()
-{
-  if (land_requested_ && !land_taken_ && !finished_) {
-    land_taken_ = true;
-    return true;
-  }
-  return false;
 }
 
 std::vector<std::string> MissionTracker::takeProgress() { return std::exchange(progress_, {}); }

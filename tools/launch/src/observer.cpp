@@ -22,8 +22,17 @@ namespace topics = dds::topics;
 /// the modules' heartbeats.
 struct Observer::Sim {
   explicit Sim(dds::Participant& p)
-      : state(p, topics::kSimState), estimate(p, topics::kEstimatedState), clock(p), heartbeats(p, topics::kHeartbeat)
+      : state(p, topics::kSimState, nullptr, deep(p, topics::kSimState.info)),
+        estimate(p, topics::kEstimatedState, nullptr, deep(p, topics::kEstimatedState.info)),
+        clock(p),
+        heartbeats(p, topics::kHeartbeat)
   {
+  }
+  /// Every state is scored, and the goal is reached at the first state within its tolerance
+  /// in every run: a history deep enough for a launcher that falls behind for seconds.
+  static eprosima::fastdds::dds::DataReaderQos deep(dds::Participant& p, const dds::TopicInfo& topic)
+  {
+    return dds::withDepth(p.readerQos(topic.qos_profile), 2048);
   }
   dds::Subscriber<msg::VehicleState> state;
   dds::Subscriber<msg::EstimatedState> estimate;
@@ -35,7 +44,6 @@ struct Observer::Sim {
 struct Observer::Endpoints {
   explicit Endpoints(dds::Participant& p)
       : goal(p, topics::kGoal),
-        command(p, topics::kVehicleCommand),
         status(p, topics::kControlStatus),
         path(p, topics::kPath),
         events(p, topics::kSimEvents),
@@ -43,7 +51,6 @@ struct Observer::Endpoints {
   {
   }
   dds::Publisher<msg::Goal> goal;
-  dds::Publisher<msg::VehicleCommand> command;
   dds::Subscriber<msg::ControlStatus> status;
   dds::Subscriber<msg::Path> path;
   dds::Subscriber<msg::SimEvent> events;
@@ -80,6 +87,7 @@ void Observer::startMission(const Mission& mission, const world::World& world, d
   goal.p_W(dds::toMessage(world.goal()));
   goal.yaw(std::numeric_limits<double>::quiet_NaN());
   goal.tolerance(mission.tolerance_m);
+  goal.land(mission.land);
   endpoints_->goal.write(goal);
 }
 
@@ -214,13 +222,6 @@ void Observer::update()
   if (operator_link_ && now_ns >= next_operator_beat_ns_) {
     endpoints_->operator_beat.write(dds::processHeartbeat("operator", msg::MODULE_RUNNING, now_ns));
     next_operator_beat_ns_ = now_ns + kOperatorBeatNs;
-  }
-  if (tracker_->takeLandRequest()) {
-    msg::VehicleCommand land;
-    land.command_id(1);
-    land.kind(msg::COMMAND_LAND);
-    land.header().stamp_ns(static_cast<std::int64_t>(tracker_->simTime() * 1e9));
-    endpoints_->command.write(land);
   }
 }
 

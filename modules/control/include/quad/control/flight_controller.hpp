@@ -163,8 +163,9 @@ public:
   void onStateLate() { state_late_ = true; }
   /// The same for the path: stale until the next one.
   void onPathLate() { path_late_ = true; }
-  /// The goal the mission flies to; rejected (false, counted) when non-finite.
-  bool onGoal(const Vector3& p, double tolerance);
+  /// The goal the mission flies to, and whether to land once it is reached (else hover
+  /// there); rejected (false, counted) when non-finite.
+  bool onGoal(const Vector3& p, double tolerance, bool land = false);
   /// An operator command, applied (or refused) at the next update, which answers it. A
   /// take-off climbs `takeoff_altitude` [m] above the take-off point, or the configured
   /// altitude when it is 0; a negative, non-finite one, or one whose top lies outside the
@@ -225,6 +226,7 @@ private:
   bool path_changed_ = false;
   std::optional<Vector3> goal_;
   double goal_tolerance_ = 0.3;
+  bool land_at_goal_ = false;
   Command pending_ = Command::kNone;
   double pending_altitude_ = 0.0;  // [m] of a pending take-off; 0: the configured altitude
   double takeoff_altitude_ = 0.0;  // [m] of the take-off flown, above its point

@@ -73,6 +73,7 @@ struct ModeInputs {
   bool landed = true;
   bool takeoff_altitude_reached = false;
   bool goal_reached = false;
+  bool land_at_goal = false;      ///< the goal asks to land once it is reached
   bool returned = false;          ///< in RETURN: back above the take-off point
   bool outside_geofence = false;  ///< the vehicle is outside the keep-in volume
   /// The charge left, less the reserve, lasts no longer than the way back to the take-off

@@ -72,9 +72,6 @@ public:
   /// The plant reported a collision.
   void onCollision(double t);
 
-  /// True once, when the goal was reached and the mission asks to land there: the caller
-  /// sends the land command.
-  bool takeLandRequest();
   /// Lines worth printing while the mission flies ("t = 12.3 s: MISSION -> HOVER"), once each.
   std::vector<std::string> takeProgress();
 
@@ -101,8 +98,6 @@ private:
   int paths_ = 0;
   int collisions_ = 0;
   bool goal_reached_ = false;
-  bool land_requested_ = false;
-  bool land_taken_ = false;
   bool finished_ = false;
   MissionEnd end_ = MissionEnd::kUnfinished;
   std::string outcome_;

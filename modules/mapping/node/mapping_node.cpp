@@ -112,12 +112,12 @@ void MappingNode::resume()
                meta->next_update_seq);
   // The resumed map at once, latched: a consumer holding the map from before fills the gap
   // the new numbering opens with it.
+  map_bytes_ = mapper_.bytes();
   publishSnapshot(meta->stamp_ns);
 }
 
 void MappingNode::publishSnapshot(std::int64_t stamp_ns)
 {
-  map_bytes_ = mapper_.bytes();
   const auto bytes = mapper_.snapshot();
   if (bytes.size() > 4194304) {
     spdlog::warn("mapping: snapshot of {} bytes exceeds the 4 MiB a MapSnapshot carries; not sent", bytes.size());
@@ -278,7 +278,11 @@ void MappingNode::integrate(const msg::PointCloud& cloud, const std::optional<ge
     match_pending_ = false;
     match_until_ns_ = cloud.header().stamp_ns() + common::toNanoseconds(config_.snapshot_period_s);
   }
-  if (cloud.header().stamp_ns() <= match_until_ns_ || cloud.header().stamp_ns() >= next_snapshot_ns_) {
+  const bool periodic = cloud.header().stamp_ns() >= next_snapshot_ns_;
+  if (periodic) {
+    map_bytes_ = mapper_.bytes();  // a walk of the tree: with the period's snapshots only
+  }
+  if (cloud.header().stamp_ns() <= match_until_ns_ || periodic) {
     publishSnapshot(cloud.header().stamp_ns());
     next_snapshot_ns_ = cloud.header().stamp_ns() + common::toNanoseconds(config_.snapshot_period_s);
     checkpoint(last_stamp_ns_, reserved_seq_);

@@ -204,7 +204,8 @@ Comparison compareRecordings(const McapContents& a, const McapContents& b, const
   with_clock.selected = nullptr;
   const auto first = byTopic(a, options);
   const auto second = byTopic(b, options);
-  // Either recording may stop before the other: compare up to the sooner end.
+  // Either recording may stop before the other: compare up to the sooner end, that instant
+  // left out (a plant stopped there reports the run's end with its stamp).
   const auto end_a = clockEnd(byTopic(a, with_clock), options.clock_topic, schema);
   const auto end_b = clockEnd(byTopic(b, with_clock), options.clock_topic, schema);
   const std::int64_t end = end_a && end_b ? std::min(*end_a, *end_b) : std::numeric_limits<std::int64_t>::max();
@@ -241,7 +242,7 @@ Comparison compareRecordings(const McapContents& a, const McapContents& b, const
       from = std::max(da.entries.front().stamp_ns, db.entries.front().stamp_ns);
     }
     const auto inside = [&](const Decoded::Entry& e) {
-      return !aligned || (e.stamp_ns >= from && e.stamp_ns <= end);
+      return !aligned || (e.stamp_ns >= from && e.stamp_ns < end);
     };
     std::vector<const Decoded::Entry*> ea, eb;
     for (const auto& e : da.entries) {

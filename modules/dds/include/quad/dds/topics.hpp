@@ -141,10 +141,12 @@ inline constexpr std::int64_t kStateAheadOfClockNs = 500'000'000;
 inline constexpr std::int64_t kOperatorInputDelayNs = 100'000'000;
 
 /// When such an input stamped `stamp_ns` and taken at the clock's `clock_ns` takes effect: the
-/// delay after its stamp, or after the clock's time for one stamped ahead of it.
+/// delay after its stamp; after the clock's time for one stamped further ahead of it than a
+/// state may be (kStateAheadOfClockNs), which would otherwise wait for ever.
 constexpr std::int64_t operatorInputDueNs(std::int64_t stamp_ns, std::int64_t clock_ns)
 {
-  return (stamp_ns < 0 ? 0 : stamp_ns > clock_ns ? clock_ns : stamp_ns) + kOperatorInputDelayNs;
+  const std::int64_t from = stamp_ns < 0 ? 0 : stamp_ns > clock_ns + kStateAheadOfClockNs ? clock_ns : stamp_ns;
+  return from + kOperatorInputDelayNs;
 }
 
 /// Every contract, for tools that iterate over topics.
@@ -158,10 +160,11 @@ inline constexpr std::array kAll{
     kDisplayLog.info};
 
 /// Topics whose samples come on wall-clock time (liveliness, what the display draws at its
-/// tick) or in the order participants finish (lockstep's reports): two lockstep runs of one
-/// seed need not agree on them.
+/// tick), in the order participants finish (lockstep's reports) or also when a reader matches
+/// (the map's snapshots, sent for every cloud for a while to a reader that joined): two
+/// lockstep runs of one seed need not agree on them.
 inline constexpr std::array kWallPaced{
-    kLockstep.info.name, kHeartbeat.info.name, kOperatorHeartbeat.info.name, kDisplayTransforms.info.name, kDisplayTrajectory.info.name,
+    kLockstep.info.name, kMapSnapshot.info.name, kHeartbeat.info.name, kOperatorHeartbeat.info.name, kDisplayTransforms.info.name, kDisplayTrajectory.info.name,
     kDisplayTrueTrajectory.info.name, kDisplayPath.info.name, kDisplayMap.info.name, kDisplayScene.info.name,
     kDisplayDepth.info.name, kDisplayLog.info.name};
 

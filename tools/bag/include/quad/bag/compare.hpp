@@ -5,7 +5,8 @@
 /// `quad bag diff` and the determinism test use. Messages with quad's Header are paired by
 /// their stamp (several of one stamp in their recorded order), from where both recordings
 /// hold the topic (a recorder subscribes once it sees a writer) to where the sooner of the
-/// two clocks ended. A sample sent again (the same stamp and content, a new number) counts
+/// two clocks ended (that instant left out: a plant stopped there reports the run's end). A
+/// sample sent again (the same stamp and content, a new number) counts
 /// once; a message one recorder lost, as its loss figures count, is passed over. Others are
 /// paired in order.
 

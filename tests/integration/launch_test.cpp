@@ -66,10 +66,14 @@ auto runningAfterStart(const std::string& module, int starts = 1)
   };
 }
 
-/// Flies a shipped manifest's mission and checks the summary and the run folder.
-void flyMission(const std::string& manifest, int domain, const std::vector<std::string>& extra)
+/// Flies a shipped manifest's mission and checks the summary and the run folder; given
+/// `recording`, records the run and keeps the file there.
+void flyMission(const std::string& manifest, int domain, std::vector<std::string> extra, const fs::path& recording = {})
 {
   const fs::path dir = quad::test::scratchDir("quad_launch_" + std::to_string(domain));
+  if (!recording.empty()) {
+    extra.insert(extra.end(), {"--record", (dir / "run.mcap").string()});
+  }
   std::vector<std::string> argv{QUAD_TOOL, "launch", std::string(QUAD_SOURCE_DIR) + "/bringup/" + manifest,
                                 "--domain", std::to_string(domain), "--quiet", "--wall-timeout", "300",
                                 "--summary", (dir / "summary.json").string(), "--log-dir", (dir / "run").string()};
@@ -162,6 +166,9 @@ void flyMission(const std::string& manifest, int domain, const std::vector<std::
     EXPECT_TRUE(fs::exists(dir / "run" / "report.html"));
     EXPECT_TRUE(fs::exists(dir / "run" / "top_view.svg"));
   }
+  if (!recording.empty() && fs::exists(dir / "run.mcap")) {
+    fs::copy_file(dir / "run.mcap", recording, fs::copy_options::overwrite_existing);
+  }
   if (!::testing::Test::HasFailure()) {
     fs::remove_all(dir);  // kept to look into otherwise
   }
@@ -171,8 +178,8 @@ TEST(Launch, DemoMissionReachesTheGoalInLockstepWithoutCollisionAndTwoRunsRecord
 {
   // GIVEN the demo flown twice in lockstep with one seed, each run recorded
   const fs::path dir = quad::test::scratchDir("quad_launch_determinism");
-  flyMission("demo.yaml", 180, {"--record", (dir / "first.mcap").string(), "--seed", "7"});
-  flyMission("demo.yaml", 63, {"--record", (dir / "second.mcap").string(), "--seed", "7"});
+  flyMission("demo.yaml", 180, {"--seed", "7"}, dir / "first.mcap");
+  flyMission("demo.yaml", 63, {"--seed", "7"}, dir / "second.mcap");
   // WHEN the recordings are compared message by message
   ChildProcess diff({QUAD_TOOL, "bag", "diff", (dir / "first.mcap").string(), (dir / "second.mcap").string(), "--json"});
   const auto status = diff.wait(120s);

@@ -2,8 +2,8 @@
 #pragma once
 /// @file
 /// The launcher's own DDS participant: tells whether topics are live (a writer was
-/// discovered), and plays the operator of a mission (gives the goal, commands the landing)
-/// while feeding a MissionTracker with what the stack publishes.
+/// discovered), and plays the operator of a mission (gives the goal, which asks the controller
+/// to land there) while feeding a MissionTracker with what the stack publishes.
 
 #include <cstdint>
 #include <memory>

@@ -17,6 +17,14 @@ constexpr double kTickBackstopS = 0.04;
 /// [s] A deadline event for a topic one of whose samples was taken this recently is older than
 /// that sample (the middleware timed it from before it): not acted on.
 constexpr double kDeadlineEventSlackS = 0.01;
+
+/// The same state sent again: every member equal (a NaN never is).
+bool sameState(const dds::StateSample& a, const dds::StateSample& b)
+{
+  return a.aligned == b.aligned && a.p_W == b.p_W && a.v_W == b.v_W && a.w_B == b.w_B && a.q_WB.w == b.q_WB.w &&
+         a.q_WB.x == b.q_WB.x && a.q_WB.y == b.q_WB.y && a.q_WB.z == b.q_WB.z && a.landed == b.landed &&
+         a.covariance_ok == b.covariance_ok && a.accel_bias_B == b.accel_bias_B && a.gyro_bias_B == b.gyro_bias_B;
+}
 }
 
 ControlNode::ControlNode(ControlNodeConfig config, dds::ParticipantOptions options)
@@ -238,7 +246,7 @@ void ControlNode::onWake()
   for (const auto& s : state_.takeAll()) {
     counters().samples_in++;
     const double t = common::toSeconds(s.stamp_ns);
-    if (lockstep() && s.stamp_ns == answered_ns_) {
+    if (lockstep() && answered_state_ && s.stamp_ns == answered_ns_ && sameState(s, *answered_state_)) {
       // Sent again by a plant still waiting for the round: the answer it may have lost, again.
       actuators_.write(answer_);
       counters().samples_out++;
@@ -257,6 +265,7 @@ void ControlNode::onWake()
       // for the answer to its time (the rotors stay as the mode has them).
       if (lockstep() && s.stamp_ns > answered_ns_) {
         control(t, s.stamp_ns);
+        answered_state_ = s;
       }
       continue;
     }
@@ -268,6 +277,7 @@ void ControlNode::onWake()
     latest_t_ = t;
     latest_wall_ns_ = common::steadyTimeNs();
     control(t, s.stamp_ns);
+    answered_state_ = s;
   }
   controlWithoutState();
 }
@@ -285,6 +295,7 @@ void ControlNode::controlWithoutState()
   if (t - latest_t_ > config_.flight.state_timeout) {
     last_stateless_ns_ = now_ns;
     control(t, now_ns);
+    answered_state_.reset();
   }
 }
 

@@ -74,6 +74,7 @@ private:
   std::deque<std::pair<std::int64_t, msg::Goal>> goals_due_;
   std::int64_t answered_ns_ = -1;          // in lockstep, the stamp of the last command sent
   msg::ActuatorCommand answer_;            // that command, sent again for a state sent again
+  std::optional<dds::StateSample> answered_state_;  // the state it answered (none: the clock's time)
   std::int64_t imu_ns_ = 0;                // the newest IMU sample's sim time
   std::int64_t last_stateless_ns_ = 0;     // the sim time last commanded without a state
   double latest_t_ = -1.0;                 // sim time of the newest state [s]

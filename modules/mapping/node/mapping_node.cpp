@@ -278,13 +278,15 @@ void MappingNode::integrate(const msg::PointCloud& cloud, const std::optional<ge
     match_pending_ = false;
     match_until_ns_ = cloud.header().stamp_ns() + common::toNanoseconds(config_.snapshot_period_s);
   }
+  // The periodic snapshots keep their sim-time schedule whatever readers join (the extra
+  // ones for a reader that joined depend on when it did).
   const bool periodic = cloud.header().stamp_ns() >= next_snapshot_ns_;
   if (periodic) {
     map_bytes_ = mapper_.bytes();  // a walk of the tree: with the period's snapshots only
+    next_snapshot_ns_ = cloud.header().stamp_ns() + common::toNanoseconds(config_.snapshot_period_s);
   }
   if (cloud.header().stamp_ns() <= match_until_ns_ || periodic) {
     publishSnapshot(cloud.header().stamp_ns());
-    next_snapshot_ns_ = cloud.header().stamp_ns() + common::toNanoseconds(config_.snapshot_period_s);
     checkpoint(last_stamp_ns_, reserved_seq_);
   }
 }

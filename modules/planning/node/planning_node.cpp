@@ -19,6 +19,9 @@ namespace {
 /// How long an update may trail the mapper's lockstep report before it counts as lost [ns]:
 /// ten heartbeat periods of the reliable QoS (configs/dds/quad_qos.xml).
 constexpr std::int64_t kLostUpdateGraceNs = 1'000'000'000;
+/// How long a planner that joined after the mapper's first update holds lockstep for the
+/// snapshot that fills the gap [ns of wall time].
+constexpr std::int64_t kJoiningHoldNs = 2'000'000'000;
 
 Occupancy fromMessage(msg::VoxelState s)
 {
@@ -458,13 +461,27 @@ void PlanningNode::onWake()
     goal_changed_ = false;
     next_replan_ns_ = now_ns_ + common::toNanoseconds(config_.replan_period_s);
   }
+  // Joined after the mapper's first update (it depends on when this participant matched), the
+  // round waits for the snapshot that fills the gap (latched, it comes): the replans then fall
+  // on the rounds they would have without the gap. Not for ever: a map too large for a
+  // snapshot would never come.
+  const bool joining = lockstep() && follower_.appliedSeq() == 0 && simClock().depthFrames() > 0;
+  const std::int64_t wall_ns = common::steadyTimeNs();
+  if (!joining) {
+    joining_since_ns_ = 0;
+  } else if (joining_since_ns_ == 0) {
+    joining_since_ns_ = wall_ns;
+  }
+  const bool hold_for_snapshot = joining && wall_ns - joining_since_ns_ < kJoiningHoldNs;
   if (lockstep() && simClock().ns() > reported_ns_) {
     const bool state_seen = now_ns_ >= simClock().ns() || !simClock().stateSent();
-    if (!caught_up || !state_seen) {
+    if (!caught_up || !state_seen || hold_for_snapshot) {
       lockstep_.holding(simClock().ns(), [&] {
-        return caught_up ? fmt::format("no vehicle state of that time yet (the last at {:.3f} s)",
-                                       common::toSeconds(now_ns_))
-                         : fmt::format("map updates cover {} of {} depth frames", frames_applied_, simClock().depthFrames());
+        return hold_for_snapshot ? std::string("joined after the mapper's first update: waiting for its snapshot")
+               : caught_up       ? fmt::format("no vehicle state of that time yet (the last at {:.3f} s)",
+                                               common::toSeconds(now_ns_))
+                                 : fmt::format("map updates cover {} of {} depth frames", frames_applied_,
+                                               simClock().depthFrames());
       });
     } else if (lockstep_.reportDone(simClock().ns())) {
       reported_ns_ = simClock().ns();

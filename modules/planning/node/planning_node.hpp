@@ -79,6 +79,7 @@ private:
   bool map_whole_ = true;               // last said in the log
   bool mapper_lost_ = false;            // last said in the log
   std::int64_t reported_ns_ = -1;
+  std::int64_t joining_since_ns_ = 0;   // steady time it began waiting for the first snapshot (0: not)
   bool goal_changed_ = false;
   std::deque<std::pair<std::int64_t, msg::Goal>> goals_due_;  // in lockstep: goals taken, not yet due
   std::optional<std::uint32_t> goal_id_;

@@ -86,10 +86,10 @@ void EstimationNode::answerHeldImu()
     if (answered_any_ && stamp <= filter_.timeNs()) {
       // Sent again by a plant still waiting for the round: the answer it had.
       held_imu_.pop_front();
-      counters().samples_in++;
-      if (last_ && last_->header().stamp_ns() == stamp) {
-        state_.write(*last_);
-        counters().samples_out++;
+      if (stamp == filter_.timeNs()) {
+        answerAgain(stamp);
+      } else {
+        counters().samples_in++;  // older than the newest answer: answered long ago
       }
       continue;
     }
@@ -154,13 +154,7 @@ void EstimationNode::process(std::vector<Timed> samples)
       // Every IMU sample is answered, aligned or not (a lockstep round waits for the answer);
       // one sent again (a lockstep plant resends while it waits) with the answer it had.
       if (stamp == filter_.timeNs()) {
-        counters().samples_in++;
-        if (last_ && last_->header().stamp_ns() == stamp) {
-          state_.write(*last_);
-          counters().samples_out++;
-        } else {
-          publish();
-        }
+        answerAgain(stamp);
         continue;
       }
       const Update u = filter_.imu(stamp, dds::toVector(m->specific_force_B()), dds::toVector(m->angular_rate_B()));
@@ -183,6 +177,17 @@ void EstimationNode::process(std::vector<Timed> samples)
     const Estimate e = filter_.estimate(filter_.timeNs());
     spdlog::info("estimation: aligned at t = {:.3f} s, at ({:.2f}, {:.2f}, {:.2f})", common::toSeconds(e.t_ns),
                  e.p_W.x(), e.p_W.y(), e.p_W.z());
+  }
+}
+
+void EstimationNode::answerAgain(std::int64_t stamp_ns)
+{
+  counters().samples_in++;
+  if (last_ && last_->header().stamp_ns() == stamp_ns) {
+    state_.write(*last_);
+    counters().samples_out++;
+  } else {
+    publish();
   }
 }
 

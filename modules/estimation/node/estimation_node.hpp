@@ -36,6 +36,8 @@ private:
   /// filter's own judgement, published in the state).
   void judge(Update u, const dds::TopicInfo& topic, std::uint64_t seq);
   void publish();
+  /// An IMU sample sent again (a lockstep plant resends while it waits): the answer it had.
+  void answerAgain(std::int64_t stamp_ns);
   /// Feeds samples to the filter in the order of their stamps, answering each IMU sample.
   void process(std::vector<Timed> samples);
   /// In lockstep: answers the IMU samples held whose aids have come (see the .cpp).

@@ -251,10 +251,10 @@ void PlanningNode::replan(std::int64_t t_ns)
   if (!goal_id_ || !position_) {
     return;
   }
+  applyPending();
   // Outside the lattice (below the ground clearance taking off, or between the geofence and
   // its margin), plan from its nearest cell: the controller, not the planner, answers for a
   // vehicle outside the geofence.
-  applyPending();
   std::optional<Cell> start;
   if (position_->allFinite()) {
     start = planner_.lattice().nearestCell(*position_);

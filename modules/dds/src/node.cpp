@@ -85,6 +85,7 @@ Node::Node(std::string module_name, ParticipantOptions options)
       participant_(std::move(options)),
       heartbeat_(participant_, topics::kHeartbeat)
 {
+  lockstep_ = participant_.options().lockstep;
   participant_.events().setNotifier([this] { waker_.notify(); });
   if (participant_.datagramFaults() != nullptr) {
     fault_layer_ = std::make_unique<FaultLayerControl>(participant_, module_name_, &waker_);

@@ -239,6 +239,9 @@ ParticipantOptions optionsFromEnvironment(std::string name)
   if (const char* v = env(environment::kValidateDatagrams)) {
     options.validate_datagrams = parseInt<int>(v, environment::kValidateDatagrams, 0, 1) == 1;
   }
+  if (const char* v = env(environment::kLockstep)) {
+    options.lockstep = parseInt<int>(v, environment::kLockstep, 0, 1) == 1;
+  }
   options.qos_file = defaultQosFile();
   return options;
 }

@@ -182,7 +182,7 @@ void MappingNode::integratePending()
     // estimator was still aligning), the lockstep clock of its time says none was sent, or in
     // real time it has waited long enough.
     const bool never = (!body && states_heard_ns_ >= stamp) ||
-                       (lockstep() && simClock().ns() >= stamp && !simClock().stateSent()) ||
+                       (lockstep() && simClock().seen() && simClock().ns() >= stamp && !simClock().stateSent()) ||
                        (!lockstep() && simClock().ns() - stamp > kPoseWaitNs);
     // In lockstep the state of its own time, not one carried on to it: runs repeat.
     const bool wait = lockstep() ? states_heard_ns_ < stamp : !body;

@@ -58,6 +58,7 @@ std::map<std::string, std::string> runEnvironment(const Manifest& m, int domain,
   std::map<std::string, std::string> env = m.environment;
   env[dds::environment::kDomainId] = std::to_string(domain);
   env[dds::environment::kTransport] = m.transport;
+  env[dds::environment::kLockstep] = m.mode == "lockstep" ? "1" : "0";
   if (!m.security_dir.empty()) {
     env[dds::environment::kSecurityDir] = m.security_dir.string();
   }

@@ -19,5 +19,6 @@ inline constexpr const char* kSecurityDir = "QUAD_SECURITY_DIR";
 inline constexpr const char* kSecurityIdentity = "QUAD_SECURITY_IDENTITY";
 inline constexpr const char* kValidateDatagrams = "QUAD_VALIDATE_DATAGRAMS";
 inline constexpr const char* kFaultLayer = "QUAD_FAULT_LAYER";
+inline constexpr const char* kLockstep = "QUAD_LOCKSTEP";
 
 }  // namespace quad::dds::environment

@@ -92,7 +92,8 @@ protected:
   /// 0 (the default) for no ticks.
   void setTickPeriod(std::int64_t period_ns) { tick_period_ns_ = period_ns; }
   /// In lockstep, sim time waits for the slowest module: wall-clock deadlines say nothing,
-  /// and onEvent's default stops reporting them.
+  /// and onEvent's default stops reporting them. From the start as the environment says
+  /// (ParticipantOptions::lockstep), then as the sim clock says.
   void setLockstep(bool lockstep) { lockstep_ = lockstep; }
   bool lockstep() const { return lockstep_; }
   /// Follows the plant's clock: run() takes its samples before every onWake() and onTick(),

@@ -60,6 +60,10 @@ struct ParticipantOptions {
   std::filesystem::path security_dir;
   /// The identity in `security_dir` to use; empty: securityIdentity(name).
   std::string security_identity;
+  /// The run's sim clock is a lockstep one: a node follows lockstep's rules from its start,
+  /// so that an input reaching it before the clock's first sample (a latched goal) is taken
+  /// as it would be after. The clock's samples still say which mode runs.
+  bool lockstep = false;
 };
 
 /// The options a quad process takes from its environment, so that every module and tool of a
@@ -67,7 +71,7 @@ struct ParticipantOptions {
 /// QUAD_DOMAIN_ID, QUAD_TRANSPORT (default|udp|shm), QUAD_INITIAL_PEERS (comma separated),
 /// QUAD_DISCOVERY_SERVER, QUAD_QOS_FILE, QUAD_VEHICLE_ID, QUAD_FAULT_LAYER (0|1),
 /// QUAD_UDP_MAX_MESSAGE (bytes), QUAD_VALIDATE_DATAGRAMS (0|1), QUAD_SECURITY_DIR,
-/// QUAD_SECURITY_IDENTITY. A bad value throws
+/// QUAD_SECURITY_IDENTITY, QUAD_LOCKSTEP (0|1). A bad value throws
 /// std::invalid_argument naming the variable and the value.
 ParticipantOptions optionsFromEnvironment(std::string name);
 

@@ -3,11 +3,13 @@
 
 #include <signal.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <ctime>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include <fmt/chrono.h>
@@ -32,7 +34,10 @@ namespace {
 /// One recorded topic.
 struct Recorded {
   std::unique_ptr<dds::RawSubscriber> subscriber;
-  std::uint16_t channel = 0;
+  /// Added with its first message: a topic nobody wrote leaves no channel.
+  std::optional<std::uint16_t> channel;
+  dds::TopicInfo contract;
+  std::map<std::string, std::string> channel_metadata;
   bag::SequenceAudit audit;
   bool has_header = true;  ///< a display schema has none: no seq to audit, no publish time
 };
@@ -74,24 +79,38 @@ int record(const RecordOptions& options, const std::atomic<int>& stop)
       std::fprintf(stderr, "record: not recording %s: %s\n", topic.c_str(), ex.what());
       return;
     }
-    if (!schemas.contains(type)) {
-      schemas[type] = files->addSchema(type, schema.flattenedIdl(type));
-    }
     Recorded& r = recorded[topic];
     r.subscriber = std::move(subscriber);
     r.has_header = contract.has_header;
-    r.channel = files->addChannel(
-        schemas[type], topic,
-        {{"qos_profile", std::string(contract.qos_profile)},
-         {"reliable", qos.reliability().kind == eprosima::fastdds::dds::RELIABLE_RELIABILITY_QOS ? "true" : "false"},
-         {"transient_local", qos.durability().kind != eprosima::fastdds::dds::VOLATILE_DURABILITY_QOS ? "true" : "false"},
-         {"rate_hz", fmt::format("{}", contract.rate_hz)}});
+    r.contract = contract;
+    r.channel_metadata = {
+        {"qos_profile", std::string(contract.qos_profile)},
+        {"reliable", qos.reliability().kind == eprosima::fastdds::dds::RELIABLE_RELIABILITY_QOS ? "true" : "false"},
+        {"transient_local", qos.durability().kind != eprosima::fastdds::dds::VOLATILE_DURABILITY_QOS ? "true" : "false"},
+        {"rate_hz", fmt::format("{}", contract.rate_hz)}};
   };
-  // Topics named outright are subscribed to at once, so that no first sample is missed.
-  for (const auto& t : options.topics) {
-    const auto contract = dds::topics::find(t);
-    if (contract && t.find_first_of("*?[") == std::string::npos && !topic::matchesAnyGlob(t, options.exclude)) {
-      subscribe(*contract);
+  const auto channelOf = [&](Recorded& r) {
+    if (!r.channel) {
+      const std::string type(r.contract.type_name);
+      if (!schemas.contains(type)) {
+        schemas[type] = files->addSchema(type, schema.flattenedIdl(type));
+      }
+      r.channel = files->addChannel(schemas[type], std::string(r.contract.name), r.channel_metadata);
+    }
+    return *r.channel;
+  };
+  const auto topicsWritten = [&] {
+    return static_cast<std::size_t>(
+        std::count_if(recorded.begin(), recorded.end(), [](const auto& kv) { return kv.second.channel.has_value(); }));
+  };
+  // Every selected topic of the contracts is subscribed to at once, before any module writes
+  // it: a reader made only when discovery shows a writer can match after that writer's first
+  // samples (an answer written once, early on) and miss them.
+  for (const auto& contract : dds::topics::kAll) {
+    const std::string name(contract.name);
+    if ((options.topics.empty() || topic::matchesAnyGlob(name, options.topics)) &&
+        !topic::matchesAnyGlob(name, options.exclude)) {
+      subscribe(contract);
     }
   }
 
@@ -112,7 +131,7 @@ int record(const RecordOptions& options, const std::atomic<int>& stop)
         if (header) {
           r.audit.add(writer_id, header->seq);
         }
-        files->write(r.channel, header ? static_cast<std::uint32_t>(header->seq) : 0, log_time, publish,
+        files->write(channelOf(r), header ? static_cast<std::uint32_t>(header->seq) : 0, log_time, publish,
                      sample.payload);
         bytes += sample.payload.size();
       }
@@ -126,13 +145,12 @@ int record(const RecordOptions& options, const std::atomic<int>& stop)
         break;
       }
       if (now >= next_discovery) {
-        // Subscribe to every selected topic a writer appeared on, with the QoS of its
-        // contract (the writers' own, so reliable writers are recorded reliably).
+        // Writers the recording leaves out, said once each: on a topic no contract names, or
+        // with another type than the contract's (every contract's topic is subscribed above).
         for (const auto& e : participant.remoteEndpoints()) {
-          if (!e.writer || recorded.contains(e.topic) || refused.contains(e.topic)) {
-            continue;
-          }
-          if ((!options.topics.empty() && !topic::matchesAnyGlob(e.topic, options.topics)) || topic::matchesAnyGlob(e.topic, options.exclude)) {
+          if (!e.writer || refused.contains(e.topic) ||
+              (!options.topics.empty() && !topic::matchesAnyGlob(e.topic, options.topics)) ||
+              topic::matchesAnyGlob(e.topic, options.exclude)) {
             continue;
           }
           const auto contract = dds::topics::find(e.topic);
@@ -140,9 +158,7 @@ int record(const RecordOptions& options, const std::atomic<int>& stop)
             refused.insert(e.topic);
             std::fprintf(stderr, "record: not recording %s (type %s): %s\n", e.topic.c_str(), e.type_name.c_str(),
                          contract ? "its type differs from the contract's" : "no quad topic contract names it");
-            continue;
           }
-          subscribe(*contract);
         }
         next_discovery = now + 200'000'000;
       }
@@ -150,7 +166,7 @@ int record(const RecordOptions& options, const std::atomic<int>& stop)
       if (now >= next_progress) {
         if (!options.quiet) {
           const double seconds = common::toSeconds(now - start);
-          std::fprintf(stderr, "\rrecord: %zu topics, %llu messages, %.1f MB, %.0f msg/s   ", recorded.size(),
+          std::fprintf(stderr, "\rrecord: %zu topics, %llu messages, %.1f MB, %.0f msg/s   ", topicsWritten(),
                        static_cast<unsigned long long>(files->messages()), static_cast<double>(bytes) / 1e6,
                        static_cast<double>(files->messages()) / std::max(seconds, 1e-9));
         }
@@ -166,7 +182,7 @@ int record(const RecordOptions& options, const std::atomic<int>& stop)
   // Loss figures of the recording, for quad bag info (a display schema has no seq to count).
   std::map<std::string, std::string> loss;
   for (const auto& [topic, r] : recorded) {
-    if (r.has_header) {
+    if (r.has_header && r.channel) {
       loss[topic] = bag::toText(r.audit.figures(), r.audit.writers());
     }
   }
@@ -177,7 +193,7 @@ int record(const RecordOptions& options, const std::atomic<int>& stop)
     return 1;
   }
   std::fprintf(stderr, "\nrecord: %llu messages on %zu topics in %s%s\n",
-               static_cast<unsigned long long>(files->messages()), recorded.size(), files->current().c_str(),
+               static_cast<unsigned long long>(files->messages()), topicsWritten(), files->current().c_str(),
                files->parts() > 1 ? fmt::format(" (the last of {} parts)", files->parts()).c_str() : "");
   return code;
 }

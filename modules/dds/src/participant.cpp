@@ -36,6 +36,7 @@ namespace {
 constexpr int kMaxDomainId = 232;  // RTPS port mapping limit with the default port parameters
 constexpr std::uint32_t kMinUdpMessage = 1200;   // room for an RTPS header and a fragment
 constexpr std::uint32_t kMaxUdpMessage = 65500;  // Fast DDS's own limit
+constexpr std::uint32_t kUdpReceiveBuffer = 4u << 20;  // the kernel caps it at net.core.rmem_max
 
 /// UDPv4 for quad: with the datagram size `max_message` when it is set, on `interfaces`
 /// only when there are any.
@@ -43,6 +44,9 @@ std::shared_ptr<eprosima::fastdds::rtps::UDPv4TransportDescriptor> udpDescriptor
     std::uint32_t max_message, const std::vector<std::string>& interfaces)
 {
   auto d = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
+  // A burst (a map snapshot, a depth cloud, a round's samples) must not overflow the socket
+  // while the receiving thread is busy: best-effort samples lost there are lost for good.
+  d->receiveBufferSize = kUdpReceiveBuffer;
   if (max_message != 0) {
     d->maxMessageSize = max_message;
   }

@@ -53,22 +53,18 @@ void ControlNode::takeInputs()
 {
   while (auto m = imu_.take()) {
     counters().samples_in++;
-    const double t = common::toSeconds(m->header().stamp_ns());
-    if (!fc_.onImu({dds::toVector(m->specific_force_B()), dds::toVector(m->angular_rate_B())}, t)) {
-      counters().errors++;
-      spdlog::warn("{}: sample seq {} rejected: non-finite", dds::topics::kSimImu.info.name, m->header().seq());
-      continue;
+    if (lockstep()) {
+      imu_due_.push_back(std::move(*m));
+    } else {
+      applyImu(*m);
     }
-    imu_ns_ = std::max(imu_ns_, m->header().stamp_ns());
   }
   while (auto b = battery_.take()) {
     counters().samples_in++;
-    const BatteryReading reading{b->voltage(), b->current(), b->charge(), b->capacity(), b->cells()};
-    if (!fc_.onBattery(reading, common::toSeconds(b->header().stamp_ns()))) {
-      counters().errors++;
-      spdlog::warn("{}: sample seq {} rejected: voltage {} V, current {} A, charge {}, capacity {} Ah, {} cells",
-                   dds::topics::kSimBattery.info.name, b->header().seq(), b->voltage(), b->current(), b->charge(),
-                   b->capacity(), b->cells());
+    if (lockstep()) {
+      battery_due_.push_back(std::move(*b));
+    } else {
+      applyBattery(*b);
     }
   }
   while (auto h = operator_.take()) {
@@ -126,6 +122,40 @@ void ControlNode::applyPath(const msg::Path& p, double t)
     counters().errors++;
     spdlog::warn("{}: version {} rejected: invalid waypoints or known-free length ({})", dds::topics::kPath.info.name,
                  p.version(), p.known_free_m());
+  }
+}
+
+void ControlNode::applyImu(const msg::Imu& m)
+{
+  const double t = common::toSeconds(m.header().stamp_ns());
+  if (!fc_.onImu({dds::toVector(m.specific_force_B()), dds::toVector(m.angular_rate_B())}, t)) {
+    counters().errors++;
+    spdlog::warn("{}: sample seq {} rejected: non-finite", dds::topics::kSimImu.info.name, m.header().seq());
+    return;
+  }
+  imu_ns_ = std::max(imu_ns_, m.header().stamp_ns());
+}
+
+void ControlNode::applyBattery(const msg::BatteryState& b)
+{
+  const BatteryReading reading{b.voltage(), b.current(), b.charge(), b.capacity(), b.cells()};
+  if (!fc_.onBattery(reading, common::toSeconds(b.header().stamp_ns()))) {
+    counters().errors++;
+    spdlog::warn("{}: sample seq {} rejected: voltage {} V, current {} A, charge {}, capacity {} Ah, {} cells",
+                 dds::topics::kSimBattery.info.name, b.header().seq(), b.voltage(), b.current(), b.charge(),
+                 b.capacity(), b.cells());
+  }
+}
+
+void ControlNode::applySensorsBefore(std::int64_t stamp_ns)
+{
+  while (!imu_due_.empty() && imu_due_.front().header().stamp_ns() < stamp_ns) {
+    applyImu(imu_due_.front());
+    imu_due_.pop_front();
+  }
+  while (!battery_due_.empty() && battery_due_.front().header().stamp_ns() < stamp_ns) {
+    applyBattery(battery_due_.front());
+    battery_due_.pop_front();
   }
 }
 
@@ -260,6 +290,7 @@ void ControlNode::onWake()
                    state_.topic().name, s.seq, t, common::toSeconds(simClock().ns()));
       continue;
     }
+    applySensorsBefore(s.stamp_ns);
     if (!s.aligned) {
       // An estimator still aligning: nothing to fly on yet, but in lockstep the round waits
       // for the answer to its time (the rotors stay as the mode has them).
@@ -294,6 +325,7 @@ void ControlNode::controlWithoutState()
   const double t = common::toSeconds(now_ns);
   if (t - latest_t_ > config_.flight.state_timeout) {
     last_stateless_ns_ = now_ns;
+    applySensorsBefore(now_ns);
     control(t, now_ns);
     answered_state_.reset();
   }

@@ -72,6 +72,14 @@ private:
   /// In lockstep, paths and goals taken but not yet due, with the sim time each is due at.
   std::deque<std::pair<std::int64_t, msg::Path>> paths_due_;
   std::deque<std::pair<std::int64_t, msg::Goal>> goals_due_;
+  /// In lockstep, IMU and battery samples not yet used: a state stamped t is answered with
+  /// those stamped before t only, whether the plant's samples of t came before the state or
+  /// after it (they come on other writers than the state's), so that runs repeat.
+  std::deque<msg::Imu> imu_due_;
+  std::deque<msg::BatteryState> battery_due_;
+  void applyImu(const msg::Imu& m);
+  void applyBattery(const msg::BatteryState& b);
+  void applySensorsBefore(std::int64_t stamp_ns);
   std::int64_t answered_ns_ = -1;          // in lockstep, the stamp of the last command sent
   msg::ActuatorCommand answer_;            // that command, sent again for a state sent again
   std::optional<dds::StateSample> answered_state_;  // the state it answered (none: the clock's time)

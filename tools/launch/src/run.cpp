@@ -120,6 +120,7 @@ LaunchRun::LaunchRun(const Manifest& m, const LaunchOptions& o, fs::path dir, in
   for (const auto& mod : m.modules) {
     record_.order.push_back(mod.name);
     record_.modules[mod.name] = {mod.kind, mod.host};
+    record_.modules[mod.name].command = commandLine(mod, kRunStateVariable);
   }
 }
 

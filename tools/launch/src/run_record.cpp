@@ -44,7 +44,7 @@ std::string toJson(const RunRecord& r)
     const ModuleRecord& m = it->second;
     modules[name] = {{"kind", m.kind},         {"host", m.host},         {"phase", toString(m.phase)},
                      {"pid", m.pid},           {"starts", m.starts},     {"restarts", m.restarts},
-                     {"last_exit", m.last_exit}, {"started_ns", m.started_ns}};
+                     {"last_exit", m.last_exit}, {"started_ns", m.started_ns}, {"command", m.command}};
   }
   j["modules"] = modules;
   j["stopped_order"] = r.stopped_order;

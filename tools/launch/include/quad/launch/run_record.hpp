@@ -41,6 +41,9 @@ struct ModuleRecord {
   int restarts = 0;
   std::string last_exit;        ///< "exit 0", "killed by SIGKILL", ...; "" while it never ended
   std::int64_t started_ns = 0;  ///< wall time of its newest start [ns]
+  /// Its command line (program, --config, --set, arguments), ${run_state} standing for the
+  /// run's state folder: what `quad replay --inputs-of MODULE --compare` starts again.
+  std::vector<std::string> command;
 };
 
 /// A host of the run as the launcher set it up.

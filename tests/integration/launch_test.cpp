@@ -197,6 +197,63 @@ TEST(Launch, DemoMissionReachesTheGoalInLockstepWithoutCollisionAndTwoRunsRecord
   }
 }
 
+/// `quad replay RECORDING --inputs-of MODULE --compare ...` on `domain`: its exit status and
+/// its JSON answer.
+std::pair<int, nlohmann::json> replayCompare(const fs::path& recording, const std::string& module, int domain,
+                                             const std::vector<std::string>& extra = {})
+{
+  std::vector<std::string> argv{QUAD_TOOL, "replay", recording.string(), "--inputs-of", module, "--compare", "--json",
+                                "--domain", std::to_string(domain)};
+  argv.insert(argv.end(), extra.begin(), extra.end());
+  ChildProcess replay(argv);
+  const auto status = replay.wait(240s);
+  const std::string out = replay.output();
+  const auto json = nlohmann::json::parse(out.substr(std::min(out.find('{'), out.size())), nullptr, false);
+  return {status.value_or(-1), json.is_discarded() ? nlohmann::json{{"output", out}} : json};
+}
+
+TEST(Launch, EachModuleReplayedAloneWithItsRecordedInputsWritesWhatItWroteInTheRun)
+{
+  // GIVEN the demo flown in lockstep, recorded into its run folder
+  const fs::path dir = quad::test::scratchDir("quad_launch_replay");
+  ChildProcess launch({QUAD_TOOL, "launch", std::string(QUAD_SOURCE_DIR) + "/bringup/demo.yaml", "--domain", "64",
+                       "--quiet", "--no-report", "--wall-timeout", "300", "--log-dir", (dir / "run").string()});
+  const auto status = launch.wait(330s);
+  ASSERT_TRUE(status) << launch.output();
+  ASSERT_EQ(*status, 0) << launch.output();
+  const fs::path recording = dir / "run" / "recording.mcap";
+  // WHEN each module is started alone and driven in lockstep by the recorded clock with its
+  // recorded inputs
+  // THEN it writes what it wrote in the run, message for message
+  for (const auto& [module, at_least] : std::vector<std::pair<std::string, int>>{
+           {"planning", 20}, {"mapping", 100}, {"control", 1000}}) {
+    const auto [code, result] = replayCompare(recording, module, 65);
+    EXPECT_EQ(code, 0) << module << " " << result.dump(2);
+    EXPECT_EQ(result["identical"], true) << module << " " << result.dump(2);
+    EXPECT_GT(result["equal_messages"].get<int>(), at_least) << module << " " << result.dump(2);
+  }
+  // AND a planner with a wider safety margin parts from the run at its first different path,
+  // named with the member and both values
+  const auto [code, result] = replayCompare(recording, "planning", 65, {"--set", "safety_margin=0.5"});
+  EXPECT_EQ(code, 1) << result.dump(2);
+  ASSERT_EQ(result["identical"], false) << result.dump(2);
+  bool path_named = false;
+  for (const auto& d : result["differences"]) {
+    if (d["topic"] == "quad/planning/path") {
+      path_named = true;
+      EXPECT_GE(d["index"].get<int>(), 1) << d;
+      EXPECT_FALSE(d["field"].get<std::string>().empty()) << d;
+      EXPECT_NE(d["first"], d["second"]) << d;
+    }
+  }
+  EXPECT_TRUE(path_named) << result.dump(2);
+  // AND a module the recording cannot drive is refused, exit status 2
+  EXPECT_EQ(replayCompare(recording, "plant", 65).first, 2);
+  if (!::testing::Test::HasFailure()) {
+    fs::remove_all(dir);
+  }
+}
+
 /// The participants reading `topic` on `domain`, as discovery shows them within 1.5 s.
 std::set<std::string> readersOf(const std::string& topic, int domain)
 {

@@ -120,31 +120,18 @@ int bagRecover(const std::string& file, std::string output)
   return 0;
 }
 
-int bagDiff(const BagDiffOptions& options)
+bag::CompareOptions simPacedComparison(std::function<bool(const std::string& topic)> selected)
 {
-  bag::McapContents first, second;
-  try {
-    first = bag::readMcap(options.first);
-    second = bag::readMcap(options.second);
-  } catch (const bag::BagError& e) {
-    std::fprintf(stderr, "bag diff: %s\n", e.what());
-    return 2;
-  }
   bag::CompareOptions compare;
-  compare.selected = [&](const std::string& topic) {
-    if (!options.topics.empty() && !topic::matchesAnyGlob(topic, options.topics)) {
-      return false;
-    }
-    if (topic::matchesAnyGlob(topic, options.exclude)) {
-      return false;
-    }
-    return options.all_topics || std::find(dds::topics::kWallPaced.begin(), dds::topics::kWallPaced.end(), topic) ==
-                                     dds::topics::kWallPaced.end();
-  };
+  compare.selected = std::move(selected);
   compare.clock_topic = dds::topics::kSimClock.info.name;
   compare.ignored_fields.assign(dds::topics::kWallClockFields.begin(), dds::topics::kWallClockFields.end());
-  const bag::Comparison c = bag::compareRecordings(first, second, compare);
-  if (options.json) {
+  return compare;
+}
+
+void printComparison(const bag::Comparison& c, bool json)
+{
+  if (json) {
     nlohmann::ordered_json j;
     j["identical"] = c.differences.empty();
     j["topics"] = c.topics;
@@ -165,6 +152,28 @@ int bagDiff(const BagDiffOptions& options)
                   static_cast<double>(d.stamp_ns) * 1e-9, d.field.c_str(), d.first.c_str(), d.second.c_str());
     }
   }
+}
+
+int bagDiff(const BagDiffOptions& options)
+{
+  bag::McapContents first, second;
+  try {
+    first = bag::readMcap(options.first);
+    second = bag::readMcap(options.second);
+  } catch (const bag::BagError& e) {
+    std::fprintf(stderr, "bag diff: %s\n", e.what());
+    return 2;
+  }
+  const bag::Comparison c = bag::compareRecordings(first, second, simPacedComparison([&](const std::string& topic) {
+    if (!options.topics.empty() && !topic::matchesAnyGlob(topic, options.topics)) {
+      return false;
+    }
+    if (topic::matchesAnyGlob(topic, options.exclude)) {
+      return false;
+    }
+    return options.all_topics || dds::topics::isSimPaced(topic);
+  }));
+  printComparison(c, options.json);
   return c.differences.empty() ? 0 : 1;
 }
 

@@ -183,6 +183,20 @@ int main(int argc, char** argv)
   replay->add_flag("--loop", replay_options.loop, "Start over at the end, until Ctrl-C");
   replay->add_option("--wait-match", replay_options.wait_match_s, "Seconds to wait for readers first")
       ->check(CLI::NonNegativeNumber);
+  auto* replay_compare = replay->add_flag(
+      "--compare", replay_options.compare,
+      "With --inputs-of: start that module alone, drive it in lockstep with its recorded inputs and compare its "
+      "outputs with the recorded ones (exit 0 identical, 1 differ, 2 cannot run)");
+  replay->add_option("--run", replay_options.run_dir, "With --compare: the run's folder, holding run.json "
+                                                      "(default: the recording's folder)")
+      ->needs(replay_compare);
+  replay->add_option("--set", replay_options.sets, "With --compare: KEY=VALUE for the module, after the run's own")
+      ->needs(replay_compare);
+  replay->add_option("--round-timeout", replay_options.round_timeout_s,
+                     "With --compare: seconds of wall time a round may wait for the module")
+      ->check(CLI::PositiveNumber)
+      ->needs(replay_compare);
+  replay->add_flag("--json", replay_options.json, "With --compare: the comparison as one JSON object")->needs(replay_compare);
 
   std::string bag_file;
   auto* bag = app.add_subcommand("bag", "Inspect recordings");
@@ -397,7 +411,7 @@ int main(int argc, char** argv)
       return quad::tools::record(record_options);
     }
     if (replay->parsed()) {
-      return quad::tools::replay(replay_options);
+      return replay_options.compare ? quad::tools::replayCompare(replay_options) : quad::tools::replay(replay_options);
     }
     if (security_init->parsed()) {
       return quad::tools::securityInit(security_options);

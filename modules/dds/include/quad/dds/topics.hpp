@@ -4,6 +4,7 @@
 /// The topic contracts: every topic of quad, declared once. Nodes, tools, the recorder and
 /// the docs read them from here; nothing else spells a topic name.
 
+#include <algorithm>
 #include <array>
 #include <optional>
 #include <string_view>
@@ -167,6 +168,12 @@ inline constexpr std::array kWallPaced{
     kLockstep.info.name, kMapSnapshot.info.name, kHeartbeat.info.name, kOperatorHeartbeat.info.name, kDisplayTransforms.info.name, kDisplayTrajectory.info.name,
     kDisplayTrueTrajectory.info.name, kDisplayPath.info.name, kDisplayMap.info.name, kDisplayScene.info.name,
     kDisplayDepth.info.name, kDisplayLog.info.name};
+
+/// Whether `topic` is paced by sim time (not in kWallPaced): what two lockstep runs agree on.
+constexpr bool isSimPaced(std::string_view topic)
+{
+  return std::find(kWallPaced.begin(), kWallPaced.end(), topic) == kWallPaced.end();
+}
 
 /// Members that hold wall-clock or measured compute times ("<scoped struct>.<member>"), and
 /// the writer's sample number, which counts the resends of a participant waiting in wall time

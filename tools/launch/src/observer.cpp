@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "quad/launch/observer.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -89,6 +91,19 @@ void Observer::startMission(const Mission& mission, const world::World& world, d
   goal.tolerance(mission.tolerance_m);
   goal.land(mission.land);
   endpoints_->goal.write(goal);
+}
+
+bool Observer::goalDelivered()
+{
+  if (!endpoints_) {
+    return true;
+  }
+  const auto seen = participant_.remoteEndpoints();
+  const auto readers = std::count_if(seen.begin(), seen.end(), [](const dds::RemoteEndpoint& e) {
+    return !e.writer && e.topic == topics::kGoal.info.name;
+  });
+  return endpoints_->goal.matchedReaders() >= readers &&
+         endpoints_->goal.waitForAcknowledgments(std::chrono::milliseconds(0));
 }
 
 namespace {

@@ -367,6 +367,21 @@ bool LaunchRun::waitForNeeds(const Module& mod)
   return false;
 }
 
+void LaunchRun::waitForGoalDelivery()
+{
+  // The modules that read the goal (started before the plant, whose clock starts the run)
+  // take it 0.1 s of sim time after its stamp; one reaching them after that would be taken a
+  // round later in one run than in another.
+  const std::int64_t deadline = common::steadyTimeNs() + 5 * common::kNanosecondsPerSecond;
+  while (!observer_->goalDelivered() && service(20)) {
+    if (common::steadyTimeNs() >= deadline) {
+      say(fmt::format("{}: not every reader acknowledged the goal within 5 s; going on",
+                      dds::topics::kGoal.info.name));
+      return;
+    }
+  }
+}
+
 void LaunchRun::stopAll()
 {
   // Reverse start order; the discovery server last of all. A paused process must be resumed
@@ -508,6 +523,7 @@ int LaunchRun::execute(RunExtension* extension)
       all_started = false;
       break;
     }
+    waitForGoalDelivery();
     startModule(mod);
   }
   if (all_started) {

@@ -41,6 +41,9 @@ public:
 
   /// Starts following a mission to `world`'s goal: publishes the goal (latched).
   void startMission(const Mission& mission, const world::World& world, double radius);
+  /// Whether every reader of the mission's goal discovered so far has matched its writer and
+  /// acknowledged the goal; true without a mission.
+  bool goalDelivered();
   /// Takes what arrived, feeds the tracker, sends the land command when it asks.
   void update();
   /// The modules' heartbeats that arrived since the last call.

@@ -144,6 +144,8 @@ private:
   std::vector<launch::ProcessCost> processCosts() const;
   void stopAll();
   bool waitForNeeds(const launch::Module& mod);
+  /// Until every reader of the mission's goal discovered so far holds it (5 s at most).
+  void waitForGoalDelivery();
   const launch::Module& module(const std::string& name) const;
   bool interrupted() const { return received_signal.load() != 0; }
 

@@ -174,7 +174,7 @@ int main(int argc, char** argv)
   replay->add_option("file", replay_options.file, "MCAP file")->required();
   replay->add_option("topics", replay_options.topics, "Topics or globs (default: every recorded quad topic)");
   replay->add_option("--exclude", replay_options.exclude, "Globs of topics not to replay");
-  replay->add_option("--inputs-of", replay_options.inputs_of,
+  auto* replay_inputs_of = replay->add_option("--inputs-of", replay_options.inputs_of,
                      "Module in the loop: replay only what this module does not write (plant, mapping, planning, control)")
       ->check(CLI::IsMember({"plant", "mapping", "planning", "control"}));
   replay->add_option("-r,--rate", replay_options.rate, "Speed factor")->check(CLI::PositiveNumber);
@@ -186,7 +186,8 @@ int main(int argc, char** argv)
   auto* replay_compare = replay->add_flag(
       "--compare", replay_options.compare,
       "With --inputs-of: start that module alone, drive it in lockstep with its recorded inputs and compare its "
-      "outputs with the recorded ones (exit 0 identical, 1 differ, 2 cannot run)");
+      "outputs with the recorded ones (exit 0 identical, 1 differ, 2 cannot run)")
+      ->needs(replay_inputs_of);
   replay->add_option("--run", replay_options.run_dir, "With --compare: the run's folder, holding run.json "
                                                       "(default: the recording's folder)")
       ->needs(replay_compare);

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // quad replay RECORDING --inputs-of MODULE --compare: the module in the loop of its recorded
 // inputs, in lockstep, and what it writes compared with what it wrote in the run.
+#include "quad/replay/replay.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -30,7 +32,6 @@
 #include "quad/launch/manifest.hpp"
 #include "quad/process/spawn.hpp"
 #include "quad/topic/connection.hpp"
-#include "bag_commands.hpp"
 
 namespace quad::tools {
 

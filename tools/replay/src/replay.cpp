@@ -1,4 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
+#include "quad/replay/replay.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -12,7 +14,6 @@
 #include "quad/dds/node.hpp"
 #include "quad/dds/raw_type.hpp"
 #include "quad/dds/topics.hpp"
-#include "bag_commands.hpp"
 
 namespace quad::tools {
 

@@ -20,6 +20,7 @@ using Json = nlohmann::ordered_json;
 struct TopicMessages {
   std::string type;  // scoped ("quad::msg::Path")
   std::vector<const Message*> messages;
+  double rate_hz = 0.0;  // its contract's, as the recorder noted it on the channel; 0: unknown or none
 };
 
 std::map<std::string, TopicMessages> byTopic(const McapContents& c, const CompareOptions& options)
@@ -36,6 +37,13 @@ std::map<std::string, TopicMessages> byTopic(const McapContents& c, const Compar
     }
     TopicMessages& t = topics[ch.topic];
     t.type = schema_names[ch.schema_id];  // the DDS type name, which is the IDL's scoped name
+    if (const auto rate = ch.metadata.find("rate_hz"); rate != ch.metadata.end()) {
+      try {
+        t.rate_hz = std::stod(rate->second);
+      } catch (const std::exception&) {
+        t.rate_hz = 0.0;
+      }
+    }
     channels[ch.id] = &t;
   }
   for (const auto& m : c.messages) {
@@ -257,6 +265,12 @@ Comparison compareRecordings(const McapContents& a, const McapContents& b, const
     }
     const std::uint64_t lost_a = recordedLoss(a, topic);
     const std::uint64_t lost_b = recordedLoss(b, topic);
+    // A sample lost in the last period of its topic before the end leaves no later number to
+    // reveal the loss: there, one only one recording holds is passed over.
+    const double rate = std::max(x->second.rate_hz, y->second.rate_hz);
+    const std::int64_t tail_from = aligned && rate > 0.0 && end != std::numeric_limits<std::int64_t>::max()
+                                       ? end - static_cast<std::int64_t>(1e9 / rate)
+                                       : std::numeric_limits<std::int64_t>::max();
     std::uint64_t only_a = 0, only_b = 0;
     Walker walker(schema, ignored);
     std::optional<Found> at;
@@ -269,13 +283,17 @@ Comparison compareRecordings(const McapContents& a, const McapContents& b, const
         // A message only one recording holds: the other's recorder lost it, as its loss
         // figures say, or the runs differ here.
         const bool a_first = key(p) < key(q);
-        if (a_first ? ++only_a <= lost_b : ++only_b <= lost_a) {
+        if ((a_first ? p : q)->stamp_ns >= tail_from || (a_first ? ++only_a <= lost_b : ++only_b <= lost_a)) {
           a_first ? ++i : ++j;
           continue;
         }
       }
       if (!p || !q || (aligned && key(p) != key(q))) {
         const Decoded::Entry* e = p ? p : q;
+        if ((!p || !q) && e->stamp_ns >= tail_from) {
+          p ? ++i : ++j;
+          continue;
+        }
         at = Found{e->message->log_time,
                    {topic, index, e->stamp_ns, "message", p && (!q || key(p) < key(q)) ? "present" : "absent",
                     q && (!p || key(q) < key(p)) ? "present" : "absent"}};

@@ -123,5 +123,37 @@ TEST(Compare, LengthsCountsTopicsAndRawPayloadsAreDifferencesToo)
   EXPECT_TRUE(compareRecordings(a, more, selected).differences.empty());
 }
 
+/// A recording of a 10 Hz path topic (the rate noted on its channel) at `path_ms` and a sim
+/// clock up to 1 s.
+McapContents clockedRecording(const std::vector<std::int64_t>& path_ms)
+{
+  McapContents c;
+  c.schemas = {{1, "quad::msg::Path", "omgidl", ""}, {2, "quad::msg::SimClock", "omgidl", ""}};
+  c.channels = {{1, 1, "quad/planning/path", "cdr", {{"rate_hz", "10"}}}, {2, 2, "quad/sim/clock", "cdr", {}}};
+  std::uint64_t log = 0;
+  for (const std::int64_t t : path_ms) {
+    c.messages.push_back({1, 0, ++log, 0, path(t * 1'000'000, 0, 2)});
+  }
+  for (std::int64_t t = 0; t <= 1000; t += 100) {
+    const Json clock = {{"header", {{"stamp_ns", t * 1'000'000}}}, {"sim_ns", t * 1'000'000}};
+    c.messages.push_back({2, 0, ++log, 0, in::encodeCdr(in::quadSchema(), "quad::msg::SimClock", clock)});
+  }
+  return c;
+}
+
+TEST(Compare, AMessageOnlyOneRecordingHoldsInItsTopicsLastPeriodBeforeTheEndIsPassedOver)
+{
+  CompareOptions options = kIgnoringWallTime;
+  options.clock_topic = "quad/sim/clock";
+  // Lost at the end (0.95 s, within 0.1 s of the clock's end at 1 s): nothing later reveals it.
+  const Comparison tail = compareRecordings(clockedRecording({100, 500, 950}), clockedRecording({100, 500}), options);
+  EXPECT_TRUE(tail.differences.empty());
+  // Earlier, the same absence is a difference.
+  const Comparison early = compareRecordings(clockedRecording({100, 500, 950}), clockedRecording({100, 950}), options);
+  ASSERT_EQ(early.differences.size(), 1U);
+  EXPECT_EQ(early.differences[0].field, "message");
+  EXPECT_EQ(early.differences[0].stamp_ns, 500'000'000);
+}
+
 }  // namespace
 }  // namespace quad::bag

@@ -7,8 +7,10 @@
 /// hold the topic (a recorder subscribes once it sees a writer) to where the sooner of the
 /// two clocks ended (that instant left out: a plant stopped there reports the run's end). A
 /// sample sent again (the same stamp and content, a new number) counts
-/// once; a message one recorder lost, as its loss figures count, is passed over. Others are
-/// paired in order.
+/// once; a message one recorder lost, as its loss figures count, is passed over, and so is one
+/// only one recording holds within the last period of its topic (the channel's `rate_hz`)
+/// before that end, where a lost sample has no later number to reveal it. Others are paired in
+/// order.
 
 #include <cstdint>
 #include <functional>

@@ -464,4 +464,14 @@ Manifest loadManifest(const fs::path& file, const ManifestOverrides& overrides, 
   return parseManifest(common::readTextFile(absolute), absolute, overrides, lookup);
 }
 
+std::string withRunState(std::string text, const std::filesystem::path& state_dir)
+{
+  const std::string var = kRunStateVariable;
+  for (auto at = text.find(var); at != std::string::npos; at = text.find(var, at)) {
+    text.replace(at, var.size(), state_dir.string());
+    at += state_dir.string().size();
+  }
+  return text;
+}
+
 }  // namespace quad::launch

@@ -78,17 +78,6 @@ std::map<std::string, std::string> runEnvironment(const Manifest& m, int domain,
 }
 
 /// The module's command line: program, --config, --set, then its own arguments.
-/// `text` with every ${run_state} replaced by the run's state folder.
-std::string withRunState(std::string text, const fs::path& state_dir)
-{
-  const std::string var = kRunStateVariable;
-  for (auto at = text.find(var); at != std::string::npos; at = text.find(var, at)) {
-    text.replace(at, var.size(), state_dir.string());
-    at += state_dir.string().size();
-  }
-  return text;
-}
-
 std::vector<std::string> commandLine(const Module& mod, const fs::path& state_dir)
 {
   std::vector<std::string> argv{mod.program.string()};

@@ -71,13 +71,7 @@ std::vector<std::string> moduleCommand(const fs::path& run_json, const std::stri
     }
     std::vector<std::string> argv;
     for (const auto& a : m["command"]) {
-      std::string arg = a.get<std::string>();
-      const std::string var = launch::kRunStateVariable;
-      for (auto at = arg.find(var); at != std::string::npos; at = arg.find(var, at)) {
-        arg.replace(at, var.size(), state_dir.string());
-        at += state_dir.string().size();
-      }
-      argv.push_back(std::move(arg));
+      argv.push_back(launch::withRunState(a.get<std::string>(), state_dir));
     }
     for (const auto& s : sets) {
       argv.insert(argv.end(), {"--set", s});

@@ -103,6 +103,10 @@ struct Manifest {
 /// starts, kept across the modules' restarts within it).
 inline constexpr const char* kRunStateVariable = "${run_state}";
 
+/// `text` with every ${run_state} replaced by `state_dir`: a module's command line and
+/// environment for its run (the launcher), or for a replay of it (quad replay --compare).
+std::string withRunState(std::string text, const std::filesystem::path& state_dir);
+
 struct ManifestOverrides {
   std::optional<std::filesystem::path> world;
   std::optional<std::string> mode;

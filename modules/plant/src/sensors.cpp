@@ -2,6 +2,7 @@
 #include "quad/plant/sensors.hpp"
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -40,8 +41,14 @@ DepthScan DepthCamera::capture(const world::World& world, const geometry::Pose3&
 }
 
 DepthScan DepthCamera::captureFrom(const world::World& world, const geometry::Pose3& sensor_W,
-                                   std::mt19937_64& rng, double extra_noise_std) const
+                                   std::mt19937_64& rng, double extra_noise_std,
+                                   std::span<const world::Sphere> others) const
 {
+  std::vector<world::Obstacle> bodies;
+  bodies.reserve(others.size());
+  for (const world::Sphere& s : others) {
+    bodies.push_back(world::Obstacle::makeSphere(s));
+  }
   DepthScan scan;
   scan.sensor_W = sensor_W;
   const geometry::Matrix3 R_WS = geometry::toMatrix(scan.sensor_W.q);
@@ -49,10 +56,21 @@ DepthScan DepthCamera::captureFrom(const world::World& world, const geometry::Po
   std::normal_distribution<double> noise(0.0, 1.0);
   scan.points_S.reserve(directions_.size());
   for (const Vector3& d_S : directions_) {
-    const auto hit = world.raycast(scan.sensor_W.p, R_WS * d_S, config_.max_range);
-    double range = config_.max_range * kMissFactor;
+    const Vector3 d_W = R_WS * d_S;
+    const auto hit = world.raycast(scan.sensor_W.p, d_W, config_.max_range);
+    std::optional<double> nearest;
     if (hit) {
-      range = std::max(0.0, hit->distance + noise_std * noise(rng));
+      nearest = hit->distance;
+    }
+    for (const world::Obstacle& body : bodies) {
+      const auto t = body.raycast(scan.sensor_W.p, d_W, nearest.value_or(config_.max_range));
+      if (t && (!nearest || *t < *nearest)) {
+        nearest = t;
+      }
+    }
+    double range = config_.max_range * kMissFactor;
+    if (nearest) {
+      range = std::max(0.0, *nearest + noise_std * noise(rng));
       ++scan.hits;
     }
     scan.points_S.push_back((d_S * range).cast<float>());

@@ -296,7 +296,7 @@ StepOutputs Simulation::step()
       !sensorFault(Sensor::kDepth, Fault::Kind::kSensorDropout)) {
     if (!sensorFault(Sensor::kDepth, Fault::Kind::kSensorStuck) || !last_depth_) {
       const geometry::Pose3 sensor_W = cameraPose();
-      last_depth_ = DepthReading{t_ns_, camera_.captureFrom(world_, sensor_W, rng_, sensorNoise(Sensor::kDepth)),
+      last_depth_ = DepthReading{t_ns_, camera_.captureFrom(world_, sensor_W, rng_, sensorNoise(Sensor::kDepth), others_),
                                  geometry::Pose3{state_.p_W, state_.q_WB}.inverse() * sensor_W};
     }
     last_depth_->t_ns = t_ns_;

@@ -7,6 +7,7 @@
 #include <map>
 
 #include "quad/common/params.hpp"
+#include "test_vehicle.hpp"
 
 namespace quad::plant {
 namespace {
@@ -15,15 +16,7 @@ using world::Bounds;
 using world::Obstacle;
 using world::World;
 
-vehicle::VehicleParams vehicle()
-{
-  vehicle::VehicleParams v;
-  v.mass = 2.0;
-  v.radius = 0.35;
-  v.drag_linear.setZero();
-  v.drag_quadratic.setZero();
-  return v;
-}
+vehicle::VehicleParams vehicle() { return test::dragFreeVehicle(); }
 
 World corridor()
 {

@@ -8,6 +8,7 @@
 /// heading) are in navigation_sensors.hpp.
 
 #include <random>
+#include <span>
 #include <vector>
 
 #include <Eigen/Core>
@@ -55,9 +56,10 @@ public:
   /// A frame from the camera on its fixed mount on a body at `body_W`.
   DepthScan capture(const world::World& world, const geometry::Pose3& body_W, std::mt19937_64& rng,
                     double extra_noise_std = 0.0) const;
-  /// A frame from a camera at `sensor_W` (on a gimbal, say): rays cast from its origin.
+  /// A frame from a camera at `sensor_W` (on a gimbal, say): rays cast from its origin, at the
+  /// world and at `others` (other vehicles, each its bounding sphere).
   DepthScan captureFrom(const world::World& world, const geometry::Pose3& sensor_W, std::mt19937_64& rng,
-                        double extra_noise_std = 0.0) const;
+                        double extra_noise_std = 0.0, std::span<const world::Sphere> others = {}) const;
 
 private:
   DepthCameraConfig config_;

@@ -53,6 +53,7 @@ struct SimEventRecord {
   Vector3 p_W = Vector3::Zero();
   std::int64_t subject_id = -1;  ///< obstacle index (world::World::kBounds for the bounds) or fault id
   std::string detail;
+  std::int64_t other_vehicle = -1;  ///< the vehicle touched, for a collision between two vehicles (Fleet)
 };
 
 struct StateSample {
@@ -152,6 +153,11 @@ public:
   /// Places the vehicle (scenarios and tests: start in the air, moving).
   void setState(const RigidBodyState& state) { state_ = state; }
 
+  /// The other vehicles in the world, each its bounding sphere, as the next step's depth
+  /// camera sees them (a Fleet sets them before every step; contacts between vehicles are the
+  /// Fleet's to detect).
+  void setOthers(std::vector<world::Sphere> others) { others_ = std::move(others); }
+
   /// Advances one step.
   StepOutputs step();
   /// [m/s] the air's velocity at the vehicle, in the world (steady, turbulence, gusts).
@@ -198,6 +204,7 @@ private:
   std::int64_t t_ns_ = 0;
   std::vector<Active> faults_;
   std::vector<int> contacts_;
+  std::vector<world::Sphere> others_;
   std::uint64_t collisions_ = 0;
   std::int64_t next_state_ns_ = 0;
   std::int64_t next_imu_ns_ = 0;

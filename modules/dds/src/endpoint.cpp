@@ -250,14 +250,24 @@ std::vector<ReaderEndpoint::WriterLiveliness> ReaderEndpoint::takeLivelinessChan
 bool ReaderEndpoint::ownVehicle(std::uint32_t vehicle_id)
 {
   const std::uint32_t own = participant_.options().vehicle_id;
-  if (vehicle_id == own) {
+  return servedVehicle(vehicle_id, std::span<const std::uint32_t>(&own, 1));
+}
+
+bool ReaderEndpoint::servedVehicle(std::uint32_t vehicle_id, std::span<const std::uint32_t> served)
+{
+  if (std::find(served.begin(), served.end(), vehicle_id) != served.end()) {
     return true;
   }
   const std::uint64_t n = ++foreign_;
   if ((n & (n - 1)) == 0) {
+    std::string serving;
+    for (const std::uint32_t id : served) {
+      serving += (serving.empty() ? "" : ", ") + std::to_string(id);
+    }
     participant_.events().push({EventKind::kForeignSample, std::string(info_.name),
-                                "sample for vehicle " + std::to_string(vehicle_id) + " ignored (this is vehicle " +
-                                    std::to_string(own) + "; " + std::to_string(n) + " so far)"});
+                                "sample for vehicle " + std::to_string(vehicle_id) + " ignored (" +
+                                    (served.size() == 1 ? "this is vehicle " : "this serves vehicles ") + serving +
+                                    "; " + std::to_string(n) + " so far)"});
   }
   return false;
 }

@@ -10,6 +10,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include <fastdds/dds/publisher/DataWriter.hpp>
@@ -124,6 +125,9 @@ protected:
   /// True for a sample of this participant's vehicle; else counts it and reports it (the 1st,
   /// 2nd, 4th, 8th... time) as an event.
   bool ownVehicle(std::uint32_t vehicle_id);
+  /// The same for a participant that serves several vehicles (a plant simulating a fleet):
+  /// true when `vehicle_id` is one of `served`.
+  bool servedVehicle(std::uint32_t vehicle_id, std::span<const std::uint32_t> served);
 
 private:
   class Listener;

@@ -5,6 +5,8 @@
 
 #include <cstdint>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "quad/common/time.hpp"
 #include "quad/dds/endpoint.hpp"
@@ -29,20 +31,7 @@ public:
   }
 
   /// Returns false (counted, reported as an event) when the middleware refused the sample.
-  bool write(Message& sample)
-  {
-    if constexpr (MessageTraits<Message>::kHasHeader) {
-      auto& header = sample.header();
-      header.vehicle_id(vehicle_id_);
-      header.seq(seq_ + 1);  // a number is used only by a sample the middleware took
-      header.publish_ns(common::wallTimeNs());
-    }
-    const bool written = writeSample(&sample);
-    if (written) {
-      ++seq_;
-    }
-    return written;
-  }
+  bool write(Message& sample) { return writeFor(vehicle_id_, sample); }
 
   /// For a sample built in place: `publisher.write(toMessage(x))`.
   bool write(Message&& sample)
@@ -51,12 +40,56 @@ public:
     return write(filled);
   }
 
-  /// The Header.seq of the newest sample the middleware took (0: none yet).
-  std::uint64_t lastSeq() const { return seq_; }
+  /// Writes a sample about another vehicle than the participant's (a plant simulating a
+  /// fleet): its Header names that vehicle, and each vehicle's samples are numbered on their
+  /// own, so that its readers see no gap.
+  bool writeFor(std::uint32_t vehicle_id, Message& sample)
+  {
+    std::uint64_t& seq = seqOf(vehicle_id);
+    if constexpr (MessageTraits<Message>::kHasHeader) {
+      auto& header = sample.header();
+      header.vehicle_id(vehicle_id);
+      header.seq(seq + 1);  // a number is used only by a sample the middleware took
+      header.publish_ns(common::wallTimeNs());
+    }
+    const bool written = writeSample(&sample);
+    if (written) {
+      ++seq;
+    }
+    return written;
+  }
+  bool writeFor(std::uint32_t vehicle_id, Message&& sample)
+  {
+    Message& filled = sample;
+    return writeFor(vehicle_id, filled);
+  }
+
+  /// The Header.seq of the newest sample the middleware took (0: none yet), of the
+  /// participant's vehicle or of `vehicle_id`.
+  std::uint64_t lastSeq() const { return lastSeq(vehicle_id_); }
+  std::uint64_t lastSeq(std::uint32_t vehicle_id) const
+  {
+    for (const auto& [id, seq] : seqs_) {
+      if (id == vehicle_id) {
+        return seq;
+      }
+    }
+    return 0;
+  }
 
 private:
+  std::uint64_t& seqOf(std::uint32_t vehicle_id)
+  {
+    for (auto& [id, seq] : seqs_) {
+      if (id == vehicle_id) {
+        return seq;
+      }
+    }
+    return seqs_.emplace_back(vehicle_id, 0).second;
+  }
+
   std::uint32_t vehicle_id_;
-  std::uint64_t seq_ = 0;
+  std::vector<std::pair<std::uint32_t, std::uint64_t>> seqs_;  // per vehicle written for: its last seq
 };
 
 }  // namespace quad::dds

@@ -4,6 +4,7 @@
 /// A typed reader on a topic contract.
 
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "quad/dds/endpoint.hpp"
@@ -35,6 +36,21 @@ public:
       if constexpr (!MessageTraits<Message>::kHasHeader) {
         return sample;
       } else if (ownVehicle(sample.header().vehicle_id())) {
+        return sample;
+      }
+    }
+    return std::nullopt;
+  }
+
+  /// The next unread sample of any of the `served` vehicles (a plant simulating a fleet takes
+  /// every vehicle's commands); samples of other vehicles are dropped and counted as take()
+  /// drops them.
+  std::optional<Message> takeServed(std::span<const std::uint32_t> served)
+  {
+    static_assert(MessageTraits<Message>::kHasHeader, "only a sample with a Header names its vehicle");
+    Message sample;
+    while (takeSample(&sample)) {
+      if (servedVehicle(sample.header().vehicle_id(), served)) {
         return sample;
       }
     }

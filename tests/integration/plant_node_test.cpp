@@ -1,11 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The plant node as a process: real time, lockstep determinism, faults, bad configuration.
+// The plant node as a process: real time, lockstep determinism, faults, bad configuration, a
+// fleet of vehicles.
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -23,13 +27,19 @@ std::map<std::string, std::string> env(int domain)
   return {{"QUAD_DOMAIN_ID", std::to_string(domain)}, {"QUAD_TRANSPORT", "udp"}};
 }
 
+/// A file of this test's, in its folder.
+std::filesystem::path testFile(const std::string& name)
+{
+  const auto dir = std::filesystem::temp_directory_path() / "quad_plant_node_test";
+  std::filesystem::create_directories(dir);
+  return dir / name;
+}
+
 /// Writes a plant config next to the shipped ones (so its relative paths resolve) and
 /// returns its path.
 std::string config(const std::string& name, const std::string& body)
 {
-  const auto dir = std::filesystem::temp_directory_path() / "quad_plant_node_test";
-  std::filesystem::create_directories(dir);
-  const auto path = dir / name;
+  const auto path = testFile(name);
   std::ofstream(path) << "vehicle: " << QUAD_CONFIG_DIR << "/vehicles/x500.yaml\n"
                       << "world: " << QUAD_CONFIG_DIR << "/worlds/demo.yaml\n"
                       << body;
@@ -146,6 +156,94 @@ TEST(PlantNode, BadWorldIsRefusedNamingFileKeyAndValue)
   EXPECT_NE(plant.output().find(world.string() + ":obstacles[0].radius: .nan: not a finite number"),
             std::string::npos)
       << plant.output();
+}
+
+/// A fleet file beside the test's configs.
+std::string fleetFile(const std::string& name, const std::string& body)
+{
+  const auto path = testFile(name);
+  std::ofstream(path) << body;
+  return path.string();
+}
+
+TEST(PlantNode, AFleetFliesInOneWorldEachVehicleUnderItsIdAndTwoThatMeetCollide)
+{
+  // GIVEN two vehicles of one fleet, the second 1.2 m above the first, which stands on the
+  // ground: without commands it falls onto it (their 0.35 m spheres meet after 0.5 m)
+  const std::string fleet =
+      fleetFile("fleet.yaml", "vehicles:\n  - {id: 1, start: [0, 0, 0]}\n  - {id: 2, start: [0, 0, 1.2]}\n");
+  ChildProcess events({QUAD_TOOL, "topic", "echo", "quad/sim/events", "--json"}, env(70));
+  // WHEN one plant simulates the fleet for 3 s of sim time
+  ChildProcess plant({QUAD_PLANT_NODE, "--config", config("fleet_plant.yaml", "fleet: " + fleet + "\nsim: {duration: 3.0}\n")},
+                     env(70));
+  ChildProcess states({QUAD_TOOL, "topic", "echo", "quad/sim/state", "-n", "20", "--json", "--timeout", "10"}, env(70));
+  // THEN each vehicle's samples come under its own id, from where it is
+  EXPECT_EQ(states.wait(15s), 0) << states.output();
+  std::map<int, double> height;
+  for (const auto& s : quad::test::jsonLines(states.output())) {
+    height[s["header"]["vehicle_id"].get<int>()] = s["p_W"]["z"].get<double>();
+  }
+  ASSERT_EQ(height.size(), 2U) << states.output();
+  EXPECT_EQ(height[1], 0.0);
+  EXPECT_GT(height[2], 0.0);
+  EXPECT_EQ(plant.wait(20s), 0) << plant.output();
+  // AND each vehicle's events say it collided once, both at the same time, and its run ended
+  // with that one collision
+  events.waitForOutput("SIM_EVENT_RUN_ENDED", 20s);
+  std::map<int, std::vector<std::int64_t>> collisions;
+  std::map<int, nlohmann::json> ended;
+  std::map<int, std::vector<std::uint64_t>> seqs;
+  for (int i = 0; i < 50 && ended.size() < 2; ++i) {
+    ended.clear();
+    collisions.clear();
+    seqs.clear();
+    for (const auto& e : quad::test::jsonLines(events.output())) {
+      const int vehicle = e["header"]["vehicle_id"].get<int>();
+      seqs[vehicle].push_back(e["header"]["seq"].get<std::uint64_t>());
+      if (e["kind"] == "SIM_EVENT_COLLISION") {
+        collisions[vehicle].push_back(e["header"]["stamp_ns"].get<std::int64_t>());
+      } else if (e["kind"] == "SIM_EVENT_RUN_ENDED") {
+        ended[vehicle] = e;
+      }
+    }
+    std::this_thread::sleep_for(100ms);
+  }
+  ASSERT_EQ(collisions[1].size(), 1U) << events.output();
+  ASSERT_EQ(collisions[2].size(), 1U) << events.output();
+  EXPECT_EQ(collisions[1][0], collisions[2][0]);
+  // 0.5 m of free fall: about 0.32 s
+  EXPECT_NEAR(static_cast<double>(collisions[1][0]) * 1e-9, 0.32, 0.03);
+  for (const int vehicle : {1, 2}) {
+    // each vehicle's samples are numbered on their own: 1, 2, 3, ... without a gap
+    for (std::size_t k = 0; k < seqs[vehicle].size(); ++k) {
+      EXPECT_EQ(seqs[vehicle][k], k + 1) << events.output();
+    }
+    ASSERT_FALSE(ended[vehicle].is_null()) << events.output();
+    EXPECT_EQ(ended[vehicle]["subject_id"], 1) << ended[vehicle];
+    EXPECT_EQ(ended[vehicle]["header"]["stamp_ns"], 3'000'000'000LL) << ended[vehicle];
+  }
+}
+
+TEST(PlantNode, AFleetWhoseVehiclesStartInContactOrShareAnIdIsRefusedNamingTheFileAndThem)
+{
+  struct Case {
+    const char* file;
+    const char* vehicles;
+    std::string says;  // after the fleet file's path
+  };
+  const Case cases[] = {
+      {"touching.yaml", "  - {id: 4, start: [0, 0, 0]}\n  - {id: 7, start: [0.5, 0, 0]}\n",
+       ": vehicles 4 and 7 start 0.500 m apart, in contact"},
+      {"repeated.yaml", "  - {id: 4, start: [0, 0, 0]}\n  - {id: 4, start: [5, 0, 0]}\n",
+       ":vehicles[1].id: 4: already the id of vehicles[0]"},
+  };
+  for (const Case& c : cases) {
+    const std::string fleet = fleetFile(c.file, std::string("vehicles:\n") + c.vehicles);
+    ChildProcess plant({QUAD_PLANT_NODE, "--config", config(std::string("plant_") + c.file, "fleet: " + fleet + "\n")},
+                       env(71));
+    EXPECT_EQ(plant.wait(10s), 1) << plant.output();
+    EXPECT_NE(plant.output().find(fleet + c.says), std::string::npos) << plant.output();
+  }
 }
 
 }  // namespace

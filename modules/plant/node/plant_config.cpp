@@ -37,6 +37,9 @@ const common::ParamTable<PlantNodeConfig>& plantTable()
         .path("world", [](C& c) -> std::filesystem::path& { return c.world_file; }, "world file")
         .path("faults.schedule", [](C& c) -> std::filesystem::path& { return c.fault_schedule_file; },
               "fault schedule file; empty: none")
+        .path("fleet", [](C& c) -> std::filesystem::path& { return c.fleet_file; },
+              "fleet file: the vehicles simulated, each with its id and start; empty: one vehicle, this "
+              "participant's, at the world's start")
         .seconds("commands.timeout", [](C& c) -> std::int64_t& { return c.simulation.command_timeout_ns; },
                  {0.001, 10.0}, "rotor commands older than this are late")
         .seconds("commands.failsafe_after",

@@ -28,6 +28,9 @@ struct PlantNodeConfig {
   std::filesystem::path vehicle_file = "vehicles/x500.yaml";
   std::filesystem::path world_file = "worlds/demo.yaml";
   std::filesystem::path fault_schedule_file;    ///< empty: none
+  /// The vehicles simulated (plant/fleet_file.hpp); empty: one, the participant's vehicle
+  /// (QUAD_VEHICLE_ID) at the world's start, with `vehicle_file` and the fault schedule.
+  std::filesystem::path fleet_file;
   SimulationConfig simulation;
 };
 

@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "plant_node.hpp"
 
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include "conversions.hpp"
 #include "quad/dds/fault_messages.hpp"
 #include "quad/dds/geometry_messages.hpp"
 #include "quad/common/time.hpp"
+#include "quad/plant/fleet_file.hpp"
 #include "quad/world/world_file.hpp"
 
 namespace quad::plant {
@@ -31,16 +33,35 @@ std::string verdictText(CommandGuard::Verdict v)
   }
   return "?";
 }
+
+
+std::unique_ptr<Fleet> makeFleet(const PlantNodeConfig& config, std::uint32_t own_id)
+{
+  const world::World world = world::loadWorld(config.world_file);
+  std::vector<FleetVehicle> vehicles;
+  if (config.fleet_file.empty()) {
+    vehicles.push_back({own_id, vehicle::loadVehicle(config.vehicle_file), world.start(), world.goal(),
+                        config.fault_schedule_file.empty() ? std::vector<Fault>{}
+                                                           : loadFaultSchedule(config.fault_schedule_file)});
+  } else {
+    if (!config.fault_schedule_file.empty()) {
+      throw common::ConfigError({"faults.schedule: " + config.fault_schedule_file.string() +
+                                 ": with a fleet file, each vehicle's schedule is its `faults` there"});
+    }
+    vehicles = loadFleet(config.fleet_file, world, config.vehicle_file);
+    if (const auto why = Fleet::problem(vehicles)) {
+      throw common::ConfigError({config.fleet_file.string() + ": " + *why});
+    }
+  }
+  return std::make_unique<Fleet>(std::move(vehicles), world, config.simulation);
+}
+
 }  // namespace
 
 PlantNode::PlantNode(PlantNodeConfig config, dds::ParticipantOptions options)
     : Node("plant", std::move(options)),
       config_(std::move(config)),
-      sim_(std::make_unique<Simulation>(
-          vehicle::loadVehicle(config_.vehicle_file), world::loadWorld(config_.world_file),
-          config_.simulation,
-          config_.fault_schedule_file.empty() ? std::vector<Fault>{}
-                                              : loadFaultSchedule(config_.fault_schedule_file))),
+      fleet_(makeFleet(config_, participant().options().vehicle_id)),
       clock_(participant(), dds::topics::kSimClock),
       state_(participant(), dds::topics::kSimState),
       imu_(participant(), dds::topics::kSimImu),
@@ -53,13 +74,21 @@ PlantNode::PlantNode(PlantNodeConfig config, dds::ParticipantOptions options)
       actuators_(participant(), dds::topics::kActuators, waker()),
       faults_(participant(), dds::topics::kFault, waker())
 {
+  for (const std::uint32_t id : fleet_->ids()) {
+    io_.push_back({.id = id});
+  }
   if (config_.mode == PlantNodeConfig::Mode::kLockstep && !config_.lockstep_participants.empty()) {
     barrier_ = std::make_unique<dds::LockstepBarrier>(participant(), config_.lockstep_participants, waker());
   }
   setTickPeriod(kRealTimeTickNs);
   setLockstep(config_.mode == PlantNodeConfig::Mode::kLockstep);
-  spdlog::info("plant: vehicle {}, world {} ({} obstacles), {} mode, seed {}", config_.vehicle_file.string(),
-               config_.world_file.string(), sim_->world().obstacles().size(),
+  const std::string vehicles =
+      config_.fleet_file.empty()
+          ? config_.vehicle_file.string()
+          : fmt::format("{} vehicles ({}) from {}", io_.size(), fmt::join(fleet_->ids(), ", "),
+                        config_.fleet_file.string());
+  spdlog::info("plant: vehicle {}, world {} ({} obstacles), {} mode, seed {}", vehicles, config_.world_file.string(),
+               simulation().world().obstacles().size(),
                config_.mode == PlantNodeConfig::Mode::kLockstep ? "lockstep" : "real-time",
                config_.simulation.seed);
   const WindConfig& wind = config_.simulation.wind;
@@ -71,159 +100,184 @@ PlantNode::PlantNode(PlantNodeConfig config, dds::ParticipantOptions options)
   }
 }
 
-void PlantNode::event(msg::SimEventKind kind, std::int64_t subject, const std::string& detail)
+void PlantNode::event(std::size_t vehicle, msg::SimEventKind kind, std::int64_t subject, const std::string& detail)
 {
+  const Simulation& sim = fleet_->vehicle(vehicle);
   msg::SimEvent e;
-  e.header().stamp_ns(sim_->timeNs());
+  e.header().stamp_ns(sim.timeNs());
   e.kind(kind);
-  e.p_W(dds::toMessage(sim_->state().p_W));
+  e.p_W(dds::toMessage(sim.state().p_W));
   e.subject_id(subject);
   e.detail(detail.substr(0, 256));
-  events_.write(e);
+  events_.writeFor(io_[vehicle].id, e);
 }
 
 void PlantNode::onStart()
 {
   wall_start_ns_ = common::steadyTimeNs();
-  event(msg::SIM_EVENT_RUN_STARTED, -1, "plant started");
-  publishClock();
-  // The initial state, so that a controller can compute the first command.
-  last_state_ = StateSample{0, sim_->state(), Vector3::Zero()};
-  state_.write(toMessage(*last_state_));
+  for (std::size_t i = 0; i < io_.size(); ++i) {
+    event(i, msg::SIM_EVENT_RUN_STARTED, -1, "plant started");
+    publishClock(i);
+    // The initial state, so that a controller can compute the first command.
+    io_[i].last_state = StateSample{0, fleet_->vehicle(i).state(), Vector3::Zero()};
+    state_.writeFor(io_[i].id, toMessage(*io_[i].last_state));
+  }
   last_state_publish_ns_ = common::steadyTimeNs();
 }
 
 void PlantNode::takeInputs()
 {
-  while (auto cmd = actuators_.take()) {
-    counters().samples_in++;
-    if (config_.mode == PlantNodeConfig::Mode::kLockstep && cmd->header().stamp_ns() == latest_command_stamp_ns_) {
-      continue;  // the answer to a state sent again, again
-    }
-    const RotorArray speeds{cmd->rotor_speed()[0], cmd->rotor_speed()[1], cmd->rotor_speed()[2],
-                            cmd->rotor_speed()[3]};
-    const auto verdict = sim_->commands().submit(speeds, cmd->armed(), cmd->header().stamp_ns(), sim_->timeNs());
-    if (verdict == CommandGuard::Verdict::kAccepted || verdict == CommandGuard::Verdict::kClamped) {
-      latest_command_stamp_ns_ = std::max(latest_command_stamp_ns_, cmd->header().stamp_ns());
-      if (sim_->gimbal() && !sim_->aimGimbal(cmd->gimbal_yaw_W(), cmd->gimbal_pitch())) {
-        counters().errors++;
-        spdlog::warn("{}: command seq {}: gimbal yaw {} pitch {} not finite; the gimbal keeps its aim",
-                     dds::topics::kActuators.info.name, cmd->header().seq(), cmd->gimbal_yaw_W(), cmd->gimbal_pitch());
-      }
-    }
-    if (verdict != CommandGuard::Verdict::kAccepted) {
-      counters().errors++;
-      spdlog::warn("{}: command seq {} stamped {} ns {}", dds::topics::kActuators.info.name, cmd->header().seq(),
-                   cmd->header().stamp_ns(), verdictText(verdict));
-    }
+  while (auto cmd = actuators_.takeServed(fleet_->ids())) {
+    takeCommand(*fleet_->indexOf(cmd->header().vehicle_id()), *cmd);
   }
-  while (auto fault = faults_.take()) {
-    counters().samples_in++;
-    const bool layer = participant().datagramFaults() != nullptr;
-    if (fault->module_name().to_string() != "plant" || (layer && dds::isDatagramFault(fault->kind())) ||
-        (fault->kind() == msg::FAULT_CLEAR && isDatagramFaultId(fault->fault_id()))) {
-      continue;  // for another module, or for the node's datagram fault layer
-    }
-    if (fault->kind() == msg::FAULT_CLEAR) {
-      if (!sim_->clearFault(fault->fault_id())) {
-        event(msg::SIM_EVENT_FAULT_REJECTED, fault->fault_id(), "no fault " + std::to_string(fault->fault_id()) + " to clear");
-      }
-      continue;
-    }
-    std::string why_not;
-    const auto core = faultFrom(*fault, sim_->timeNs(), why_not);
-    if (!core || !sim_->injectFault(*core)) {
-      const std::string reason = core ? "fault id already in use" : why_not;
-      spdlog::warn("{}: fault {} rejected: {}", dds::topics::kFault.info.name, fault->fault_id(), reason);
-      event(msg::SIM_EVENT_FAULT_REJECTED, fault->fault_id(), "fault " + std::to_string(fault->fault_id()) + " rejected: " + reason);
-    }
+  while (auto fault = faults_.takeServed(fleet_->ids())) {
+    takeFault(*fleet_->indexOf(fault->header().vehicle_id()), *fault);
   }
 }
 
-void PlantNode::publishClock()
+void PlantNode::takeCommand(std::size_t vehicle, const msg::ActuatorCommand& cmd)
 {
+  counters().samples_in++;
+  VehicleIo& io = io_[vehicle];
+  Simulation& sim = fleet_->vehicle(vehicle);
+  if (config_.mode == PlantNodeConfig::Mode::kLockstep && cmd.header().stamp_ns() == io.latest_command_stamp_ns) {
+    return;  // the answer to a state sent again, again
+  }
+  const RotorArray speeds{cmd.rotor_speed()[0], cmd.rotor_speed()[1], cmd.rotor_speed()[2], cmd.rotor_speed()[3]};
+  const auto verdict = sim.commands().submit(speeds, cmd.armed(), cmd.header().stamp_ns(), sim.timeNs());
+  if (verdict == CommandGuard::Verdict::kAccepted || verdict == CommandGuard::Verdict::kClamped) {
+    io.latest_command_stamp_ns = std::max(io.latest_command_stamp_ns, cmd.header().stamp_ns());
+    if (sim.gimbal() && !sim.aimGimbal(cmd.gimbal_yaw_W(), cmd.gimbal_pitch())) {
+      counters().errors++;
+      spdlog::warn("{}: command seq {}: gimbal yaw {} pitch {} not finite; the gimbal keeps its aim",
+                   dds::topics::kActuators.info.name, cmd.header().seq(), cmd.gimbal_yaw_W(), cmd.gimbal_pitch());
+    }
+  }
+  if (verdict != CommandGuard::Verdict::kAccepted) {
+    counters().errors++;
+    spdlog::warn("{}: command seq {} stamped {} ns {}", dds::topics::kActuators.info.name, cmd.header().seq(),
+                 cmd.header().stamp_ns(), verdictText(verdict));
+  }
+}
+
+void PlantNode::takeFault(std::size_t vehicle, const msg::FaultCommand& fault)
+{
+  counters().samples_in++;
+  Simulation& sim = fleet_->vehicle(vehicle);
+  const bool layer = participant().datagramFaults() != nullptr;
+  if (fault.module_name().to_string() != "plant" || (layer && dds::isDatagramFault(fault.kind())) ||
+      (fault.kind() == msg::FAULT_CLEAR && isDatagramFaultId(fault.fault_id()))) {
+    return;  // for another module, or for the node's datagram fault layer
+  }
+  if (fault.kind() == msg::FAULT_CLEAR) {
+    if (!sim.clearFault(fault.fault_id())) {
+      event(vehicle, msg::SIM_EVENT_FAULT_REJECTED, fault.fault_id(),
+            "no fault " + std::to_string(fault.fault_id()) + " to clear");
+    }
+    return;
+  }
+  std::string why_not;
+  const auto core = faultFrom(fault, sim.timeNs(), why_not);
+  if (!core || !sim.injectFault(*core)) {
+    const std::string reason = core ? "fault id already in use" : why_not;
+    spdlog::warn("{}: fault {} rejected: {}", dds::topics::kFault.info.name, fault.fault_id(), reason);
+    event(vehicle, msg::SIM_EVENT_FAULT_REJECTED, fault.fault_id(),
+          "fault " + std::to_string(fault.fault_id()) + " rejected: " + reason);
+  }
+}
+
+void PlantNode::publishClock(std::size_t vehicle)
+{
+  // One clock sample per vehicle (the topic is keyed by it): each says what was sent to that
+  // vehicle's modules up to now.
+  const VehicleIo& io = io_[vehicle];
   msg::SimClock clock;
-  clock.header().stamp_ns(sim_->timeNs());
-  clock.sim_ns(sim_->timeNs());
+  clock.header().stamp_ns(fleet_->timeNs());
+  clock.sim_ns(fleet_->timeNs());
   clock.step_ns(config_.simulation.step_ns);
   clock.real_time_factor(config_.real_time_factor);
   clock.lockstep(config_.mode == PlantNodeConfig::Mode::kLockstep);
-  clock.depth_frames(depth_frames_);
-  clock.state_sent(answeredInputNs() == sim_->timeNs());
-  clock_.write(clock);
+  clock.depth_frames(io.depth_frames);
+  clock.state_sent(answeredInputNs(io) == fleet_->timeNs());
+  clock_.writeFor(io.id, clock);
 }
 
-std::int64_t PlantNode::answeredInputNs() const
+std::int64_t PlantNode::answeredInputNs(const VehicleIo& io) const
 {
   if (config_.state_source == dds::StateSource::kEstimate) {
-    return last_imu_ ? last_imu_->header().stamp_ns() : -1;
+    return io.last_imu ? io.last_imu->header().stamp_ns() : -1;
   }
-  return last_state_ ? last_state_->t_ns : -1;
+  return io.last_state ? io.last_state->t_ns : -1;
 }
 
-void PlantNode::publish(const StepOutputs& out)
+void PlantNode::publish(std::size_t vehicle, const StepOutputs& out)
 {
+  VehicleIo& io = io_[vehicle];
   // The battery before the state the controller steps on: its failsafe sees the pack as it
   // was at that state's time.
   if (out.battery) {
-    battery_.write(toMessage(*out.battery));
+    battery_.writeFor(io.id, toMessage(*out.battery));
     counters().samples_out++;
   }
   // Depth first: the clock that follows counts it.
   if (out.depth) {
-    last_depth_ = toMessage(*out.depth, config_.simulation.depth.max_range);
-    last_depth_->frame(++depth_frames_);
-    depth_.write(*last_depth_);
+    io.last_depth = toMessage(*out.depth, config_.simulation.depth.max_range);
+    io.last_depth->frame(++io.depth_frames);
+    depth_.writeFor(io.id, *io.last_depth);
     counters().samples_out++;
   }
   if (out.imu) {
-    last_imu_ = toMessage(*out.imu);  // before the clock, which says whether it was sent
+    io.last_imu = toMessage(*out.imu);  // before the clock, which says whether it was sent
   }
   if (out.state) {
-    last_state_ = out.state;
+    io.last_state = out.state;
     last_state_publish_ns_ = common::steadyTimeNs();
-    state_.write(toMessage(*out.state));
+    state_.writeFor(io.id, toMessage(*out.state));
     counters().samples_out++;
   }
   if (out.state_due) {
-    publishClock();  // at the state's rate (its contract's 250 Hz), even when a fault drops the state
+    publishClock(vehicle);  // at the state's rate (its contract's 250 Hz), even when a fault drops the state
     counters().samples_out++;
   }
   if (out.imu) {
     // The aids written before it, which a lockstep estimator answers it with (Imu.idl).
-    last_imu_->position_seq(position_.lastSeq());
-    last_imu_->baro_seq(baro_.lastSeq());
-    last_imu_->mag_seq(mag_.lastSeq());
-    imu_.write(*last_imu_);
+    io.last_imu->position_seq(position_.lastSeq(io.id));
+    io.last_imu->baro_seq(baro_.lastSeq(io.id));
+    io.last_imu->mag_seq(mag_.lastSeq(io.id));
+    imu_.writeFor(io.id, *io.last_imu);
     counters().samples_out++;
   }
   if (out.position) {
-    position_.write(toMessage(*out.position));
+    position_.writeFor(io.id, toMessage(*out.position));
     counters().samples_out++;
   }
   if (out.baro) {
-    baro_.write(toMessage(*out.baro));
+    baro_.writeFor(io.id, toMessage(*out.baro));
     counters().samples_out++;
   }
   if (out.mag) {
-    mag_.write(toMessage(*out.mag));
+    mag_.writeFor(io.id, toMessage(*out.mag));
     counters().samples_out++;
   }
+  const std::string who = io_.size() > 1 ? fmt::format("vehicle {} ", io.id) : std::string();
   for (const auto& e : out.events) {
-    events_.write(toMessage(e));
+    events_.writeFor(io.id, toMessage(e));
     if (e.kind == SimEventRecord::Kind::kCollision) {
-      spdlog::warn("plant: collision at t = {:.3f} s: {}", common::toSeconds(e.t_ns), e.detail);
+      spdlog::warn("plant: {}collision at t = {:.3f} s: {}", who, common::toSeconds(e.t_ns), e.detail);
     } else {
-      spdlog::info("plant: t = {:.3f} s: {}", common::toSeconds(e.t_ns), e.detail);
+      spdlog::info("plant: {}t = {:.3f} s: {}", who, common::toSeconds(e.t_ns), e.detail);
     }
   }
 }
 
 void PlantNode::stepOnce()
 {
-  publish(sim_->step());
-  if (config_.duration_s > 0.0 && common::toSeconds(sim_->timeNs()) >= config_.duration_s) {
-    spdlog::info("plant: sim time {:.3f} s reached its duration", common::toSeconds(sim_->timeNs()));
+  const std::vector<StepOutputs> out = fleet_->step();
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    publish(i, out[i]);
+  }
+  if (config_.duration_s > 0.0 && common::toSeconds(fleet_->timeNs()) >= config_.duration_s) {
+    spdlog::info("plant: sim time {:.3f} s reached its duration", common::toSeconds(fleet_->timeNs()));
     stop();
   }
 }
@@ -232,7 +286,7 @@ void PlantNode::runRealTime(std::int64_t steady_ns)
 {
   const auto target = static_cast<std::int64_t>(
       static_cast<double>(steady_ns - wall_start_ns_) * config_.real_time_factor);
-  const std::int64_t behind = target - sim_->timeNs() - static_cast<std::int64_t>(dropped_steps_) * config_.simulation.step_ns;
+  const std::int64_t behind = target - fleet_->timeNs() - static_cast<std::int64_t>(dropped_steps_) * config_.simulation.step_ns;
   // Behind the wall clock (a late wake, a starved or stopped process), the plant catches up
   // in a burst only as far as a held rotor command is flown whole: the controller cannot
   // answer steps run faster than real time, and a burst past that would fly the vehicle on
@@ -247,7 +301,7 @@ void PlantNode::runRealTime(std::int64_t steady_ns)
     }
   }
   while (!stopping() &&
-         sim_->timeNs() + static_cast<std::int64_t>(dropped_steps_) * config_.simulation.step_ns < target) {
+         fleet_->timeNs() + static_cast<std::int64_t>(dropped_steps_) * config_.simulation.step_ns < target) {
     stepOnce();
   }
 }
@@ -256,19 +310,24 @@ void PlantNode::runLockstep()
 {
   while (!stopping()) {
     if (!round_open_) {
-      round_end_ns_ = sim_->timeNs() + config_.lockstep_period_ns;
+      round_end_ns_ = fleet_->timeNs() + config_.lockstep_period_ns;
       round_open_ = true;
       round_wait_since_ns_ = common::steadyTimeNs();
       next_wait_report_ns_ = round_wait_since_ns_ + common::toNanoseconds(config_.lockstep_timeout_s);
     }
-    // A round may run once the controller answered the state of its start and every
-    // participant finished its work up to then.
+    // A round may run once every vehicle's controller answered the state of its start and
+    // every participant finished its work up to then.
     const std::int64_t round_start = round_end_ns_ - config_.lockstep_period_ns;
     // The controller answers states (true ones, or the estimates of IMU samples): a round whose
     // input a fault dropped has nothing to answer.
-    const bool state_sent = answeredInputNs() >= round_start;
-    const bool command_ready =
-        !config_.lockstep_wait_for_command || !state_sent || latest_command_stamp_ns_ >= round_start;
+    std::vector<std::uint32_t> unanswered;
+    for (const VehicleIo& io : io_) {
+      const bool state_sent = answeredInputNs(io) >= round_start;
+      if (config_.lockstep_wait_for_command && state_sent && io.latest_command_stamp_ns < round_start) {
+        unanswered.push_back(io.id);
+      }
+    }
+    const bool command_ready = unanswered.empty();
     const bool others_ready = !barrier_ || barrier_->poll(round_start);
     if (!command_ready || !others_ready) {
       const std::int64_t now = common::steadyTimeNs();
@@ -276,20 +335,28 @@ void PlantNode::runLockstep()
         // A state, clock or depth sample lost, or sent before a participant matched, would
         // stall the round for good. Resend them; an answer to a repeat is the same answer
         // (the mapper knows a cloud it has by its stamp).
-        if (last_depth_) {
-          depth_.write(*last_depth_);
+        for (std::size_t i = 0; i < io_.size(); ++i) {
+          VehicleIo& io = io_[i];
+          if (io.last_depth) {
+            depth_.writeFor(io.id, *io.last_depth);
+          }
+          if (io.last_state && io.last_state->t_ns >= round_start) {
+            state_.writeFor(io.id, toMessage(*io.last_state));
+          }
+          if (io.last_imu && io.last_imu->header().stamp_ns() >= round_start) {
+            imu_.writeFor(io.id, *io.last_imu);
+          }
+          publishClock(i);
         }
-        if (last_state_ && last_state_->t_ns >= round_start) {
-          state_.write(toMessage(*last_state_));
-        }
-        if (last_imu_ && last_imu_->header().stamp_ns() >= round_start) {
-          imu_.write(*last_imu_);
-        }
-        publishClock();
         last_state_publish_ns_ = now;
       }
       if (now >= next_wait_report_ns_) {
-        std::string late = command_ready ? "" : "control (no command for t = " + std::to_string(round_start) + " ns)";
+        std::string late;
+        if (!command_ready) {
+          late = io_.size() == 1 ? "control (no command for t = " + std::to_string(round_start) + " ns)"
+                                 : fmt::format("control of vehicles {} (no command for t = {} ns)",
+                                               fmt::join(unanswered, ", "), round_start);
+        }
         if (barrier_ && !others_ready) {
           for (const auto& l : barrier_->ledger().late(round_start)) {
             late += (late.empty() ? "" : ", ") + l;
@@ -301,7 +368,7 @@ void PlantNode::runLockstep()
       }
       return;  // woken again by commands or reports
     }
-    while (!stopping() && sim_->timeNs() < round_end_ns_) {
+    while (!stopping() && fleet_->timeNs() < round_end_ns_) {
       stepOnce();
     }
     round_open_ = false;
@@ -332,25 +399,33 @@ constexpr std::chrono::milliseconds kFinalEventWait{2000};
 
 void PlantNode::onStop()
 {
-  const auto& c = sim_->commands().counters();
-  const std::string summary =
-      "sim time " + std::to_string(common::toSeconds(sim_->timeNs())) + " s, collisions " +
-      std::to_string(sim_->collisionCount()) + ", commands accepted " + std::to_string(c.accepted) +
-      ", clamped " + std::to_string(c.clamped) + ", rejected " +
-      std::to_string(c.rejected_invalid + c.rejected_late + c.rejected_old) + ", stale steps " +
-      std::to_string(c.stale_steps) + ", failsafe steps " + std::to_string(c.failsafe_steps) +
-      ", dropped steps " + std::to_string(dropped_steps_);
-  spdlog::info("plant: run ended: {}", summary);
-  if (const auto& battery = sim_->battery()) {
-    spdlog::info("plant: battery {:.1f} % left ({:.2f} of {:.2f} Ah), {:.1f} Wh drawn, {} of {} cells working",
-                 100.0 * battery->charge(), battery->chargeAh(), battery->config().capacity,
-                 battery->energyDrawn() / 3600.0, battery->workingCells(), battery->config().cells);
+  for (std::size_t i = 0; i < io_.size(); ++i) {
+    const Simulation& sim = fleet_->vehicle(i);
+    const std::string who = io_.size() > 1 ? fmt::format("vehicle {} ", io_[i].id) : std::string();
+    const auto& c = sim.commands().counters();
+    const std::uint64_t collisions = fleet_->collisionCount(i);
+    const std::string summary =
+        "sim time " + std::to_string(common::toSeconds(sim.timeNs())) + " s, collisions " +
+        std::to_string(collisions) + ", commands accepted " + std::to_string(c.accepted) +
+        ", clamped " + std::to_string(c.clamped) + ", rejected " +
+        std::to_string(c.rejected_invalid + c.rejected_late + c.rejected_old) + ", stale steps " +
+        std::to_string(c.stale_steps) + ", failsafe steps " + std::to_string(c.failsafe_steps) +
+        ", dropped steps " + std::to_string(dropped_steps_);
+    spdlog::info("plant: {}run ended: {}", who, summary);
+    if (const auto& battery = sim.battery()) {
+      spdlog::info("plant: {}battery {:.1f} % left ({:.2f} of {:.2f} Ah), {:.1f} Wh drawn, {} of {} cells working", who,
+                   100.0 * battery->charge(), battery->chargeAh(), battery->config().capacity,
+                   battery->energyDrawn() / 3600.0, battery->workingCells(), battery->config().cells);
+    }
+    const auto& st = sim.state();
+    // Full precision, so that runs can be compared bit for bit from their logs.
+    spdlog::info("plant: {}final state t {} ns p ({:.17g}, {:.17g}, {:.17g}) q ({:.17g}, {:.17g}, {:.17g}, {:.17g})",
+                 who, sim.timeNs(), st.p_W.x(), st.p_W.y(), st.p_W.z(), st.q_WB.w, st.q_WB.x, st.q_WB.y, st.q_WB.z);
+    event(i, msg::SIM_EVENT_RUN_ENDED, static_cast<std::int64_t>(collisions), summary);
   }
-  const auto& st = sim_->state();
-  // Full precision, so that runs can be compared bit for bit from their logs.
-  spdlog::info("plant: final state t {} ns p ({:.17g}, {:.17g}, {:.17g}) q ({:.17g}, {:.17g}, {:.17g}, {:.17g})",
-               sim_->timeNs(), st.p_W.x(), st.p_W.y(), st.p_W.z(), st.q_WB.w, st.q_WB.x, st.q_WB.y, st.q_WB.z);
-  event(msg::SIM_EVENT_RUN_ENDED, static_cast<std::int64_t>(sim_->collisionCount()), summary);
+  if (io_.size() > 1) {
+    spdlog::info("plant: the least separation between two vehicles was {:.3f} m", fleet_->minimumSeparation());
+  }
   // The run's last word (its final position and collisions) must reach the readers before
   // the participant goes: a reliable sample still unacknowledged at exit is lost.
   if (!events_.waitForAcknowledgments(kFinalEventWait)) {

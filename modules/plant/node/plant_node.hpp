@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
-/// The plant participant: owns the Simulation, publishes clock, state, IMU, depth and events,
-/// takes rotor commands and faults, and paces sim time (real time, or lockstep).
+/// The plant participant: owns the simulation of every vehicle (a Fleet; one vehicle without a
+/// fleet file), publishes each one's clock, state, IMU, depth and events under its id, takes
+/// each one's rotor commands and faults, and paces sim time (real time, or lockstep).
 
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "plant_config.hpp"
 #include "quad/dds/lockstep.hpp"
@@ -13,15 +16,18 @@
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
+#include "quad/plant/fleet.hpp"
 
 namespace quad::plant {
 
 class PlantNode : public dds::Node {
 public:
-  /// Loads vehicle, world and fault schedule; throws common::ConfigError naming the file.
+  /// Loads vehicle(s), world and fault schedule(s); throws common::ConfigError naming the file.
   PlantNode(PlantNodeConfig config, dds::ParticipantOptions options);
 
-  const Simulation& simulation() const { return *sim_; }
+  /// The first vehicle (the only one without a fleet file).
+  const Simulation& simulation() const { return fleet_->vehicle(0); }
+  const Fleet& fleet() const { return *fleet_; }
 
 protected:
   void onStart() override;
@@ -30,19 +36,32 @@ protected:
   void onStop() override;
 
 private:
+  /// What the node keeps of one vehicle between steps; its samples carry its id.
+  struct VehicleIo {
+    std::uint32_t id = 0;
+    std::int64_t latest_command_stamp_ns = -1;
+    std::uint64_t depth_frames = 0;              // depth frames published so far
+    std::optional<msg::PointCloud> last_depth;   // lockstep: resent with the state while a round waits
+    std::optional<StateSample> last_state;       // last state published
+    std::optional<msg::Imu> last_imu;            // last IMU sample published: on an estimate, resent while a round waits
+  };
+
   void takeInputs();
-  void publish(const StepOutputs& out);
-  void publishClock();
-  /// The time of the newest input the controller answers (the state, or the IMU sample the
-  /// estimate follows); -1 before the first.
-  std::int64_t answeredInputNs() const;
+  void takeCommand(std::size_t vehicle, const msg::ActuatorCommand& cmd);
+  void takeFault(std::size_t vehicle, const msg::FaultCommand& fault);
+  void publish(std::size_t vehicle, const StepOutputs& out);
+  void publishClock(std::size_t vehicle);
+  /// The time of the newest input a vehicle's controller answers (the state, or the IMU sample
+  /// the estimate follows); -1 before the first.
+  std::int64_t answeredInputNs(const VehicleIo& io) const;
   void stepOnce();
   void runRealTime(std::int64_t steady_ns);
   void runLockstep();
-  void event(msg::SimEventKind kind, std::int64_t subject, const std::string& detail);
+  void event(std::size_t vehicle, msg::SimEventKind kind, std::int64_t subject, const std::string& detail);
 
   PlantNodeConfig config_;
-  std::unique_ptr<Simulation> sim_;
+  std::unique_ptr<Fleet> fleet_;
+  std::vector<VehicleIo> io_;  // one per vehicle, in the fleet's order
   dds::Publisher<msg::SimClock> clock_;
   dds::Publisher<msg::VehicleState> state_;
   dds::Publisher<msg::Imu> imu_;
@@ -57,17 +76,12 @@ private:
   std::unique_ptr<dds::LockstepBarrier> barrier_;
 
   std::int64_t wall_start_ns_ = 0;
-  std::int64_t latest_command_stamp_ns_ = -1;
   std::int64_t round_end_ns_ = 0;          // lockstep: sim time the current round runs to
   bool round_open_ = false;                // lockstep: waiting for the round's inputs
   std::int64_t round_wait_since_ns_ = 0;   // steady time the wait began
   std::int64_t next_wait_report_ns_ = 0;
   std::uint64_t dropped_steps_ = 0;        // real time: steps skipped when far behind
-  std::uint64_t depth_frames_ = 0;         // depth frames published so far
-  std::optional<msg::PointCloud> last_depth_;  // lockstep: resent with the state while a round waits
-  std::optional<StateSample> last_state_;  // last state published
-  std::optional<msg::Imu> last_imu_;       // last IMU sample published: on an estimate, resent while a round waits
-  std::int64_t last_state_publish_ns_ = 0; // steady time of that publication
+  std::int64_t last_state_publish_ns_ = 0; // steady time the states were last published
 };
 
 }  // namespace quad::plant

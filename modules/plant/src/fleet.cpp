@@ -14,34 +14,39 @@ double radiusOf(const Simulation& sim) { return sim.dynamics().params().radius; 
 
 }  // namespace
 
-Fleet::Fleet(std::vector<FleetVehicle> vehicles, const world::World& world, const SimulationConfig& config)
-    : min_separation_(std::numeric_limits<double>::infinity())
+std::optional<std::string> Fleet::problem(const std::vector<FleetVehicle>& vehicles)
 {
   if (vehicles.empty()) {
-    throw std::invalid_argument("a fleet needs at least one vehicle");
+    return "a fleet needs at least one vehicle";
   }
   for (std::size_t i = 0; i < vehicles.size(); ++i) {
     for (std::size_t j = 0; j < i; ++j) {
       const FleetVehicle& a = vehicles[j];
       const FleetVehicle& b = vehicles[i];
       if (a.id == b.id) {
-        throw std::invalid_argument(fmt::format("vehicle id {} appears twice in the fleet", a.id));
+        return fmt::format("vehicle id {} appears twice in the fleet", a.id);
       }
       const double apart = (a.start - b.start).norm();
       if (apart < a.params.radius + b.params.radius) {
-        throw std::invalid_argument(fmt::format(
-            "vehicles {} and {} start {:.3f} m apart, in contact (radii {:.3f} + {:.3f} m)", a.id, b.id, apart,
-            a.params.radius, b.params.radius));
+        return fmt::format("vehicles {} and {} start {:.3f} m apart, in contact (radii {:.3f} + {:.3f} m)", a.id, b.id,
+                           apart, a.params.radius, b.params.radius);
       }
     }
+  }
+  return std::nullopt;
+}
+
+Fleet::Fleet(std::vector<FleetVehicle> vehicles, const world::World& world, const SimulationConfig& config)
+    : min_separation_(std::numeric_limits<double>::infinity())
+{
+  if (const auto why = problem(vehicles)) {
+    throw std::invalid_argument(*why);
   }
   vehicles_.reserve(vehicles.size());
   for (FleetVehicle& v : vehicles) {
     SimulationConfig own = config;
-    own.seed = config.seed + v.id;
-    vehicles_.emplace_back(std::move(v.params),
-                           world::World(world.bounds(), v.start, v.goal, world.obstacles()), own,
-                           std::move(v.schedule));
+    own.seed = config.seed + vehicles_.size();
+    vehicles_.emplace_back(std::move(v.params), world.withStartAndGoal(v.start, v.goal), own, std::move(v.schedule));
     ids_.push_back(v.id);
   }
   vehicle_collisions_.assign(vehicles_.size(), 0);

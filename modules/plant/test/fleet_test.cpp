@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "quad/plant/fleet.hpp"
+#include "quad/plant/fleet_file.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <optional>
 #include <string>
 
+#include "quad/common/params.hpp"
 #include "test_vehicle.hpp"
 
 namespace quad::plant {
@@ -58,9 +61,7 @@ TEST(Fleet, AFleetOfOneFliesAsTheLoneSimulationOfItsSeed)
   config.seed = 5;
   const World world = corridor();
   Fleet fleet({{2, test::dragFreeVehicle(), world.start(), world.goal(), {}}}, world, config);
-  SimulationConfig lone_config = config;
-  lone_config.seed = 7;  // the fleet's seed plus the vehicle's id
-  Simulation lone(test::dragFreeVehicle(), world, lone_config);
+  Simulation lone(test::dragFreeVehicle(), world, config);
   int frames = 0;
   for (int k = 0; k < 1500; ++k) {
     const std::vector<StepOutputs> out = fleet.step();
@@ -185,6 +186,59 @@ TEST(Fleet, RefusesNoVehicleARepeatedIdAndVehiclesThatStartInContact)
   EXPECT_PRED2(says, refusal({vehicleAt(1, {0, 0, 0}), vehicleAt(2, {0.5, 0, 0})}),
                "vehicles 1 and 2 start 0.500 m apart, in contact");
   EXPECT_EQ(refusal({vehicleAt(1, {0, 0, 0}), vehicleAt(2, {0.7, 0, 0})}), "");  // touching is not yet contact
+}
+
+const std::filesystem::path kVehicle = std::filesystem::path(QUAD_CONFIG_DIR) / "vehicles/x500.yaml";
+
+std::vector<FleetVehicle> fleetOf(const std::string& yaml)
+{
+  return parseFleet(yaml, "fleet.yaml", QUAD_CONFIG_DIR, openSky(), kVehicle);
+}
+
+std::string fleetRefusal(const std::string& yaml)
+{
+  try {
+    fleetOf(yaml);
+  } catch (const common::ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(FleetFile, ReadsEachVehicleWithItsDefaults)
+{
+  const auto fleet = fleetOf(
+      "vehicles:\n"
+      "  - {id: 1, start: [0, 0, 0]}\n"
+      "  - {id: 7, start: [2, 3, 1.5], goal: [-5, 4, 2], vehicle: vehicles/x500.yaml}\n");
+  ASSERT_EQ(fleet.size(), 2U);
+  EXPECT_EQ(fleet[0].id, 1U);
+  EXPECT_EQ(fleet[0].start, Vector3(0, 0, 0));
+  EXPECT_EQ(fleet[0].goal, openSky().goal());  // the world's
+  EXPECT_EQ(fleet[0].params.radius, vehicle::loadVehicle(kVehicle).radius);
+  EXPECT_TRUE(fleet[0].schedule.empty());
+  EXPECT_EQ(fleet[1].id, 7U);
+  EXPECT_EQ(fleet[1].start, Vector3(2, 3, 1.5));
+  EXPECT_EQ(fleet[1].goal, Vector3(-5, 4, 2));
+}
+
+TEST(FleetFile, NamesTheKeyAndValueOfEveryProblem)
+{
+  const auto says = [](const std::string& message, const std::string& part) {
+    return message.find(part) != std::string::npos;
+  };
+  EXPECT_PRED2(says, fleetRefusal("vehicles: []\n"), "fleet.yaml:vehicles: []: expected a list of at least one vehicle");
+  EXPECT_PRED2(says, fleetRefusal("vehicle: [{id: 1, start: [0, 0, 0]}]\n"), "fleet.yaml:vehicle: ");
+  const std::string many = fleetRefusal(
+      "vehicles:\n"
+      "  - {id: 1.5, start: [0, 0, 0]}\n"
+      "  - {id: 2, start: [0, 0, 50]}\n"
+      "  - {id: 3, start: [1, 1, 0], speed: 3}\n"
+      "  - {id: 3, start: [4, 1, 0]}\n");
+  EXPECT_PRED2(says, many, "fleet.yaml:vehicles[0].id: 1.5: expected a whole number");
+  EXPECT_PRED2(says, many, "fleet.yaml:vehicles[1].start: [0, 0, 50]: outside the world's bounds");
+  EXPECT_PRED2(says, many, "fleet.yaml:vehicles[2].speed: 3: unknown key");
+  EXPECT_PRED2(says, many, "fleet.yaml:vehicles[3].id: 3: already the id of vehicles[2]");
 }
 
 }  // namespace

@@ -349,4 +349,12 @@ std::optional<RayHit> World::raycast(const Vector3& o, const Vector3& d, double 
   return best;
 }
 
+World World::withStartAndGoal(const Vector3& start, const Vector3& goal) const
+{
+  World copy = *this;
+  copy.start_ = start;
+  copy.goal_ = goal;
+  return copy;
+}
+
 }  // namespace quad::world

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <optional>
 #include <set>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -29,13 +30,19 @@ struct FleetVehicle {
 class Fleet {
 public:
   /// Vehicle i flies `world`'s obstacles and bounds from its own start; its generators are
-  /// seeded with config.seed + its id, so that a fleet of one flies as a lone Simulation of
-  /// that seed. Throws std::invalid_argument, naming the vehicles, when there are none, an id
+  /// seeded with config.seed + i, so that a fleet of one flies as a lone Simulation of that
+  /// seed. Throws std::invalid_argument, naming the vehicles, when there are none, an id
   /// repeats, or two start with their spheres in contact.
   Fleet(std::vector<FleetVehicle> vehicles, const world::World& world, const SimulationConfig& config);
 
+  /// What the constructor would refuse `vehicles` for, naming the vehicles; nothing when they
+  /// make a fleet.
+  static std::optional<std::string> problem(const std::vector<FleetVehicle>& vehicles);
+
   std::size_t size() const { return vehicles_.size(); }
   std::uint32_t id(std::size_t i) const { return ids_.at(i); }
+  /// Every vehicle's id, in the fleet's order.
+  const std::vector<std::uint32_t>& ids() const { return ids_; }
   /// The index of the vehicle with this id, if it is in the fleet.
   std::optional<std::size_t> indexOf(std::uint32_t id) const;
   Simulation& vehicle(std::size_t i) { return vehicles_.at(i); }

@@ -78,6 +78,9 @@ public:
   const Vector3& start() const { return start_; }
   const Vector3& goal() const { return goal_; }
   const std::vector<Obstacle>& obstacles() const { return obstacles_; }
+  /// The same world (obstacles, bounds and index) with another start and goal: one vehicle's
+  /// view of a world several fly in.
+  World withStartAndGoal(const Vector3& start, const Vector3& goal) const;
 
   /// Indices of obstacles within `radius` of p (a sphere touching them), and kBounds when the
   /// sphere leaves the bounds sideways or through the top (the ground is contact, not

@@ -43,6 +43,25 @@ TEST(NodeAndTools, PublishedCommandReachesTheNode)
   EXPECT_TRUE(node.waitForOutput("command 4 received (1 so far)", 5s)) << node.output();
 }
 
+TEST(NodeAndTools, VehicleOptionPublishesForAVehicleAndEchoesOnlyItsSamples)
+{
+  ChildProcess five({QUAD_TOOL, "topic", "echo", "quad/planning/goal", "--vehicle", "5", "-n", "1", "--json",
+                     "--timeout", "15"},
+                    env(72));
+  ChildProcess six({QUAD_TOOL, "topic", "echo", "quad/planning/goal", "--vehicle", "6", "-n", "1", "--timeout", "6"},
+                   env(72));
+  ChildProcess pub({QUAD_TOOL, "topic", "pub", "quad/planning/goal", "{goal_id: 3, p_W: {x: 1, y: 2, z: 3}}",
+                    "--vehicle", "5"},
+                   env(72));
+  ASSERT_EQ(pub.wait(20s), 0) << pub.output();
+  ASSERT_EQ(five.wait(20s), 0) << five.output();
+  const auto goals = quad::test::jsonLines(five.output());
+  ASSERT_EQ(goals.size(), 1U) << five.output();
+  EXPECT_EQ(goals[0]["header"]["vehicle_id"], 5) << goals[0];
+  EXPECT_EQ(goals[0]["goal_id"], 3) << goals[0];
+  EXPECT_EQ(six.wait(20s), 1) << six.output();  // vehicle 6 got no goal
+}
+
 void stopsCleanlyOn(int signal_number, int domain)
 {
   ChildProcess node({QUAD_TEST_NODE}, env(domain));

@@ -34,6 +34,13 @@ void addConnectionOptions(CLI::App* command, quad::topic::ConnectionOptions& con
       ->check(CLI::Range(0, 232));
 }
 
+/// `--vehicle N` for a command that reads (`help`: only that vehicle's samples) or writes
+/// (the vehicle its samples are for).
+void addVehicleOption(CLI::App* command, quad::topic::ConnectionOptions& connection, const char* help)
+{
+  command->add_option("--vehicle", connection.vehicle_id, help)->check(CLI::Range(0, 1'000'000));
+}
+
 /// The word where a subcommand is expected that names none ("bridge" in `quad bridge --help`,
 /// "topic lst" in `quad topic lst`); empty when there is none. CLI11 reads --help first and
 /// would print the main help and succeed.
@@ -260,6 +267,7 @@ int main(int argc, char** argv)
       ->check(CLI::NonNegativeNumber);
   hz->add_option("--window", hz_options.window_s, "Seconds per line")->check(CLI::PositiveNumber);
   hz->add_flag("--json", hz_options.json, "One JSON object per line instead of text");
+  addVehicleOption(hz, hz_options.connection, "Count only this vehicle's samples (Header.vehicle_id)");
 
   auto* echo = topic->add_subcommand("echo", "Print the samples of a topic, decoded from its IDL");
   addConnectionOptions(echo, echo_options.connection);
@@ -273,6 +281,7 @@ int main(int argc, char** argv)
   echo->add_option("--max-elements", echo_options.max_elements,
                    "Print at most this many elements of each list")
       ->check(CLI::PositiveNumber);
+  addVehicleOption(echo, echo_options.connection, "Print only this vehicle's samples (Header.vehicle_id)");
 
   quad::tools::TopicPubOptions pub_options;
   auto* pub = topic->add_subcommand("pub", "Publish samples given as YAML; the header is filled in");
@@ -286,6 +295,8 @@ int main(int argc, char** argv)
   pub->add_option("--wait-match", pub_options.wait_match_s,
                   "Seconds to wait for a reader before the first sample")
       ->check(CLI::NonNegativeNumber);
+  addVehicleOption(pub, pub_options.connection,
+                   "The vehicle the samples are for (Header.vehicle_id; default: $QUAD_VEHICLE_ID, else 0)");
 
   quad::tools::CommandOptions command_options;
   auto* operator_command = app.add_subcommand(

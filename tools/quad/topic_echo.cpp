@@ -49,6 +49,9 @@ int topicEcho(const TopicEchoOptions& options)
     }
     dds::RawSample sample;
     while ((options.count == 0 || printed < options.count) && subscriber.take(sample)) {
+      if (!topic::selectedVehicle(options.connection, sample.payload)) {
+        continue;
+      }
       try {
         const auto value = introspection::decodeCdr(schema, info.type_name, sample.payload, decode);
         if (options.json) {

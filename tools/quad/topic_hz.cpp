@@ -38,6 +38,9 @@ int topicHz(const TopicHzOptions& options)
     }
     dds::RawSample sample;
     while (subscriber.take(sample)) {
+      if (!topic::selectedVehicle(options.connection, sample.payload)) {
+        continue;
+      }
       const std::int64_t t = common::steadyTimeNs();
       if (last != 0) {
         const double dt = common::toSeconds(t - last);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "quad/dds/raw_type.hpp"
 #include "quad/dds/topics.hpp"
 
 namespace quad::topic {
@@ -18,7 +19,15 @@ dds::ParticipantOptions participantOptions(const std::string& name,
   if (connection.domain_id) {
     options.domain_id = *connection.domain_id;
   }
+  if (connection.vehicle_id) {
+    options.vehicle_id = *connection.vehicle_id;
+  }
   return options;
+}
+
+bool selectedVehicle(const ConnectionOptions& connection, std::span<const std::uint8_t> payload)
+{
+  return !connection.vehicle_id || dds::payloadVehicleId(payload) == connection.vehicle_id;
 }
 
 bool matchesAnyGlob(const std::string& topic, const std::vector<std::string>& globs)

@@ -226,6 +226,55 @@ TEST(PlantNode, AFleetFliesInOneWorldEachVehicleUnderItsIdAndTwoThatMeetCollide)
   EXPECT_NEAR(static_cast<double>(collided[1]) * 1e-9, 0.32, 0.03);
 }
 
+/// Each vehicle's SIM_EVENT_RUN_ENDED of a 4 s lockstep run of a fleet of two, each flown by
+/// a controller of its own to its own altitude (vehicle 1 to 2 m, vehicle 2 to 3 m).
+std::map<int, nlohmann::json> fleetLockstepRun(int domain)
+{
+  const std::string fleet =
+      fleetFile("lockstep_fleet.yaml", "vehicles:\n  - {id: 1, start: [0, 0, 0]}\n  - {id: 2, start: [3, 0, 0]}\n");
+  ChildProcess plant({QUAD_PLANT_NODE, "--config",
+                      config("fleet_lockstep.yaml", "fleet: " + fleet + "\nsim: {mode: lockstep, duration: 4.0, seed: 5}\n")},
+                     env(domain));
+  ChildProcess events({QUAD_TOOL, "topic", "echo", "quad/sim/events", "--json"}, env(domain));
+  EXPECT_TRUE(waitForReader(domain, "quad/sim/events"));
+  auto as = [&](int vehicle) {
+    auto e = env(domain);
+    e["QUAD_VEHICLE_ID"] = std::to_string(vehicle);
+    return e;
+  };
+  ChildProcess first({QUAD_ALTITUDE_CONTROLLER, kHover, "2.0"}, as(1));
+  ChildProcess second({QUAD_ALTITUDE_CONTROLLER, kHover, "3.0"}, as(2));
+  EXPECT_EQ(plant.wait(60s), 0) << plant.output();
+  std::map<int, nlohmann::json> ended;
+  for (int i = 0; i < 100 && ended.size() < 2; ++i) {
+    events.waitForOutput("SIM_EVENT_RUN_ENDED", 1s);
+    for (const auto& e : quad::test::jsonLines(events.output())) {
+      if (e["kind"] == "SIM_EVENT_RUN_ENDED") {
+        ended[e["header"]["vehicle_id"].get<int>()] = e;
+      }
+    }
+  }
+  return ended;
+}
+
+TEST(PlantNode, InLockstepEveryVehicleOfAFleetFliesOnItsOwnCommandsAndTwoRunsAreBitIdentical)
+{
+  // GIVEN two vehicles, each answered by a controller of its own (a command depends on the
+  // state it answers), WHEN two lockstep runs fly them (their wall-clock timing differs)
+  const auto a = fleetLockstepRun(74);
+  const auto b = fleetLockstepRun(75);
+  // THEN each vehicle climbed to its own altitude, and both runs end with every vehicle at
+  // the same place, to the last bit: each round waited for every vehicle's command
+  ASSERT_EQ(a.size(), 2U);
+  ASSERT_EQ(b.size(), 2U);
+  EXPECT_GT(a.at(1)["p_W"]["z"].get<double>(), 1.0) << a.at(1);
+  EXPECT_GT(a.at(2)["p_W"]["z"].get<double>(), a.at(1)["p_W"]["z"].get<double>() + 0.5) << a.at(2);
+  for (const int vehicle : {1, 2}) {
+    EXPECT_EQ(a.at(vehicle)["header"]["stamp_ns"], 4'000'000'000LL) << a.at(vehicle);
+    EXPECT_EQ(a.at(vehicle)["p_W"].dump(17), b.at(vehicle)["p_W"].dump(17)) << vehicle;
+  }
+}
+
 TEST(PlantNode, AFleetWhoseVehiclesStartInContactOrShareAnIdIsRefusedNamingTheFileAndThem)
 {
   struct Case {

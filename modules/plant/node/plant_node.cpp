@@ -34,7 +34,7 @@ std::string verdictText(CommandGuard::Verdict v)
   return "?";
 }
 
-
+/// The vehicles the plant simulates: its fleet file's, or the participant's own.
 std::unique_ptr<Fleet> makeFleet(const PlantNodeConfig& config, std::uint32_t own_id)
 {
   const world::World world = world::loadWorld(config.world_file);

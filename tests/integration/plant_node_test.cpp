@@ -2,6 +2,7 @@
 // The plant node as a process: real time, lockstep determinism, faults, bad configuration, a
 // fleet of vehicles.
 #include <gtest/gtest.h>
+#include <signal.h>
 
 #include <chrono>
 #include <filesystem>
@@ -273,6 +274,53 @@ TEST(PlantNode, InLockstepEveryVehicleOfAFleetFliesOnItsOwnCommandsAndTwoRunsAre
     EXPECT_EQ(a.at(vehicle)["header"]["stamp_ns"], 4'000'000'000LL) << a.at(vehicle);
     EXPECT_EQ(a.at(vehicle)["p_W"].dump(17), b.at(vehicle)["p_W"].dump(17)) << vehicle;
   }
+}
+
+/// The newest sim time on quad/sim/clock for `vehicle`, as a waiting plant resends it.
+std::optional<std::int64_t> clockOf(int domain, const char* vehicle)
+{
+  ChildProcess echo({QUAD_TOOL, "topic", "echo", "quad/sim/clock", "--vehicle", vehicle, "-n", "1", "--json",
+                     "--timeout", "10"},
+                    env(domain));
+  if (echo.wait(15s) != 0) {
+    return std::nullopt;
+  }
+  const auto samples = quad::test::jsonLines(echo.output());
+  return samples.empty() ? std::nullopt : std::optional<std::int64_t>(samples.back()["sim_ns"].get<std::int64_t>());
+}
+
+TEST(PlantNode, InLockstepAFleetsClockWaitsForEachParticipantOfEveryVehicle)
+{
+  // GIVEN a fleet of two in lockstep, waiting for a participant "probe" and no command
+  const std::string fleet =
+      fleetFile("probe_fleet.yaml", "vehicles:\n  - {id: 1, start: [0, 0, 0]}\n  - {id: 2, start: [3, 0, 0]}\n");
+  ChildProcess plant(
+      {QUAD_PLANT_NODE, "--config",
+       config("probe_plant.yaml", "fleet: " + fleet +
+                                      "\nsim: {mode: lockstep}\nlockstep: {participants: probe, wait_for_command: false}\n")},
+      env(76));
+  auto report = [](const char* vehicle, const char* done_ns) {
+    ChildProcess pub({QUAD_TOOL, "topic", "pub", "quad/sim/lockstep",
+                      std::string("{participant: probe, done_ns: ") + done_ns + "}", "--vehicle", vehicle},
+                     env(76));
+    return pub.wait(20s);
+  };
+  // WHEN vehicle 1's probe is done up to 1 s
+  ASSERT_EQ(report("1", "1000000000"), 0);
+  // THEN the clock still waits at 0 for vehicle 2's probe
+  EXPECT_EQ(clockOf(76, "1"), 0);
+  // WHEN vehicle 2's probe is done up to 0.5 s
+  ASSERT_EQ(report("2", "500000000"), 0);
+  // THEN the clock runs to the round that ends past 0.5 s (4 ms rounds) and waits there, the
+  // same for both vehicles
+  std::optional<std::int64_t> now;
+  for (int i = 0; i < 20 && now != 504'000'000; ++i) {
+    now = clockOf(76, "2");
+  }
+  EXPECT_EQ(now, 504'000'000);
+  EXPECT_EQ(clockOf(76, "1"), 504'000'000);
+  plant.signal(SIGTERM);
+  EXPECT_EQ(plant.wait(10s), 0) << plant.output();
 }
 
 TEST(PlantNode, AFleetWhoseVehiclesStartInContactOrShareAnIdIsRefusedNamingTheFileAndThem)

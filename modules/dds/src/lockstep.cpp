@@ -2,6 +2,7 @@
 #include "quad/dds/lockstep.hpp"
 
 #include <cstdio>
+#include <string_view>
 
 #include <spdlog/spdlog.h>
 
@@ -42,9 +43,35 @@ void LockstepReporter::holding(std::int64_t clock_ns, const std::function<std::s
   }
 }
 
+namespace {
+
+/// The ledger's name of `participant` of `vehicle` in a fleet's barrier.
+std::string fleetName(std::string_view participant, std::uint32_t vehicle)
+{
+  return std::string(participant) + " of vehicle " + std::to_string(vehicle);
+}
+
+/// The ledger's names: the participants' own, or each of them once per vehicle of a fleet.
+std::vector<std::string> ledgerNames(std::vector<std::string> participants, const std::vector<std::uint32_t>& vehicles)
+{
+  if (vehicles.empty()) {
+    return participants;
+  }
+  std::vector<std::string> names;
+  for (const std::uint32_t vehicle : vehicles) {
+    for (const std::string& p : participants) {
+      names.push_back(fleetName(p, vehicle));
+    }
+  }
+  return names;
+}
+
+}  // namespace
+
 LockstepBarrier::LockstepBarrier(Participant& participant, std::vector<std::string> participants,
-                                 Waker* waker)
-    : ledger_(std::move(participants)),
+                                 Waker* waker, std::vector<std::uint32_t> vehicles)
+    : vehicles_(std::move(vehicles)),
+      ledger_(ledgerNames(std::move(participants), vehicles_)),
       waker_(waker != nullptr ? waker : &own_waker_),
       subscriber_(participant, topics::kLockstep, waker_)
 {
@@ -58,12 +85,17 @@ bool LockstepBarrier::poll(std::int64_t sim_ns)
 
 void LockstepBarrier::collect()
 {
-  for (const auto& report : subscriber_.takeAll()) {
-    const auto outcome = ledger_.report(report.participant().to_string(), report.done_ns());
+  for (;;) {
+    const auto report = vehicles_.empty() ? subscriber_.take() : subscriber_.takeServed(vehicles_);
+    if (!report) {
+      break;
+    }
+    const std::string name = vehicles_.empty() ? report->participant().to_string()
+                                               : fleetName(report->participant().to_string(), report->header().vehicle_id());
+    const auto outcome = ledger_.report(name, report->done_ns());
     if (outcome != common::LockstepLedger::Report::kAccepted) {
       ++ignored_;
-      spdlog::warn("lockstep: ignored report from '{}' at {} ns: {}", report.participant().to_string(),
-                   report.done_ns(),
+      spdlog::warn("lockstep: ignored report from '{}' at {} ns: {}", name, report->done_ns(),
                    outcome == common::LockstepLedger::Report::kUnknownParticipant
                        ? "not an expected participant"
                        : "earlier than its previous report");

@@ -78,7 +78,10 @@ PlantNode::PlantNode(PlantNodeConfig config, dds::ParticipantOptions options)
     io_.push_back({.id = id});
   }
   if (config_.mode == PlantNodeConfig::Mode::kLockstep && !config_.lockstep_participants.empty()) {
-    barrier_ = std::make_unique<dds::LockstepBarrier>(participant(), config_.lockstep_participants, waker());
+    // With a fleet file each vehicle has its own participants (its mapper, its planner).
+    barrier_ = std::make_unique<dds::LockstepBarrier>(
+        participant(), config_.lockstep_participants, waker(),
+        config_.fleet_file.empty() ? std::vector<std::uint32_t>{} : fleet_->ids());
   }
   setTickPeriod(kRealTimeTickNs);
   setLockstep(config_.mode == PlantNodeConfig::Mode::kLockstep);

@@ -47,9 +47,12 @@ private:
 class LockstepBarrier {
 public:
   /// `waker` (optional) is notified when reports arrive, for a caller that polls from its own
-  /// loop instead of blocking in waitUntilDone.
+  /// loop instead of blocking in waitUntilDone. `vehicles` (a clock owner that simulates a
+  /// fleet): each of the participants is expected once per vehicle, its reports told apart by
+  /// their header's vehicle id and named "mapping of vehicle 2"; empty: once, for this
+  /// participant's vehicle.
   LockstepBarrier(Participant& participant, std::vector<std::string> participants,
-                  Waker* waker = nullptr);
+                  Waker* waker = nullptr, std::vector<std::uint32_t> vehicles = {});
 
   struct Result {
     bool caught_up = false;
@@ -73,6 +76,7 @@ public:
 private:
   void collect();
 
+  std::vector<std::uint32_t> vehicles_;  // a fleet's: reports named per vehicle; empty: this participant's
   common::LockstepLedger ledger_;
   Waker own_waker_;
   Waker* waker_;  // the one the subscriber notifies: the caller's, or own_waker_

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The plant's costs: RK4 physics steps, depth frames in a 1,000-obstacle forest (indexed ray
-// casting beside brute force), and world generation.
+// casting beside brute force), world generation, and a second of sim time of fleets of 1 to
+// 16 vehicles.
 #include <benchmark/benchmark.h>
 
 #include "quad/common/yaml_input.hpp"
+#include "quad/plant/fleet.hpp"
 #include "quad/plant/sensors.hpp"
 #include "quad/plant/simulation.hpp"
 #include "quad/world/world_file.hpp"
@@ -89,11 +91,35 @@ void BM_WorldGeneration1000Trees(benchmark::State& state)
   }
 }
 
+/// One second of sim time (1,000 steps) of a fleet of N vehicles in the forest, every sensor
+/// at its default rate (state and IMU 250 Hz, a 64x48 depth frame at 10 Hz): the plant's cost
+/// per vehicle, and what the others add to each camera (its rays are cast at them too). The
+/// vehicles start 1 m apart, 2 m up, and fall (no commands): the cost does not depend on it.
+void BM_FleetSecondOfSimTime(benchmark::State& state)
+{
+  const auto n = static_cast<std::uint32_t>(state.range(0));
+  const world::World world = world::parseWorld(kForest, "forest");
+  for (auto _ : state) {
+    state.PauseTiming();
+    std::vector<FleetVehicle> vehicles;
+    for (std::uint32_t i = 0; i < n; ++i) {
+      vehicles.push_back({i + 1, {}, world.start() + Vector3(0.0, 1.0 * i, 2.0), world.goal(), {}});
+    }
+    Fleet fleet(std::move(vehicles), world, SimulationConfig{});
+    state.ResumeTiming();
+    for (int k = 0; k < 1000; ++k) {
+      benchmark::DoNotOptimize(fleet.step());
+    }
+  }
+  state.counters["vehicles"] = n;
+}
+
 BENCHMARK(BM_PhysicsStep);
 BENCHMARK(BM_SimulationStepNoSensors);
 BENCHMARK(BM_DepthFrame64x48_Indexed)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_DepthFrame64x48_BruteForce)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_WorldGeneration1000Trees)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_FleetSecondOfSimTime)->Arg(1)->Arg(2)->Arg(4)->Arg(8)->Arg(16)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -68,15 +68,15 @@ std::vector<StepOutputs> Fleet::step()
   if (n > 1) {
     // Every camera sees the others where they are as this step begins, whatever the order
     // the vehicles are stepped in.
-    std::vector<world::Sphere> bodies;
-    bodies.reserve(n);
-    for (const Simulation& sim : vehicles_) {
-      bodies.push_back({sim.state().p_W, radiusOf(sim)});
-    }
+    // The scratch vector is reused: a step allocates nothing for it.
     for (std::size_t i = 0; i < n; ++i) {
-      std::vector<world::Sphere> others = bodies;
-      others.erase(others.begin() + static_cast<std::ptrdiff_t>(i));
-      vehicles_[i].setOthers(std::move(others));
+      others_scratch_.clear();
+      for (std::size_t j = 0; j < n; ++j) {
+        if (j != i) {
+          others_scratch_.push_back({vehicles_[j].state().p_W, radiusOf(vehicles_[j])});
+        }
+      }
+      vehicles_[i].setOthers(others_scratch_);
     }
   }
   std::vector<StepOutputs> out;

@@ -65,6 +65,7 @@ private:
   std::vector<std::uint64_t> vehicle_collisions_;  // per vehicle: with other vehicles
   std::set<std::pair<std::size_t, std::size_t>> touching_;  // pairs (i < j) in contact now
   double min_separation_;
+  std::vector<world::Sphere> others_scratch_;  // the others of the vehicle being set up
 };
 
 }  // namespace quad::plant

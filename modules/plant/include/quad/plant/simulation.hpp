@@ -11,6 +11,7 @@
 #include <deque>
 #include <optional>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -156,7 +157,7 @@ public:
   /// The other vehicles in the world, each its bounding sphere, as the next step's depth
   /// camera sees them (a Fleet sets them before every step; contacts between vehicles are the
   /// Fleet's to detect).
-  void setOthers(std::vector<world::Sphere> others) { others_ = std::move(others); }
+  void setOthers(std::span<const world::Sphere> others) { others_.assign(others.begin(), others.end()); }
 
   /// Advances one step.
   StepOutputs step();

@@ -7,15 +7,15 @@
 
 namespace quad::dds {
 
-SimClockFollower::SimClockFollower(Participant& participant, Waker* waker)
-    : clock_(participant, topics::kSimClock, waker)
+SimClockFollower::SimClockFollower(Participant& participant, Waker* waker, std::vector<std::uint32_t> served)
+    : clock_(participant, topics::kSimClock, waker), served_(std::move(served))
 {
 }
 
 bool SimClockFollower::update()
 {
   bool arrived = false;
-  while (const auto c = clock_.take()) {
+  while (const auto c = served_.empty() ? clock_.take() : clock_.takeServed(served_)) {
     arrived = true;
     seen_ = true;
     lockstep_ = c->lockstep();

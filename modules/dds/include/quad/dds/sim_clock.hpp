@@ -8,6 +8,7 @@
 /// past the clock than the plant sends one. Nodes follow it through Node::followSimClock().
 
 #include <cstdint>
+#include <vector>
 
 #include <quad/msg/SimClock.h>
 
@@ -17,7 +18,9 @@ namespace quad::dds {
 
 class SimClockFollower {
 public:
-  SimClockFollower(Participant& participant, Waker* waker = nullptr);
+  /// Follows the clock of the participant's own vehicle, or with `served` the clock samples
+  /// of those vehicles (the launcher following a fleet: one clock, a sample per vehicle).
+  SimClockFollower(Participant& participant, Waker* waker = nullptr, std::vector<std::uint32_t> served = {});
 
   /// Takes every clock sample that arrived; true when one did.
   bool update();
@@ -36,6 +39,7 @@ public:
 
 private:
   Subscriber<msg::SimClock> clock_;
+  std::vector<std::uint32_t> served_;
   bool seen_ = false;
   bool lockstep_ = false;
   std::int64_t ns_ = 0;

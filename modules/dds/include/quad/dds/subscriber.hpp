@@ -66,6 +66,16 @@ public:
     }
     return out;
   }
+
+  /// Every unread sample of any of the `served` vehicles, oldest first (takeServed).
+  std::vector<Message> takeAll(std::span<const std::uint32_t> served)
+  {
+    std::vector<Message> out;
+    while (auto sample = takeServed(served)) {
+      out.push_back(std::move(*sample));
+    }
+    return out;
+  }
 };
 
 }  // namespace quad::dds

@@ -117,6 +117,7 @@ int main(int argc, char** argv)
   report->add_option("input", report_options.input, "A run folder (log/<run>/, with its recording.mcap) or a recording")->required();
   report->add_option("-o,--output", report_options.output, "Folder for report.html and the figures (default: the input's)");
   report->add_option("--world", report_options.world, "World whose obstacles the views draw (default: the run's, from run.json)");
+  report->add_option("--vehicle", report_options.vehicle, "A fleet's run: the vehicle to report (its id)");
   report->add_flag("-q,--quiet", report_quiet, "No progress lines");
 
   quad::tools::CampaignCommandOptions campaign_options;

@@ -9,6 +9,7 @@
 #include <span>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "quad/bag/audit.hpp"
 #include "quad/introspection/cdr.hpp"
@@ -114,7 +115,7 @@ void keep(std::vector<FlightData::State>& series, const FlightData::State& s)
 
 }  // namespace
 
-FlightData readFlight(const bag::McapContents& recording, const Progress& progress)
+FlightData readFlight(const bag::McapContents& recording, const Progress& progress, std::optional<std::uint32_t> vehicle)
 {
   const std::map<std::uint16_t, Decoder> channels = decoders(recording);
   FlightData f;
@@ -129,6 +130,7 @@ FlightData readFlight(const bag::McapContents& recording, const Progress& progre
   std::map<std::uint16_t, Span> spans;
   const bag::Message* last_snapshot = nullptr;
   bool any_state = false;
+  std::set<std::uint32_t> vehicles_seen;  // in the vehicle states
   const std::size_t total = recording.messages.size();
   for (std::size_t k = 0; k < total; ++k) {
     if (progress && k % 20000 == 0) {
@@ -148,6 +150,13 @@ FlightData readFlight(const bag::McapContents& recording, const Progress& progre
                                                             "quad/control/status",  "quad/sim/events",
                                                             "quad/system/fault_events"};
     const Json msg = kDrawn.contains(topic) ? d.decode(m) : Json{{"header", d.decode(m, "quad::msg::Header")}};
+    const auto vehicle_id = field(field(msg, "header", topic), "vehicle_id", topic).get<std::uint32_t>();
+    if (topic == "quad/sim/state") {
+      vehicles_seen.insert(vehicle_id);
+    }
+    if (vehicle && vehicle_id != *vehicle && topic != "quad/system/fault_events") {
+      continue;
+    }
     const double header_t = stampOf(msg, topic);
     Span& span = spans[m.channel_id];
     if (span.n == 0 || header_t < span.first) {
@@ -206,8 +215,14 @@ FlightData readFlight(const bag::McapContents& recording, const Progress& progre
   if (progress) {
     progress(total, total);
   }
+  if (!vehicle && vehicles_seen.size() > 1) {
+    throw FlightError(fmt::format("quad/sim/state: the recording holds vehicles {}: choose one (quad report --vehicle N)",
+                                  fmt::join(vehicles_seen, ", ")));
+  }
   if (!any_state) {
-    throw FlightError("quad/sim/state: the recording holds no vehicle state (was the plant recorded?)");
+    throw FlightError(vehicle ? fmt::format("quad/sim/state: the recording holds no state of vehicle {} (it holds {})",
+                                            *vehicle, vehicles_seen.empty() ? "none" : fmt::format("{}", fmt::join(vehicles_seen, ", ")))
+                              : "quad/sim/state: the recording holds no vehicle state (was the plant recorded?)");
   }
   if (last_snapshot != nullptr) {
     const Decoder& d = channels.at(last_snapshot->channel_id);

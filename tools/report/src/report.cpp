@@ -248,9 +248,13 @@ ReportResult writeReport(const ReportOptions& options, const std::function<void(
   }
   FlightData flight;
   try {
-    flight = readFlight(contents, [&](std::size_t done, std::size_t total) {
-      tell(fmt::format("decoded {} of {} messages ({:.0f}%)", done, total, total == 0 ? 100.0 : 100.0 * static_cast<double>(done) / static_cast<double>(total)));
-    });
+    flight = readFlight(
+        contents,
+        [&](std::size_t done, std::size_t total) {
+          tell(fmt::format("decoded {} of {} messages ({:.0f}%)", done, total,
+                           total == 0 ? 100.0 : 100.0 * static_cast<double>(done) / static_cast<double>(total)));
+        },
+        options.vehicle);
   } catch (const FlightError& e) {
     throw ReportError(fmt::format("{}: {}", in.recording.string(), e.what()));
   }

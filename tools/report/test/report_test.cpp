@@ -23,21 +23,25 @@ namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
 Json vec(double x, double y, double z) { return {{"x", x}, {"y", y}, {"z", z}}; }
-Json header(std::int64_t stamp_ns, std::uint64_t seq) { return {{"vehicle_id", 1}, {"stamp_ns", stamp_ns}, {"publish_ns", stamp_ns}, {"seq", seq}}; }
+Json header(std::int64_t stamp_ns, std::uint64_t seq, std::uint32_t vehicle = 1)
+{
+  return {{"vehicle_id", vehicle}, {"stamp_ns", stamp_ns}, {"publish_ns", stamp_ns}, {"seq", seq}};
+}
 
 /// A recording as `quad record` writes one: a schema per type, a channel per topic with its rate.
 class Recording {
 public:
   explicit Recording(const fs::path& file) : writer_(file, 1 << 16, "zstd") {}
 
-  void write(const std::string& topic, const std::string& type, double rate_hz, Json message, std::int64_t stamp_ns)
+  void write(const std::string& topic, const std::string& type, double rate_hz, Json message, std::int64_t stamp_ns,
+             std::uint32_t vehicle = 1)
   {
     if (!channels_.contains(topic)) {
       const auto& schema = introspection::quadSchema();
       const auto id = writer_.addSchema(type, "omgidl", schema.flattenedIdl(type));
       channels_[topic] = writer_.addChannel(id, topic, "cdr", {{"rate_hz", std::to_string(rate_hz)}});
     }
-    message["header"] = header(stamp_ns, ++seq_[topic]);
+    message["header"] = header(stamp_ns, ++seq_[topic], vehicle);
     const auto bytes = introspection::encodeCdr(introspection::quadSchema(), type, message);
     writer_.write(channels_[topic], static_cast<std::uint32_t>(seq_[topic]), static_cast<std::uint64_t>(stamp_ns),
                   static_cast<std::uint64_t>(stamp_ns), bytes.data(), bytes.size());
@@ -54,9 +58,21 @@ constexpr std::int64_t kMs = 1'000'000;
 
 /// 10 s of flight: up to 2 m, then east at 1 m/s; a path every second, modes TAKEOFF then
 /// MISSION, a collision at 6 s, one wall of occupied voxels at x = 8 m.
-void writeFlight(const fs::path& file, bool with_state = true)
+/// With `second`, a second vehicle (id 2) hovers at (0, 5, 1) beside it, with a path of its own.
+void writeFlight(const fs::path& file, bool with_state = true, bool second = false)
 {
   Recording r(file);
+  if (second) {
+    for (int k = 0; k <= 2500; ++k) {
+      r.write("quad/sim/state", "quad::msg::VehicleState", 250.0,
+              {{"p_W", vec(0, 5, 1)}, {"v_W", vec(0, 0, 0)}, {"q_WB", {{"w", 1.0}, {"x", 0.0}, {"y", 0.0}, {"z", 0.0}}}},
+              k * 4 * kMs, 2);
+    }
+    r.write("quad/planning/path", "quad::msg::Path", 0.0,
+            {{"version", 1}, {"goal_id", 1}, {"status", "PLAN_OK"}, {"waypoints_W", {vec(0, 5, 1), vec(9, 5, 1)}},
+             {"expansions", 7}, {"replan_time_s", 0.001}},
+            0, 2);
+  }
   r.write("quad/planning/goal", "quad::msg::Goal", 0.0, {{"goal_id", 1}, {"p_W", vec(10, 0, 2)}, {"tolerance", 0.3}}, 0);
   for (int k = 0; k <= 2500; ++k) {  // 250 Hz
     const double t = k * 0.004;
@@ -145,6 +161,38 @@ TEST(ReadFlight, RecoversTheTrajectoryPathsModesEventsMapAndRates)
   ASSERT_FALSE(f.estimate_error.empty());
   EXPECT_NEAR(f.estimate_error.back().position_m, 0.1, 1e-9);
   EXPECT_GE(f.estimate_error.front().t_s, 1.0);
+}
+
+TEST(ReadFlight, AFleetsRecordingIsReadOneVehicleAtATime)
+{
+  const fs::path dir = test::scratchDir("report_fleet");
+  writeFlight(dir / "fleet.mcap", true, true);
+  const auto recording = bag::readMcap(dir / "fleet.mcap");
+  try {
+    (void)readFlight(recording);
+    FAIL() << "two vehicles read as one";
+  } catch (const FlightError& e) {
+    EXPECT_NE(std::string(e.what()).find("the recording holds vehicles 1, 2"), std::string::npos) << e.what();
+  }
+  const FlightData first = readFlight(recording, {}, 1U);
+  EXPECT_EQ(first.paths.size(), 11U);
+  for (const auto& s : first.truth) {
+    EXPECT_EQ(s.p_W.y(), 0.0);
+  }
+  const FlightData second = readFlight(recording, {}, 2U);
+  ASSERT_EQ(second.paths.size(), 1U);
+  EXPECT_EQ(second.paths[0].expansions, 7U);
+  EXPECT_TRUE(second.status.empty());
+  ASSERT_FALSE(second.truth.empty());
+  for (const auto& s : second.truth) {
+    EXPECT_EQ(s.p_W, Vector3(0, 5, 1));
+  }
+  try {
+    (void)readFlight(recording, {}, 3U);
+    FAIL() << "a vehicle the recording does not hold";
+  } catch (const FlightError& e) {
+    EXPECT_NE(std::string(e.what()).find("no state of vehicle 3 (it holds 1, 2)"), std::string::npos) << e.what();
+  }
 }
 
 TEST(ReadFlight, ARecordingWithoutTheVehicleStateIsRefusedNamingTheTopic)

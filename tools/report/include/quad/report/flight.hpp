@@ -87,8 +87,12 @@ struct FlightData {
 /// Called now and then while the messages are decoded: how many of how many are done.
 using Progress = std::function<void(std::size_t done, std::size_t total)>;
 
-/// Reads a recording's flight. Throws FlightError when the recording holds no vehicle state
-/// (quad/sim/state) or a message the report uses does not decode.
-FlightData readFlight(const bag::McapContents& recording, const Progress& progress = {});
+/// Reads a recording's flight: of `vehicle` alone (Header.vehicle_id; the fault tool's events
+/// are every vehicle's), or, when none is given, of the one vehicle the recording holds. Throws
+/// FlightError when the recording holds no vehicle state (quad/sim/state) of it, states of
+/// several vehicles and no `vehicle` (naming them), or a message the report uses does not
+/// decode.
+FlightData readFlight(const bag::McapContents& recording, const Progress& progress = {},
+                      std::optional<std::uint32_t> vehicle = std::nullopt);
 
 }  // namespace quad::report

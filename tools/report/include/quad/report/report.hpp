@@ -4,6 +4,7 @@
 /// `quad report`: a run's recording turned into report.html and one SVG file per figure, in
 /// the run's folder. The page needs no network and no script: any browser opens it.
 
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -29,6 +30,8 @@ struct ReportOptions {
   /// A run folder's recording when it is not the folder's recording.mcap (quad launch
   /// --record FILE).
   std::optional<std::filesystem::path> recording;
+  /// A fleet's run: the vehicle reported (Header.vehicle_id); a recording of one vehicle needs none.
+  std::optional<std::uint32_t> vehicle;
 };
 
 struct ReportResult {

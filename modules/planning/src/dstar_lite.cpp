@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <queue>
 #include <stdexcept>
 
@@ -125,7 +126,41 @@ bool DStarLite::traversable(Cell c) const
     return false;
   }
   const auto i = static_cast<std::size_t>(c);
-  return blockers_[i] == 0 && (config_.unknown_traversable || cell_state_[i] != Occupancy::kUnknown);
+  return blockers_[i] == 0 && (config_.unknown_traversable || cell_state_[i] != Occupancy::kUnknown) &&
+         (kept_out_.empty() || kept_out_[i] == 0);
+}
+
+void DStarLite::setKeepOut(std::vector<Cell> cells)
+{
+  std::erase_if(cells, [&](Cell c) { return c < 0 || c >= size_; });
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  if (cells == keep_out_) {
+    return;
+  }
+  if (kept_out_.empty()) {
+    kept_out_.assign(static_cast<std::size_t>(size_), 0);
+  }
+  // Every cell that was or is now kept out, with its traversability before the change.
+  std::vector<Cell> touched;
+  touched.reserve(cells.size() + keep_out_.size());
+  std::set_union(keep_out_.begin(), keep_out_.end(), cells.begin(), cells.end(), std::back_inserter(touched));
+  std::vector<bool> was(touched.size());
+  for (std::size_t k = 0; k < touched.size(); ++k) {
+    was[k] = traversable(touched[k]);
+  }
+  for (const Cell c : keep_out_) {
+    kept_out_[static_cast<std::size_t>(c)] = 0;
+  }
+  for (const Cell c : cells) {
+    kept_out_[static_cast<std::size_t>(c)] = 1;
+  }
+  keep_out_ = std::move(cells);
+  for (std::size_t k = 0; k < touched.size(); ++k) {
+    if (was[k] != traversable(touched[k])) {
+      cellChanged(touched[k], was[k]);
+    }
+  }
 }
 
 Occupancy DStarLite::voxelState(const VoxelIndex& voxel) const

@@ -71,6 +71,67 @@ TEST(DStarLite, CostEqualsDijkstraAfterEveryBatchOfUpdatesWithAMovingStart)
   }
 }
 
+TEST(DStarLite, CostEqualsDijkstraWhileMovingKeepOutsComeAndGoOverAMap)
+{
+  // A block of kept-out cells moves across the box each replan, as another vehicle's tube
+  // would, over a map of random obstacles; the search is repaired, never restarted.
+  std::mt19937_64 rng(77);
+  DStarLite planner(box(20, 20, 5), {26, true, 0.0, Heuristic::kLattice});
+  Cell start = at(planner, 0, 0, 1);
+  const Cell goal = at(planner, 19, 19, 2);
+  planner.setStart(start);
+  planner.setGoal(goal);
+  std::uniform_int_distribution<int> x(0, 19), z(0, 4);
+  for (int k = 0; k < 120; ++k) {
+    const VoxelIndex v(x(rng), x(rng), z(rng));
+    if (planner.lattice().cell(v) != goal && planner.lattice().cell(v) != start) {
+      planner.updateVoxel(v, Occupancy::kOccupied);
+    }
+  }
+  for (int step = 0; step < 16; ++step) {
+    std::vector<Cell> keep_out;
+    for (int bx = 0; bx < 4; ++bx) {
+      for (int by = 0; by < 3; ++by) {
+        for (int bz = 0; bz < 5; ++bz) {
+          const auto c = planner.lattice().cell(VoxelIndex(2 + step + bx, 8 + by, bz));
+          if (c && *c != goal && *c != start) {
+            keep_out.push_back(*c);
+          }
+        }
+      }
+    }
+    planner.setKeepOut(step == 15 ? std::vector<Cell>{} : keep_out);
+    if (step < 15) {
+      for (const Cell c : keep_out) {
+        EXPECT_FALSE(planner.traversable(c));
+      }
+    }
+    EXPECT_TRUE(std::is_sorted(planner.keepOut().begin(), planner.keepOut().end()));
+    const PlanResult r = planner.plan();
+    const double reference = shortestPathCost(planner, start, goal);
+    ASSERT_NE(reference, kInfinity) << "step " << step;
+    ASSERT_EQ(r.status, PlanStatus::kOk) << "step " << step;
+    EXPECT_NEAR(r.cost, reference, 1e-9) << "step " << step;
+    expectCollisionFree(planner, r);
+    if (r.cells.size() > 3) {
+      start = r.cells[1];
+      planner.setStart(start);
+    }
+  }
+  // With the keep-out gone, the map alone decides: what a planner that never had one plans.
+  DStarLite fresh(box(20, 20, 5), {26, true, 0.0, Heuristic::kLattice});
+  std::mt19937_64 again(77);
+  for (int k = 0; k < 120; ++k) {
+    const VoxelIndex v(x(again), x(again), z(again));
+    if (fresh.lattice().cell(v) != goal && fresh.lattice().cell(v) != at(fresh, 0, 0, 1)) {
+      fresh.updateVoxel(v, Occupancy::kOccupied);
+    }
+  }
+  fresh.setStart(start);
+  fresh.setGoal(goal);
+  EXPECT_NEAR(fresh.plan().cost, planner.plan().cost, 1e-9);
+}
+
 TEST(DStarLite, LatticeHeuristicIsTheObstacleFreeDistanceAndAConsistentLowerBound)
 {
   for (const int connectivity : {6, 18, 26}) {

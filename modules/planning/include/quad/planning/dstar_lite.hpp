@@ -88,6 +88,13 @@ public:
   /// traversability changed. Voxels outside the lattice still block cells inside it.
   void updateVoxel(const VoxelIndex& voxel, Occupancy state);
 
+  /// The cells kept out of besides the map's (deconfliction.hpp: the tubes of the vehicles
+  /// this one yields to), replacing the previous set; the edges of every cell whose
+  /// traversability changed are repaired as a map change repairs them.
+  void setKeepOut(std::vector<Cell> cells);
+  /// The cells kept out of now, sorted.
+  const std::vector<Cell>& keepOut() const { return keep_out_; }
+
   /// Sets the goal; a new goal re-initialises the search.
   void setGoal(Cell goal);
   /// Moves the start (every replan): k_m grows by the heuristic between old and new start.
@@ -221,6 +228,10 @@ private:
   std::vector<std::uint16_t> blockers_;
   std::vector<Occupancy> cell_state_;
   std::vector<Cell> changed_;  // updateVoxel's cells whose traversability changed, reused
+  // Per cell, 1 where setKeepOut keeps the search out; empty until the first keep-out, so a
+  // lone vehicle's planner spends nothing on it.
+  std::vector<std::uint8_t> kept_out_;
+  std::vector<Cell> keep_out_;  // its cells, sorted
   std::unordered_map<VoxelIndex, Occupancy, geometry::VoxelIndexHash> voxels_;
   std::vector<std::unique_ptr<Vertex[]>> pages_;
   std::size_t allocated_pages_ = 0;

@@ -4,6 +4,7 @@
 #include "quad/common/layout.hpp"
 
 #include <algorithm>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include "quad/common/time.hpp"
@@ -103,11 +104,17 @@ PlanningNode::PlanningNode(PlanningNodeConfig config, dds::ParticipantOptions op
       snapshots_(participant(), dds::topics::kMapSnapshot, waker()),
       state_(participant(), config_.state_source, waker()),
       goal_(participant(), dds::topics::kGoal, waker()),
+      // Every path of every vehicle, none replaced by a newer before it is taken: the one in
+      // effect at a replan may be older than the newest heard (kPathEffectDelayNs).
+      fleet_paths_(participant(), dds::topics::kPath, waker(),
+                   dds::withDepth(participant().readerQos(dds::topics::kPath.info.qos_profile), 64)),
       reports_(participant(), dds::topics::kLockstep),
       path_(participant(), dds::topics::kPath),
       goal_acks_(participant(), dds::topics::kGoalAck),
       mapper_(participant(), "mapping", waker()),
-      lockstep_(participant(), "planning")
+      lockstep_(participant(), "planning"),
+      deconfliction_(participant().options().vehicle_id, config_.fleet, config_.planner.vehicle_radius,
+                     config_.planner.vehicle_radius - config_.safety_margin)
 {
   followSimClock();
   spdlog::info("planning: lattice {} cells at {} m, inflation {} m", planner_.lattice().size(), config_.resolution,
@@ -246,12 +253,39 @@ void PlanningNode::publish(std::int64_t t_ns, bool changed)
   next_publish_ns_ = t_ns + common::toNanoseconds(config_.republish_period_s);
 }
 
+void PlanningNode::takeFleetPaths()
+{
+  while (auto p = fleet_paths_.takeAnyVehicle()) {
+    std::vector<Vector3> waypoints;
+    for (const auto& w : p->waypoints_W()) {
+      waypoints.push_back(dds::toVector(w));
+    }
+    if (std::all_of(waypoints.begin(), waypoints.end(), [](const Vector3& w) { return w.allFinite(); })) {
+      deconfliction_.onPath(p->header().vehicle_id(), p->header().stamp_ns(), std::move(waypoints));
+    }
+  }
+}
+
+void PlanningNode::applyKeepOut(std::int64_t t_ns)
+{
+  takeFleetPaths();
+  const std::vector<std::uint32_t> giving_way = deconfliction_.yieldingTo(t_ns);
+  if (giving_way != giving_way_to_) {
+    giving_way_to_ = giving_way;
+    spdlog::info("planning: giving way to {}", giving_way.empty()       ? std::string("no vehicle")
+                                               : giving_way.size() == 1 ? fmt::format("vehicle {}", giving_way.front())
+                                                                        : fmt::format("vehicles {}", fmt::join(giving_way, ", ")));
+  }
+  planner_.setKeepOut(deconfliction_.keepOut(planner_.lattice(), t_ns));
+}
+
 void PlanningNode::replan(std::int64_t t_ns)
 {
   if (!goal_id_ || !position_) {
     return;
   }
   applyPending();
+  applyKeepOut(t_ns);
   // Outside the lattice (below the ground clearance taking off, or between the geofence and
   // its margin), plan from its nearest cell: the controller, not the planner, answers for a
   // vehicle outside the geofence.
@@ -264,6 +298,10 @@ void PlanningNode::replan(std::int64_t t_ns)
     // nearest free cell rather than report the start blocked.
     start = planner_.nearestTraversable(*start, 2.0 * config_.planner.vehicle_radius + config_.resolution)
                 .value_or(*start);
+  }
+  if (start && !planner_.traversable(*start) && !planner_.keepOut().empty()) {
+    // Inside another vehicle's tube: out of it by the nearest way.
+    start = planner_.nearestTraversable(*start, deconfliction_.clearance() + config_.resolution).value_or(*start);
   }
   const std::int64_t begin = common::steadyTimeNs();
   PlanResult r;
@@ -376,6 +414,7 @@ void PlanningNode::onWake()
     spdlog::warn("{}: an update was refused on receipt: a gap until the next snapshot",
                  dds::topics::kMapUpdate.info.name);
   }
+  takeFleetPaths();
   // In lockstep an operator's goal takes effect a fixed delay after its stamp, not when it
   // happens to arrive: the replans that follow it, and so the runs, repeat.
   while (auto g = goal_.take()) {

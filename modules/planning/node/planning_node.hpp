@@ -19,7 +19,7 @@
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/mapping/map_follower.hpp"
-#include "quad/planning/dstar_lite.hpp"
+#include "quad/planning/deconfliction.hpp"
 #include "quad/planning/planning_params.hpp"
 
 namespace quad::planning {
@@ -55,6 +55,10 @@ private:
   /// A goal taking effect (or refused, and answered).
   void takeGoal(const msg::Goal& goal);
   void replan(std::int64_t t_ns);
+  /// The other vehicles' paths that arrived, into the deconfliction's history.
+  void takeFleetPaths();
+  /// The other vehicles' tubes this one gives way to, into the planner's graph.
+  void applyKeepOut(std::int64_t t_ns);
   void publish(std::int64_t t_ns, bool changed);
 
   PlanningNodeConfig config_;
@@ -64,6 +68,7 @@ private:
   dds::Subscriber<msg::MapSnapshot> snapshots_;
   dds::StateInput state_;
   dds::Subscriber<msg::Goal> goal_;
+  dds::Subscriber<msg::Path> fleet_paths_;  // every vehicle's: the others' for deconfliction
   dds::Subscriber<msg::LockstepReport> reports_;  // polled: the mapper's tell a lost update from a late one
   dds::Publisher<msg::Path> path_;
   dds::Publisher<msg::GoalAck> goal_acks_;
@@ -92,6 +97,8 @@ private:
   std::uint32_t version_ = 0;
   msg::Path current_;
   std::optional<Vector3> frontier_W_;  // where the published path leaves known-free space, if it does
+  Deconfliction deconfliction_;
+  std::vector<std::uint32_t> giving_way_to_;  // last said in the log
 };
 
 }  // namespace quad::planning

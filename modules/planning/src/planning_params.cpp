@@ -41,7 +41,13 @@ const common::ParamTable<PlanningParams>& planningTable()
         .number("max_expansions", [](P& p) -> std::uint64_t& { return p.max_expansions; }, {1, 100000000}, "",
                 "replan budget per cycle")
         .number("map_frames_behind", [](P& p) -> std::uint64_t& { return p.map_frames_behind; }, {1, 1000}, "",
-                "depth frames the map may lag the camera before paths stop (a stalled mapper)");
+                "depth frames the map may lag the camera before paths stop (a stalled mapper)")
+        .number("fleet.separation", [](P& p) -> double& { return p.fleet.separation; }, {0.0, 100.0}, "m",
+                "in a fleet: kept between this vehicle's sphere and that of every vehicle of a lower id")
+        .number("fleet.lookahead", [](P& p) -> double& { return p.fleet.lookahead; }, {0.0, 1000.0}, "m",
+                "in a fleet: of a lower id's newest path, from where it was published, kept out of")
+        .number("fleet.path_timeout", [](P& p) -> double& { return p.fleet.path_timeout_s; }, {0.1, 60.0}, "s",
+                "in a fleet: sim time after its stamp a lower id's path is kept out of");
     return t;
   }();
   return table;

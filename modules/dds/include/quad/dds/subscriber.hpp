@@ -57,6 +57,14 @@ public:
     return std::nullopt;
   }
 
+  /// The next unread sample of whichever vehicle (a planner hearing the other vehicles'
+  /// paths, the launcher every module's heartbeat): nothing is dropped. `writer` as take's.
+  std::optional<Message> takeAnyVehicle(std::uint64_t* writer = nullptr)
+  {
+    Message sample;
+    return takeSample(&sample, writer) ? std::optional<Message>(std::move(sample)) : std::nullopt;
+  }
+
   /// Every unread sample of this participant's vehicle, oldest first.
   std::vector<Message> takeAll()
   {

@@ -10,7 +10,7 @@
 
 #include "quad/common/geofence.hpp"
 #include "quad/common/param_table.hpp"
-#include "quad/planning/dstar_lite.hpp"
+#include "quad/planning/deconfliction.hpp"
 #include "quad/planning/known_space.hpp"
 
 namespace quad::planning {
@@ -32,6 +32,7 @@ struct PlanningParams {
   double republish_period_s = 0.5;      ///< [s] of sim time between repeats of an unchanged path
   std::uint64_t max_expansions = 200000;
   std::uint64_t map_frames_behind = 5;  ///< depth frames the map may lag the camera before paths stop
+  FleetRule fleet;                      ///< how the vehicle gives way to the others of a fleet (not on a known map)
 };
 
 /// configs/planning.yaml: each key with its unit, range and the field it fills; the defaults

@@ -72,7 +72,7 @@ void BM_SequenceAudit(benchmark::State& state)
   quad::bag::SequenceAudit audit;
   std::uint64_t seq = 1;
   for (auto _ : state) {
-    audit.add(42, seq++);
+    audit.add(42, 0, seq++);
   }
   state.SetItemsProcessed(state.iterations());
 }

@@ -14,9 +14,9 @@ LossFigures& LossFigures::operator+=(const LossFigures& o)
   return *this;
 }
 
-void SequenceAudit::add(std::uint64_t writer, std::uint64_t seq)
+void SequenceAudit::add(std::uint64_t writer, std::uint32_t vehicle, std::uint64_t seq)
 {
-  Writer& w = writers_[writer];
+  Writer& w = writers_[{writer, vehicle}];
   ++w.f.received;
   if (w.f.received == 1) {
     w.last = seq;  // a recorder joining late starts wherever the writer is
@@ -32,6 +32,15 @@ void SequenceAudit::add(std::uint64_t writer, std::uint64_t seq)
   } else {
     ++w.f.duplicated;
   }
+}
+
+std::size_t SequenceAudit::writers() const
+{
+  std::set<std::uint64_t> ids;
+  for (const auto& [key, w] : writers_) {
+    ids.insert(key.first);
+  }
+  return ids.size();
 }
 
 LossFigures SequenceAudit::figures() const

@@ -127,6 +127,7 @@ private:
 struct Decoded {
   struct Entry {
     std::int64_t stamp_ns = 0;
+    std::uint32_t vehicle = 0;  // Header.vehicle_id: a fleet's samples of one stamp, vehicle by vehicle
     std::uint64_t seq = 0;  // its place among the topic's messages of that stamp
     const Message* message = nullptr;
     Json value;  // null when the payload is not its type
@@ -141,12 +142,13 @@ Decoded decode(const in::Schema& schema, const in::StructDef* def, const std::ve
   Decoded d;
   d.headers = def != nullptr && !def->members.empty() && def->members.front().name == "header";
   for (const Message* m : messages) {
-    Decoded::Entry e{0, 0, m, nullptr};
+    Decoded::Entry e{0, 0, 0, m, nullptr};
     if (def != nullptr) {
       try {
         e.value = in::decodeCdr(schema, def->name, m->data);
         if (d.headers) {
           e.stamp_ns = e.value["header"]["stamp_ns"].get<std::int64_t>();
+          e.vehicle = e.value["header"]["vehicle_id"].get<std::uint32_t>();
         }
       } catch (const in::DecodeError&) {
         d.headers = false;
@@ -157,8 +159,11 @@ Decoded decode(const in::Schema& schema, const in::StructDef* def, const std::ve
   if (!d.headers) {
     return d;
   }
-  std::stable_sort(d.entries.begin(), d.entries.end(),
-                   [](const Decoded::Entry& l, const Decoded::Entry& r) { return l.stamp_ns < r.stamp_ns; });
+  // Of one stamp, a fleet's vehicles' samples come in whatever order their writers' turns
+  // fell: vehicle by vehicle, each in its recorded order.
+  std::stable_sort(d.entries.begin(), d.entries.end(), [](const Decoded::Entry& l, const Decoded::Entry& r) {
+    return std::pair(l.stamp_ns, l.vehicle) < std::pair(r.stamp_ns, r.vehicle);
+  });
   // A sample sent again (a waiting lockstep plant resends its clock, state and cloud until
   // they are taken) differs from the first only in its number and publication time: once.
   std::set<std::string> resend = ignored;

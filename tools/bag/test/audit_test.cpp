@@ -11,10 +11,10 @@ TEST(SequenceAudit, CountsGapsDuplicatesAndReorderingPerWriter)
 {
   SequenceAudit a;
   for (const std::uint64_t s : {5U, 6U, 7U, 9U, 10U, 10U, 8U, 12U}) {  // joins at 5; 8 late; 10 twice; 11 never
-    a.add(1, s);
+    a.add(1, 0, s);
   }
   for (std::uint64_t s = 1; s <= 100; ++s) {  // another writer, interleaved numbers of its own
-    a.add(2, s);
+    a.add(2, 0, s);
   }
   const LossFigures f = a.figures();
   EXPECT_EQ(f.received, 108U);
@@ -24,11 +24,28 @@ TEST(SequenceAudit, CountsGapsDuplicatesAndReorderingPerWriter)
   EXPECT_EQ(a.writers(), 2U);
 }
 
+TEST(SequenceAudit, AWriterOfSeveralVehiclesNumbersEachOnItsOwn)
+{
+  SequenceAudit a;
+  for (std::uint64_t s = 1; s <= 50; ++s) {  // one writer, a fleet's three vehicles interleaved
+    for (const std::uint32_t vehicle : {1U, 2U, 3U}) {
+      if (!(vehicle == 2 && s == 20)) {  // vehicle 2's 20th lost
+        a.add(9, vehicle, s);
+      }
+    }
+  }
+  const LossFigures f = a.figures();
+  EXPECT_EQ(f.received, 149U);
+  EXPECT_EQ(f.missing, 1U);
+  EXPECT_EQ(f.duplicated + f.reordered, 0U);
+  EXPECT_EQ(a.writers(), 1U);
+}
+
 TEST(SequenceAudit, AnUnbrokenRunHasNoLoss)
 {
   SequenceAudit a;
   for (std::uint64_t s = 1; s <= 1000; ++s) {
-    a.add(7, s);
+    a.add(7, 0, s);
   }
   const LossFigures f = a.figures();
   EXPECT_EQ(f.received, 1000U);

@@ -15,13 +15,14 @@ namespace in = quad::introspection;
 using Json = nlohmann::ordered_json;
 
 /// A path sample: `n` waypoints along x, stamped `t_ns`, published at `publish_ns`.
-std::vector<std::uint8_t> path(std::int64_t t_ns, std::int64_t publish_ns, int n, double replan_s = 0.01)
+std::vector<std::uint8_t> path(std::int64_t t_ns, std::int64_t publish_ns, int n, double replan_s = 0.01,
+                               std::uint32_t vehicle = 1)
 {
   Json waypoints = Json::array();
   for (int i = 0; i < n; ++i) {
     waypoints.push_back({{"x", 1.0 * i}, {"y", 0.0}, {"z", 2.0}});
   }
-  const Json v = {{"header", {{"vehicle_id", 1}, {"stamp_ns", t_ns}, {"publish_ns", publish_ns}, {"seq", 1}}},
+  const Json v = {{"header", {{"vehicle_id", vehicle}, {"stamp_ns", t_ns}, {"publish_ns", publish_ns}, {"seq", 1}}},
                   {"version", 1},
                   {"waypoints_W", waypoints},
                   {"replan_time_s", replan_s}};
@@ -59,6 +60,22 @@ TEST(Compare, RecordingsThatDifferOnlyInIgnoredMembersAgree)
   EXPECT_EQ(strict.differences[0].index, 1U);
   EXPECT_EQ(strict.differences[0].first, "111");
   EXPECT_EQ(strict.differences[0].second, "999");
+}
+
+TEST(Compare, AFleetsSamplesOfOneStampPairVehicleByVehicleWhateverOrderTheyCameIn)
+{
+  // Vehicles 1 and 2 publish paths of one stamp; the two recordings hold them in turns of
+  // their own.
+  const auto a = recording({path(10, 1, 3, 0.01, 1), path(10, 2, 5, 0.01, 2), path(20, 3, 4, 0.01, 2), path(20, 4, 6, 0.01, 1)});
+  const auto b = recording({path(10, 1, 5, 0.01, 2), path(10, 2, 3, 0.01, 1), path(20, 3, 6, 0.01, 1), path(20, 4, 4, 0.01, 2)});
+  const Comparison c = compareRecordings(a, b, kIgnoringWallTime);
+  EXPECT_TRUE(c.differences.empty()) << c.differences.front().topic << " " << c.differences.front().field;
+  EXPECT_EQ(c.messages, 5U);
+  // One vehicle's path changed is still a difference.
+  const auto d = recording({path(10, 1, 5, 0.01, 2), path(10, 2, 3, 0.01, 1), path(20, 3, 6, 0.01, 1), path(20, 4, 7, 0.01, 2)});
+  const Comparison changed = compareRecordings(a, d, kIgnoringWallTime);
+  ASSERT_EQ(changed.differences.size(), 1U);
+  EXPECT_EQ(changed.differences[0].index, 4U);
 }
 
 TEST(Compare, TheFirstDifferingMemberIsNamedWithBothValues)

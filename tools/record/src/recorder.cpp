@@ -129,7 +129,7 @@ int record(const RecordOptions& options, const std::atomic<int>& stop)
         const std::uint64_t publish = header && header->publish_ns > 0 ? static_cast<std::uint64_t>(header->publish_ns)
                                                                         : log_time;
         if (header) {
-          r.audit.add(writer_id, header->seq);
+          r.audit.add(writer_id, header->vehicle_id, header->seq);
         }
         files->write(channelOf(r), header ? static_cast<std::uint32_t>(header->seq) : 0, log_time, publish,
                      sample.payload);

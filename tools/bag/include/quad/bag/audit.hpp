@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
-/// Loss accounting from the Header.seq of each writer: every sample a writer published has
-/// the number after its previous one, so gaps are missing samples, a number seen twice is a
-/// duplicate, and a missing number that turns up later was reordered.
+/// Loss accounting from the Header.seq of each writer: every sample a writer published for a
+/// vehicle has the number after its previous one for that vehicle (a plant simulating a fleet
+/// numbers each vehicle's samples on their own), so gaps are missing samples, a number seen
+/// twice is a duplicate, and a missing number that turns up later was reordered.
 
 #include <cstdint>
 #include <map>
@@ -11,6 +12,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace quad::bag {
 
@@ -35,10 +37,12 @@ std::optional<std::size_t> parseLossWriters(std::string_view text);
 
 class SequenceAudit {
 public:
-  /// One sample of `writer` (any id that tells writers apart) with its Header.seq.
-  void add(std::uint64_t writer, std::uint64_t seq);
+  /// One sample of `writer` (any id that tells writers apart) for `vehicle`
+  /// (Header.vehicle_id) with its Header.seq.
+  void add(std::uint64_t writer, std::uint32_t vehicle, std::uint64_t seq);
   LossFigures figures() const;
-  std::size_t writers() const { return writers_.size(); }
+  /// The writers heard (a writer of several vehicles' samples counts once).
+  std::size_t writers() const;
 
 private:
   struct Writer {
@@ -46,7 +50,7 @@ private:
     std::set<std::uint64_t> gaps;    // numbers below `last` not seen yet
     LossFigures f;
   };
-  std::map<std::uint64_t, Writer> writers_;
+  std::map<std::pair<std::uint64_t, std::uint32_t>, Writer> writers_;  // by writer and vehicle
 };
 
 }  // namespace quad::bag

@@ -3,7 +3,7 @@
 /// @file
 /// Two recordings compared message by message, field by field through the IDL schema: what
 /// `quad bag diff` and the determinism test use. Messages with quad's Header are paired by
-/// their stamp (several of one stamp in their recorded order), from where both recordings
+/// their stamp (several of one stamp by their vehicle id, then in their recorded order), from where both recordings
 /// hold the topic (a recorder subscribes once it sees a writer) to where the sooner of the
 /// two clocks ended (that instant left out: a plant stopped there reports the run's end). A
 /// sample sent again (the same stamp and content, a new number) counts

@@ -5,9 +5,12 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <regex>
 #include <set>
 #include <stdexcept>
+
+#include <fmt/format.h>
 
 #include "quad/common/params.hpp"
 #include "quad/common/yaml_input.hpp"
@@ -41,6 +44,39 @@ const Module* Manifest::findModule(const std::string& module_name) const
 bool Manifest::usesNamespaces() const
 {
   return std::any_of(hosts.begin(), hosts.end(), [](const Host& h) { return h.kind == HostKind::kNetns; });
+}
+
+std::vector<std::uint32_t> Manifest::vehicleIds() const
+{
+  std::vector<std::uint32_t> ids;
+  for (const FleetMember& v : vehicles) {
+    ids.push_back(v.id);
+  }
+  return ids.empty() ? std::vector<std::uint32_t>{0} : ids;
+}
+
+std::string fleetInstanceName(const std::string& module_name, std::uint32_t vehicle_id)
+{
+  return module_name + "." + std::to_string(vehicle_id);
+}
+
+std::string vehicleFolder(std::uint32_t vehicle_id) { return "vehicle" + std::to_string(vehicle_id); }
+
+std::string fleetFileText(const std::vector<FleetMember>& vehicles)
+{
+  const auto point = [](const std::array<double, 3>& p) { return fmt::format("[{}, {}, {}]", p[0], p[1], p[2]); };
+  std::string text = "# Written by quad launch from the manifest's vehicles.\nvehicles:\n";
+  for (const FleetMember& v : vehicles) {
+    text += fmt::format("  - {{id: {}, start: {}", v.id, point(v.start));
+    if (v.goal) {
+      text += ", goal: " + point(*v.goal);
+    }
+    if (!v.vehicle.empty()) {
+      text += ", vehicle: \"" + v.vehicle.string() + "\"";
+    }
+    text += "}\n";
+  }
+  return text;
 }
 
 namespace {
@@ -331,6 +367,121 @@ void readModule(const std::string& name, YAML::Node spec, Reader& r, const Progr
   m.modules.push_back(std::move(mod));
 }
 
+/// `vehicles:` a fleet, each vehicle with its id, start, goal, vehicle file and the hosts of
+/// its modules (module name to host; the module's own host for the others).
+std::map<std::uint32_t, std::map<std::string, std::string>> readVehicles(YAML::Node node, Reader& r, Manifest& m)
+{
+  std::map<std::uint32_t, std::map<std::string, std::string>> hosts_of;
+  if (!node) {
+    return hosts_of;
+  }
+  if (!node.IsSequence() || node.size() == 0) {
+    r.problem("vehicles", node, "expected a list of vehicles, each with id and start");
+    return hosts_of;
+  }
+  std::map<std::uint32_t, std::string> key_of_id;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string key = "vehicles[" + std::to_string(i) + "]";
+    YAML::Node item = node[i];
+    if (!item.IsMap()) {
+      r.problem(key, item, "expected a map with id and start");
+      continue;
+    }
+    r.onlyKeys(item, key + ".", {"id", "start", "goal", "vehicle", "hosts"});
+    FleetMember v;
+    const auto id = r.number(item["id"], key + ".id", std::nullopt, 0.0, 1'000'000.0);
+    if (id && *id != std::floor(*id)) {
+      r.problem(key + ".id", item["id"], "expected a whole number");
+    } else if (id) {
+      v.id = static_cast<std::uint32_t>(*id);
+      if (const auto [it, fresh] = key_of_id.emplace(v.id, key); !fresh) {
+        r.problem(key + ".id", item["id"], "already the id of " + it->second);
+      }
+    }
+    const auto point = [&](const char* name) -> std::optional<std::array<double, 3>> {
+      const auto p = r.numbers(item[name], key + "." + name, 3, -1e6, 1e6);
+      return p ? std::optional<std::array<double, 3>>({(*p)[0], (*p)[1], (*p)[2]}) : std::nullopt;
+    };
+    v.start = point("start").value_or(std::array<double, 3>{});
+    if (item["goal"]) {
+      v.goal = point("goal");
+    }
+    if (item["vehicle"]) {
+      v.vehicle = r.path(r.text(item["vehicle"], key + ".vehicle", "").value_or(""));
+      if (!fs::is_regular_file(v.vehicle)) {
+        r.problem(key + ".vehicle", item["vehicle"], "no such file");
+      }
+    } else {
+      v.vehicle = m.mission.vehicle;
+    }
+    std::map<std::string, std::string>& hosts = hosts_of[v.id];
+    for (const auto& [module_name, host] : r.scalars(item["hosts"], key + ".hosts")) {
+      const std::string host_key = key + ".hosts." + module_name;
+      if (std::none_of(m.hosts.begin(), m.hosts.end(), [&](const Host& h) { return h.name == host; })) {
+        r.problem(host_key, item["hosts"][module_name], "unknown host");
+      } else if (m.findModule(module_name) == nullptr) {
+        r.problem(host_key, item["hosts"][module_name], "no module '" + module_name + "' in modules");
+      } else {
+        hosts[module_name] = host;
+      }
+    }
+    m.vehicles.push_back(std::move(v));
+  }
+  return hosts_of;
+}
+
+/// A fleet's modules: the plant once, for every vehicle (it reads the fleet file the launcher
+/// writes), each other module once per vehicle, with a state folder of its own.
+void expandFleet(const YAML::Node& root, Reader& r, Manifest& m,
+                 const std::map<std::uint32_t, std::map<std::string, std::string>>& hosts_of)
+{
+  const auto plants = std::count_if(m.modules.begin(), m.modules.end(), [](const Module& x) { return x.kind == "plant"; });
+  if (plants != 1) {
+    r.problem("vehicles", root["vehicles"], "a fleet is simulated by one plant module; the manifest has " +
+                                                std::to_string(plants));
+    return;
+  }
+  if (m.world.empty()) {
+    r.problem("vehicles", root["vehicles"], "a fleet flies in a world: give 'world'");
+  }
+  std::vector<Module> expanded;
+  for (const Module& mod : m.modules) {
+    if (mod.kind == "plant") {
+      Module plant = mod;
+      if (std::any_of(plant.sets.begin(), plant.sets.end(), [](const auto& kv) { return kv.first == "fleet"; })) {
+        r.problem("modules." + mod.name + ".set.fleet", root["modules"][mod.name]["set"]["fleet"],
+                  "the launcher writes the plant's fleet file from the manifest's vehicles");
+      }
+      plant.sets.emplace_back("fleet", std::string(kRunStateVariable) + "/" + kFleetFile);
+      expanded.push_back(std::move(plant));
+      continue;
+    }
+    for (const FleetMember& v : m.vehicles) {
+      Module one = mod;
+      one.name = fleetInstanceName(mod.name, v.id);
+      one.vehicle = v.id;
+      const std::string own_state = std::string(kRunStateVariable) + "/" + vehicleFolder(v.id);
+      const auto ownState = [&](std::string& text) { text = withRunState(text, own_state); };
+      for (auto& kv : one.sets) {
+        ownState(kv.second);
+      }
+      for (auto& a : one.args) {
+        ownState(a);
+      }
+      for (auto& kv : one.environment) {
+        ownState(kv.second);
+      }
+      if (const auto host = hosts_of.find(v.id); host != hosts_of.end()) {
+        if (const auto it = host->second.find(mod.name); it != host->second.end()) {
+          one.host = it->second;
+        }
+      }
+      expanded.push_back(std::move(one));
+    }
+  }
+  m.modules = std::move(expanded);
+}
+
 }  // namespace
 
 Manifest parseManifest(const std::string& text, const fs::path& origin, const ManifestOverrides& overrides,
@@ -345,7 +496,7 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
     r.throwIfAny();
   }
   r.onlyKeys(root, "", {"name", "domain", "transport", "discovery", "subnet", "world", "mode", "state", "seed", "grace", "env",
-                        "security", "network", "hosts", "modules", "mission", "geofence"});
+                        "security", "network", "hosts", "modules", "mission", "geofence", "vehicles"});
   m.name = r.text(root["name"], "name", origin.stem().string()).value_or("run");
   if (overrides.domain) {
     m.domain = overrides.domain;
@@ -441,6 +592,12 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
     }
     if (m.world.empty()) {
       r.problem("mission", mission, "a mission flies to the world's goal: give 'world'");
+    }
+  }
+  if (root["vehicles"]) {
+    const auto hosts_of = readVehicles(root["vehicles"], r, m);
+    if (!m.vehicles.empty() && r.ok()) {
+      expandFleet(root, r, m, hosts_of);
     }
   }
   r.throwIfAny();

@@ -189,14 +189,103 @@ std::optional<std::string> goalProblem(const world::World& world, double radius,
   return std::nullopt;
 }
 
+world::World memberWorld(const world::World& world, const FleetMember& v)
+{
+  const Eigen::Vector3d start(v.start[0], v.start[1], v.start[2]);
+  const Eigen::Vector3d goal = v.goal ? Eigen::Vector3d((*v.goal)[0], (*v.goal)[1], (*v.goal)[2]) : world.goal();
+  return world.withStartAndGoal(start, goal);
+}
+
+std::vector<std::string> fleetProblems(const world::World& world, const std::vector<FleetMember>& vehicles,
+                                       const std::vector<double>& radii, const common::Geofence& fence)
+{
+  std::vector<std::string> problems;
+  const auto name = [&](std::size_t i) { return fmt::format("vehicles[{}] (id {})", i, vehicles[i].id); };
+  for (std::size_t i = 0; i < vehicles.size(); ++i) {
+    const world::World own = memberWorld(world, vehicles[i]);
+    const Eigen::Vector3d& s = own.start();
+    const std::string start = fmt::format("the start ({}, {}, {})", s.x(), s.y(), s.z());
+    if (const auto goal = goalProblem(own, radii[i], fence)) {
+      problems.push_back(name(i) + ": " + *goal);
+    } else if (!world.bounds().contains(s)) {
+      problems.push_back(fmt::format("{}: {} is outside the world's bounds", name(i), start));
+    } else {
+      for (std::size_t k = 0; k < world.obstacles().size(); ++k) {
+        if (const double d = world.obstacles()[k].signedDistance(s); d < radii[i]) {
+          problems.push_back(d < 0.0 ? fmt::format("{}: {} lies inside obstacle {}", name(i), start, k)
+                                     : fmt::format("{}: {} lies {:.2f} m from obstacle {}, within the vehicle's "
+                                                   "radius ({} m)",
+                                                   name(i), start, d, k, radii[i]));
+          break;
+        }
+      }
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      const world::World other = memberWorld(world, vehicles[j]);
+      const double gap = (s - other.start()).norm() - radii[i] - radii[j];
+      if (gap < 0.0) {
+        problems.push_back(fmt::format("{}: its start is {:.2f} m into {}'s: the two vehicles would start in contact",
+                                       name(i), -gap, name(j)));
+      }
+    }
+  }
+  return problems;
+}
+
+MissionSummary fleetSummary(std::vector<MissionSummary> vehicles, std::optional<double> min_separation_m,
+                            double wall_s)
+{
+  MissionSummary s;
+  s.wall_s = wall_s;
+  s.min_separation_m = min_separation_m;
+  s.success = !vehicles.empty();
+  s.end = MissionEnd::kSuccess;
+  s.min_clearance_m = std::numeric_limits<double>::infinity();
+  std::optional<double> optimum = 0.0;
+  int succeeded = 0;
+  for (const MissionSummary& v : vehicles) {
+    const std::string who = fmt::format("vehicle {}", v.vehicle_id.value_or(0));
+    if (v.success) {
+      ++succeeded;
+    } else {
+      s.success = false;
+      s.failure += fmt::format("{}{}: {}", s.failure.empty() ? "" : "; ", who, v.failure);
+      // The first failure of another kind outranks a no-path end, which outranks success.
+      if (s.end == MissionEnd::kSuccess || (s.end == MissionEnd::kNoPath && v.end != MissionEnd::kNoPath)) {
+        s.end = v.end;
+      }
+    }
+    s.collisions += v.collisions;
+    s.sim_s = std::max(s.sim_s, v.sim_s);
+    s.path_length_m += v.path_length_m;
+    s.straight_line_m += v.straight_line_m;
+    optimum = optimum && v.optimum_m ? std::optional<double>(*optimum + *v.optimum_m) : std::nullopt;
+    s.paths += v.paths;
+    s.min_clearance_m = std::min(s.min_clearance_m, v.min_clearance_m);
+    s.mode_changes += v.mode_changes;
+    s.goal_distance_m = std::max(s.goal_distance_m, v.goal_distance_m);
+  }
+  if (!std::isfinite(s.min_clearance_m)) {
+    s.min_clearance_m = 0.0;
+  }
+  s.optimum_m = vehicles.empty() ? std::nullopt : optimum;
+  s.outcome = fmt::format("{} of {} vehicles reached their goals", succeeded, vehicles.size());
+  s.vehicles = std::move(vehicles);
+  return s;
+}
+
 std::optional<double> busyShare(const ProcessCost& p, double wall_s)
 {
   return p.cpu_s && wall_s > 0.0 ? std::optional<double>(*p.cpu_s / wall_s) : std::nullopt;
 }
 
-std::string toJson(const MissionSummary& s)
+namespace {
+nlohmann::ordered_json jsonOf(const MissionSummary& s)
 {
   nlohmann::ordered_json j;
+  if (s.vehicle_id) {
+    j["vehicle_id"] = *s.vehicle_id;
+  }
   j["success"] = s.success;
   j["outcome"] = s.outcome;
   j["end"] = toString(s.end);
@@ -235,8 +324,19 @@ std::string toJson(const MissionSummary& s)
   } else {
     j["estimate"] = nullptr;
   }
-  return j.dump(2) + "\n";
+  if (!s.vehicles.empty()) {
+    j["min_separation_m"] = s.min_separation_m ? nlohmann::ordered_json(*s.min_separation_m) : nlohmann::ordered_json(nullptr);
+    nlohmann::ordered_json each = nlohmann::ordered_json::array();
+    for (const MissionSummary& v : s.vehicles) {
+      each.push_back(jsonOf(v));
+    }
+    j["vehicles"] = each;
+  }
+  return j;
 }
+}  // namespace
+
+std::string toJson(const MissionSummary& s) { return jsonOf(s).dump(2) + "\n"; }
 
 namespace {
 /// "  CPU (share of a core): plant 12.1 s (0.32), ...": what each process cost; empty when
@@ -264,6 +364,25 @@ std::string estimateText(const MissionSummary& s)
                      100.0 * e.position_rms_m, 100.0 * e.position_max_m, e.attitude_rms_deg, e.attitude_max_deg,
                      e.yaw_rms_deg, e.position_nees_mean, 100.0 * e.within_3sigma);
 }
+/// A fleet's vehicles, a line each, and the least separation; empty for one vehicle.
+std::string fleetText(const MissionSummary& s)
+{
+  if (s.vehicles.empty()) {
+    return "";
+  }
+  std::string text = s.min_separation_m
+                         ? fmt::format("  least separation between two vehicles {:.2f} m\n", *s.min_separation_m)
+                         : "";
+  for (const MissionSummary& v : s.vehicles) {
+    text += fmt::format("  vehicle {}: {} ({}); flown {:.1f} m{}; closest to an obstacle {:.2f} m; collisions {}\n",
+                        v.vehicle_id.value_or(0), v.success ? "SUCCESS" : "FAILED", v.outcome, v.path_length_m,
+                        v.optimum_m && *v.optimum_m > 0.0
+                            ? fmt::format(" ({:.2f}x its {:.1f} m optimum)", v.path_length_m / *v.optimum_m, *v.optimum_m)
+                            : "",
+                        v.min_clearance_m, v.collisions);
+  }
+  return text;
+}
 }  // namespace
 
 std::string toText(const MissionSummary& s)
@@ -278,7 +397,8 @@ std::string toText(const MissionSummary& s)
       s.optimum_m && *s.optimum_m > 0.0
           ? fmt::format(", a {:.1f} m known-map optimum ({:.2f}x)", *s.optimum_m, s.path_length_m / *s.optimum_m)
           : "",
-      s.paths, s.min_clearance_m, s.collisions, s.mode_changes, s.goal_distance_m) + estimateText(s) + costText(s);
+      s.paths, s.min_clearance_m, s.collisions, s.mode_changes, s.goal_distance_m) + fleetText(s) + estimateText(s) +
+         costText(s);
 }
 
 }  // namespace quad::launch

@@ -23,10 +23,10 @@ namespace topics = dds::topics;
 /// which it alone reads in flight, to score the run), the estimator's state to score it,
 /// the modules' heartbeats.
 struct Observer::Sim {
-  explicit Sim(dds::Participant& p)
+  Sim(dds::Participant& p, const std::vector<std::uint32_t>& vehicles)
       : state(p, topics::kSimState, nullptr, deep(p, topics::kSimState.info)),
         estimate(p, topics::kEstimatedState, nullptr, deep(p, topics::kEstimatedState.info)),
-        clock(p),
+        clock(p, nullptr, vehicles),
         heartbeats(p, topics::kHeartbeat)
   {
   }
@@ -59,12 +59,48 @@ struct Observer::Endpoints {
   dds::Publisher<msg::Heartbeat> operator_beat;
 };
 
-Observer::Observer(dds::ParticipantOptions options)
-    : participant_(std::move(options)), sim_(std::make_unique<Sim>(participant_))
+/// One followed vehicle: where it is, how its estimator does, its mission once started.
+struct Observer::Track {
+  std::uint32_t id = 0;
+  std::int64_t state_ns = -1;  // stamp of the newest state taken; -1 before the first
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  EstimateScore score;
+  double radius = 0.0;
+  std::unique_ptr<world::World> world;  // the tracker's: its address must not move
+  std::unique_ptr<MissionTracker> tracker;
+};
+
+Observer::Observer(dds::ParticipantOptions options, std::vector<std::uint32_t> vehicles)
+    : participant_(std::move(options)),
+      ids_(vehicles.empty() ? std::vector<std::uint32_t>{participant_.options().vehicle_id} : std::move(vehicles)),
+      sim_(std::make_unique<Sim>(participant_, ids_))
 {
+  for (const std::uint32_t id : ids_) {
+    tracks_.emplace_back().id = id;
+  }
 }
 
 Observer::~Observer() = default;
+
+Observer::Track* Observer::track(std::uint32_t id)
+{
+  const auto it = std::find_if(tracks_.begin(), tracks_.end(), [&](const Track& t) { return t.id == id; });
+  return it == tracks_.end() ? nullptr : &*it;
+}
+
+std::size_t Observer::vehicleCount() const { return tracks_.size(); }
+std::uint32_t Observer::vehicleId(std::size_t i) const { return tracks_.at(i).id; }
+MissionTracker* Observer::mission(std::size_t i) { return tracks_.at(i).tracker.get(); }
+const Eigen::Vector3d& Observer::position(std::size_t i) const { return tracks_.at(i).position; }
+const EstimateScore& Observer::estimateScore(std::size_t i) const { return tracks_.at(i).score; }
+std::optional<double> Observer::minimumSeparation() const { return min_separation_; }
+
+bool Observer::missionsFinished() const
+{
+  return endpoints_ && std::all_of(tracks_.begin(), tracks_.end(), [](const Track& t) {
+           return t.tracker == nullptr || t.tracker->finished();
+         });
+}
 
 std::vector<std::string> Observer::missingWriters(const std::vector<std::string>& wanted) const
 {
@@ -80,17 +116,25 @@ std::vector<std::string> Observer::missingWriters(const std::vector<std::string>
   return missing;
 }
 
-void Observer::startMission(const Mission& mission, const world::World& world, double radius)
+void Observer::startMission(const Mission& mission, std::vector<MissionVehicle> vehicles)
 {
   endpoints_ = std::make_unique<Endpoints>(participant_);
-  tracker_ = std::make_unique<MissionTracker>(mission, world, radius);
-  msg::Goal goal;
-  goal.goal_id(1);
-  goal.p_W(dds::toMessage(world.goal()));
-  goal.yaw(std::numeric_limits<double>::quiet_NaN());
-  goal.tolerance(mission.tolerance_m);
-  goal.land(mission.land);
-  endpoints_->goal.write(goal);
+  for (MissionVehicle& v : vehicles) {
+    Track* t = track(v.id);
+    if (t == nullptr) {
+      throw std::invalid_argument("a mission for vehicle " + std::to_string(v.id) + ", which is not followed");
+    }
+    t->radius = v.radius;
+    t->world = std::make_unique<world::World>(std::move(v.world));
+    t->tracker = std::make_unique<MissionTracker>(mission, *t->world, v.radius);
+    msg::Goal goal;
+    goal.goal_id(1);
+    goal.p_W(dds::toMessage(t->world->goal()));
+    goal.yaw(std::numeric_limits<double>::quiet_NaN());
+    goal.tolerance(mission.tolerance_m);
+    goal.land(mission.land);
+    endpoints_->goal.writeFor(v.id, goal);
+  }
 }
 
 bool Observer::goalDelivered()
@@ -185,57 +229,80 @@ std::vector<std::string> controlModeNames()
 std::vector<ModuleBeat> Observer::takeHeartbeats()
 {
   std::vector<ModuleBeat> beats;
-  for (const auto& hb : sim_->heartbeats.takeAll()) {
-    const bool running = hb.state() == msg::MODULE_RUNNING || hb.state() == msg::MODULE_DEGRADED;
-    beats.push_back({hb.module_name().to_string(), hb.pid(), running, hb.header().stamp_ns()});
+  // Every module's, whichever vehicle it serves.
+  while (const auto hb = sim_->heartbeats.takeAnyVehicle()) {
+    const bool running = hb->state() == msg::MODULE_RUNNING || hb->state() == msg::MODULE_DEGRADED;
+    beats.push_back({hb->module_name().to_string(), hb->pid(), running, hb->header().stamp_ns()});
   }
   return beats;
 }
 
 std::int64_t Observer::simTimeNs() const { return sim_->clock.ns(); }
 
+void Observer::onState(Track& v, std::int64_t stamp_ns, const Eigen::Vector3d& p, const geometry::Quaternion& q)
+{
+  v.state_ns = stamp_ns;
+  v.position = p;
+  last_state_ns_ = common::steadyTimeNs();
+  v.score.onTruth(stamp_ns, p, q);
+  if (!v.tracker) {
+    return;
+  }
+  v.tracker->onState(common::toSeconds(stamp_ns), p);
+  // The plant sends every vehicle's state of one step with one stamp.
+  for (const Track& other : tracks_) {
+    if (&other != &v && other.tracker && other.state_ns == stamp_ns) {
+      const double separation = (p - other.position).norm() - v.radius - other.radius;
+      min_separation_ = std::min(min_separation_.value_or(separation), separation);
+    }
+  }
+}
+
 void Observer::update()
 {
   sim_->clock.update();
-  for (const auto& s : sim_->state.takeAll()) {
+  for (const auto& s : sim_->state.takeAll(ids_)) {
     // Only states the sim clock vouches for, in order: one stamped ahead of it (a bad input)
     // would end the mission by its timeout, an old one would teleport the vehicle.
+    Track& v = *track(s.header().vehicle_id());
     const Eigen::Vector3d p = dds::toVector(s.p_W());
-    if (!sim_->clock.vouchesFor(s.header().stamp_ns()) || s.header().stamp_ns() < state_ns_ ||
-        !p.allFinite()) {
+    if (!sim_->clock.vouchesFor(s.header().stamp_ns()) || s.header().stamp_ns() < v.state_ns || !p.allFinite()) {
       continue;
     }
-    state_ns_ = s.header().stamp_ns();
-    position_ = p;
-    last_state_ns_ = common::steadyTimeNs();
-    score_.onTruth(state_ns_, p, dds::toQuaternion(s.q_WB()));
-    if (tracker_) {
-      tracker_->onState(common::toSeconds(s.header().stamp_ns()), p);
-    }
+    onState(v, s.header().stamp_ns(), p, dds::toQuaternion(s.q_WB()));
   }
-  for (const auto& e : sim_->estimate.takeAll()) {
-    score_.onEstimate(e.header().stamp_ns(), dds::toVector(e.p_W()), dds::toQuaternion(e.q_WB()),
-                      dds::toVector(e.p_std()), e.aligned());
+  for (const auto& e : sim_->estimate.takeAll(ids_)) {
+    track(e.header().vehicle_id())
+        ->score.onEstimate(e.header().stamp_ns(), dds::toVector(e.p_W()), dds::toQuaternion(e.q_WB()),
+                           dds::toVector(e.p_std()), e.aligned());
   }
-  if (!tracker_) {
+  if (!endpoints_) {
     return;
   }
-  for (const auto& s : endpoints_->status.takeAll()) {
-    tracker_->onMode(common::toSeconds(s.header().stamp_ns()), controlModeName(static_cast<int>(s.mode())),
-                     flightEndedBy(s.failsafe_reason(), s.mode()));
+  // Each sample goes to its vehicle's mission; a vehicle without one has none to feed.
+  const auto missionOf = [&](const auto& sample) { return track(sample.header().vehicle_id())->tracker.get(); };
+  for (const auto& s : endpoints_->status.takeAll(ids_)) {
+    if (auto* m = missionOf(s)) {
+      m->onMode(common::toSeconds(s.header().stamp_ns()), controlModeName(static_cast<int>(s.mode())),
+                flightEndedBy(s.failsafe_reason(), s.mode()));
+    }
   }
-  for (const auto& p : endpoints_->path.takeAll()) {
-    tracker_->onPath(p.version(), noPathReason(p.status()));
+  for (const auto& p : endpoints_->path.takeAll(ids_)) {
+    if (auto* m = missionOf(p)) {
+      m->onPath(p.version(), noPathReason(p.status()));
+    }
   }
-  for (const auto& e : endpoints_->events.takeAll()) {
-    if (e.kind() == msg::SIM_EVENT_COLLISION) {
-      tracker_->onCollision(common::toSeconds(e.header().stamp_ns()));
+  for (const auto& e : endpoints_->events.takeAll(ids_)) {
+    if (auto* m = missionOf(e); m != nullptr && e.kind() == msg::SIM_EVENT_COLLISION) {
+      m->onCollision(common::toSeconds(e.header().stamp_ns()));
     }
   }
   constexpr std::int64_t kOperatorBeatNs = 500'000'000;  // the contract's 2 Hz, in sim time
   const std::int64_t now_ns = sim_->clock.ns();
   if (operator_link_ && now_ns >= next_operator_beat_ns_) {
-    endpoints_->operator_beat.write(dds::processHeartbeat("operator", msg::MODULE_RUNNING, now_ns));
+    for (const std::uint32_t id : ids_) {
+      endpoints_->operator_beat.writeFor(id, dds::processHeartbeat("operator", msg::MODULE_RUNNING, now_ns));
+    }
     next_operator_beat_ns_ = now_ns + kOperatorBeatNs;
   }
 }

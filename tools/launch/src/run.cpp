@@ -103,6 +103,12 @@ LaunchRun::LaunchRun(const Manifest& m, const LaunchOptions& o, fs::path dir, in
   // from an earlier run must not hand that run's state to this one.
   fs::remove_all(state_dir_);
   fs::create_directories(state_dir_);
+  if (!m.vehicles.empty()) {
+    for (const auto& v : m.vehicles) {
+      fs::create_directories(state_dir_ / vehicleFolder(v.id));
+    }
+    std::ofstream(state_dir_ / kFleetFile) << fleetFileText(m.vehicles);
+  }
   record_.manifest = m.file.string();
   record_.world = m.world.empty() ? std::string() : fs::absolute(m.world).string();
   record_.domain = domain;
@@ -148,6 +154,9 @@ void LaunchRun::startModule(const Module& mod)
   }
   for (const auto& [k, v] : mod.environment) {
     env[k] = withRunState(v, state_dir_);
+  }
+  if (mod.vehicle) {
+    env[dds::environment::kVehicleId] = std::to_string(*mod.vehicle);
   }
   const auto& host = m_.host(mod.host);
   supervisor_.start(mod.name, net_->command(host, commandLine(mod, state_dir_), env), env);
@@ -274,9 +283,11 @@ bool LaunchRun::service(int timeout_ms)
     for (const auto& beat : observer_->takeHeartbeats()) {
       onHeartbeat(beat);
     }
-    if (auto* mission = observer_->mission()) {
-      for (const auto& line : mission->takeProgress()) {
-        say(line);
+    for (std::size_t i = 0; i < observer_->vehicleCount(); ++i) {
+      if (auto* mission = observer_->mission(i)) {
+        for (const auto& line : mission->takeProgress()) {
+          say(m_.vehicles.empty() ? line : fmt::format("vehicle {}: {}", observer_->vehicleId(i), line));
+        }
       }
     }
   }
@@ -404,7 +415,7 @@ std::vector<launch::ProcessCost> LaunchRun::processCosts() const
   return costs;
 }
 
-std::optional<double> LaunchRun::knownMapOptimum()
+std::optional<double> LaunchRun::knownMapOptimum(const world::World& world)
 {
   const auto planning = std::find_if(m_.modules.begin(), m_.modules.end(), [](const Module& x) { return x.kind == "planning"; });
   if (planning == m_.modules.end()) {
@@ -420,7 +431,8 @@ std::optional<double> LaunchRun::knownMapOptimum()
       }
     }
     const plan::PlanningSetup setup = plan::loadPlanningSetup(planning->config, overrides);
-    const plan::KnownMapPlan best = plan::planOnKnownMap(setup.world, setup.params, m_.mission.land);
+    const plan::KnownMapPlan best = plan::planOnKnownMap(
+        setup.world.withStartAndGoal(world.start(), world.goal()), setup.params, m_.mission.land);
     if (best.status != planning::PlanStatus::kOk) {
       return std::nullopt;  // no optimum where no path exists
     }
@@ -429,6 +441,82 @@ std::optional<double> LaunchRun::knownMapOptimum()
     say(std::string("no known-map optimum: ") + e.what());
     return std::nullopt;
   }
+}
+
+int LaunchRun::startMissions()
+{
+  const world::World world = world::loadWorld(m_.world);
+  const common::Geofence fence = m_.geofence.value_or(common::Geofence{});
+  const auto radiusOf = [](const fs::path& file) { return file.empty() ? 0.0 : vehicle::loadVehicle(file).radius; };
+  std::vector<launch::MissionVehicle> vehicles;
+  if (m_.vehicles.empty()) {
+    const double radius = radiusOf(m_.mission.vehicle);
+    if (const auto problem = launch::goalProblem(world, radius, fence)) {
+      failure_ = fmt::format("{}: {}: refused", m_.world.string(), *problem);
+      say(failure_);
+      return kExitInvalid;
+    }
+    vehicles.push_back({observer_->vehicleId(0), world, radius});
+  } else {
+    std::vector<double> radii;
+    for (const auto& v : m_.vehicles) {
+      radii.push_back(radiusOf(v.vehicle));
+      vehicles.push_back({v.id, launch::memberWorld(world, v), radii.back()});
+    }
+    if (const auto problems = launch::fleetProblems(world, m_.vehicles, radii, fence); !problems.empty()) {
+      for (const auto& p : problems) {
+        say(fmt::format("{}: {}", m_.file.string(), p));
+      }
+      failure_ = fmt::format("{}: {}: refused", m_.file.string(), problems.front());
+      return kExitInvalid;
+    }
+  }
+  for (const auto& v : vehicles) {
+    const auto& s = v.world.start();
+    const auto& g = v.world.goal();
+    say(fmt::format("mission{}: fly from ({:.1f}, {:.1f}, {:.1f}) to the goal ({:.1f}, {:.1f}, {:.1f}) of {}",
+                    m_.vehicles.empty() ? "" : fmt::format(" of vehicle {}", v.id), s.x(), s.y(), s.z(), g.x(),
+                    g.y(), g.z(), m_.world.filename().string()));
+  }
+  observer_->startMission(m_.mission, std::move(vehicles));
+  return 0;
+}
+
+launch::MissionSummary LaunchRun::missionSummary(double wall_s)
+{
+  std::vector<launch::MissionSummary> each;
+  for (std::size_t i = 0; i < observer_->vehicleCount(); ++i) {
+    launch::MissionTracker* mission = observer_->mission(i);
+    launch::MissionSummary s = mission->summary(wall_s);
+    s.state = m_.state;
+    s.estimate = observer_->estimateScore(i).errors();
+    if (!m_.vehicles.empty()) {
+      s.vehicle_id = observer_->vehicleId(i);
+    }
+    if (ended_by_ && !s.success && s.end == launch::MissionEnd::kUnfinished) {
+      s.outcome = "not finished: " + ended_by_->reason;
+      s.failure = ended_by_->reason;
+    }
+    each.push_back(std::move(s));
+  }
+  launch::MissionSummary summary = m_.vehicles.empty()
+                                       ? std::move(each.front())
+                                       : launch::fleetSummary(std::move(each), observer_->minimumSeparation(), wall_s);
+  summary.state = m_.state;
+  summary.processes = processCosts();  // before the optimum's search, which the wall time leaves out
+  if (m_.vehicles.empty()) {
+    summary.optimum_m = knownMapOptimum(world::loadWorld(m_.world));
+  } else {
+    const world::World world = world::loadWorld(m_.world);
+    std::optional<double> total = 0.0;
+    for (std::size_t i = 0; i < summary.vehicles.size(); ++i) {
+      summary.vehicles[i].optimum_m = knownMapOptimum(launch::memberWorld(world, m_.vehicles[i]));
+      total = total && summary.vehicles[i].optimum_m ? std::optional<double>(*total + *summary.vehicles[i].optimum_m)
+                                                     : std::nullopt;
+    }
+    summary.optimum_m = total;
+  }
+  return summary;
 }
 
 int LaunchRun::execute(RunExtension* extension)
@@ -480,22 +568,13 @@ int LaunchRun::execute(RunExtension* extension)
   }
   dds::ParticipantOptions po = dds::optionsFromEnvironment("quad_launch");
   po.observe_all = true;
-  observer_ = std::make_unique<launch::Observer>(po);
+  observer_ = std::make_unique<launch::Observer>(po, m_.vehicles.empty() ? std::vector<std::uint32_t>{}
+                                                                          : m_.vehicleIds());
 
-  std::optional<world::World> world;
   if (m_.mission.enabled) {
-    world = world::loadWorld(m_.world);
-    const double radius = m_.mission.vehicle.empty() ? 0.0 : vehicle::loadVehicle(m_.mission.vehicle).radius;
-    if (const auto problem = launch::goalProblem(*world, radius, m_.geofence.value_or(common::Geofence{}))) {
-      failure_ = fmt::format("{}: {}: refused", m_.world.string(), *problem);
-      say(failure_);
-      return endedBeforeStart(kExitInvalid);
+    if (const int code = startMissions(); code != 0) {
+      return endedBeforeStart(code);
     }
-    observer_->startMission(m_.mission, *world, radius);
-    const auto& g = world->goal();
-    say(fmt::format("mission: fly from ({:.1f}, {:.1f}, {:.1f}) to the goal ({:.1f}, {:.1f}, {:.1f}) of {}",
-                    world->start().x(), world->start().y(), world->start().z(), g.x(), g.y(), g.z(),
-                    m_.world.filename().string()));
   }
 
   if (options_.record) {
@@ -522,7 +601,7 @@ int LaunchRun::execute(RunExtension* extension)
   std::int64_t stall_reported_ns = 0;
   constexpr std::int64_t kStallNs = 30 * common::kNanosecondsPerSecond;
   while (all_started && service(50)) {
-    if (auto* mission = observer_->mission(); mission != nullptr && mission->finished()) {
+    if (observer_->missionsFinished()) {
       break;
     }
     if (extension != nullptr) {
@@ -559,16 +638,8 @@ int LaunchRun::execute(RunExtension* extension)
 
   // Stopped by a signal with nothing failed is a clean end; an unfinished mission is not.
   int code = failed_ ? 1 : 0;
-  if (auto* mission = observer_->mission()) {
-    summary_ = mission->summary(common::toSeconds(common::steadyTimeNs() - start_ns_));
-    summary_->state = m_.state;
-    summary_->estimate = observer_->estimateScore().errors();
-    summary_->processes = processCosts();  // before the optimum's search, which the wall time leaves out
-    summary_->optimum_m = knownMapOptimum();
-    if (ended_by_ && !summary_->success && summary_->end == launch::MissionEnd::kUnfinished) {
-      summary_->outcome = "not finished: " + ended_by_->reason;
-      summary_->failure = ended_by_->reason;
-    }
+  if (observer_->mission() != nullptr) {
+    summary_ = missionSummary(common::toSeconds(common::steadyTimeNs() - start_ns_));
     const std::string json = launch::toJson(*summary_);
     std::ofstream(supervisor_.logDir() / "summary.json") << json;
     if (const auto& series = observer_->estimateScore().series(); !series.empty()) {
@@ -620,12 +691,27 @@ void LaunchRun::writeReport()
   if (!m_.world.empty()) {
     o.world = m_.world;
   }
-  try {
-    const report::ReportResult r = report::writeReport(o);
-    say(fmt::format("report: {} ({} figures; quad report redraws it)", r.html.string(), r.figures));
-  } catch (const report::ReportError& e) {
-    // The run's verdict stands: the report only shows it.
-    say(fmt::format("no report: {}", e.what()));
+  // A fleet's: a report per vehicle, each in the vehicle's folder of the run's.
+  std::vector<std::optional<std::uint32_t>> reported;
+  for (const auto& v : m_.vehicles) {
+    reported.emplace_back(v.id);
+  }
+  if (reported.empty()) {
+    reported.emplace_back();
+  }
+  for (const auto& vehicle : reported) {
+    o.vehicle = vehicle;
+    if (vehicle) {
+      o.output = supervisor_.logDir() / vehicleFolder(*vehicle);
+    }
+    try {
+      const report::ReportResult r = report::writeReport(o);
+      say(fmt::format("report: {} ({} figures; quad report{} redraws it)", r.html.string(), r.figures,
+                      vehicle ? fmt::format(" --vehicle {}", *vehicle) : ""));
+    } catch (const report::ReportError& e) {
+      // The run's verdict stands: the report only shows it.
+      say(fmt::format("no report: {}", e.what()));
+    }
   }
 }
 

@@ -249,10 +249,101 @@ TEST_F(ManifestTest, AMissionNeedsAWorld)
   EXPECT_NE(p[0].find(":mission: "), std::string::npos) << p[0];
 }
 
+/// A fleet manifest of two vehicles in the scratch world, with `extra` lines at the end.
+std::string fleetManifest(const std::string& extra = "")
+{
+  return R"(
+world: ../configs/worlds/w.yaml
+hosts: {a: {type: local}, b: {type: netns}}
+vehicles:
+  - {id: 4, start: [0.2, 0.2, 0], goal: [0.8, 0.8, 0.5], hosts: {planning: b}}
+  - {id: 7, start: [0.8, 0.2, 0]}
+modules:
+  mapping: {set: {checkpoint.file: "${run_state}/mapping.checkpoint"}}
+  planning: {needs: [quad/mapping/update]}
+  plant: {config: ../configs/plant.yaml, set: {world: "${world}"}, ends_run: true}
+)" + extra;
+}
+
+TEST_F(ManifestTest, AFleetRunsEachModuleOncePerVehicleAndThePlantOnceForAll)
+{
+  const Manifest m = parse(fleetManifest());
+  ASSERT_EQ(m.vehicles.size(), 2U);
+  EXPECT_EQ(m.vehicleIds(), (std::vector<std::uint32_t>{4, 7}));
+  EXPECT_EQ(m.vehicles[0].start, (std::array<double, 3>{0.2, 0.2, 0.0}));
+  EXPECT_EQ(m.vehicles[0].goal, (std::array<double, 3>{0.8, 0.8, 0.5}));
+  EXPECT_FALSE(m.vehicles[1].goal.has_value());  // the world's
+  std::vector<std::string> names;
+  for (const Module& mod : m.modules) {
+    names.push_back(mod.name);
+  }
+  // Start order: each module's instances together, in the manifest's order.
+  EXPECT_EQ(names, (std::vector<std::string>{"mapping.4", "mapping.7", "planning.4", "planning.7", "plant"}));
+  const Module& mapping = m.modules[1];
+  EXPECT_EQ(mapping.vehicle, 7U);
+  ASSERT_EQ(mapping.sets.size(), 1U);
+  EXPECT_EQ(mapping.sets[0].second, std::string(kRunStateVariable) + "/vehicle7/mapping.checkpoint");
+  EXPECT_EQ(m.modules[2].host, "b");  // vehicle 4's planner, as its hosts say
+  EXPECT_EQ(m.modules[3].host, "a");
+  EXPECT_EQ(m.modules[2].needs, (std::vector<std::string>{"quad/mapping/update"}));
+  const Module& plant = m.modules[4];
+  EXPECT_FALSE(plant.vehicle.has_value());
+  ASSERT_EQ(plant.sets.size(), 2U);
+  EXPECT_EQ(plant.sets[1], (std::pair<std::string, std::string>{"fleet", std::string(kRunStateVariable) + "/" + kFleetFile}));
+  EXPECT_EQ(fleetFileText(m.vehicles),
+            "# Written by quad launch from the manifest's vehicles.\nvehicles:\n"
+            "  - {id: 4, start: [0.2, 0.2, 0], goal: [0.8, 0.8, 0.5]}\n"
+            "  - {id: 7, start: [0.8, 0.2, 0]}\n");
+}
+
+TEST_F(ManifestTest, AManifestWithoutVehiclesFliesVehicleZero)
+{
+  const Manifest m = parse("modules: {control: {}}\n");
+  EXPECT_TRUE(m.vehicles.empty());
+  EXPECT_EQ(m.vehicleIds(), (std::vector<std::uint32_t>{0}));
+  EXPECT_FALSE(m.modules[0].vehicle.has_value());
+}
+
+TEST_F(ManifestTest, FleetMistakesAreRefusedNamingTheVehicleAndKey)
+{
+  auto p = problems(fleetManifest("  control: {}\n").replace(fleetManifest().find("id: 7"), 5, "id: 4"));
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find(":vehicles[1].id: 4: already the id of vehicles[0]"), std::string::npos) << p[0];
+  std::string text = fleetManifest();
+  text.replace(text.find("start: [0.8, 0.2, 0]"), 20, "start: [0.8, 0.2]");
+  p = problems(text);
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find(":vehicles[1].start: "), std::string::npos) << p[0];
+  text = fleetManifest();
+  text.replace(text.find("planning: b"), 11, "planning: c");
+  p = problems(text);
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find(":vehicles[0].hosts.planning: c: unknown host"), std::string::npos) << p[0];
+  text = fleetManifest();
+  text.replace(text.find("planning: b"), 11, "control: b");
+  p = problems(text);
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find(":vehicles[0].hosts.control: b: no module 'control' in modules"), std::string::npos) << p[0];
+  text = fleetManifest();
+  text.replace(text.find("  plant:"), std::string::npos, "");
+  p = problems(text);
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find(":vehicles: "), std::string::npos) << p[0];
+  EXPECT_NE(p[0].find("one plant module; the manifest has 0"), std::string::npos) << p[0];
+  text = fleetManifest();
+  text.replace(text.find("set: {world:"), 12, "set: {fleet: f.yaml, world:");
+  p = problems(text);
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find(":modules.plant.set.fleet: f.yaml: the launcher writes"), std::string::npos) << p[0];
+  p = problems("world: ../configs/worlds/w.yaml\nvehicles: []\nmodules: {plant: {}}\n");
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find(":vehicles: "), std::string::npos) << p[0];
+}
+
 TEST_F(ManifestTest, TheShippedManifestsAreValid)
 {
   ProgramLookup shipped{{false, QUAD_SOURCE_DIR, QUAD_BUILD_DIR}, {}};
-  for (const char* name : {"demo.yaml", "three_hosts.yaml"}) {
+  for (const char* name : {"demo.yaml", "fleet.yaml", "three_hosts.yaml"}) {
     EXPECT_NO_THROW(loadManifest(fs::path(QUAD_SOURCE_DIR) / "bringup" / name, {}, shipped)) << name;
   }
 }

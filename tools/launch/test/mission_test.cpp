@@ -172,5 +172,88 @@ TEST(GoalProblem, AGoalOrStartOutsideTheGeofenceIsNamed)
   EXPECT_EQ(goalProblem(w, 0.3, fence), "the start (0, 0, 0) is outside the geofence (1, -5, -1) ... (11, 5, 5)");
 }
 
+TEST(FleetProblems, StartsOutsideTheWorldInAnObstacleOrInContactAreNamed)
+{
+  const auto w = world();  // bounds (-1, -5, 0) ... (12, 5, 5), a sphere of 1 m at (5, 3, 2)
+  std::vector<FleetMember> fleet(3);
+  fleet[0] = {1, {0, 0, 0}, std::nullopt, {}};
+  fleet[1] = {2, {0, 2, 0}, std::array<double, 3>{10, 2, 2}, {}};
+  fleet[2] = {3, {0, -2, 0}, std::nullopt, {}};
+  const std::vector<double> radii{0.3, 0.3, 0.3};
+  EXPECT_TRUE(fleetProblems(w, fleet, radii).empty());
+  EXPECT_EQ(memberWorld(w, fleet[1]).goal(), Vector3(10, 2, 2));
+  EXPECT_EQ(memberWorld(w, fleet[0]).goal(), w.goal());
+
+  fleet[1].start = {0, 0.5, 0};  // 0.5 m from vehicle 1: two spheres of 0.3 m overlap
+  fleet[2].start = {5, 3, 1.5};  // inside the sphere
+  auto p = fleetProblems(w, fleet, radii);
+  ASSERT_EQ(p.size(), 2U);
+  EXPECT_EQ(p[0], "vehicles[1] (id 2): its start is 0.10 m into vehicles[0] (id 1)'s: the two vehicles would start in contact");
+  EXPECT_EQ(p[1], "vehicles[2] (id 3): the start (5, 3, 1.5) lies inside obstacle 0");
+  fleet[1].start = {0, 2, 0};
+  fleet[2].start = {0, -2, 0};
+  fleet[2].goal = std::array<double, 3>{5, 3, 2};
+  fleet[1].start = {20, 2, 0};
+  p = fleetProblems(w, fleet, radii);
+  ASSERT_EQ(p.size(), 2U);
+  EXPECT_EQ(p[0], "vehicles[1] (id 2): the start (20, 2, 0) is outside the world's bounds");
+  EXPECT_EQ(p[1], "vehicles[2] (id 3): the goal (5, 3, 2) lies inside obstacle 0");
+}
+
+/// One vehicle's summary, as a tracker gives it.
+MissionSummary vehicleSummary(std::uint32_t id, MissionEnd end, double length, std::optional<double> optimum)
+{
+  MissionSummary s;
+  s.vehicle_id = id;
+  s.end = end;
+  s.success = end == MissionEnd::kSuccess;
+  s.failure = s.success ? "" : "failure " + std::to_string(id);
+  s.path_length_m = length;
+  s.straight_line_m = length - 1.0;
+  s.optimum_m = optimum;
+  s.sim_s = 10.0 * id;
+  s.collisions = static_cast<int>(id) - 1;
+  s.min_clearance_m = 1.0 / id;
+  return s;
+}
+
+TEST(FleetSummary, TheFleetSucceedsWhenEveryVehicleDoesAndSumsOrBoundsTheirFigures)
+{
+  MissionSummary s = fleetSummary({vehicleSummary(1, MissionEnd::kSuccess, 10.0, 9.0),
+                                   vehicleSummary(2, MissionEnd::kSuccess, 20.0, 18.0)},
+                                  0.8, 5.0);
+  EXPECT_TRUE(s.success);
+  EXPECT_EQ(s.end, MissionEnd::kSuccess);
+  EXPECT_EQ(s.outcome, "2 of 2 vehicles reached their goals");
+  EXPECT_EQ(s.failure, "");
+  EXPECT_DOUBLE_EQ(s.path_length_m, 30.0);
+  EXPECT_DOUBLE_EQ(*s.optimum_m, 27.0);
+  EXPECT_DOUBLE_EQ(s.sim_s, 20.0);
+  EXPECT_EQ(s.collisions, 1);
+  EXPECT_DOUBLE_EQ(s.min_clearance_m, 0.5);
+  EXPECT_DOUBLE_EQ(*s.min_separation_m, 0.8);
+  ASSERT_EQ(s.vehicles.size(), 2U);
+  EXPECT_EQ(s.vehicles[1].vehicle_id, 2U);
+  const std::string json = toJson(s);
+  EXPECT_NE(json.find("\"min_separation_m\": 0.8"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"vehicle_id\": 2"), std::string::npos) << json;
+
+  // One vehicle without a path and one failed: the fleet failed, naming both; no total optimum.
+  s = fleetSummary({vehicleSummary(1, MissionEnd::kNoPath, 10.0, std::nullopt),
+                    vehicleSummary(2, MissionEnd::kSuccess, 20.0, 18.0),
+                    vehicleSummary(3, MissionEnd::kFailed, 5.0, 4.0)},
+                   std::nullopt, 5.0);
+  EXPECT_FALSE(s.success);
+  EXPECT_EQ(s.end, MissionEnd::kFailed);
+  EXPECT_EQ(s.outcome, "1 of 3 vehicles reached their goals");
+  EXPECT_EQ(s.failure, "vehicle 1: failure 1; vehicle 3: failure 3");
+  EXPECT_FALSE(s.optimum_m.has_value());
+  // Only no-path ends besides successes: the fleet's end is no path.
+  s = fleetSummary({vehicleSummary(1, MissionEnd::kNoPath, 10.0, std::nullopt),
+                    vehicleSummary(2, MissionEnd::kSuccess, 20.0, 18.0)},
+                   std::nullopt, 5.0);
+  EXPECT_EQ(s.end, MissionEnd::kNoPath);
+}
+
 }  // namespace
 }  // namespace quad::launch

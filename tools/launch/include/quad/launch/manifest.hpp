@@ -5,6 +5,8 @@
 /// on which DDS domain and discovery, gated on which topics, restarted how. Read and
 /// validated whole before anything starts; every problem is `file:key: value: reason`.
 
+#include <array>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -49,6 +51,17 @@ struct Module {
   int respawn = 0;                           ///< restarts allowed after a failure
   double backoff_s = 1.0;                    ///< first restart delay, doubled each time
   bool ends_run = false;                     ///< its normal exit ends the run
+  /// In a fleet manifest: the vehicle this instance of the module serves (its
+  /// QUAD_VEHICLE_ID); nothing for a module that serves the whole run (the plant).
+  std::optional<std::uint32_t> vehicle;
+};
+
+/// One vehicle of a fleet manifest (`vehicles:`), as the plant's fleet file has it.
+struct FleetMember {
+  std::uint32_t id = 0;                       ///< its modules' QUAD_VEHICLE_ID, its samples' Header.vehicle_id
+  std::array<double, 3> start{};              ///< [m] where it stands when the run begins
+  std::optional<std::array<double, 3>> goal;  ///< [m] its mission's goal; unset: the world's
+  std::filesystem::path vehicle;              ///< its vehicle file (absolute); the mission's when not given
 };
 
 struct Mission {
@@ -85,7 +98,11 @@ struct Manifest {
   bool firewall = false;
   std::map<std::string, std::string> environment;
   std::vector<Host> hosts;          ///< in the order written
-  std::vector<Module> modules;      ///< start order
+  /// A fleet manifest's vehicles; empty for one vehicle (the world's start and goal). Each
+  /// module but the plant then runs once per vehicle (Module::vehicle), named
+  /// fleetInstanceName(module, id), and the plant simulates them all (kFleetFile).
+  std::vector<FleetMember> vehicles;
+  std::vector<Module> modules;      ///< start order (a fleet's: each module's instances together)
   Mission mission;
   /// `geofence: {min: [x, y, z], max: [x, y, z]}`: the keep-in volume [m], handed to every
   /// planning and control module as its geofence.min and geofence.max (common::geofenceSets).
@@ -95,7 +112,21 @@ struct Manifest {
   /// The module of that name; nullptr when there is none (the launcher's own processes).
   const Module* findModule(const std::string& module_name) const;
   bool usesNamespaces() const;
+  /// The ids of the vehicles the run flies: the fleet's, or {0} for one vehicle.
+  std::vector<std::uint32_t> vehicleIds() const;
 };
+
+/// "planning.2": the instance of a module that serves one vehicle of a fleet.
+std::string fleetInstanceName(const std::string& module_name, std::uint32_t vehicle_id);
+/// The fleet file the launcher writes for the plant in the run's state folder, from the
+/// manifest's vehicles (the plant's `fleet` key names it).
+inline constexpr const char* kFleetFile = "fleet.yaml";
+/// "vehicle2": one vehicle's folder in a fleet's run: within the run's state folder, its
+/// modules' ${run_state} (two vehicles' mappers do not share a checkpoint); within the run's
+/// folder, its report.
+std::string vehicleFolder(std::uint32_t vehicle_id);
+/// The fleet file's text: the vehicles with their ids, starts, goals and vehicle files.
+std::string fleetFileText(const std::vector<FleetMember>& vehicles);
 
 /// What the command line changes in a manifest before it is checked.
 /// `${run_state}`: left as it is in a module's `set`, `args` and `environment` values, for the

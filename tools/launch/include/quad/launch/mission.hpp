@@ -52,7 +52,23 @@ struct MissionSummary {
   double goal_distance_m = 0.0; ///< at the end
   std::vector<ProcessCost> processes;  ///< filled by the launcher once its processes ended
   std::optional<EstimateErrors> estimate;  ///< the estimator against the truth; none without an estimator
+  /// A fleet vehicle's summary: its id.
+  std::optional<std::uint32_t> vehicle_id;
+  /// A fleet's summary: one per vehicle, in the manifest's order; the fields above then stand
+  /// for the whole fleet (fleetSummary).
+  std::vector<MissionSummary> vehicles;
+  /// [m] A fleet's least distance between two vehicles' bounding spheres (negative: they
+  /// touched); nothing for one vehicle.
+  std::optional<double> min_separation_m;
 };
+
+/// The whole fleet's summary from its vehicles': a success when every vehicle's is; collisions,
+/// lengths, optima (when every vehicle has one), paths and mode changes summed; the longest sim
+/// time and goal distance, the closest approach to an obstacle; the failure names each vehicle
+/// that failed, and the end is the first failed vehicle's (a no-path end only when every
+/// vehicle that did not succeed ended so).
+MissionSummary fleetSummary(std::vector<MissionSummary> vehicles, std::optional<double> min_separation_m,
+                            double wall_s);
 
 class MissionTracker {
 public:
@@ -115,6 +131,15 @@ private:
 /// the vehicle starts outside the geofence. Nothing when it can.
 std::optional<std::string> goalProblem(const world::World& world, double radius,
                                        const common::Geofence& fence = {});
+
+/// Why a fleet cannot fly in `world` as the manifest places it, one problem per vehicle
+/// ("vehicles[1] (id 2): ..."): its goal as goalProblem finds it; its start outside the
+/// world's bounds or within its radius of an obstacle; two vehicles whose spheres overlap at
+/// their starts. `radii` [m] are the vehicles', in the manifest's order.
+std::vector<std::string> fleetProblems(const world::World& world, const std::vector<FleetMember>& vehicles,
+                                       const std::vector<double>& radii, const common::Geofence& fence = {});
+/// Vehicle `v`'s view of `world`: the same obstacles and bounds, its start and goal.
+world::World memberWorld(const world::World& world, const FleetMember& v);
 
 /// The summary as one JSON object (the --summary file).
 std::string toJson(const MissionSummary& s);

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,53 +32,76 @@ struct ModuleBeat {
   std::int64_t stamp_ns = 0;  ///< wall time on its host
 };
 
+/// One vehicle whose mission the launcher follows: its id, the world as it sees it (its start
+/// and goal), its bounding sphere's radius [m].
+struct MissionVehicle {
+  std::uint32_t id = 0;
+  world::World world;
+  double radius = 0.0;
+};
+
 class Observer {
 public:
-  explicit Observer(dds::ParticipantOptions options);
+  /// Follows the vehicles `vehicles` (their states, estimates and clock samples; the
+  /// participant's own vehicle when empty): one, or a fleet's.
+  explicit Observer(dds::ParticipantOptions options, std::vector<std::uint32_t> vehicles = {});
   ~Observer();
 
   /// The topics of `topics` with no writer discovered yet.
   std::vector<std::string> missingWriters(const std::vector<std::string>& topics) const;
 
-  /// Starts following a mission to `world`'s goal: publishes the goal (latched).
-  void startMission(const Mission& mission, const world::World& world, double radius);
+  /// Starts following a mission for each of `vehicles` (ids among the followed ones) to its
+  /// world's goal: publishes each vehicle's goal (latched).
+  void startMission(const Mission& mission, std::vector<MissionVehicle> vehicles);
   /// Whether every reader of the mission's goal discovered so far has matched its writer and
   /// acknowledged the goal; true without a mission.
   bool goalDelivered();
-  /// Takes what arrived, feeds the tracker, sends the land command when it asks.
+  /// Takes what arrived, feeds the trackers, sends the land command when it asks.
   void update();
   /// The modules' heartbeats that arrived since the last call.
   std::vector<ModuleBeat> takeHeartbeats();
-  /// Null until startMission.
-  MissionTracker* mission() { return tracker_.get(); }
+  /// The vehicles followed, in the order given.
+  std::size_t vehicleCount() const;
+  std::uint32_t vehicleId(std::size_t i) const;
+  /// Vehicle i's mission; null until startMission.
+  MissionTracker* mission(std::size_t i = 0);
+  /// Every vehicle's mission is over (false without a mission).
+  bool missionsFinished() const;
   /// The operator's station: while a mission is followed, the launcher is it and sends its
-  /// heartbeat (quad/system/operator_heartbeat) every half second of sim time, unless the link is
-  /// down (a fault: the controller's link-loss failsafe then acts).
+  /// heartbeat (quad/system/operator_heartbeat) for each vehicle every half second of sim
+  /// time, unless the link is down (a fault: the controller's link-loss failsafe then acts).
   void setOperatorLink(bool up) { operator_link_ = up; }
-  /// Wall time [ns, steady] of the last vehicle state; 0 before the first.
+  /// Wall time [ns, steady] of the newest vehicle state of any vehicle; 0 before the first.
   std::int64_t lastStateNs() const { return last_state_ns_; }
   /// For tools that act on the run through the launcher's participant (quad fault).
   dds::Participant& participant() { return participant_; }
   /// The newest sim time the plant's clock told [ns]; 0 before the first.
-  std::int64_t simTimeNs() const;  ///< the newest sim time the plant's clock told
-  /// The vehicle's position in the newest state the clock vouches for.
-  const Eigen::Vector3d& position() const { return position_; }
-  /// The estimator's state against the truth, so far (whatever the stack flies on).
-  const EstimateScore& estimateScore() const { return score_; }
+  std::int64_t simTimeNs() const;
+  /// Vehicle i's position in the newest state the clock vouches for.
+  const Eigen::Vector3d& position(std::size_t i = 0) const;
+  /// Vehicle i's estimator against the truth, so far (whatever the stack flies on).
+  const EstimateScore& estimateScore(std::size_t i = 0) const;
+  /// [m] The least distance between two vehicles' bounding spheres in states of one stamp, once
+  /// the mission started (negative: they overlapped); nothing with fewer than two vehicles.
+  std::optional<double> minimumSeparation() const;
 
 private:
   struct Sim;
   struct Endpoints;
+  struct Track;
+  /// The followed vehicle of that id; null for another.
+  Track* track(std::uint32_t id);
+  void onState(Track& v, std::int64_t stamp_ns, const Eigen::Vector3d& p, const geometry::Quaternion& q);
+
   dds::Participant participant_;
+  std::vector<std::uint32_t> ids_;
+  std::vector<Track> tracks_;
   std::unique_ptr<Sim> sim_;
   std::unique_ptr<Endpoints> endpoints_;
-  std::unique_ptr<MissionTracker> tracker_;
   std::int64_t last_state_ns_ = 0;
   bool operator_link_ = true;
   std::int64_t next_operator_beat_ns_ = 0;  // sim time the station's next heartbeat is due
-  std::int64_t state_ns_ = 0;  // stamp of the newest state taken
-  Eigen::Vector3d position_ = Eigen::Vector3d::Zero();
-  EstimateScore score_;
+  std::optional<double> min_separation_;
 };
 
 }  // namespace quad::launch

@@ -137,9 +137,15 @@ private:
   std::string whoWrites(const std::string& topic) const;
   /// Says, for each module, the last line its log has about lockstep ("lockstep: ...").
   void reportStall();
-  /// The known-map optimum of the run's world, with its planning module's parameters; nothing
-  /// when the run has no planner or no path exists.
-  std::optional<double> knownMapOptimum();
+  /// The known-map optimum from `world`'s start to its goal, with the run's planning module's
+  /// parameters; nothing when the run has no planner or no path exists.
+  std::optional<double> knownMapOptimum(const world::World& world);
+  /// Publishes each vehicle's goal and follows its mission; kExitInvalid (failure_ says why)
+  /// when a goal or a fleet's start is refused at once.
+  int startMissions();
+  /// The mission's summary once the modules stopped: the vehicle's, or the fleet's with each
+  /// vehicle's.
+  launch::MissionSummary missionSummary(double wall_s);
   /// What each process of the run cost, once they all stopped, and the launcher itself.
   std::vector<launch::ProcessCost> processCosts() const;
   void stopAll();

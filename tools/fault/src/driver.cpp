@@ -4,6 +4,7 @@
 #include <signal.h>
 
 #include <algorithm>
+#include <span>
 #include <array>
 #include <cmath>
 #include <fstream>
@@ -124,6 +125,9 @@ public:
       facts.mission_success = s->success;
       facts.mission_outcome = s->outcome;
       facts.collisions = s->collisions;
+      for (const auto& v : s->vehicles) {
+        facts.vehicle_missions[v.vehicle_id.value_or(0)] = {v.success, v.outcome};
+      }
     }
     facts.run_failure = run.failure();
     facts.actuator_commands = actuator_commands_;
@@ -203,6 +207,14 @@ private:
     }
     for (const auto& m : run.manifest().modules) {
       kinds_.emplace(m.name, m.kind);
+      vehicle_of_.emplace(m.name, m.vehicle.value_or(0));
+    }
+    // The vehicle the expectations watch: the scenario's, else the run's first.
+    watched_ = scenario_.vehicle.value_or(run.observer().vehicleId(0));
+    for (std::size_t i = 0; i < run.observer().vehicleCount(); ++i) {
+      if (run.observer().vehicleId(i) == watched_) {
+        watched_index_ = i;
+      }
     }
   }
 
@@ -233,12 +245,13 @@ private:
     // Sim time is the plant's clock, as the launcher's observer follows it (a state could
     // be a bad input stamped anywhere).
     t_ = common::toSeconds(run.observer().simTimeNs());
-    p_W_ = dds::toMessage(run.observer().position());
+    p_W_ = dds::toMessage(run.observer().position(watched_index_));
     if (run.observer().lastStateNs() > 0) {
-      judge_.altitude(t_, run.observer().position().z());  // sampled at the tick's rate
+      judge_.altitude(t_, run.observer().position(watched_index_).z());  // sampled at the tick's rate
     }
+    const std::span<const std::uint32_t> watched(&watched_, 1);
     // Paths before modes: a HOVER measured from the last path must not miss one stamped before it.
-    for (const auto& p : endpoints_->path.takeAll()) {
+    for (const auto& p : endpoints_->path.takeAll(watched)) {
       const bool flyable = p.status() == msg::PLAN_OK && !p.waypoints_W().empty() &&
                            std::all_of(p.waypoints_W().begin(), p.waypoints_W().end(),
                                        [](const msg::Vector3& w) { return dds::toVector(w).allFinite(); });
@@ -246,10 +259,10 @@ private:
         judge_.path(common::toSeconds(p.header().stamp_ns()));
       }
     }
-    for (const auto& s : endpoints_->status.takeAll()) {
+    for (const auto& s : endpoints_->status.takeAll(watched)) {
       judge_.mode(common::toSeconds(s.header().stamp_ns()), launch::controlModeName(static_cast<int>(s.mode())));
     }
-    for (const auto& e : endpoints_->estimate.takeAll()) {
+    for (const auto& e : endpoints_->estimate.takeAll(watched)) {
       const double t = common::toSeconds(e.header().stamp_ns());
       const std::array<std::pair<const char*, std::uint64_t>, 3> counts = {
           {{"position", e.position_rejected()}, {"baro", e.baro_rejected()}, {"mag", e.mag_rejected()}}};
@@ -260,9 +273,10 @@ private:
         }
       }
     }
-    for (const auto& a : endpoints_->actuators.takeAll()) {
+    // Every vehicle's commands, events and modules'.
+    while (const auto a = endpoints_->actuators.takeAnyVehicle()) {
       ++actuator_commands_;
-      for (const double w : a.rotor_speed()) {
+      for (const double w : a->rotor_speed()) {
         if (!std::isfinite(w)) {
           ++nonfinite_actuators_;
           break;
@@ -270,7 +284,7 @@ private:
       }
     }
     std::uint64_t writer = 0;
-    while (const auto hb = endpoints_->heartbeat.take(&writer)) {
+    while (const auto hb = endpoints_->heartbeat.takeAnyVehicle(&writer)) {
       const std::string name = moduleOf(run, *hb);
       if (name.empty()) {
         continue;
@@ -292,11 +306,12 @@ private:
         judge_.lost(it->second, change.steady_ns);
       }
     }
-    for (const auto& e : endpoints_->sim_events.takeAll()) {
+    while (const auto e = endpoints_->sim_events.takeAnyVehicle()) {
       // The plant stamps its acknowledgement with the sim time the fault took effect.
-      takeAck(e, common::toSeconds(e.header().stamp_ns()), now);
+      takeAck(*e, common::toSeconds(e->header().stamp_ns()), now);
     }
-    for (const auto& e : endpoints_->fault_events.takeAll()) {
+    while (const auto fault_event = endpoints_->fault_events.takeAnyVehicle()) {
+      const msg::SimEvent& e = *fault_event;
       if (e.kind() == msg::SIM_EVENT_FAULT_CLEARED && e.subject_id() >= fault::kDatagramIdBase) {
         const auto step = static_cast<std::size_t>(e.subject_id() / fault::kDatagramIdBase) - 1;
         if (step < scenario_.steps.size()) {
@@ -368,7 +383,7 @@ private:
       case Action::Kind::kPlant: {
         msg::FaultCommand c = plant::toCommand(a.plant);
         c.header().stamp_ns(common::toNanoseconds(t_));
-        if (!endpoints_->command.write(c)) {
+        if (!endpoints_->command.writeFor(watched_, c)) {
           refuse(step, "the fault command could not be written");
           break;
         }
@@ -379,7 +394,7 @@ private:
         for (const auto& d : a.datagrams) {
           msg::FaultCommand c = dds::toCommand(d, kinds_.at(a.module));
           c.header().stamp_ns(common::toNanoseconds(t_));
-          if (!endpoints_->command.write(c)) {
+          if (!endpoints_->command.writeFor(vehicle_of_.at(a.module), c)) {
             refuse(step, "the fault command could not be written");
             std::erase_if(acks_, [&](const auto& ack) { return ack.second.step == step; });
             return;
@@ -499,7 +514,7 @@ private:
       c.kind(msg::FAULT_CLEAR);
       c.fault_id(d.id);
       c.module_name(kinds_.at(a.module));
-      endpoints_->command.write(c);
+      endpoints_->command.writeFor(vehicle_of_.at(a.module), c);
     }
   }
 
@@ -603,6 +618,9 @@ private:
   std::unique_ptr<dds::Participant> injector_;
   std::map<std::size_t, PublishJob> jobs_;
   std::map<std::string, std::string> kinds_;     // manifest module name -> kind
+  std::map<std::string, std::uint32_t> vehicle_of_;  // manifest module name -> the vehicle it serves (0: the run)
+  std::uint32_t watched_ = 0;        // the vehicle the expectations watch
+  std::size_t watched_index_ = 0;    // its place among the observer's vehicles
   std::map<std::uint64_t, std::string> writers_; // heartbeat writer -> module
   std::map<std::string, ModuleSeen> seen_;
   std::map<std::uint32_t, Ack> acks_;  // by fault id

@@ -277,6 +277,16 @@ std::vector<Judge::Row> Judge::finish(const RunFacts& facts)
     end(want ? "mission succeeds" : "mission fails", "", facts.mission_known ? facts.mission_outcome : "no mission",
         facts.mission_known && facts.mission_success == want);
   }
+  for (const auto& [vehicle, mission] : o.vehicles) {
+    if (mission == Outcome::Mission::kAny) {
+      continue;
+    }
+    const bool want = mission == Outcome::Mission::kSuccess;
+    const auto it = facts.vehicle_missions.find(vehicle);
+    end(fmt::format("vehicle {}'s mission {}", vehicle, want ? "succeeds" : "fails"), "",
+        it == facts.vehicle_missions.end() ? "no mission" : it->second.second,
+        it != facts.vehicle_missions.end() && it->second.first == want);
+  }
   end("collisions", fmt::format("<= {}", o.max_collisions), std::to_string(facts.collisions),
       facts.collisions <= o.max_collisions);
   if (o.finite_actuators) {

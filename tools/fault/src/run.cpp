@@ -73,6 +73,9 @@ int runScenario(const FaultOptions& options)
     hosts[h.name] = h.kind == launch::HostKind::kNetns;
   }
   auto problems = checkAgainstModules(scenario, names, kinds, hosts);
+  for (auto& p : checkAgainstVehicles(scenario, manifest->vehicleIds(), !manifest->vehicles.empty())) {
+    problems.push_back(std::move(p));
+  }
   for (auto& m : manifest->modules) {
     const auto it = scenario.sets.find(m.name);
     if (it == scenario.sets.end()) {

@@ -2,9 +2,11 @@
 #include "quad/fault/scenario.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <yaml-cpp/yaml.h>
 
 #include "quad/common/params.hpp"
@@ -82,7 +84,8 @@ public:
       r_.throwIfAny();
     }
     r_.onlyKeys(root, "",
-                {"name", "description", "manifest", "world", "mode", "state", "geofence", "set", "end_at", "steps", "outcome"});
+                {"name", "description", "manifest", "world", "mode", "state", "geofence", "set", "end_at", "vehicle", "steps",
+                 "outcome"});
     if (root["name"].IsDefined()) {
       if (isName(root["name"])) {
         s.name = root["name"].Scalar();
@@ -124,6 +127,9 @@ public:
     }
     if (root["end_at"].IsDefined()) {
       s.end_s = r_.number(root["end_at"], "end_at", std::nullopt, 0.0, kMaxTime);
+    }
+    if (root["vehicle"].IsDefined()) {
+      s.vehicle = vehicleId(root["vehicle"], "vehicle");
     }
     YAML::Node steps = root["steps"];
     if (!steps.IsSequence() || steps.size() == 0) {
@@ -564,15 +570,22 @@ private:
       r_.problem("outcome", node, "expected a map with mission, collisions, finite_actuators, recording_loss");
       return o;
     }
-    r_.onlyKeys(node, "outcome.", {"mission", "collisions", "finite_actuators", "recording_loss"});
+    r_.onlyKeys(node, "outcome.", {"mission", "vehicles", "collisions", "finite_actuators", "recording_loss"});
     if (node["mission"].IsDefined()) {
-      const std::string m = node["mission"].IsScalar() ? node["mission"].Scalar() : "";
-      if (m == "success" || m == "failure" || m == "any") {
-        o.mission = m == "success" ? Outcome::Mission::kSuccess
-                    : m == "failure" ? Outcome::Mission::kFailure
-                                     : Outcome::Mission::kAny;
+      o.mission = mission(node["mission"], "outcome.mission").value_or(o.mission);
+    }
+    if (YAML::Node vehicles = node["vehicles"]; vehicles.IsDefined()) {
+      if (!vehicles.IsMap()) {
+        r_.problem("outcome.vehicles", vehicles, "expected a map of vehicle ids to success, failure or any");
       } else {
-        r_.problem("outcome.mission", node["mission"], "expected success, failure or any");
+        for (auto kv : vehicles) {
+          const std::string key = "outcome.vehicles." + kv.first.Scalar();
+          const auto id = vehicleId(kv.first, key);
+          const auto m = mission(kv.second, key);
+          if (id && m) {
+            o.vehicles[*id] = *m;
+          }
+        }
       }
     }
     if (const auto c = r_.number(node["collisions"], "outcome.collisions", 0.0, 0.0, 1e6)) {
@@ -588,6 +601,28 @@ private:
       }
     }
     return o;
+  }
+
+  /// success, failure or any.
+  std::optional<Outcome::Mission> mission(const YAML::Node& node, const std::string& key)
+  {
+    const std::string m = node.IsScalar() ? node.Scalar() : "";
+    if (m == "success" || m == "failure" || m == "any") {
+      return m == "success" ? Outcome::Mission::kSuccess : m == "failure" ? Outcome::Mission::kFailure : Outcome::Mission::kAny;
+    }
+    r_.problem(key, node, "expected success, failure or any");
+    return std::nullopt;
+  }
+
+  /// A vehicle id: a whole number, as a fleet manifest's `id`.
+  std::optional<std::uint32_t> vehicleId(const YAML::Node& node, const std::string& key)
+  {
+    const auto id = r_.number(node, key, std::nullopt, 0.0, 1'000'000.0);
+    if (id && *id != std::floor(*id)) {
+      r_.problem(key, node, "expected a vehicle id (a whole number)");
+      return std::nullopt;
+    }
+    return id ? std::optional<std::uint32_t>(static_cast<std::uint32_t>(*id)) : std::nullopt;
   }
 
   bool flag(YAML::Node node, const std::string& key, bool fallback)
@@ -665,6 +700,28 @@ Scenario parseScenario(std::string_view yaml_text, const fs::path& file, const S
 Scenario loadScenario(const fs::path& file, const ScenarioLookup& lookup)
 {
   return parseScenario(common::readTextFile(file), file, lookup);
+}
+
+std::vector<std::string> checkAgainstVehicles(const Scenario& s, const std::vector<std::uint32_t>& vehicle_ids, bool fleet)
+{
+  std::vector<std::string> problems;
+  const std::string manifest = s.manifest.filename().string();
+  const auto check = [&](const std::string& key, std::uint32_t vehicle) {
+    const auto id = static_cast<std::int64_t>(vehicle);
+    if (!fleet) {
+      problems.push_back(common::configProblem(s.file.string(), key, id, manifest + " flies one vehicle, not a fleet"));
+    } else if (std::find(vehicle_ids.begin(), vehicle_ids.end(), vehicle) == vehicle_ids.end()) {
+      problems.push_back(common::configProblem(s.file.string(), key, id,
+                                               fmt::format("not a vehicle of {} ({})", manifest, fmt::join(vehicle_ids, ", "))));
+    }
+  };
+  if (s.vehicle) {
+    check("vehicle", *s.vehicle);
+  }
+  for (const auto& [id, mission] : s.outcome.vehicles) {
+    check("outcome.vehicles." + std::to_string(id), id);
+  }
+  return problems;
 }
 
 std::vector<std::string> checkAgainstModules(const Scenario& s, const std::vector<std::string>& modules,

@@ -314,6 +314,39 @@ steps:
   EXPECT_EQ(q.size(), 1U);
 }
 
+TEST_F(ScenarioFiles, AFleetsWatchedVehicleAndEachVehiclesOutcomeAreReadAndChecked)
+{
+  const Scenario s = parse(R"(
+manifest: manifest.yaml
+vehicle: 2
+steps:
+  - {at: 1, kill: planning.2}
+outcome: {mission: failure, vehicles: {1: success, 2: failure, 3: any}}
+)");
+  EXPECT_EQ(s.vehicle, 2U);
+  EXPECT_EQ(s.outcome.mission, Outcome::Mission::kFailure);
+  ASSERT_EQ(s.outcome.vehicles.size(), 3U);
+  EXPECT_EQ(s.outcome.vehicles.at(1), Outcome::Mission::kSuccess);
+  EXPECT_EQ(s.outcome.vehicles.at(2), Outcome::Mission::kFailure);
+  EXPECT_EQ(s.outcome.vehicles.at(3), Outcome::Mission::kAny);
+  EXPECT_TRUE(checkAgainstVehicles(s, {1, 2, 3}, true).empty());
+  auto p = checkAgainstVehicles(s, {1, 2}, true);
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_TRUE(mentions(p, "outcome.vehicles.3: 3: not a vehicle of manifest.yaml (1, 2)")) << p[0];
+  p = checkAgainstVehicles(s, {0}, false);
+  EXPECT_EQ(p.size(), 4U);
+  EXPECT_TRUE(mentions(p, "vehicle: 2: manifest.yaml flies one vehicle, not a fleet")) << ::testing::PrintToString(p);
+
+  const auto q = problems(R"(
+manifest: manifest.yaml
+vehicle: 1.5
+steps: [{at: 1, kill: planning}]
+outcome: {vehicles: {2: landed}}
+)");
+  EXPECT_TRUE(mentions(q, "vehicle: 1.5: expected a vehicle id (a whole number)")) << ::testing::PrintToString(q);
+  EXPECT_TRUE(mentions(q, "outcome.vehicles.2: landed: expected success, failure or any"));
+}
+
 constexpr std::int64_t kMs = 1'000'000;
 
 Scenario killScenario()
@@ -402,6 +435,42 @@ TEST(Judge, LateOrMissingReactionsAndABadOutcomeFail)
   }
   EXPECT_EQ(failed, 5) << toTable("k", rows);  // noticed, mode, back, collisions, actuators
   EXPECT_NE(toTable("k", rows).find("0.900 s"), std::string::npos);
+}
+
+TEST(Judge, EachVehicleOfAFleetIsHeldToItsOwnOutcome)
+{
+  Scenario s = killScenario();
+  s.outcome.mission = Outcome::Mission::kFailure;
+  s.outcome.vehicles = {{1, Outcome::Mission::kSuccess}, {2, Outcome::Mission::kFailure}, {3, Outcome::Mission::kSuccess}};
+  Judge j(s);
+  j.applied(0, 5.0, 0, "SIGKILL to pid 7");
+  j.lost("planning", 100 * kMs);
+  j.mode(5.5, "HOVER");
+  j.back("planning", 2000 * kMs);
+  RunFacts f = goodRun();
+  f.mission_success = false;
+  f.vehicle_missions = {{1, {true, "landed at the goal"}}, {2, {true, "landed at the goal"}}};
+  const auto rows = j.finish(f);
+  const std::string table = toTable("k", rows);
+  // Vehicle 2 should have failed; vehicle 3 flew no mission at all.
+  int failed = 0;
+  for (const auto& r : rows) {
+    failed += r.pass ? 0 : 1;
+  }
+  EXPECT_EQ(failed, 2) << table;
+  EXPECT_NE(table.find("vehicle 2's mission fails"), std::string::npos) << table;
+  EXPECT_NE(table.find("vehicle 3's mission succeeds"), std::string::npos) << table;
+  EXPECT_NE(table.find("no mission"), std::string::npos) << table;
+  f.vehicle_missions[2] = {false, "landed short of the goal"};
+  f.vehicle_missions[3] = {true, "landed at the goal"};
+  // With every vehicle as the scenario says, the same reactions pass.
+  Judge k(s);
+  k.applied(0, 5.0, 0, "SIGKILL to pid 7");
+  k.lost("planning", 100 * kMs);
+  k.mode(5.5, "HOVER");
+  k.back("planning", 2000 * kMs);
+  const auto good = k.finish(f);
+  EXPECT_TRUE(passed(good)) << toTable("k", good);
 }
 
 TEST(Judge, AModeAlreadyHeldWhenTheFaultTakesEffectIsMetAtOnce)

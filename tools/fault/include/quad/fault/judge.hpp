@@ -21,6 +21,8 @@ struct RunFacts {
   bool mission_known = false;      ///< the manifest flew a mission and it was followed
   bool mission_success = false;
   std::string mission_outcome;     ///< "landed at the goal", ...
+  /// A fleet's run: each vehicle's mission, its success and outcome in words.
+  std::map<std::uint32_t, std::pair<bool, std::string>> vehicle_missions;
   int collisions = 0;
   std::uint64_t actuator_commands = 0;
   std::uint64_t nonfinite_actuator_commands = 0;

@@ -111,6 +111,9 @@ struct Outcome {
   int max_collisions = 0;
   bool finite_actuators = true;   ///< no actuator command with a non-finite rotor speed
   bool zero_loss = true;          ///< the recording lost nothing on reliable topics
+  /// A fleet's run: how each vehicle named here must end its own mission (`mission` above is
+  /// the whole fleet's).
+  std::map<std::uint32_t, Mission> vehicles;
 };
 
 struct Scenario {
@@ -123,6 +126,9 @@ struct Scenario {
   std::optional<std::string> state;           ///< "estimate" | "truth"; replaces the manifest's
   std::optional<common::Geofence> geofence;   ///< the keep-in volume; replaces the manifest's
   std::optional<double> end_s;                ///< sim time to end the run at (before the mission ends)
+  /// A fleet's run: the vehicle whose controller, paths, state and estimate the expectations
+  /// watch, and the one plant faults act on; unset: the manifest's first (or only) vehicle.
+  std::optional<std::uint32_t> vehicle;
   /// Per module, parameters it gets over the manifest's (`--set key=value`): the weather,
   /// a vehicle's fault-prone settings.
   std::map<std::string, std::vector<std::pair<std::string, std::string>>> sets;
@@ -148,5 +154,10 @@ Scenario loadScenario(const std::filesystem::path& file, const ScenarioLookup& l
 std::vector<std::string> checkAgainstModules(const Scenario& scenario, const std::vector<std::string>& modules,
                                              const std::vector<std::string>& kinds,
                                              const std::map<std::string, bool>& hosts = {});
+
+/// Problems of a scenario's vehicles (`vehicle`, `outcome.vehicles`) against the manifest's
+/// (`vehicle_ids`; `fleet`: the manifest lists vehicles), as `file:key: value: reason`.
+std::vector<std::string> checkAgainstVehicles(const Scenario& scenario, const std::vector<std::uint32_t>& vehicle_ids,
+                                              bool fleet);
 
 }  // namespace quad::fault

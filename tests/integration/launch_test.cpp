@@ -20,6 +20,7 @@
 
 #include "json_lines.hpp"
 #include "process.hpp"
+#include "recording_diff.hpp"
 #include "scratch.hpp"
 #include "wait.hpp"
 
@@ -180,18 +181,10 @@ TEST(Launch, DemoMissionReachesTheGoalInLockstepWithoutCollisionAndTwoRunsRecord
   const fs::path dir = quad::test::scratchDir("quad_launch_determinism");
   flyMission("demo.yaml", 180, {"--seed", "7"}, dir / "first.mcap");
   flyMission("demo.yaml", 63, {"--seed", "7"}, dir / "second.mcap");
-  // WHEN the recordings are compared message by message
-  ChildProcess diff({QUAD_TOOL, "bag", "diff", (dir / "first.mcap").string(), (dir / "second.mcap").string(), "--json"});
-  const auto status = diff.wait(120s);
-  ASSERT_TRUE(status) << diff.output();
-  // THEN every topic paced by sim time holds the same payloads in the same order, but for the
-  // members that hold wall-clock and compute times
-  const auto result = nlohmann::json::parse(diff.output(), nullptr, false);
-  ASSERT_FALSE(result.is_discarded()) << diff.output();
-  EXPECT_EQ(*status, 0) << result.dump(2);
-  EXPECT_TRUE(result["identical"].get<bool>()) << result.dump(2);
-  EXPECT_GE(result["topics"].get<int>(), 15) << result.dump(2);
-  EXPECT_GT(result["equal_messages"].get<int>(), 50000) << result.dump(2);
+  // WHEN the recordings are compared message by message THEN every topic paced by sim time
+  // holds the same payloads in the same order, but for the members that hold wall-clock and
+  // compute times
+  quad::test::expectIdenticalRecordings(QUAD_TOOL, dir / "first.mcap", dir / "second.mcap", 15, 50000);
   if (!::testing::Test::HasFailure()) {
     fs::remove_all(dir);
   }

@@ -11,6 +11,7 @@
 
 #include "process.hpp"
 #include "quad/bag/mcap.hpp"
+#include "quad/common/payload_header.hpp"
 #include "scratch.hpp"
 
 namespace {
@@ -36,6 +37,39 @@ TEST(Record, EverySampleOfAReliableTopicIsRecordedWithItsLossFigures)
   ASSERT_EQ(info.wait(20s), 0) << info.output();
   EXPECT_NE(info.output().find("quad::msg::VehicleCommand"), std::string::npos) << info.output();
   EXPECT_NE(info.output().find("received 40 missing 0 duplicated 0 reordered 0 writers 1"), std::string::npos)
+      << info.output();
+  fs::remove_all(dir);
+}
+
+TEST(Record, WithAVehicleOnlyThatVehiclesSamplesAreRecorded)
+{
+  // GIVEN commands for vehicles 1 and 2 on one domain (199), and a recorder of vehicle 2's
+  const fs::path dir = quad::test::scratchDir("quad_record_vehicle");
+  const std::string file = (dir / "r.mcap").string();
+  ChildProcess rec({QUAD_TOOL, "record", "-q", "-o", file, "--duration", "8", "--vehicle", "2"}, env(199));
+  ASSERT_TRUE(rec.waitForOutput("record: domain 199", 10s)) << rec.output();
+  ChildProcess one({QUAD_TOOL, "topic", "pub", "quad/system/command", "{command_id: 1, kind: COMMAND_HOLD}", "--count",
+                    "30", "--rate", "20", "--vehicle", "1"},
+                   env(199));
+  ChildProcess two({QUAD_TOOL, "topic", "pub", "quad/system/command", "{command_id: 1, kind: COMMAND_LAND}", "--count",
+                    "20", "--rate", "20", "--vehicle", "2"},
+                   env(199));
+  ASSERT_EQ(one.wait(30s), 0) << one.output();
+  ASSERT_EQ(two.wait(30s), 0) << two.output();
+  ASSERT_EQ(rec.wait(30s), 0) << rec.output();
+  // THEN the file holds vehicle 2's 20, none of vehicle 1's, and its loss figures count them alone
+  const auto contents = quad::bag::readMcap(file);
+  int of_two = 0;
+  for (const auto& m : contents.messages) {
+    const auto header = quad::common::payloadHeader(m.data);
+    ASSERT_TRUE(header.has_value());
+    EXPECT_EQ(header->vehicle_id, 2U);
+    of_two += header->vehicle_id == 2 ? 1 : 0;
+  }
+  EXPECT_EQ(of_two, 20);
+  ChildProcess info({QUAD_TOOL, "bag", "info", file});
+  ASSERT_EQ(info.wait(20s), 0) << info.output();
+  EXPECT_NE(info.output().find("received 20 missing 0 duplicated 0 reordered 0 writers 1"), std::string::npos)
       << info.output();
   fs::remove_all(dir);
 }

@@ -89,6 +89,8 @@ int main(int argc, char** argv)
   launch->add_option("--state", launch_options.state, "What the stack flies on: estimate, or truth to compare (the manifest's ${state})")
       ->check(CLI::IsMember({"estimate", "truth"}));
   launch->add_option("--seed", launch_options.seed, "${seed} of the manifest (the plant's random draws)");
+  launch->add_option("--vehicle", launch_options.vehicle, "A fleet manifest: fly this vehicle alone (its id)")
+      ->check(CLI::Range(0, 1'000'000));
   launch->add_option("--domain", launch_options.domain, "DDS domain id (default: the manifest's, else $QUAD_DOMAIN_ID, else 0)")
       ->check(CLI::Range(0, 232));
   launch->add_option("--subnet", launch_options.subnet, "First three numbers of the /24 for network-namespace hosts");
@@ -155,6 +157,8 @@ int main(int argc, char** argv)
   record->add_option("--exclude", record_options.exclude, "Globs of topics not to record");
   record->add_option("--duration", record_options.duration_s, "Stop after this many seconds")
       ->check(CLI::NonNegativeNumber);
+  addVehicleOption(record, record_options.connection,
+                   "Record only this vehicle's samples (Header.vehicle_id; the display's, without one, all)");
   record->add_flag("-q,--quiet", record_options.quiet, "No progress line");
   record->add_option("--compression", record_options.compression, "Chunk compression: zstd (default) or none")
       ->transform([](std::string v) { return v == "none" ? std::string() : v; })

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "quad/common/params.hpp"
 #include "quad/common/yaml_input.hpp"
@@ -596,9 +597,23 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
   }
   if (root["vehicles"]) {
     const auto hosts_of = readVehicles(root["vehicles"], r, m);
+    if (overrides.vehicle && r.ok()) {
+      const auto kept = std::find_if(m.vehicles.begin(), m.vehicles.end(),
+                                     [&](const FleetMember& v) { return v.id == *overrides.vehicle; });
+      if (kept == m.vehicles.end()) {
+        r.problem("vehicles", root["vehicles"],
+                  fmt::format("no vehicle {} (--vehicle): its ids are {}", *overrides.vehicle,
+                              fmt::join(m.vehicleIds(), ", ")));
+      } else {
+        m.vehicles = {*kept};
+      }
+    }
     if (!m.vehicles.empty() && r.ok()) {
       expandFleet(root, r, m, hosts_of);
     }
+  } else if (overrides.vehicle) {
+    r.problem("vehicles", YAML::Node(std::to_string(*overrides.vehicle)),
+              "--vehicle picks a vehicle of a fleet manifest; this one lists none");
   }
   r.throwIfAny();
   return m;

@@ -728,6 +728,7 @@ std::optional<launch::Manifest> loadRunManifest(const LaunchOptions& options)
   }
   overrides.state = options.state;
   overrides.seed = options.seed;
+  overrides.vehicle = options.vehicle;
   overrides.domain = options.domain;
   overrides.subnet = options.subnet;
   overrides.geofence = options.geofence;

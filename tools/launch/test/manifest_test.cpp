@@ -296,6 +296,38 @@ TEST_F(ManifestTest, AFleetRunsEachModuleOncePerVehicleAndThePlantOnceForAll)
             "  - {id: 7, start: [0.8, 0.2, 0]}\n");
 }
 
+TEST_F(ManifestTest, OneVehicleOfAFleetIsFlownAloneOnRequest)
+{
+  ManifestOverrides o;
+  o.vehicle = 7;
+  const Manifest m = parse(fleetManifest(), o);
+  ASSERT_EQ(m.vehicles.size(), 1U);
+  EXPECT_EQ(m.vehicleIds(), std::vector<std::uint32_t>{7});
+  std::vector<std::string> names;
+  for (const Module& mod : m.modules) {
+    names.push_back(mod.name);
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"mapping.7", "planning.7", "plant"}));
+  EXPECT_EQ(fleetFileText(m.vehicles),
+            "# Written by quad launch from the manifest's vehicles.\nvehicles:\n  - {id: 7, start: [0.8, 0.2, 0]}\n");
+  o.vehicle = 5;
+  try {
+    parse(fleetManifest(), o);
+    ADD_FAILURE() << "a vehicle the fleet does not have";
+  } catch (const common::ConfigError& e) {
+    ASSERT_EQ(e.problems().size(), 1U);
+    EXPECT_NE(e.problems()[0].find(":vehicles: "), std::string::npos) << e.problems()[0];
+    EXPECT_NE(e.problems()[0].find("no vehicle 5 (--vehicle): its ids are 4, 7"), std::string::npos) << e.problems()[0];
+  }
+  try {
+    parse("modules: {control: {}}\n", o);
+    ADD_FAILURE() << "--vehicle of a manifest of one vehicle";
+  } catch (const common::ConfigError& e) {
+    ASSERT_EQ(e.problems().size(), 1U);
+    EXPECT_NE(e.problems()[0].find("this one lists none"), std::string::npos) << e.problems()[0];
+  }
+}
+
 TEST_F(ManifestTest, AManifestWithoutVehiclesFliesVehicleZero)
 {
   const Manifest m = parse("modules: {control: {}}\n");

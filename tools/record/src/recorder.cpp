@@ -125,6 +125,9 @@ int record(const RecordOptions& options, const std::atomic<int>& stop)
       std::uint64_t writer_id = 0;
       while (r.subscriber->take(sample, writer_id)) {
         const auto log_time = static_cast<std::uint64_t>(common::wallTimeNs());
+        if (r.has_header && !topic::selectedVehicle(options.connection, sample.payload)) {
+          continue;  // another vehicle's (--vehicle)
+        }
         const auto header = r.has_header ? common::payloadHeader(sample.payload) : std::nullopt;
         const std::uint64_t publish = header && header->publish_ns > 0 ? static_cast<std::uint64_t>(header->publish_ns)
                                                                         : log_time;

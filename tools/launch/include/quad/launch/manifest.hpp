@@ -146,6 +146,8 @@ struct ManifestOverrides {
   std::optional<int> domain;
   std::optional<std::string> subnet;
   std::optional<common::Geofence> geofence;
+  /// A fleet manifest: keep this vehicle of its list alone (`quad launch --vehicle`).
+  std::optional<std::uint32_t> vehicle;
 };
 
 /// What a manifest is checked against: where modules' programs are (common::programPath of

@@ -35,6 +35,7 @@ struct LaunchOptions {
   bool lockstep = false;               ///< mode lockstep instead of the manifest's
   std::optional<std::string> state;    ///< ${state} (estimate | truth) instead of the manifest's
   std::optional<std::uint64_t> seed;   ///< ${seed} instead of the manifest's
+  std::optional<std::uint32_t> vehicle;  ///< a fleet manifest: this vehicle alone
   std::optional<int> domain;           ///< replaces the manifest's and the environment's
   std::optional<std::string> subnet;   ///< replaces the manifest's netns subnet
   std::optional<common::Geofence> geofence;  ///< replaces the manifest's keep-in volume

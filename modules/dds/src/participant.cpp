@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "quad/common/layout.hpp"
+#include "quad/common/payload_header.hpp"
 #include "quad/dds/participant.hpp"
 
 #include <arpa/inet.h>
@@ -226,7 +227,7 @@ ParticipantOptions optionsFromEnvironment(std::string name)
     options.discovery_server = v;
   }
   if (const char* v = env(environment::kVehicleId)) {
-    options.vehicle_id = parseInt<std::uint32_t>(v, environment::kVehicleId, 0, 1'000'000);
+    options.vehicle_id = parseInt<std::uint32_t>(v, environment::kVehicleId, 0, common::kMaxVehicleId);
   }
   if (const char* v = env(environment::kUdpMaxMessage)) {
     options.udp_max_message = parseInt<std::uint32_t>(v, environment::kUdpMaxMessage, kMinUdpMessage, kMaxUdpMessage);
@@ -242,6 +243,9 @@ ParticipantOptions optionsFromEnvironment(std::string name)
   }
   if (const char* v = env(environment::kValidateDatagrams)) {
     options.validate_datagrams = parseInt<int>(v, environment::kValidateDatagrams, 0, 1) == 1;
+  }
+  if (const char* v = env(environment::kInlineKeys)) {
+    options.inline_keys = parseInt<int>(v, environment::kInlineKeys, 0, 1) == 1;
   }
   if (const char* v = env(environment::kLockstep)) {
     options.lockstep = parseInt<int>(v, environment::kLockstep, 0, 1) == 1;
@@ -489,9 +493,13 @@ bool Participant::promisesEverySample(std::string_view qos_class) const
 
 fdds::DataReaderQos Participant::readerQos(std::string_view qos_class) const
 {
-  return profileQos<fdds::DataReaderQos>(subscriber_,
-                                         &fdds::Subscriber::get_datareader_qos_from_profile,
-                                         qos_class, "reader", options_);
+  auto qos = profileQos<fdds::DataReaderQos>(subscriber_, &fdds::Subscriber::get_datareader_qos_from_profile,
+                                             qos_class, "reader", options_);
+  // Writers then send each sample's key hash, which the validating transport compares with
+  // the key in the payload (wire::checkRtpsDatagram): a damaged key is refused before Fast
+  // DDS files the sample under an instance it invents.
+  qos.expects_inline_qos(options_.inline_keys);
+  return qos;
 }
 
 namespace {

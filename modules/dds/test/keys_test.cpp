@@ -50,5 +50,69 @@ TEST(Keys, KeyHashIsTheBigEndianVehicleIdPaddedTo16Bytes)
   }
 }
 
+using Payload = eprosima::fastrtps::rtps::SerializedPayload_t;
+
+Payload serialized(msg::LockstepReport& report)
+{
+  MessageTraits<msg::LockstepReport>::PubSubType type;
+  Payload payload(type.m_typeSize);
+  EXPECT_TRUE(type.serialize(&report, &payload));
+  return payload;
+}
+
+/// Deserializes into an object that still holds vehicle 7's sample, as a reader's history
+/// does when it computes the key of each arriving sample, and says the key left behind.
+Handle keyLeftBy(Payload& payload, bool* accepted)
+{
+  MessageTraits<msg::LockstepReport>::PubSubType type;
+  msg::LockstepReport kept;
+  kept.header().vehicle_id(7);
+  *accepted = type.deserialize(&payload, &kept);
+  Handle h;
+  EXPECT_TRUE(type.getKey(&kept, &h, false));
+  return h;
+}
+
+Handle vehicleKey(std::uint32_t id)
+{
+  Handle h;
+  vehicleKeyHash(id, h);
+  return h;
+}
+
+TEST(Keys, ASampleWhoseVehicleIdIsNoVehicleIdIsRefusedAndInventsNoInstance)
+{
+  msg::LockstepReport report;
+  report.participant("mapping");
+  report.header().vehicle_id(common::kMaxVehicleId);
+  Payload fine = serialized(report);
+  bool accepted = false;
+  EXPECT_EQ(keyLeftBy(fine, &accepted), vehicleKey(common::kMaxVehicleId));
+  EXPECT_TRUE(accepted);
+
+  // Bit 31 flipped on the way: 2,147,483,648.
+  report.header().vehicle_id(0x80000000u);
+  Payload flipped = serialized(report);
+  const std::uint64_t refused_before = rejectedPayloadCount("quad::msg::LockstepReport");
+  EXPECT_EQ(keyLeftBy(flipped, &accepted), vehicleKey(0));
+  EXPECT_FALSE(accepted);
+  EXPECT_EQ(rejectedPayloadCount("quad::msg::LockstepReport"), refused_before + 1);
+  EXPECT_NE(rejectedPayloads().last.find("2147483648"), std::string::npos) << rejectedPayloads().last;
+}
+
+TEST(Keys, APayloadRefusedForItsIdlLeavesVehicleZeroNotTheLastKeyComputed)
+{
+  msg::LockstepReport report;
+  report.participant("mapping");
+  report.header().vehicle_id(3);
+  Payload payload = serialized(report);
+  // The participant string's length, after the encapsulation (4) and the header (32): past
+  // its bound of 32.
+  payload.data[4 + 32] = 200;
+  bool accepted = true;
+  EXPECT_EQ(keyLeftBy(payload, &accepted), vehicleKey(0));
+  EXPECT_FALSE(accepted);
+}
+
 }  // namespace
 }  // namespace quad::dds

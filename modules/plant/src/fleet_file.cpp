@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "quad/common/payload_header.hpp"
 #include "quad/common/yaml_input.hpp"
 #include "quad/plant/faults.hpp"
 
@@ -61,7 +62,7 @@ std::vector<FleetVehicle> parseFleet(std::string_view yaml_text, std::string_vie
       continue;
     }
     r.onlyKeys(item, key + ".", {"id", "start", "goal", "vehicle", "faults"});
-    const auto id = r.number(item["id"], key + ".id", std::nullopt, 0.0, 1'000'000.0);
+    const auto id = r.number(item["id"], key + ".id", std::nullopt, 0.0, common::kMaxVehicleId);
     if (id && *id != std::floor(*id)) {
       r.problem(key + ".id", item["id"], "expected a whole number");
     }

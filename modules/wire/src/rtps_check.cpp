@@ -52,6 +52,13 @@ std::string kindName(std::uint8_t id)
   }
 }
 
+/// The entity id at `at`: big-endian octets whatever the submessage's order.
+std::uint32_t entityId(const std::uint8_t* data, std::size_t at)
+{
+  return std::uint32_t{data[at]} << 24 | std::uint32_t{data[at + 1]} << 16 | std::uint32_t{data[at + 2]} << 8 |
+         data[at + 3];
+}
+
 /// Reads fields of one endianness from [pos, end) of a datagram; every read checks the end.
 class Reader {
 public:
@@ -318,6 +325,59 @@ bool isDiscoveryWriter(std::uint32_t entity)
   }
 }
 
+/// Where the value of parameter `wanted` begins in a list checkParameterList accepted; 0 when
+/// the list has none.
+std::size_t findParameter(const std::uint8_t* data, std::size_t at, std::size_t end, bool le, std::uint16_t wanted)
+{
+  Reader r(data, at, end, le);
+  std::uint16_t pid = 0;
+  std::uint16_t length = 0;
+  while (r.u16(pid) && r.u16(length) && pid != kPidSentinel) {
+    if (pid == wanted) {
+      return r.pos();
+    }
+    r.skip(length);
+  }
+  return 0;
+}
+
+/// A sample of a keyed user topic whose inline QoS carries its key hash (writers send it to
+/// readers that expect inline QoS, as quad's do): the hash must be the key its payload holds.
+/// Fast DDS files a sample under the instance its hash names, so a flipped bit in either would
+/// invent an instance, and Fast DDS 2.9's instance bookkeeping is not safe against that. The
+/// payload's key is quad's: each keyed type leads with Header, whose first member, vehicle_id,
+/// is the whole key, hashed as DDS-XTypes says (big-endian, zero-padded to 16 bytes).
+Defect checkSampleKey(const std::uint8_t* data, std::size_t qos_at, std::size_t payload, std::size_t end, bool le,
+                      std::uint32_t writer, const char* name)
+{
+  constexpr std::uint16_t kPidKeyHash = 0x0070;
+  constexpr std::uint32_t kUserWriterWithKey = 0x02;
+  if ((writer & 0xff) != kUserWriterWithKey || end - payload < 8) {
+    return std::nullopt;
+  }
+  const std::size_t hash = findParameter(data, qos_at, payload, le, kPidKeyHash);
+  // The encapsulation identifier is big-endian whatever the submessage's order.
+  const std::uint16_t encapsulation = static_cast<std::uint16_t>((data[payload] << 8) | data[payload + 1]);
+  if (hash == 0 || encapsulation > 0x0001) {  // no hash, or neither CDR_BE nor CDR_LE
+    return std::nullopt;
+  }
+  std::uint32_t vehicle = 0;
+  Reader(data, payload + 4, end, encapsulation == 0x0001).u32(vehicle);
+  std::array<std::uint8_t, 16> expected{};
+  for (int i = 0; i < 4; ++i) {
+    expected[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(vehicle >> (24 - 8 * i));
+  }
+  if (std::memcmp(data + hash, expected.data(), expected.size()) != 0) {
+    std::string hex;
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      hex += fmt::format("{:02x}", data[hash + i]);
+    }
+    return defect(hash, fmt::format("{} from writer 0x{:08x}: key hash {} is not the payload's key (vehicle {})", name,
+                                    writer, hex, vehicle));
+  }
+  return std::nullopt;
+}
+
 /// DATA and DATA_FRAG after their fixed fields: inline QoS if flagged, then the payload, the
 /// part Fast DDS decodes itself (a discovery PL_CDR payload) checked too.
 Defect checkDataTail(const std::uint8_t* data, std::size_t body, std::size_t end, std::uint16_t to_inline_qos,
@@ -352,9 +412,7 @@ Defect checkData(const std::uint8_t* data, std::size_t body, std::size_t end, st
   if (!r.skip(2) || !r.u16(to_inline_qos) || !r.skip(4) || r.left() < 4) {
     return defect(body, fmt::format("DATA: {} bytes, shorter than its 20 bytes of fields", end - body));
   }
-  // Entity ids are big-endian octets whatever the submessage's order.
-  const std::uint32_t writer = std::uint32_t{data[r.pos()]} << 24 | std::uint32_t{data[r.pos() + 1]} << 16 |
-                               std::uint32_t{data[r.pos() + 2]} << 8 | data[r.pos() + 3];
+  const std::uint32_t writer = entityId(data, r.pos());
   if (!r.skip(4) || !r.sequenceNumber(sn)) {
     return defect(body, fmt::format("DATA: {} bytes, shorter than its 20 bytes of fields", end - body));
   }
@@ -375,7 +433,8 @@ Defect checkData(const std::uint8_t* data, std::size_t body, std::size_t end, st
     return defect(payload, fmt::format("DATA: a payload of {} bytes, without its encapsulation header", end - payload));
   }
   if (!isDiscoveryWriter(writer)) {
-    return std::nullopt;  // user data: the typed readers check it against its IDL
+    // User data: its key here, the rest by the typed readers against its IDL.
+    return q && d ? checkSampleKey(data, body + 4 + to_inline_qos, payload, end, le, writer, "DATA") : std::nullopt;
   }
   // The encapsulation identifier is big-endian whatever the submessage's order.
   const std::uint16_t encapsulation = static_cast<std::uint16_t>((data[payload] << 8) | data[payload + 1]);
@@ -432,7 +491,10 @@ Defect checkDataFrag(const std::uint8_t* data, std::size_t body, std::size_t end
                                     "{} fragments of {}",
                                     present, first_byte, sample_size, count, fragment_size));
   }
-  return std::nullopt;
+  if (start != 1 || (flags & 0x02) == 0) {
+    return std::nullopt;  // the key is in the first fragment's bytes
+  }
+  return checkSampleKey(data, body + 4 + to_inline_qos, payload, end, le, entityId(data, body + 8), "DATA_FRAG");
 }
 
 /// A submessage body in [body, end), given its kind and flags.
@@ -551,23 +613,64 @@ std::optional<RtpsCount> countOf(const std::uint8_t* data, std::size_t body, std
   if (!counted) {
     return std::nullopt;
   }
-  const auto entity = [&](std::size_t at) {
-    return (std::uint32_t{data[at]} << 24) | (std::uint32_t{data[at + 1]} << 16) | (std::uint32_t{data[at + 2]} << 8) |
-           std::uint32_t{data[at + 3]};
-  };
   c.kind = id;
   c.per_writer = id == kHeartbeat || id == kHeartbeatFrag;
   c.offset = body - 4;
   c.count_offset = r.pos() - 4;
   c.little_endian = le;
-  c.reader_id = entity(body);
-  c.writer_id = entity(body + 4);
+  c.reader_id = entityId(data, body);
+  c.writer_id = entityId(data, body + 4);
   return c;
+}
+
+/// The sequence number a well-formed submessage body in [body, end) states of its writer.
+std::optional<RtpsSequence> sequenceOf(const std::uint8_t* data, std::size_t body, std::size_t end, std::uint8_t id,
+                                       bool le)
+{
+  Reader r(data, body, end, le);
+  RtpsSequence s;
+  switch (id) {
+    case kData:
+    case kDataFrag:  // extra flags, octetsToInlineQos, reader, writer, sequence number
+      if (!r.skip(12) || !r.sequenceNumber(s.last)) {
+        return std::nullopt;
+      }
+      s.writer_id = entityId(data, body + 8);
+      break;
+    case kHeartbeat:  // reader, writer, first, last
+      if (!r.skip(16) || !r.sequenceNumber(s.last)) {
+        return std::nullopt;
+      }
+      s.writer_id = entityId(data, body + 4);
+      break;
+    case kHeartbeatFrag:  // reader, writer, sequence number
+      if (!r.skip(8) || !r.sequenceNumber(s.last)) {
+        return std::nullopt;
+      }
+      s.writer_id = entityId(data, body + 4);
+      break;
+    case kGap: {  // reader, writer, start, then the list: base, bit count, bitmap
+      std::int64_t base = 0;
+      std::uint32_t bits = 0;
+      if (!r.skip(16) || !r.sequenceNumber(base) || !r.u32(bits)) {
+        return std::nullopt;
+      }
+      s.writer_id = entityId(data, body + 4);
+      s.last = base - 1 + bits;
+      break;
+    }
+    default:
+      return std::nullopt;
+  }
+  s.kind = id;
+  s.offset = body - 4;
+  return s;
 }
 
 }  // namespace
 
-std::optional<RtpsDefect> checkRtpsDatagram(const std::uint8_t* data, std::size_t size, std::vector<RtpsCount>* counts)
+std::optional<RtpsDefect> checkRtpsDatagram(const std::uint8_t* data, std::size_t size, std::vector<RtpsCount>* counts,
+                                            std::vector<RtpsSequence>* sequences)
 {
   if (size < kHeaderBytes) {
     return defect(0, fmt::format("{} bytes, shorter than an RTPS header", size));
@@ -585,6 +688,7 @@ std::optional<RtpsDefect> checkRtpsDatagram(const std::uint8_t* data, std::size_
   std::array<std::uint8_t, 12> prefix{};  // the sender's, until an INFO_SRC names another
   std::memcpy(prefix.data(), data + 8, prefix.size());
   const std::size_t counts_before = counts != nullptr ? counts->size() : 0;
+  const std::size_t sequences_before = sequences != nullptr ? sequences->size() : 0;
   while (at < size) {
     if (size - at < 4) {
       return defect(at, fmt::format("{} bytes left, too few for a submessage header", size - at));
@@ -607,14 +711,26 @@ std::optional<RtpsDefect> checkRtpsDatagram(const std::uint8_t* data, std::size_
       if (counts != nullptr) {
         counts->resize(counts_before);  // counts only of a well-formed message
       }
+      if (sequences != nullptr) {
+        sequences->resize(sequences_before);
+      }
       return d;
     }
     if (id == kInfoSrc) {
       std::memcpy(prefix.data(), data + body + 8, prefix.size());
-    } else if (counts != nullptr) {
+      at = end;
+      continue;
+    }
+    if (counts != nullptr) {
       if (auto c = countOf(data, body, end, id, le)) {
         c->prefix = prefix;
         counts->push_back(*c);
+      }
+    }
+    if (sequences != nullptr) {
+      if (auto s = sequenceOf(data, body, end, id, le)) {
+        s->prefix = prefix;
+        sequences->push_back(*s);
       }
     }
     at = end;

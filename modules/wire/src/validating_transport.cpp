@@ -11,6 +11,7 @@
 #include "quad/common/time.hpp"
 #include "quad/wire/count_guard.hpp"
 #include "quad/wire/rtps_check.hpp"
+#include "quad/wire/sequence_guard.hpp"
 #include "receive_layer.hpp"
 
 namespace quad::wire {
@@ -92,12 +93,19 @@ public:
   {
     checked_count.fetch_add(1, std::memory_order_relaxed);
     thread_local std::vector<RtpsCount> counts;
+    thread_local std::vector<RtpsSequence> sequences;
     counts.clear();
-    if (const auto defect = checkRtpsDatagram(receive_buffer, receive_buffer_size, &counts)) {
+    sequences.clear();
+    if (const auto defect = checkRtpsDatagram(receive_buffer, receive_buffer_size, &counts, &sequences)) {
       noteMalformed(remote_locator, receive_buffer_size, *defect);
       return;
     }
-    const auto tamings = counts_.admit(counts, common::steadyTimeNs());
+    const std::int64_t now = common::steadyTimeNs();
+    if (const auto leap = sequences_.admit(sequences, now)) {
+      noteMalformed(remote_locator, receive_buffer_size, *leap);
+      return;
+    }
+    const auto tamings = counts_.admit(counts, now);
     if (!tamings.empty()) {
       // Passed on, with each leaping count lowered (count_guard.hpp).
       thread_local std::vector<frtps::octet> copy;
@@ -113,6 +121,7 @@ public:
 private:
   ValidatingTransportDescriptor descriptor_;
   CountGuard counts_;  // per participant, as the counts a receiver keeps
+  SequenceGuard sequences_;
 };
 
 fdrtps::TransportInterface* ValidatingTransportDescriptor::create_transport() const

@@ -167,6 +167,80 @@ TEST(RtpsCheck, OnlyDiscoveryPayloadsAreReadAsParameterLists)
   EXPECT_TRUE(check(discovery));
 }
 
+/// A user DATA with its key hash in the inline QoS (writer 0x00000102: a keyed user writer):
+/// the hash names vehicle `hashed`, the CDR payload's Header.vehicle_id is `carried`.
+Bytes keyedSample(std::uint32_t hashed, std::uint32_t carried, std::uint32_t writer = 0x00000102,
+                  std::uint8_t encapsulation = 0x01)
+{
+  test::RtpsBuilder m;
+  m.begin(0x15, 0x02 | 0x04);  // Q and D flags
+  m.dataHeader(writer, 7);
+  m.parameter(0x0070, [&] {  // PID_KEY_HASH: the id big-endian, zero-padded
+    m.entity(hashed);
+    m.fill(12, 0);
+  });
+  m.sentinel();
+  m.u8(0x00);
+  m.u8(encapsulation);
+  m.u16(0);
+  if (encapsulation == 0x01) {
+    m.u32(carried);
+  } else {
+    m.entity(carried);  // big-endian
+  }
+  m.fill(20, 0x5a);  // the rest of the sample
+  m.end();
+  return m.bytes();
+}
+
+TEST(RtpsCheck, AKeyHashMustBeThePayloadsKey)
+{
+  EXPECT_FALSE(check(keyedSample(3, 3)));
+  EXPECT_FALSE(check(keyedSample(0, 0)));
+  EXPECT_FALSE(check(keyedSample(70000, 70000, 0x00000102, 0x00)));  // CDR_BE
+  // One damaged bit, in the hash or in the payload's vehicle id, and Fast DDS would file the
+  // sample under an instance nobody wrote.
+  const auto d = check(keyedSample(0x80000000u, 0));
+  ASSERT_TRUE(d);
+  EXPECT_NE(d->what.find("key hash 80000000"), std::string::npos) << d->what;
+  EXPECT_NE(d->what.find("vehicle 0"), std::string::npos) << d->what;
+  EXPECT_TRUE(check(keyedSample(1, 0x01000001)));
+  // Keyless writers' samples (Foxglove's) have no key to compare.
+  EXPECT_FALSE(check(keyedSample(1, 2, 0x00000103)));
+}
+
+TEST(RtpsCheck, AFirstFragmentsKeyHashMustBeThePayloadsKey)
+{
+  const auto fragment = [](std::uint32_t start, std::uint32_t carried) {
+    test::RtpsBuilder m;
+    m.begin(0x16, 0x02);  // Q flag
+    m.dataHeader(0x00000102, 1, 28);
+    m.u32(start);
+    m.u16(1);
+    m.u16(64);
+    m.u32(128);
+    m.parameter(0x0070, [&] {
+      m.entity(5);
+      m.fill(12, 0);
+    });
+    m.sentinel();
+    if (start == 1) {
+      m.u8(0x00);
+      m.u8(0x01);  // CDR_LE
+      m.u16(0);
+      m.u32(carried);
+      m.fill(56, 0x5a);
+    } else {
+      m.fill(64, 0x5a);
+    }
+    m.end();
+    return m.bytes();
+  };
+  EXPECT_FALSE(check(fragment(1, 5)));
+  EXPECT_TRUE(check(fragment(1, 4)));
+  EXPECT_FALSE(check(fragment(2, 4)));  // no payload header in a later fragment
+}
+
 Bytes readFile(const std::filesystem::path& path)
 {
   std::ifstream in(path, std::ios::binary);

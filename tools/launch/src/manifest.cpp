@@ -14,6 +14,7 @@
 #include <fmt/ranges.h>
 
 #include "quad/common/params.hpp"
+#include "quad/common/payload_header.hpp"
 #include "quad/common/yaml_input.hpp"
 
 namespace quad::launch {
@@ -390,7 +391,7 @@ std::map<std::uint32_t, std::map<std::string, std::string>> readVehicles(YAML::N
     }
     r.onlyKeys(item, key + ".", {"id", "start", "goal", "vehicle", "hosts"});
     FleetMember v;
-    const auto id = r.number(item["id"], key + ".id", std::nullopt, 0.0, 1'000'000.0);
+    const auto id = r.number(item["id"], key + ".id", std::nullopt, 0.0, common::kMaxVehicleId);
     if (id && *id != std::floor(*id)) {
       r.problem(key + ".id", item["id"], "expected a whole number");
     } else if (id) {

@@ -10,6 +10,10 @@
 
 namespace quad::common {
 
+/// The highest vehicle id: Header.vehicle_id is in [0, kMaxVehicleId] (QUAD_VEHICLE_ID,
+/// manifests' and fleet files' ids); a received sample with another is refused.
+inline constexpr std::uint32_t kMaxVehicleId = 1'000'000;
+
 struct PayloadHeader {
   std::uint32_t vehicle_id = 0;
   std::int64_t stamp_ns = 0;

@@ -18,6 +18,7 @@ inline constexpr const char* kUdpMaxMessage = "QUAD_UDP_MAX_MESSAGE";
 inline constexpr const char* kSecurityDir = "QUAD_SECURITY_DIR";
 inline constexpr const char* kSecurityIdentity = "QUAD_SECURITY_IDENTITY";
 inline constexpr const char* kValidateDatagrams = "QUAD_VALIDATE_DATAGRAMS";
+inline constexpr const char* kInlineKeys = "QUAD_INLINE_KEYS";
 inline constexpr const char* kFaultLayer = "QUAD_FAULT_LAYER";
 inline constexpr const char* kLockstep = "QUAD_LOCKSTEP";
 

@@ -48,6 +48,8 @@
 #include <foxglove/PosesInFramePubSubTypes.h>
 #include <foxglove/SceneUpdatePubSubTypes.h>
 
+#include "quad/common/payload_header.hpp"
+
 namespace quad::dds {
 
 /// Writes the key hash of a vehicle id into a DDS instance handle.
@@ -93,10 +95,37 @@ public:
   }
 };
 
-/// A checked type whose key is computed from header.vehicle_id.
+/// A checked type whose key is computed from header.vehicle_id, which must be a vehicle id
+/// (common::kMaxVehicleId).
+///
+/// A reader's history files each sample under the instance its key names, computed on
+/// arrival by deserializing into one object it keeps for that and asking getKey, whether the
+/// deserialization succeeded or not. So a bit flipped high in a vehicle id, or a refused
+/// payload right after one, would invent an instance nobody wrote, and Fast DDS 2.9's
+/// reader history can then fail its own assertion (`NEW_VIEW_STATE == view_state` in
+/// DataReaderInstance) and end the process (seen: the planner's lockstep reader under the
+/// link_corruption fault, a report for vehicle 2,147,483,648). A refused payload leaves
+/// vehicle 0 behind, a key that exists, rather than the last one computed.
 template <class Generated, class Message>
 class VehicleKeyedType : public CheckedType<Generated> {
 public:
+  bool deserialize(eprosima::fastrtps::rtps::SerializedPayload_t* payload, void* data) override
+  {
+    auto& header = static_cast<Message*>(data)->header();
+    if (!CheckedType<Generated>::deserialize(payload, data)) {
+      header.vehicle_id(0);
+      return false;
+    }
+    if (header.vehicle_id() > common::kMaxVehicleId) {
+      countRejectedPayload(this->getName(), "header.vehicle_id " + std::to_string(header.vehicle_id()) +
+                                                " is not a vehicle id (at most " +
+                                                std::to_string(common::kMaxVehicleId) + ")");
+      header.vehicle_id(0);
+      return false;
+    }
+    return true;
+  }
+
   bool getKey(void* data, eprosima::fastrtps::rtps::InstanceHandle_t* handle,
               bool /*force_md5*/) override
   {

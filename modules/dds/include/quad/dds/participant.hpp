@@ -55,6 +55,10 @@ struct ParticipantOptions {
   /// drops malformed ones before Fast DDS parses them. Shared memory, which only local
   /// processes reach, is not checked.
   bool validate_datagrams = true;
+  /// Readers expect inline QoS, so writers send each sample's key hash and the validating
+  /// transport refuses a sample whose payload holds another key (rtps_check.hpp). Off for
+  /// peers of vendors that refuse to match such readers (Cyclone DDS).
+  bool inline_keys = true;
   /// DDS Security on: authentication, access control and encryption with the files of
   /// `quad security init` in this folder (security.hpp). Empty: off.
   std::filesystem::path security_dir;

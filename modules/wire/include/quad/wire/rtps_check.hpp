@@ -16,7 +16,11 @@
 /// - parameter lists (inline QoS, and discovery payloads encapsulated as PL_CDR): every
 ///   parameter within the list, lengths multiples of 4, a sentinel at the end; the values of
 ///   the parameters Fast DDS decodes into strings, sequences, locators, GUIDs, properties and
-///   security tokens: every string and sequence length within its parameter.
+///   security tokens: every string and sequence length within its parameter;
+/// - the key of a keyed user sample: a key hash in its inline QoS must be the key its payload
+///   holds, the payload's first member Header.vehicle_id (every quad keyed type leads with
+///   Header, and the vehicle id is its whole key). Fast DDS files a sample under the instance
+///   its key names, and a single damaged bit there would invent one.
 ///
 /// Encrypted content (SEC_* and SRTPS_* submessages) is checked for lengths only; fragments
 /// are checked one by one, not reassembled (a discovery payload split into fragments has its
@@ -57,9 +61,22 @@ struct RtpsCount {
   bool little_endian = false;            ///< the count's byte order
 };
 
-/// Nothing when `data` is a well-formed RTPS message; else its first defect. With `counts`,
-/// a well-formed message's counts are appended to it on the same pass.
+/// The highest sequence number of a writer that a submessage states: DATA and DATA_FRAG
+/// their sample's, HEARTBEAT and HEARTBEAT_FRAG the last the writer has, GAP the last it
+/// declares irrelevant (an upper bound: its list's base + bit count - 1).
+struct RtpsSequence {
+  std::uint8_t kind = 0;                 ///< the submessage id
+  std::array<std::uint8_t, 12> prefix{};  ///< the sender's GUID prefix (header, or INFO_SRC)
+  std::uint32_t writer_id = 0;           ///< as on the wire (big-endian octets)
+  std::int64_t last = 0;
+  std::size_t offset = 0;  ///< of the submessage
+};
+
+/// Nothing when `data` is a well-formed RTPS message; else its first defect. With `counts`
+/// (`sequences`), a well-formed message's counts (sequence numbers) are appended to it on
+/// the same pass.
 std::optional<RtpsDefect> checkRtpsDatagram(const std::uint8_t* data, std::size_t size,
-                                            std::vector<RtpsCount>* counts = nullptr);
+                                            std::vector<RtpsCount>* counts = nullptr,
+                                            std::vector<RtpsSequence>* sequences = nullptr);
 
 }  // namespace quad::wire

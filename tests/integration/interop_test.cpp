@@ -47,10 +47,8 @@ modules:
     needs: [quad/control/actuators, quad/mapping/update, quad/sim/lockstep]
 )";
   const std::map<std::string, std::string> env{{"QUAD_DOMAIN_ID", "232"}, {"QUAD_TRANSPORT", "udp"}};
-  // Cyclone DDS matches no reader that asks for inline QoS: the goal's reader must not.
   ChildProcess launch({QUAD_TOOL, "launch", (dir / "m.yaml").string(), "--domain", "232", "--quiet", "--log-dir",
-                       (dir / "run").string()},
-                      {{"QUAD_INLINE_KEYS", "0"}});
+                       (dir / "run").string()});
   ChildProcess ours({QUAD_TOOL, "topic", "echo", "quad/sim/state", "--json"}, env);
   // WHEN the peer gives the goal (12, 4, 3)
   ChildProcess peer({QUAD_CYCLONE_PEER, "232", "12", "4", "3", "150"});

@@ -495,9 +495,9 @@ fdds::DataReaderQos Participant::readerQos(std::string_view qos_class) const
 {
   auto qos = profileQos<fdds::DataReaderQos>(subscriber_, &fdds::Subscriber::get_datareader_qos_from_profile,
                                              qos_class, "reader", options_);
-  // Writers then send each sample's key hash, which the validating transport compares with
-  // the key in the payload (wire::checkRtpsDatagram): a damaged key is refused before Fast
-  // DDS files the sample under an instance it invents.
+  // With inline keys, writers send each sample's key hash, which the validating transport
+  // compares with the key in the payload (wire::checkRtpsDatagram): a damaged key is
+  // refused before Fast DDS files the sample under an instance it invents.
   qos.expects_inline_qos(options_.inline_keys);
   return qos;
 }

@@ -97,6 +97,13 @@ void flyMission(const std::string& manifest, int domain, std::vector<std::string
   // Together they cannot have kept more cores busy than the machine has.
   const double wall = summary["wall_seconds"].get<double>();
   EXPECT_NEAR(summary["real_time_factor"].get<double>(), summary["sim_seconds"].get<double>() / wall, 1e-9) << summary;
+  // The start-up (every module started and the lockstep barrier met) and the flight that
+  // followed fit in the run's wall time; every process held some memory, a modest amount.
+  const double startup = summary["startup_seconds"].get<double>();
+  const double flight = summary["flight_wall_seconds"].get<double>();
+  EXPECT_GT(startup, 0.0) << summary;
+  EXPECT_GT(flight, 0.0) << summary;
+  EXPECT_LE(startup + flight, wall) << summary;
   double busy = 0.0;
   for (const char* process : {"plant", "control", "mapping", "planning", "estimation", "launch"}) {
     const auto& cost = summary["processes"][process];
@@ -104,6 +111,9 @@ void flyMission(const std::string& manifest, int domain, std::vector<std::string
     EXPECT_GT(cost["cpu_seconds"].get<double>(), 0.0) << process;
     EXPECT_NEAR(cost["busy_share"].get<double>(), cost["cpu_seconds"].get<double>() / wall, 1e-9) << process;
     busy += cost["busy_share"].get<double>();
+    ASSERT_TRUE(cost["max_rss_mib"].is_number()) << process << " " << summary;
+    EXPECT_GT(cost["max_rss_mib"].get<double>(), 1.0) << process;
+    EXPECT_LT(cost["max_rss_mib"].get<double>(), 4096.0) << process;
   }
   EXPECT_LE(busy, static_cast<double>(std::thread::hardware_concurrency()) + 0.05) << summary;
   const auto record = runRecord(dir / "run");

@@ -31,4 +31,13 @@ double processCpuSeconds()
   return cpuSeconds(usage);
 }
 
+double maxResidentMiB(const ::rusage& usage) { return static_cast<double>(usage.ru_maxrss) / 1024.0; }  // Linux: KiB
+
+double processMaxResidentMiB()
+{
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return maxResidentMiB(usage);
+}
+
 }  // namespace quad::common

@@ -295,6 +295,9 @@ nlohmann::ordered_json jsonOf(const MissionSummary& s)
   j["sim_seconds"] = s.sim_s;
   j["wall_seconds"] = s.wall_s;
   j["real_time_factor"] = s.wall_s > 0.0 ? nlohmann::ordered_json(s.sim_s / s.wall_s) : nlohmann::ordered_json(nullptr);
+  const auto orNull = [](std::optional<double> v) { return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr); };
+  j["startup_seconds"] = orNull(s.startup_s);
+  j["flight_wall_seconds"] = orNull(s.flight_wall_s);
   j["path_length_m"] = s.path_length_m;
   j["straight_line_m"] = s.straight_line_m;
   j["optimum_m"] = s.optimum_m ? nlohmann::ordered_json(*s.optimum_m) : nlohmann::ordered_json(nullptr);
@@ -306,9 +309,10 @@ nlohmann::ordered_json jsonOf(const MissionSummary& s)
   j["modes"] = s.modes;
   j["goal_distance_m"] = s.goal_distance_m;
   nlohmann::ordered_json processes = nlohmann::ordered_json::object();
-  const auto orNull = [](std::optional<double> v) { return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr); };
   for (const ProcessCost& p : s.processes) {
-    processes[p.name] = {{"cpu_seconds", orNull(p.cpu_s)}, {"busy_share", orNull(busyShare(p, s.wall_s))}};
+    processes[p.name] = {{"cpu_seconds", orNull(p.cpu_s)},
+                         {"busy_share", orNull(busyShare(p, s.wall_s))},
+                         {"max_rss_mib", orNull(p.max_rss_mib)}};
   }
   j["processes"] = processes;
   if (s.estimate) {

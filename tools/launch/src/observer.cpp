@@ -244,6 +244,9 @@ void Observer::onState(Track& v, std::int64_t stamp_ns, const Eigen::Vector3d& p
   v.state_ns = stamp_ns;
   v.position = p;
   last_state_ns_ = common::steadyTimeNs();
+  if (first_state_ns_ == 0) {
+    first_state_ns_ = last_state_ns_;
+  }
   v.score.onTruth(stamp_ns, p, q);
   if (!v.tracker) {
     return;

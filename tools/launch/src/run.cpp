@@ -409,9 +409,13 @@ std::vector<launch::ProcessCost> LaunchRun::processCosts() const
     // Over ssh the local process is the ssh client, whose CPU time is not the module's.
     const Module* mod = m_.findModule(name);
     const bool remote = mod != nullptr && m_.host(mod->host).kind == launch::HostKind::kSsh;
-    costs.push_back({name, remote ? std::nullopt : supervisor_.cpuSeconds(name)});
+    costs.push_back({name, remote ? std::nullopt : supervisor_.cpuSeconds(name),
+                     remote ? std::nullopt : supervisor_.maxResidentMiB(name)});
   }
-  costs.push_back({"launch", common::processCpuSeconds()});
+  if (m_.discovery == launch::Discovery::kServer && m_.host(m_.discovery_host).kind != launch::HostKind::kSsh) {
+    costs.push_back({"discovery", supervisor_.cpuSeconds("discovery"), supervisor_.maxResidentMiB("discovery")});
+  }
+  costs.push_back({"launch", common::processCpuSeconds(), common::processMaxResidentMiB()});
   return costs;
 }
 
@@ -504,6 +508,10 @@ launch::MissionSummary LaunchRun::missionSummary(double wall_s)
                                        : launch::fleetSummary(std::move(each), observer_->minimumSeparation(), wall_s);
   summary.state = m_.state;
   summary.processes = processCosts();  // before the optimum's search, which the wall time leaves out
+  if (const std::int64_t first = observer_->firstStateNs(); first > 0) {
+    summary.startup_s = common::toSeconds(first - start_ns_);
+    summary.flight_wall_s = common::toSeconds(observer_->lastStateNs() - first);
+  }
   if (m_.vehicles.empty()) {
     summary.optimum_m = knownMapOptimum(world::loadWorld(m_.world));
   } else {

@@ -153,12 +153,21 @@ void Supervisor::ended(Child& child)
   if (const auto cpu = child.process->cpuSeconds()) {
     child.cpu_s = child.cpu_s.value_or(0.0) + *cpu;
   }
+  if (const auto rss = child.process->maxResidentMiB()) {
+    child.max_rss_mib = std::max(child.max_rss_mib.value_or(0.0), *rss);
+  }
 }
 
 std::optional<double> Supervisor::cpuSeconds(const std::string& name) const
 {
   const auto it = children_.find(name);
   return it == children_.end() ? std::nullopt : it->second.cpu_s;
+}
+
+std::optional<double> Supervisor::maxResidentMiB(const std::string& name) const
+{
+  const auto it = children_.find(name);
+  return it == children_.end() ? std::nullopt : it->second.max_rss_mib;
 }
 
 bool Supervisor::signal(const std::string& name, int signal)

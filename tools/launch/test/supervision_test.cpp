@@ -82,6 +82,27 @@ TEST(Supervisor, AProcessIsChargedTheCpuTimeItRanNotTheTimeItWaitedAndARestartAd
   fs::remove_all(dir);
 }
 
+TEST(Supervisor, AProcessIsChargedThePeakMemoryItHeldAndARestartKeepsTheLargest)
+{
+  const fs::path dir = quad::test::scratchDir("quad_supervisor_rss");
+  Supervisor s(dir, nullptr, false);
+  // dd reads one block into a buffer of that size: the block's memory is touched, so resident.
+  const auto copy = [&](const std::string& block) {
+    s.start("copy", {"dd", "if=/dev/zero", "of=/dev/null", "bs=" + block, "count=1"}, {});
+    EXPECT_EQ(waitExit(s, "copy"), 0);
+  };
+  EXPECT_FALSE(s.maxResidentMiB("copy"));  // nothing known before one ended
+  copy("64M");
+  ASSERT_TRUE(s.maxResidentMiB("copy"));
+  EXPECT_GE(*s.maxResidentMiB("copy"), 64.0);
+  EXPECT_LT(*s.maxResidentMiB("copy"), 128.0);
+  copy("1M");  // a smaller second instance: the peak stays the first's
+  EXPECT_GE(*s.maxResidentMiB("copy"), 64.0);
+  copy("160M");
+  EXPECT_GE(*s.maxResidentMiB("copy"), 160.0);
+  fs::remove_all(dir);
+}
+
 TEST(Supervisor, StopEscalatesToSigkillAfterTheGracePeriod)
 {
   const fs::path dir = quad::test::scratchDir("quad_supervisor_stop");

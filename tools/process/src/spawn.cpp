@@ -116,6 +116,7 @@ std::optional<int> Spawned::poll()
     if (wait4(pid_, &status, WNOHANG, &usage) == pid_) {
       status_ = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
       cpu_s_ = common::cpuSeconds(usage);
+      max_rss_mib_ = common::maxResidentMiB(usage);
     }
   }
   return status_;

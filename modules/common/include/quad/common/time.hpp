@@ -24,6 +24,10 @@ std::int64_t steadyTimeNs();
 double cpuSeconds(const ::rusage& usage);
 /// [s] The CPU time this process took so far, all its threads.
 double processCpuSeconds();
+/// [MiB] The most memory held resident at once in a resource usage (its maximum resident set).
+double maxResidentMiB(const ::rusage& usage);
+/// [MiB] The most memory this process held resident so far.
+double processMaxResidentMiB();
 
 constexpr double toSeconds(std::int64_t ns) { return static_cast<double>(ns) * 1e-9; }
 

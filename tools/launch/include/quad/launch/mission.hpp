@@ -27,8 +27,9 @@ std::string_view toString(MissionEnd end);
 /// its threads; a restarted module's instances together) and that over the run's wall time,
 /// the share of one core it kept busy. Unknown for a module run on another host.
 struct ProcessCost {
-  std::string name;               ///< the manifest's module name, "record", or "launch" itself
+  std::string name;               ///< the manifest's module name, "record", "discovery", or "launch" itself
   std::optional<double> cpu_s;
+  std::optional<double> max_rss_mib;  ///< the most it held resident at once [MiB]
 };
 /// cpu_s over the run's wall time; nothing when either is unknown.
 std::optional<double> busyShare(const ProcessCost& p, double wall_s);
@@ -42,6 +43,13 @@ struct MissionSummary {
   std::string state;            ///< what the stack flew on: "estimate" or "truth" (the manifest's ${state})
   double sim_s = 0.0;           ///< sim time when the mission ended
   double wall_s = 0.0;
+  /// [s] Wall time from the launcher's start to the first vehicle state: every module started
+  /// and, in lockstep, discovered by the plant, whose clock waits for them. Nothing when no
+  /// state came.
+  std::optional<double> startup_s;
+  /// [s] Wall time from the first vehicle state to the last: the flight, without the start-up
+  /// and the stop. Nothing when no state came.
+  std::optional<double> flight_wall_s;
   double path_length_m = 0.0;   ///< flown, from the vehicle states
   double straight_line_m = 0.0; ///< start to goal
   std::optional<double> optimum_m; ///< the known-map optimum (quad plan), when the run has a planner

@@ -73,6 +73,8 @@ public:
   void setOperatorLink(bool up) { operator_link_ = up; }
   /// Wall time [ns, steady] of the newest vehicle state of any vehicle; 0 before the first.
   std::int64_t lastStateNs() const { return last_state_ns_; }
+  /// Wall time [ns, steady] of the first vehicle state; 0 before it.
+  std::int64_t firstStateNs() const { return first_state_ns_; }
   /// For tools that act on the run through the launcher's participant (quad fault).
   dds::Participant& participant() { return participant_; }
   /// The newest sim time the plant's clock told [ns]; 0 before the first.
@@ -98,6 +100,7 @@ private:
   std::vector<Track> tracks_;
   std::unique_ptr<Sim> sim_;
   std::unique_ptr<Endpoints> endpoints_;
+  std::int64_t first_state_ns_ = 0;
   std::int64_t last_state_ns_ = 0;
   bool operator_link_ = true;
   std::int64_t next_operator_beat_ns_ = 0;  // sim time the station's next heartbeat is due

@@ -49,6 +49,9 @@ public:
   /// The CPU time [s] that the processes started as `name` took, summed over those that
   /// ended (a restarted module's instances together); nothing while none has ended.
   std::optional<double> cpuSeconds(const std::string& name) const;
+  /// The most memory [MiB] any of those processes held resident at once; nothing while none
+  /// has ended.
+  std::optional<double> maxResidentMiB(const std::string& name) const;
 
   /// A line of the launcher's own, on the console and in launch.log.
   void say(const std::string& line);
@@ -63,6 +66,7 @@ private:
     bool eof = false;     // its output pipe closed (it is exiting, or closed it)
     bool exited = false;
     std::optional<double> cpu_s;  // of the instances that ended
+    std::optional<double> max_rss_mib;  // the most any of them held resident
   };
   /// Bookkeeping for a child whose exit status came: marks it exited, counts its CPU time.
   static void ended(Child& child);

@@ -40,12 +40,16 @@ public:
   /// The CPU time the child took, user and system, all its threads [s]; known once poll()
   /// gave its exit status.
   std::optional<double> cpuSeconds() const { return cpu_s_; }
+  /// The most memory the child held resident at once [MiB] (its rusage's maximum resident
+  /// set size); known once poll() gave its exit status.
+  std::optional<double> maxResidentMiB() const { return max_rss_mib_; }
 
 private:
   pid_t pid_ = -1;
   int out_fd_ = -1;
   std::optional<int> status_;
   std::optional<double> cpu_s_;
+  std::optional<double> max_rss_mib_;
 };
 
 /// Describes an exit status as poll() gives it: "exit 0", "killed by SIGKILL".

@@ -475,6 +475,14 @@ Qos profileQos(Entity* entity, Getter getter, std::string_view qos_class, const 
   if (options.transport == Transport::kUdp) {
     qos.data_sharing().off();
   }
+  // An instance per vehicle (the key is Header.vehicle_id), for as many as a fleet may have;
+  // the history's bound on samples grows with it, or Fast DDS would find the limits
+  // inconsistent (fewer samples than instances times samples per instance).
+  auto& limits = qos.resource_limits();
+  limits.max_instances = common::kMaxFleetVehicles;
+  if (limits.max_samples > 0 && limits.max_samples_per_instance > 0) {
+    limits.max_samples = std::max(limits.max_samples, limits.max_instances * limits.max_samples_per_instance);
+  }
   return qos;
 }
 }  // namespace

@@ -48,6 +48,11 @@ std::vector<FleetVehicle> parseFleet(std::string_view yaml_text, std::string_vie
     r.problem("vehicles", listed, "expected a list of at least one vehicle");
     r.throwIfAny();
   }
+  if (listed.size() > static_cast<std::size_t>(common::kMaxFleetVehicles)) {
+    r.problem("vehicles", YAML::Node(std::to_string(listed.size()) + " vehicles"),
+              "at most " + std::to_string(common::kMaxFleetVehicles) + " fly in one domain");
+    r.throwIfAny();
+  }
   const auto resolve = [&](const std::string& path) {
     const std::filesystem::path p(path);
     return p.is_absolute() ? p : folder / p;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "quad/common/params.hpp"
+#include "quad/common/payload_header.hpp"
 #include "test_vehicle.hpp"
 
 namespace quad::plant {
@@ -239,6 +240,11 @@ TEST(FleetFile, NamesTheKeyAndValueOfEveryProblem)
   EXPECT_PRED2(says, many, "fleet.yaml:vehicles[1].start: [0, 0, 50]: outside the world's bounds");
   EXPECT_PRED2(says, many, "fleet.yaml:vehicles[2].speed: 3: unknown key");
   EXPECT_PRED2(says, many, "fleet.yaml:vehicles[3].id: 3: already the id of vehicles[2]");
+  std::string crowd = "vehicles:\n";
+  for (int id = 1; id <= common::kMaxFleetVehicles + 1; ++id) {
+    crowd += "  - {id: " + std::to_string(id) + ", start: [" + std::to_string(id % 10) + ", " + std::to_string(id / 10) + ", 0]}\n";
+  }
+  EXPECT_PRED2(says, fleetRefusal(crowd), "fleet.yaml:vehicles: 65 vehicles: at most 64 fly in one domain");
 }
 
 }  // namespace

@@ -381,6 +381,11 @@ std::map<std::uint32_t, std::map<std::string, std::string>> readVehicles(YAML::N
     r.problem("vehicles", node, "expected a list of vehicles, each with id and start");
     return hosts_of;
   }
+  if (node.size() > static_cast<std::size_t>(common::kMaxFleetVehicles)) {
+    r.problem("vehicles", YAML::Node(std::to_string(node.size()) + " vehicles"),
+              "at most " + std::to_string(common::kMaxFleetVehicles) + " fly in one domain");
+    return hosts_of;
+  }
   std::map<std::uint32_t, std::string> key_of_id;
   for (std::size_t i = 0; i < node.size(); ++i) {
     const std::string key = "vehicles[" + std::to_string(i) + "]";

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "quad/common/params.hpp"
+#include "quad/common/payload_header.hpp"
 
 namespace quad::launch {
 namespace {
@@ -370,6 +371,13 @@ TEST_F(ManifestTest, FleetMistakesAreRefusedNamingTheVehicleAndKey)
   p = problems("world: ../configs/worlds/w.yaml\nvehicles: []\nmodules: {plant: {}}\n");
   ASSERT_EQ(p.size(), 1U);
   EXPECT_NE(p[0].find(":vehicles: "), std::string::npos) << p[0];
+  std::string crowd = "world: ../configs/worlds/w.yaml\nvehicles:\n";
+  for (int id = 1; id <= common::kMaxFleetVehicles + 1; ++id) {
+    crowd += "  - {id: " + std::to_string(id) + ", start: [0, 0, 0]}\n";
+  }
+  p = problems(crowd + "modules: {plant: {}}\n");
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find(":vehicles: 65 vehicles: at most 64 fly in one domain"), std::string::npos) << p[0];
 }
 
 TEST_F(ManifestTest, TheShippedManifestsAreValid)

@@ -14,6 +14,11 @@ namespace quad::common {
 /// manifests' and fleet files' ids); a received sample with another is refused.
 inline constexpr std::uint32_t kMaxVehicleId = 1'000'000;
 
+/// The most vehicles one domain flies: a fleet manifest or fleet file lists at most this
+/// many, and every endpoint holds an instance per vehicle up to it (the DDS resource limit
+/// max_instances, whose default of 10 would refuse an eleventh vehicle's samples).
+inline constexpr std::int32_t kMaxFleetVehicles = 64;
+
 struct PayloadHeader {
   std::uint32_t vehicle_id = 0;
   std::int64_t stamp_ns = 0;

@@ -4,8 +4,8 @@
 # each size: N vehicles (each with its mapper, planner, estimator and controller; one plant for
 # all) fly parallel lanes across configs/worlds/open.yaml in lockstep for SIM_S seconds of sim
 # time, once with multicast (simple) discovery and once with `fastdds discovery` started by the
-# launcher, the two taking turns. For each run, from its summary.json and the host's packet
-# counters:
+# launcher, the two taking turns; the modules and the mission are bringup/fleet.yaml's. For
+# each run, from its summary.json and the host's packet counters:
 #   startup_s     launcher start to the first vehicle state: every module started (each after
 #                 the writers it needs were discovered) and the plant's lockstep barrier met
 #   rtf           sim time over the flight's wall time (first vehicle state to the last)
@@ -116,38 +116,10 @@ manifest() {  # N discovery: writes the manifest and prints its path
       y=$(awk -v k="$k" -v n="$n" 'BEGIN { printf "%.2f", (k - (n - 1) / 2) * 2.5 }')
       echo "  - {id: $((k + 1)), start: [0, $y, 0], goal: [40, $y, 2]}"
     done
-    cat << EOF
-modules:
-  mapping:
-    config: $root/configs/mapping.yaml
-    set: {world: "\${world}", checkpoint.file: "\${run_state}/mapping.checkpoint", state.source: "\${state}"}
-  planning:
-    config: $root/configs/planning.yaml
-    set: {world: "\${world}", state.source: "\${state}"}
-    needs: [quad/mapping/update]
-  estimation:
-    config: $root/configs/estimation.yaml
-  control:
-    config: $root/configs/control.yaml
-    set: {state.source: "\${state}"}
-    needs: [quad/planning/path, quad/estimation/state]
-  plant:
-    config: $root/configs/plant.yaml
-    set:
-      world: "\${world}"
-      sim.mode: "\${mode}"
-      sim.seed: "\${seed}"
-      sim.duration: $sim_s
-      state.source: "\${state}"
-      lockstep.participants: mapping,planning
-    needs: [quad/control/actuators, quad/mapping/update, quad/sim/lockstep]
-    ends_run: true
-mission:
-  tolerance: 0.4
-  land: true
-  timeout: 200.0
-  vehicle: $root/configs/vehicles/x500.yaml
-EOF
+    # The modules and the mission as the shipped fleet flies them, with absolute paths and
+    # this run's length of sim time.
+    sed -n '/^modules:/,$p' "$root/bringup/fleet.yaml" |
+      sed "s#\.\./configs#$root/configs#g; s/sim\.duration: .*/sim.duration: $sim_s/"
   } > "$file"
   echo "$file"
 }

@@ -24,8 +24,9 @@ enum class MissionEnd { kUnfinished, kSuccess, kFailed, kNoPath };
 std::string_view toString(MissionEnd end);
 
 /// What a process of the run cost: the CPU time it took over the run (user and system, all
-/// its threads; a restarted module's instances together) and that over the run's wall time,
-/// the share of one core it kept busy. Unknown for a module run on another host.
+/// its threads; a restarted module's instances together), that over the run's wall time (the
+/// share of one core it kept busy), and the most memory it held resident. Unknown for a module
+/// run on another host.
 struct ProcessCost {
   std::string name;               ///< the manifest's module name, "record", "discovery", or "launch" itself
   std::optional<double> cpu_s;

@@ -294,7 +294,12 @@ TEST(Launch, InFlightOnlyTheLaunchersObserverReadsTheGroundTruth)
   // The run's recorder (quad_record) stores every topic, once it saw its writer, and the
   // display draws the truth beside the estimate for viewers; neither flies anything, and no
   // module reads what they write. The recorder may be among the readers or not yet.
-  std::set<std::string> truth_readers = readersOf("quad/sim/state", kDomain);
+  // On a loaded machine one look may end before discovery has shown even the launcher, so
+  // look again until it has; every module's readers already exist, so none can come later.
+  std::set<std::string> truth_readers;
+  for (int i = 0; i < 40 && truth_readers.count("quad_launch") == 0; ++i) {
+    truth_readers = readersOf("quad/sim/state", kDomain);
+  }
   truth_readers.erase("quad_record");
   truth_readers.erase("display");
   EXPECT_EQ(truth_readers, std::set<std::string>{"quad_launch"});

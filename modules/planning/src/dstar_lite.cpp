@@ -44,6 +44,8 @@ DStarLite::DStarLite(Lattice lattice, PlannerConfig config)
       size_(lattice_.size()),
       nxy_(Cell{dims_.x()} * dims_.y()),
       narrow_(size_ <= std::numeric_limits<std::uint32_t>::max()),
+      by_nx_(narrow_ ? static_cast<std::uint32_t>(dims_.x()) : 1),
+      by_nxy_(narrow_ ? static_cast<std::uint32_t>(nxy_) : 1),
       pages_(static_cast<std::size_t>((size_ >> kPageBits) + 1)),
       open_(VertexPlace{pages_.data()}, KeyLevel{1.0 / (kBucketWidth * lattice_.grid().resolution())})
 {
@@ -74,14 +76,11 @@ DStarLite::DStarLite(Lattice lattice, PlannerConfig config)
 
 Eigen::Vector3i DStarLite::coordinates(Cell c) const
 {
-  // Two divisions, in 32 bits where the lattice's cells are numbered in 32 bits (a 64-bit
-  // division takes up to twice as long, and a search asks for coordinates at every step).
+  // Two divisions, as multiplications where the lattice's cells are numbered in 32 bits.
   if (narrow_) {
     const auto n = static_cast<std::uint32_t>(c);
-    const auto nx = static_cast<std::uint32_t>(dims_.x());
-    const auto nxy = static_cast<std::uint32_t>(nxy_);
-    const std::uint32_t z = n / nxy, rest = n - z * nxy, y = rest / nx;
-    return {static_cast<int>(rest - y * nx), static_cast<int>(y), static_cast<int>(z)};
+    const std::uint32_t z = by_nxy_.divide(n), rest = n - z * by_nxy_.d, y = by_nx_.divide(rest);
+    return {static_cast<int>(rest - y * by_nx_.d), static_cast<int>(y), static_cast<int>(z)};
   }
   const Cell nx = dims_.x();
   const Cell z = c / nxy_, rest = c - z * nxy_, y = rest / nx;
@@ -473,8 +472,10 @@ PlanResult DStarLite::plan(std::uint64_t max_expansions)
   // ComputeShortestPath, optimised version (Koenig & Likhachev 2002, Fig. 4).
   // Keys queued before the start moved are brought up to date a bucket at a time, as the
   // search reaches them: a key update (the paper's lines 13-14) without a sift.
+  // A queued key's second part is min(g, rhs) as it is now (every change to a queued cell's g
+  // or rhs requeues it), so the key now needs only the heuristic to the new start.
   const auto fresh = [&](const auto& entry) {
-    const Key k = calculateKey(entry.cell);
+    const Key k{entry.key.k2 + distance(coordinates(entry.cell), start_coordinates_) + km_, entry.key.k2};
     if (entry.key < k) {
       ++out.rekeys;
     }

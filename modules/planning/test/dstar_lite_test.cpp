@@ -363,6 +363,14 @@ TEST(DStarLite, CoordinatesAreTheLatticesOwnNumbering)
   for (Cell c = 0; c < lattice.size(); ++c) {
     ASSERT_EQ(planner.coordinates(c), lattice.voxel(c) - first) << "cell " << c;
   }
+  // Sides of odd lengths and thirteen million cells: the divisions done as multiplications
+  // hold far from the origin, to the last cell.
+  const DStarLite large(box(1021, 997, 13), {26, true, 0.0});
+  for (Cell c = 0; c < large.lattice().size(); c += 7919) {
+    ASSERT_EQ(large.coordinates(c), large.lattice().voxel(c)) << "cell " << c;
+  }
+  const Cell last = large.lattice().size() - 1;
+  EXPECT_EQ(large.coordinates(last), Eigen::Vector3i(1020, 996, 12));
 }
 
 TEST(DStarLite, BadConnectivityIsRefused)

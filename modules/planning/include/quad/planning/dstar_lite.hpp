@@ -177,6 +177,20 @@ private:
     }
   };
   static constexpr double kBucketWidth = 1.0;
+  /// Division of a 32-bit cell number by a fixed divisor as a multiplication: the quotient is
+  /// the high half of n times ⌈2⁶⁴ / d⌉, exact for every 32-bit n (Lemire, Kaser & Kurz,
+  /// "Faster remainder by direct computation", 2019). A search asks for coordinates at every
+  /// step, and a division instruction costs several times a multiplication.
+  struct Divisor {
+    __extension__ typedef unsigned __int128 Wide;  // GCC's and Clang's; not ISO C++
+    std::uint32_t d = 1;
+    std::uint64_t m = 0;  // ⌈2⁶⁴ / d⌉; unused for d = 1
+    explicit Divisor(std::uint32_t divisor = 1) : d(divisor), m(divisor > 1 ? ~std::uint64_t{0} / divisor + 1 : 0) {}
+    std::uint32_t divide(std::uint32_t n) const
+    {
+      return d == 1 ? n : static_cast<std::uint32_t>((static_cast<Wide>(m) * n) >> 64);
+    }
+  };
   /// A neighbour offset: steps along the axes, the cell-number difference, the step length.
   struct Step {
     int dx, dy, dz;
@@ -220,6 +234,8 @@ private:
   Cell size_;                                 // cells in the lattice
   Cell nxy_;                                  // cells in a layer of z
   bool narrow_;                               // cell numbers fit 32 bits
+  Divisor by_nx_;                             // for narrow_ lattices: by dims_.x()
+  Divisor by_nxy_;                            // and by nxy_
   Eigen::Vector3i start_coordinates_ = Eigen::Vector3i::Zero();  // of start_, for the keys
   std::vector<Step> steps_;                   // neighbour offsets
   std::vector<VoxelIndex> inflation_;         // inflation offsets

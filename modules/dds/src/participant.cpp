@@ -250,6 +250,9 @@ ParticipantOptions optionsFromEnvironment(std::string name)
   if (const char* v = env(environment::kLockstep)) {
     options.lockstep = parseInt<int>(v, environment::kLockstep, 0, 1) == 1;
   }
+  if (const char* v = env(environment::kParticipantLease)) {
+    options.participant_lease_s = parseInt<int>(v, environment::kParticipantLease, 1, std::numeric_limits<int>::max());
+  }
   options.qos_file = defaultQosFile();
   return options;
 }
@@ -385,6 +388,9 @@ Participant::Participant(ParticipantOptions options)
   }
 
   auto& builtin = qos.wire_protocol().builtin;
+  if (options_.participant_lease_s > 0) {
+    builtin.discovery_config.leaseDuration = eprosima::fastrtps::Duration_t(options_.participant_lease_s, 0);
+  }
   for (const auto& peer : options_.initial_peers) {
     builtin.initialPeersList.push_back(parseLocator(peer, "initial peer", false));
   }

@@ -520,12 +520,18 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
 
   // Discovery.
   if (YAML::Node d = root["discovery"]; d) {
-    r.onlyKeys(d, "discovery.", {"kind", "host", "port"});
+    r.onlyKeys(d, "discovery.", {"kind", "host", "port", "lease"});
     const auto kind = r.choice(d["kind"], "discovery.kind", "multicast", {"multicast", "initial_peers", "server"});
     m.discovery = kind == "server" ? Discovery::kServer
                   : kind == "initial_peers" ? Discovery::kInitialPeers
                                             : Discovery::kMulticast;
     m.discovery_port = static_cast<int>(r.number(d["port"], "discovery.port", 11811, 1024, 65535).value_or(11811));
+    if (const auto lease = r.number(d["lease"], "discovery.lease", 0.0, 1.0, 86400.0); lease && *lease != 0.0) {
+      if (*lease != std::floor(*lease)) {
+        r.problem("discovery.lease", d["lease"], "expected whole seconds");
+      }
+      m.participant_lease_s = static_cast<int>(*lease);
+    }
     if (m.discovery == Discovery::kServer && !m.hosts.empty()) {
       m.discovery_host = r.text(d["host"], "discovery.host", m.hosts.front().name).value_or("");
       if (std::none_of(m.hosts.begin(), m.hosts.end(), [&](const Host& h) { return h.name == m.discovery_host; })) {

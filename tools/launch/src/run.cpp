@@ -59,6 +59,9 @@ std::map<std::string, std::string> runEnvironment(const Manifest& m, int domain,
   env[dds::environment::kDomainId] = std::to_string(domain);
   env[dds::environment::kTransport] = m.transport;
   env[dds::environment::kLockstep] = m.mode == "lockstep" ? "1" : "0";
+  if (m.participant_lease_s > 0) {
+    env[dds::environment::kParticipantLease] = std::to_string(m.participant_lease_s);
+  }
   if (!m.security_dir.empty()) {
     env[dds::environment::kSecurityDir] = m.security_dir.string();
   }

@@ -115,6 +115,18 @@ TEST_F(ManifestTest, TheStateFlownOnIsTheEstimateUnlessTheManifestOrTheCommandLi
   EXPECT_NE(p[0].find(":state: guess:"), std::string::npos) << p[0];
 }
 
+TEST_F(ManifestTest, AParticipantLeaseReachesEveryProcessAndMustBeWholeSeconds)
+{
+  EXPECT_EQ(parse("modules: {control: {}}\n").participant_lease_s, 0);  // the QoS profile's
+  EXPECT_EQ(parse("discovery: {lease: 20}\nmodules: {control: {}}\n").participant_lease_s, 20);
+  EXPECT_EQ(parse("discovery: {kind: server, lease: 30}\nmodules: {control: {}}\n").participant_lease_s, 30);
+  for (const std::string lease : {"0.5", "2.5", "-3", "soon"}) {
+    const auto p = problems("discovery: {lease: " + lease + "}\nmodules: {control: {}}\n");
+    ASSERT_EQ(p.size(), 1U) << lease;
+    EXPECT_NE(p[0].find("discovery.lease: " + lease), std::string::npos) << p[0];
+  }
+}
+
 TEST_F(ManifestTest, UnknownKeyIsRefusedWithFileAndKey)
 {
   const auto p = problems("modules:\n  control: {respawns: 2}\n");

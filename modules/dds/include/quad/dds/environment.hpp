@@ -21,5 +21,6 @@ inline constexpr const char* kValidateDatagrams = "QUAD_VALIDATE_DATAGRAMS";
 inline constexpr const char* kInlineKeys = "QUAD_INLINE_KEYS";
 inline constexpr const char* kFaultLayer = "QUAD_FAULT_LAYER";
 inline constexpr const char* kLockstep = "QUAD_LOCKSTEP";
+inline constexpr const char* kParticipantLease = "QUAD_PARTICIPANT_LEASE";
 
 }  // namespace quad::dds::environment

@@ -69,6 +69,11 @@ struct ParticipantOptions {
   /// so that an input reaching it before the clock's first sample (a latched goal) is taken
   /// as it would be after. The clock's samples still say which mode runs.
   bool lockstep = false;
+  /// How long other participants keep this one without hearing from it [s]; 0: the QoS
+  /// profile's (2 s). Announcements stay as often as the profile says. A machine so loaded
+  /// that a participant goes unheard for longer has its peers drop it, and Fast DDS 2.9 does
+  /// not always match the endpoints again once it is heard (docs/fleet.md).
+  int participant_lease_s = 0;
 };
 
 /// The options a quad process takes from its environment, so that every module and tool of a
@@ -76,8 +81,8 @@ struct ParticipantOptions {
 /// QUAD_DOMAIN_ID, QUAD_TRANSPORT (default|udp|shm), QUAD_INITIAL_PEERS (comma separated),
 /// QUAD_DISCOVERY_SERVER, QUAD_QOS_FILE, QUAD_VEHICLE_ID, QUAD_FAULT_LAYER (0|1),
 /// QUAD_UDP_MAX_MESSAGE (bytes), QUAD_VALIDATE_DATAGRAMS (0|1), QUAD_SECURITY_DIR,
-/// QUAD_SECURITY_IDENTITY, QUAD_LOCKSTEP (0|1). A bad value throws
-/// std::invalid_argument naming the variable and the value.
+/// QUAD_SECURITY_IDENTITY, QUAD_LOCKSTEP (0|1), QUAD_PARTICIPANT_LEASE (whole seconds). A bad
+/// value throws std::invalid_argument naming the variable and the value.
 ParticipantOptions optionsFromEnvironment(std::string name);
 
 /// Turns Fast DDS's intraprocess delivery off for the whole process, for the participants

@@ -80,6 +80,10 @@ struct Manifest {
   Discovery discovery = Discovery::kMulticast;
   std::string discovery_host;       ///< the server's host (kServer)
   int discovery_port = 11811;
+  /// How long the run's participants keep one they do not hear from [s]; 0: the QoS profile's
+  /// (2 s). A machine too loaded to announce every participant within it (a large lockstep
+  /// fleet on few cores) needs a longer one (docs/fleet.md).
+  int participant_lease_s = 0;
   std::string subnet = "10.77.0";   ///< netns hosts: <subnet>.1 the bridge, .2... the hosts
   std::filesystem::path world;      ///< ${world}; empty when the manifest names none
   std::string mode = "lockstep";    ///< ${mode}: lockstep | realtime

@@ -115,7 +115,7 @@ TEST_F(ManifestTest, TheStateFlownOnIsTheEstimateUnlessTheManifestOrTheCommandLi
   EXPECT_NE(p[0].find(":state: guess:"), std::string::npos) << p[0];
 }
 
-TEST_F(ManifestTest, AParticipantLeaseReachesEveryProcessAndMustBeWholeSeconds)
+TEST_F(ManifestTest, AParticipantLeaseIsTakenInWholeSecondsAndABadOneNamed)
 {
   EXPECT_EQ(parse("modules: {control: {}}\n").participant_lease_s, 0);  // the QoS profile's
   EXPECT_EQ(parse("discovery: {lease: 20}\nmodules: {control: {}}\n").participant_lease_s, 20);

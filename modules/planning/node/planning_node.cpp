@@ -468,10 +468,12 @@ void PlanningNode::onWake()
     }
   }
   // The mapper's heartbeat losing its liveliness (stopped, killed or cut off; a busy mapper
-  // keeps it) withdraws the path at once: the controller holds on a path that is not PLAN_OK,
+  // keeps it) withdraws the path: the controller holds on a path that is not PLAN_OK,
   // where the second it would fly on before its path timeout is a second into what only the
   // camera saw. A map that merely lags (a slow mapper catching up) only stops the replans.
-  const bool mapper_lost = mapper_.update() == dds::ModuleWatch::State::kLost;
+  // In lockstep a lapse counts once it has lasted half a second of sim time (MapperLapse).
+  const bool mapper_lost = mapper_lapse_.update(mapper_.update() == dds::ModuleWatch::State::kLost,
+                                                simClock().ns(), lockstep());
   if (mapper_lost != mapper_lost_) {
     mapper_lost_ = mapper_lost;
     if (mapper_lost) {

@@ -323,6 +323,31 @@ TEST(PlantNode, InLockstepAFleetsClockWaitsForEachParticipantOfEveryVehicle)
   EXPECT_EQ(plant.wait(10s), 0) << plant.output();
 }
 
+TEST(PlantNode, AWaitingLockstepRoundSendsItsInputsAgainLessAndLessOften)
+{
+  // GIVEN a lockstep plant waiting for a participant that never reports
+  const int domain = 201;
+  ChildProcess plant({QUAD_PLANT_NODE, "--config",
+                      config("silent_plant.yaml",
+                             "sim: {mode: lockstep}\nlockstep: {participants: silent, wait_for_command: false}\n")},
+                     env(domain));
+  ASSERT_TRUE(quad::test::waitForRunningModule(domain, "plant", 20s)) << plant.output();
+  // WHEN its state is watched for 4 s of the wait
+  ChildProcess echo({QUAD_TOOL, "topic", "echo", "quad/sim/state", "-n", "100000", "--json", "--timeout", "4"},
+                    env(domain));
+  echo.wait(15s);
+  // THEN the state came again (a lost sample is made good), each time the same round's, but
+  // not every 20 ms (200 times): the interval doubles up to 0.64 s
+  const auto states = quad::test::jsonLines(echo.output());
+  EXPECT_GE(states.size(), 3U) << echo.output();
+  EXPECT_LE(states.size(), 20U);
+  for (const auto& s : states) {
+    EXPECT_EQ(s["header"]["stamp_ns"], 0) << s;
+  }
+  plant.signal(SIGTERM);
+  EXPECT_EQ(plant.wait(10s), 0) << plant.output();
+}
+
 TEST(PlantNode, AFleetWhoseVehiclesStartInContactOrShareAnIdIsRefusedNamingTheFileAndThem)
 {
   struct Case {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "plant_node.hpp"
 
+#include <algorithm>
+
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
@@ -16,7 +18,12 @@ namespace quad::plant {
 namespace {
 constexpr std::int64_t kRealTimeTickNs = 1'000'000;      // pace in 1 ms slices
 constexpr std::int64_t kBehindReportNs = 100'000'000;    // a lag worth a line in the log
-constexpr std::int64_t kRepublishNs = 20'000'000;        // lockstep: resend a round's state this often
+// Lockstep: a round's inputs are sent again 20 ms into a wait, and then after twice the last
+// interval each time, up to 0.64 s. A sample lost in transport is made good within 20 ms; a
+// wait that lasts because the machine is overloaded (sixteen vehicles on two cores) is not
+// made longer by ever more repeats of every vehicle's depth frame, state and IMU sample.
+constexpr std::int64_t kRepublishNs = 20'000'000;
+constexpr std::int64_t kRepublishMaxNs = 640'000'000;
 std::string verdictText(CommandGuard::Verdict v)
 {
   switch (v) {
@@ -316,6 +323,7 @@ void PlantNode::runLockstep()
       round_end_ns_ = fleet_->timeNs() + config_.lockstep_period_ns;
       round_open_ = true;
       round_wait_since_ns_ = common::steadyTimeNs();
+      republish_after_ns_ = kRepublishNs;
       next_wait_report_ns_ = round_wait_since_ns_ + common::toNanoseconds(config_.lockstep_timeout_s);
     }
     // A round may run once every vehicle's controller answered the state of its start and
@@ -334,7 +342,7 @@ void PlantNode::runLockstep()
     const bool others_ready = !barrier_ || barrier_->poll(round_start);
     if (!command_ready || !others_ready) {
       const std::int64_t now = common::steadyTimeNs();
-      if (now - last_state_publish_ns_ >= kRepublishNs) {
+      if (now - last_state_publish_ns_ >= republish_after_ns_) {
         // A state, clock or depth sample lost, or sent before a participant matched, would
         // stall the round for good. Resend them; an answer to a repeat is the same answer
         // (the mapper knows a cloud it has by its stamp).
@@ -352,6 +360,7 @@ void PlantNode::runLockstep()
           publishClock(i);
         }
         last_state_publish_ns_ = now;
+        republish_after_ns_ = std::min(2 * republish_after_ns_, kRepublishMaxNs);
       }
       if (now >= next_wait_report_ns_) {
         std::string late;

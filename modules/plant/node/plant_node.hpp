@@ -82,6 +82,7 @@ private:
   std::int64_t next_wait_report_ns_ = 0;
   std::uint64_t dropped_steps_ = 0;        // real time: steps skipped when far behind
   std::int64_t last_state_publish_ns_ = 0; // steady time the states were last published
+  std::int64_t republish_after_ns_ = 0;    // lockstep: the wait before the round's next resend
 };
 
 }  // namespace quad::plant

@@ -18,10 +18,11 @@ namespace quad::plant {
 namespace {
 constexpr std::int64_t kRealTimeTickNs = 1'000'000;      // pace in 1 ms slices
 constexpr std::int64_t kBehindReportNs = 100'000'000;    // a lag worth a line in the log
-// Lockstep: a round's inputs are sent again 20 ms into a wait, and then after twice the last
-// interval each time, up to 0.64 s. A sample lost in transport is made good within 20 ms; a
-// wait that lasts because the machine is overloaded (sixteen vehicles on two cores) is not
-// made longer by ever more repeats of every vehicle's depth frame, state and IMU sample.
+// Lockstep: a round's inputs are sent again 20 ms into a wait, and then (past the first round,
+// the start-up) after twice the last interval each time, up to 0.64 s. A sample lost in
+// transport is made good within 20 ms; a wait that lasts because the machine is overloaded
+// (sixteen vehicles on two cores) is not made longer by ever more repeats of every vehicle's
+// depth frame, state and IMU sample.
 constexpr std::int64_t kRepublishNs = 20'000'000;
 constexpr std::int64_t kRepublishMaxNs = 640'000'000;
 std::string verdictText(CommandGuard::Verdict v)
@@ -360,7 +361,11 @@ void PlantNode::runLockstep()
           publishClock(i);
         }
         last_state_publish_ns_ = now;
-        republish_after_ns_ = std::min(2 * republish_after_ns_, kRepublishMaxNs);
+        // Not in the first round: its inputs went out before the modules had matched, and
+        // the controller's autostart retries its arm until a state comes, in wall time.
+        if (round_start > 0) {
+          republish_after_ns_ = std::min(2 * republish_after_ns_, kRepublishMaxNs);
+        }
       }
       if (now >= next_wait_report_ns_) {
         std::string late;

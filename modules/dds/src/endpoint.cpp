@@ -23,6 +23,14 @@ std::string incompatibleText(const char* side, fdds::QosPolicyId_t policy, std::
          " is incompatible with a remote endpoint (" + std::to_string(total) + " so far)";
 }
 
+std::optional<std::int64_t> leaseNs(const eprosima::fastrtps::Duration_t& lease)
+{
+  if (lease == eprosima::fastrtps::c_TimeInfinite) {
+    return std::nullopt;
+  }
+  return lease.to_ns();
+}
+
 /// A writer's instance handle is its 16-byte GUID; fold it into 64 bits (FNV-1a).
 std::uint64_t writerId(const fdds::InstanceHandle_t& handle)
 {
@@ -106,6 +114,11 @@ bool WriterEndpoint::writeSample(void* sample)
   participant_.events().push({EventKind::kWriteFailed, std::string(info_.name),
                               "write refused (" + std::to_string(failures) + " so far)"});
   return false;
+}
+
+std::optional<std::int64_t> WriterEndpoint::livelinessLeaseNs() const
+{
+  return leaseNs(writer_->get_qos().liveliness().lease_duration);
 }
 
 void WriterEndpoint::assertLiveliness()
@@ -239,6 +252,11 @@ ReaderEndpoint::~ReaderEndpoint()
   reader_->set_listener(nullptr);
   participant_.subscriber()->delete_datareader(reader_);
   participant_.removeLocalEndpoint(std::string(info_.name), false);
+}
+
+std::optional<std::int64_t> ReaderEndpoint::livelinessLeaseNs() const
+{
+  return leaseNs(reader_->get_qos().liveliness().lease_duration);
 }
 
 std::vector<ReaderEndpoint::WriterLiveliness> ReaderEndpoint::takeLivelinessChanges()

@@ -24,8 +24,6 @@ namespace quad::dds {
 
 namespace {
 constexpr std::int64_t kHeartbeatPeriodNs = 500'000'000;  // 2 Hz, the contract's rate
-// A quarter of the heartbeat writer's liveliness lease (configs/dds/quad_qos.xml, 0.5 s).
-constexpr auto kLivelinessAssertPeriod = std::chrono::milliseconds(125);
 constexpr std::int64_t kIdleWakeNs = 100'000'000;         // re-check stop at least this often
 
 sigset_t stopSignals()
@@ -90,12 +88,17 @@ Node::Node(std::string module_name, ParticipantOptions options)
   if (participant_.datagramFaults() != nullptr) {
     fault_layer_ = std::make_unique<FaultLayerControl>(participant_, module_name_, &waker_);
   }
-  liveliness_thread_ = std::thread([this] {
-    std::unique_lock<std::mutex> lock(liveliness_mutex_);
-    while (!liveliness_cv_.wait_for(lock, kLivelinessAssertPeriod, [this] { return liveliness_quit_; })) {
-      heartbeat_.assertLiveliness();
-    }
-  });
+  // Asserted four times per lease of the heartbeat writer's (its QoS profile's); a writer
+  // without a lease has nothing to assert.
+  if (const auto lease_ns = heartbeat_.livelinessLeaseNs()) {
+    const std::chrono::nanoseconds assert_period(*lease_ns / 4);
+    liveliness_thread_ = std::thread([this, assert_period] {
+      std::unique_lock<std::mutex> lock(liveliness_mutex_);
+      while (!liveliness_cv_.wait_for(lock, assert_period, [this] { return liveliness_quit_; })) {
+        heartbeat_.assertLiveliness();
+      }
+    });
+  }
 }
 
 Node::~Node()
@@ -105,7 +108,9 @@ Node::~Node()
     liveliness_quit_ = true;
   }
   liveliness_cv_.notify_all();
-  liveliness_thread_.join();
+  if (liveliness_thread_.joinable()) {
+    liveliness_thread_.join();
+  }
   participant_.events().setNotifier({});
 }
 

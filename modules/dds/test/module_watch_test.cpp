@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <optional>
 #include <thread>
 
 #include "quad/common/time.hpp"
@@ -41,6 +42,9 @@ TEST(ModuleWatch, FollowsTheHeartbeatWritersLiveliness)
   Publisher<msg::Heartbeat> plant(module, topics::kHeartbeat);
   ModuleWatch watch(watcher, "mapping", nullptr);
   ASSERT_TRUE(test::waitFor([&] { return mapping.matchedReaders() == 1 && plant.matchedReaders() == 1; }));
+  // The lease it tells its users (the planner's lockstep grace) is the one the writers offer.
+  EXPECT_EQ(watch.leaseNs(), std::optional<std::int64_t>(500'000'000));
+  EXPECT_EQ(mapping.livelinessLeaseNs(), watch.leaseNs());
 
   // Another module's heartbeats, however alive, leave it unknown.
   ASSERT_TRUE(plant.write(heartbeat("plant")));

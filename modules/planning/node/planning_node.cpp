@@ -113,6 +113,7 @@ PlanningNode::PlanningNode(PlanningNodeConfig config, dds::ParticipantOptions op
       goal_acks_(participant(), dds::topics::kGoalAck),
       mapper_(participant(), "mapping", waker()),
       lockstep_(participant(), "planning"),
+      mapper_lapse_(mapper_.leaseNs().value_or(0)),
       deconfliction_(participant().options().vehicle_id, config_.fleet, config_.planner.vehicle_radius,
                      config_.planner.vehicle_radius - config_.safety_margin)
 {

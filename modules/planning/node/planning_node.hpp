@@ -84,9 +84,9 @@ private:
   std::int64_t mapper_done_wall_ns_ = 0;  // steady time that report first covered the clock (0: not yet)
   bool map_whole_ = true;               // last said in the log
   bool mapper_lost_ = false;            // last said in the log
-  // How long, in lockstep, a lapse of its heartbeat lasts before it counts: the liveliness
-  // lease (configs/dds/quad_qos.xml, 0.5 s), in sim time.
-  planning::MapperLapse mapper_lapse_{500'000'000};
+  // How long, in lockstep, a lapse of its heartbeat lasts before it counts: its liveliness
+  // lease, in sim time.
+  planning::MapperLapse mapper_lapse_;
   std::int64_t reported_ns_ = -1;
   std::int64_t joining_since_ns_ = 0;   // steady time it began waiting for the first snapshot (0: not)
   bool goal_changed_ = false;

@@ -69,6 +69,8 @@ public:
 
   /// Asserts the writer's liveliness (for MANUAL_BY_TOPIC writers; a no-op for others).
   void assertLiveliness();
+  /// The liveliness lease the writer offers (its QoS profile's) [ns]; none when infinite.
+  std::optional<std::int64_t> livelinessLeaseNs() const;
 
   /// Waits until every matched reliable reader acknowledged what was written; false on timeout.
   bool waitForAcknowledgments(std::chrono::milliseconds timeout);
@@ -104,6 +106,9 @@ public:
   std::vector<ParticipantPrefix> matchedWriterParticipants() const { return peers_.participants(); }
   std::uint64_t deadlinesMissed() const { return deadlines_missed_.load(); }
   const TopicInfo& info() const { return info_; }
+  /// The liveliness lease the reader asks of writers (its QoS profile's) [ns]; none when
+  /// infinite.
+  std::optional<std::int64_t> livelinessLeaseNs() const;
 
   /// A matched writer became alive, lost its liveliness (its process died, stopped or was
   /// cut off for longer than the contract's lease), or went away.

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "quad/dds/subscriber.hpp"
@@ -31,6 +32,8 @@ public:
   State update();
 
   const std::string& moduleName() const { return module_; }
+  /// The heartbeat's liveliness lease [ns] (the QoS profile's, 0.5 s); none when infinite.
+  std::optional<std::int64_t> leaseNs() const { return heartbeats_.livelinessLeaseNs(); }
 
 private:
   Subscriber<msg::Heartbeat> heartbeats_;

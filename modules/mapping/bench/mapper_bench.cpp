@@ -5,10 +5,12 @@
 
 #include <map>
 #include <random>
+#include <sstream>
 
 #include "quad/common/yaml_input.hpp"
 #include "quad/mapping/map_follower.hpp"
 #include "quad/mapping/mapper.hpp"
+#include "quad/mapping/tree_bytes.hpp"
 #include "quad/plant/sensors.hpp"
 #include "quad/world/world_file.hpp"
 
@@ -123,17 +125,68 @@ void BM_ClassificationAgreement(benchmark::State& state)
   state.counters["agreement_percent"] = 100.0 * static_cast<double>(same) / static_cast<double>(both.size());
 }
 
+/// The mapper after the whole flight.
+const mapping::Mapper& flightMapper()
+{
+  static const mapping::Mapper mapper = [] {
+    mapping::Mapper m(mapping::MapperConfig{});
+    for (const auto& s : scans().scans) {
+      m.integrate(s);
+    }
+    return m;
+  }();
+  return mapper;
+}
+
 /// The map after the whole flight, as the mapper's snapshot bytes.
 const std::vector<std::uint8_t>& flightSnapshot()
 {
-  static const std::vector<std::uint8_t> bytes = [] {
-    mapping::Mapper mapper(mapping::MapperConfig{});
-    for (const auto& s : scans().scans) {
-      mapper.integrate(s);
-    }
-    return mapper.snapshot();
-  }();
+  static const std::vector<std::uint8_t> bytes = flightMapper().snapshot();
   return bytes;
+}
+
+// The flight's tree in OctoMap's two byte formats (the snapshot's .bt, the checkpoint's node
+// data): written straight into a buffer against OctoMap's stream writers, the same bytes;
+// items are tree nodes.
+template <class Write>
+void writeTreeBench(benchmark::State& state, Write write)
+{
+  const octomap::OcTree& tree = flightMapper().tree();
+  std::size_t bytes = 0;
+  for (auto _ : state) {
+    bytes = write(tree);
+    benchmark::DoNotOptimize(bytes);
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(tree.size()));
+  state.counters["bytes"] = static_cast<double>(bytes);
+}
+
+void BM_Snapshot_TreeBytes(benchmark::State& state)
+{
+  writeTreeBench(state, [](const octomap::OcTree& t) { return mapping::binaryTreeBytes(t).size(); });
+}
+
+void BM_Snapshot_OctoMapStream(benchmark::State& state)
+{
+  writeTreeBench(state, [](const octomap::OcTree& t) {
+    std::ostringstream out;
+    t.writeBinaryConst(out);
+    return out.str().size();
+  });
+}
+
+void BM_TreeData_TreeBytes(benchmark::State& state)
+{
+  writeTreeBench(state, [](const octomap::OcTree& t) { return mapping::treeDataBytes(t).size(); });
+}
+
+void BM_TreeData_OctoMapStream(benchmark::State& state)
+{
+  writeTreeBench(state, [](const octomap::OcTree& t) {
+    std::ostringstream out;
+    t.writeData(out);
+    return out.str().size();
+  });
 }
 
 // A planner joining (or started again): from nothing to the snapshot's map; items are voxels.
@@ -171,6 +224,10 @@ BENCHMARK(BM_OcTree_InsertPointCloud)->Unit(benchmark::kMillisecond)->MinTime(5.
 BENCHMARK(BM_ClassificationAgreement)->Iterations(1);
 BENCHMARK(BM_MapFollower_Join)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MapFollower_FillGap)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Snapshot_TreeBytes)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Snapshot_OctoMapStream)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TreeData_TreeBytes)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TreeData_OctoMapStream)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

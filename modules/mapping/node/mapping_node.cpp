@@ -118,7 +118,7 @@ void MappingNode::resume()
 
 void MappingNode::publishSnapshot(std::int64_t stamp_ns)
 {
-  const auto bytes = mapper_.snapshot();
+  auto bytes = mapper_.snapshot();
   if (bytes.size() > 4194304) {
     spdlog::warn("mapping: snapshot of {} bytes exceeds the 4 MiB a MapSnapshot carries; not sent", bytes.size());
     return;
@@ -127,7 +127,7 @@ void MappingNode::publishSnapshot(std::int64_t stamp_ns)
   snapshot.header().stamp_ns(stamp_ns);
   snapshot.update_seq(update_seq_);
   snapshot.resolution(mapper_.resolution());
-  snapshot.octree(bytes);
+  snapshot.octree(std::move(bytes));
   snapshots_.write(snapshot);
 }
 

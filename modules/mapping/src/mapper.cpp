@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "quad/mapping/tree_bytes.hpp"
+
 namespace quad::mapping {
 
 namespace {
@@ -202,20 +204,18 @@ std::vector<VoxelChange> classificationOf(const octomap::OcTree& tree)
 
 std::vector<VoxelChange> Mapper::classification() const { return classificationOf(tree_); }
 
-std::vector<std::uint8_t> Mapper::snapshot() const
-{
-  std::ostringstream out;
-  tree_.writeBinaryConst(out);
-  const std::string bytes = out.str();
-  return {bytes.begin(), bytes.end()};
-}
+std::vector<std::uint8_t> Mapper::snapshot() const { return binaryTreeBytes(tree_); }
 
 bool Mapper::save(const std::filesystem::path& file) const
 {
   return tree_.writeBinaryConst(file.string());
 }
 
-void Mapper::writeTree(std::ostream& out) const { tree_.writeData(out); }
+void Mapper::writeTree(std::ostream& out) const
+{
+  const std::vector<std::uint8_t> bytes = treeDataBytes(tree_);
+  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+}
 
 bool Mapper::readTree(std::istream& in)
 {

@@ -12,8 +12,8 @@ namespace {
 
 using Node = octomap::OcTreeNode;
 
-/// Two bits per child, children 0-3 in the first byte and 4-7 in the second, lowest bits
-/// first: 01 free, 10 occupied, 11 inner, 00 unknown; then the inner children's own.
+/// Two bits per child, children 0-3 in the first byte and 4-7 in the second, child 0 and 4
+/// in the lowest bits: 1 free, 2 occupied, 3 inner, 0 unknown; then the inner children's own.
 void appendBinaryNode(const octomap::OcTree& tree, const Node* node, std::vector<std::uint8_t>& out)
 {
   std::array<const Node*, 8> inner{};  // the children that have children of their own

@@ -188,14 +188,17 @@ void ControlNode::autostart()
   } else if (fc_.mode() == Mode::kDisarmed) {
     fc_.onCommand(Command::kArm);
     autostart_stage_ = 1;
+    autostart_asked_ = true;
   } else if (fc_.mode() == Mode::kIdle) {
     fc_.onCommand(Command::kTakeoff);
     autostart_stage_ = 1;
+    autostart_asked_ = true;
   }
 }
 
 void ControlNode::control(double t, std::int64_t stamp_ns)
 {
+  autostart_asked_ = false;
   autostart();
   applyDueInputs(stamp_ns);
   if (!commands_.empty() && (!lockstep() || commands_.front().due_ns <= stamp_ns)) {
@@ -203,6 +206,7 @@ void ControlNode::control(double t, std::int64_t stamp_ns)
     commands_.pop_front();
     fc_.onCommand(applying_->command, applying_->takeoff_altitude);
   }
+  const bool autostart_only = autostart_asked_ && !applying_;  // no operator's command this tick
   const FlightOutput out = fc_.update(t);
   if (applying_ && out.answer) {
     acknowledge(*applying_, *out.answer, out.mode, stamp_ns);
@@ -231,7 +235,17 @@ void ControlNode::control(double t, std::int64_t stamp_ns)
     spdlog::info("control: dead reckoning ended at {:.3f} s", t);
   }
   if (!out.refused.empty()) {
-    spdlog::warn("control: {}", out.refused);
+    // The autostart asks again every tick until its command takes (while the first state is
+    // not yet fresh, say): each reason it is refused for is worth a line once, not per tick.
+    const bool repeat = autostart_only && out.refused == autostart_refused_;
+    if (autostart_only) {
+      autostart_refused_ = out.refused;
+    }
+    if (repeat) {
+      spdlog::debug("control: {} (the autostart asks again)", out.refused);
+    } else {
+      spdlog::warn("control: {}", out.refused);
+    }
   }
   if (out.transition || t >= next_status_t_) {
     publishStatus(out, stamp_ns);

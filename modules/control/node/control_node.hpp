@@ -7,6 +7,7 @@
 
 #include <deque>
 #include <optional>
+#include <string>
 
 #include "control_config.hpp"
 #include "quad/dds/node.hpp"
@@ -92,6 +93,8 @@ private:
   double next_status_t_ = 0.0;
   FlightOutput last_;
   int autostart_stage_ = 0;
+  bool autostart_asked_ = false;      // this tick's command is the autostart's own
+  std::string autostart_refused_;     // why it was refused the last time, as logged
 };
 
 }  // namespace quad::control

@@ -212,6 +212,12 @@ int run(const ReplayOptions& options)
   if (rounds.empty()) {
     throw ReplayError(fmt::format("{}: no {} samples: not a lockstep recording", options.file, clock_topic));
   }
+  if (rounds.front().sim_ns > 0) {
+    // The module would start from what it read before then, which the recording lacks.
+    throw ReplayError(fmt::format("{}: its first {} sample is at sim time {:.3f} s, not 0: the recording missed the "
+                                  "run's start, and {} cannot be driven from the middle of a run",
+                                  options.file, clock_topic, common::toSeconds(rounds.front().sim_ns), module));
+  }
   const fs::path run_dir = options.run_dir.empty() ? fs::absolute(options.file).parent_path() : fs::path(options.run_dir);
   const fs::path work = fs::temp_directory_path() / fmt::format("quad_replay_{}_{}", module, getpid());
   fs::remove_all(work);

@@ -1,14 +1,20 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// quad record against a live publisher: what it stores, and what a SIGKILL leaves.
+// quad record against a live publisher: what it stores, what a SIGKILL leaves, and its part in
+// a lockstep run's start.
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <string>
+#include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "module_wait.hpp"
 #include "process.hpp"
 #include "quad/bag/mcap.hpp"
 #include "quad/common/payload_header.hpp"
@@ -72,6 +78,56 @@ TEST(Record, WithAVehicleOnlyThatVehiclesSamplesAreRecorded)
   EXPECT_NE(info.output().find("received 20 missing 0 duplicated 0 reordered 0 writers 1"), std::string::npos)
       << info.output();
   fs::remove_all(dir);
+}
+
+TEST(Record, ARecordedLockstepRunWaitsForItsRecorderAndIsRecordedFromSimTimeZero)
+{
+  // GIVEN the plant of a recorded lockstep run (as quad launch starts it), and no recorder yet
+  const int domain = 151;
+  auto run_env = env(domain);
+  run_env["QUAD_LOCKSTEP"] = "1";
+  run_env["QUAD_LOCKSTEP_RECORDER"] = "1";
+  const fs::path dir = quad::test::scratchDir("quad_record_lockstep");
+  std::ofstream(dir / "plant.yaml") << "vehicle: " << QUAD_CONFIG_DIR << "/vehicles/x500.yaml\n"
+                                    << "world: " << QUAD_CONFIG_DIR << "/worlds/demo.yaml\n"
+                                    << "sim: {mode: lockstep, duration: 2.0}\nlockstep: {wait_for_command: false}\n";
+  ChildProcess plant({QUAD_PLANT_NODE, "--config", (dir / "plant.yaml").string()}, run_env);
+  ASSERT_TRUE(quad::test::waitForRunningModule(domain, "plant", 20s)) << plant.output();
+  // THEN its clock waits at 0
+  ChildProcess clock({QUAD_TOOL, "topic", "echo", "quad/sim/clock", "-n", "1", "--json", "--timeout", "10"}, run_env);
+  ASSERT_EQ(clock.wait(15s), 0) << clock.output();
+  const auto tick = nlohmann::json::parse(clock.output().substr(0, clock.output().find('\n')), nullptr, false);
+  ASSERT_TRUE(tick.is_object()) << clock.output();
+  EXPECT_EQ(tick["sim_ns"], 0) << clock.output();
+  // WHEN the recorder starts, late
+  const std::string file = (dir / "run.mcap").string();
+  ChildProcess rec({QUAD_TOOL, "record", "-q", "-o", file, "--duration", "8"}, run_env);
+  // THEN the run goes on to its end, and the recording holds it from its first step: the
+  // clock from 0, the first depth frame (0.1 s), and the recorder's report that let it go
+  ASSERT_EQ(plant.wait(60s), 0) << plant.output();
+  ASSERT_EQ(rec.wait(30s), 0) << rec.output();
+  const auto contents = quad::bag::readMcap(file);
+  std::map<std::uint16_t, std::string> topics;
+  for (const auto& ch : contents.channels) {
+    topics[ch.id] = ch.topic;
+  }
+  std::map<std::string, std::vector<std::int64_t>> stamps;
+  for (const auto& m : contents.messages) {
+    if (const auto header = quad::common::payloadHeader(m.data)) {
+      stamps[topics[m.channel_id]].push_back(header->stamp_ns);
+    }
+  }
+  const auto& clocks = stamps["quad/sim/clock"];
+  const auto& depth = stamps["quad/sim/depth"];
+  ASSERT_FALSE(clocks.empty());
+  ASSERT_FALSE(depth.empty());
+  EXPECT_EQ(*std::min_element(clocks.begin(), clocks.end()), 0);
+  EXPECT_GE(*std::max_element(clocks.begin(), clocks.end()), 1'996'000'000);
+  EXPECT_EQ(*std::min_element(depth.begin(), depth.end()), 100'000'000);
+  EXPECT_FALSE(stamps["quad/sim/lockstep"].empty());  // nothing else in this run reports
+  if (!::testing::Test::HasFailure()) {
+    fs::remove_all(dir);
+  }
 }
 
 TEST(Record, ARecorderKilledWithSigkillLeavesItsCompleteChunksAndRecoverMakesTheFileWhole)

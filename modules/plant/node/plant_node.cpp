@@ -85,10 +85,17 @@ PlantNode::PlantNode(PlantNodeConfig config, dds::ParticipantOptions options)
   for (const std::uint32_t id : fleet_->ids()) {
     io_.push_back({.id = id});
   }
-  if (config_.mode == PlantNodeConfig::Mode::kLockstep && !config_.lockstep_participants.empty()) {
+  std::vector<std::string> participants = config_.lockstep_participants;
+  if (participant().options().lockstep_recorder &&
+      std::find(participants.begin(), participants.end(), dds::kRecorderParticipant) == participants.end()) {
+    // The run's recorder holds the first round until it reads what this plant writes: the
+    // recording then starts with the run.
+    participants.emplace_back(dds::kRecorderParticipant);
+  }
+  if (config_.mode == PlantNodeConfig::Mode::kLockstep && !participants.empty()) {
     // With a fleet file each vehicle has its own participants (its mapper, its planner).
     barrier_ = std::make_unique<dds::LockstepBarrier>(
-        participant(), config_.lockstep_participants, waker(),
+        participant(), participants, waker(),
         config_.fleet_file.empty() ? std::vector<std::uint32_t>{} : fleet_->ids());
   }
   setTickPeriod(kRealTimeTickNs);

@@ -563,6 +563,9 @@ int LaunchRun::execute(RunExtension* extension)
   record_.firewall = m_.firewall;
   saveRecord();
   env_ = runEnvironment(m_, domain_, *net_);
+  if (options_.record && m_.mode == "lockstep") {
+    env_[dds::environment::kLockstepRecorder] = "1";  // the recording starts with the run's first step
+  }
   if (m_.discovery == launch::Discovery::kServer) {
     const auto& host = m_.host(m_.discovery_host);
     const std::vector<std::string> argv{"fastdds", "discovery", "-i", "0", "-l", net_->address(host.name), "-p",

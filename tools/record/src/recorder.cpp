@@ -19,6 +19,7 @@
 #include "quad/bag/audit.hpp"
 #include "quad/bag/mcap.hpp"
 #include "recording_files.hpp"
+#include "start_gate.hpp"
 #include "quad/common/payload_header.hpp"
 #include "quad/common/time.hpp"
 #include "quad/dds/node.hpp"
@@ -114,6 +115,22 @@ int record(const RecordOptions& options, const std::atomic<int>& stop)
     }
   }
 
+  // In a lockstep run the launcher records, the plant's first round waits for this recorder.
+  std::optional<StartGate> start_gate;
+  if (participant.options().lockstep && participant.options().lockstep_recorder) {
+    if (recorded.contains(std::string(dds::topics::kSimClock.info.name))) {
+      start_gate.emplace(participant);
+    } else {
+      std::fprintf(stderr, "record: %s is not recorded: the lockstep run's start does not wait for this recorder\n",
+                   std::string(dds::topics::kSimClock.info.name).c_str());
+    }
+  }
+  const auto plantMatched = [&] {
+    return std::all_of(recorded.begin(), recorded.end(), [](const auto& kv) {
+      return kv.second.contract.owner != dds::Owner::kPlant || kv.second.subscriber->matchedWriters() > 0;
+    });
+  };
+
   const std::int64_t start = common::steadyTimeNs();
   std::int64_t next_discovery = 0;
   std::int64_t next_progress = start + common::kNanosecondsPerSecond;
@@ -133,6 +150,9 @@ int record(const RecordOptions& options, const std::atomic<int>& stop)
                                                                         : log_time;
         if (header) {
           r.audit.add(writer_id, header->vehicle_id, header->seq);
+          if (start_gate && r.contract.name == dds::topics::kSimClock.info.name) {
+            start_gate->clockSeen(header->vehicle_id, header->stamp_ns);
+          }
         }
         files->write(channelOf(r), header ? static_cast<std::uint32_t>(header->seq) : 0, log_time, publish,
                      sample.payload);
@@ -166,6 +186,9 @@ int record(const RecordOptions& options, const std::atomic<int>& stop)
         next_discovery = now + 200'000'000;
       }
       takeAll();
+      if (start_gate && start_gate->waiting()) {
+        start_gate->release(plantMatched());
+      }
       if (now >= next_progress) {
         if (!options.quiet) {
           const double seconds = common::toSeconds(now - start);

@@ -21,6 +21,7 @@ inline constexpr const char* kValidateDatagrams = "QUAD_VALIDATE_DATAGRAMS";
 inline constexpr const char* kInlineKeys = "QUAD_INLINE_KEYS";
 inline constexpr const char* kFaultLayer = "QUAD_FAULT_LAYER";
 inline constexpr const char* kLockstep = "QUAD_LOCKSTEP";
+inline constexpr const char* kLockstepRecorder = "QUAD_LOCKSTEP_RECORDER";
 inline constexpr const char* kParticipantLease = "QUAD_PARTICIPANT_LEASE";
 
 }  // namespace quad::dds::environment

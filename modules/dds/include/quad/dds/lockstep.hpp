@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,12 @@
 #include "quad/dds/subscriber.hpp"
 
 namespace quad::dds {
+
+/// The lockstep name of a run's recorder. It holds only the run's start: once it reads every
+/// topic the clock owner writes, it reports itself done up to kDoneForGoodNs.
+inline constexpr const char* kRecorderParticipant = "record";
+/// A report's done_ns from a participant that will never hold the clock again.
+inline constexpr std::int64_t kDoneForGoodNs = std::numeric_limits<std::int64_t>::max();
 
 /// Publishes this participant's progress on quad/sim/lockstep.
 class LockstepReporter {

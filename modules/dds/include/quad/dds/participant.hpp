@@ -69,6 +69,10 @@ struct ParticipantOptions {
   /// so that an input reaching it before the clock's first sample (a latched goal) is taken
   /// as it would be after. The clock's samples still say which mode runs.
   bool lockstep = false;
+  /// A lockstep run's recorder takes part in its start: the clock owner does not step past
+  /// its first round until the recorder reads every topic it writes (recorder.hpp), so a
+  /// recording holds the run from sim time 0, as a replay needs.
+  bool lockstep_recorder = false;
   /// How long other participants keep this one without hearing from it [s]; 0: the QoS
   /// profile's (2 s). Announcements stay as often as the profile says. A machine so loaded
   /// that a participant goes unheard for longer has its peers drop it, and Fast DDS 2.9 does

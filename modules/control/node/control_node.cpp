@@ -175,38 +175,39 @@ void ControlNode::applyDueInputs(std::int64_t stamp_ns)
   }
 }
 
-void ControlNode::autostart()
+bool ControlNode::autostart()
 {
   if (!config_.autostart || autostart_stage_ >= 2) {
-    return;
+    return false;
   }
   // Asks again until it takes (a command refused for a not-yet-fresh state is not lost);
   // done once the vehicle is in the air (taking off, or taken over in flight), so a later
   // landing is final.
   if (airborne(fc_.mode())) {
     autostart_stage_ = 2;
-  } else if (fc_.mode() == Mode::kDisarmed) {
+    return false;
+  }
+  if (fc_.mode() == Mode::kDisarmed) {
     fc_.onCommand(Command::kArm);
-    autostart_stage_ = 1;
-    autostart_asked_ = true;
   } else if (fc_.mode() == Mode::kIdle) {
     fc_.onCommand(Command::kTakeoff);
-    autostart_stage_ = 1;
-    autostart_asked_ = true;
+  } else {
+    return false;
   }
+  autostart_stage_ = 1;
+  return true;
 }
 
 void ControlNode::control(double t, std::int64_t stamp_ns)
 {
-  autostart_asked_ = false;
-  autostart();
+  const bool autostart_asked = autostart();
   applyDueInputs(stamp_ns);
   if (!commands_.empty() && (!lockstep() || commands_.front().due_ns <= stamp_ns)) {
     applying_ = commands_.front();
     commands_.pop_front();
     fc_.onCommand(applying_->command, applying_->takeoff_altitude);
   }
-  const bool autostart_only = autostart_asked_ && !applying_;  // no operator's command this tick
+  const bool autostart_only = autostart_asked && !applying_;  // no operator's command this tick
   const FlightOutput out = fc_.update(t);
   if (applying_ && out.answer) {
     acknowledge(*applying_, *out.answer, out.mode, stamp_ns);

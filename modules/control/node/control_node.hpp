@@ -41,7 +41,9 @@ private:
   void controlSilentPlant(double after_s);
   void publishStatus(const FlightOutput& out, std::int64_t stamp_ns);
 
-  void autostart();
+  /// Arms, then takes off, until the vehicle is in the air (config autostart); true when it
+  /// gave the flight controller a command this tick.
+  bool autostart();
 
   ControlNodeConfig config_;
   FlightController fc_;
@@ -93,7 +95,6 @@ private:
   double next_status_t_ = 0.0;
   FlightOutput last_;
   int autostart_stage_ = 0;
-  bool autostart_asked_ = false;      // this tick's command is the autostart's own
   std::string autostart_refused_;     // why it was refused the last time, as logged
 };
 

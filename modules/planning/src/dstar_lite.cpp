@@ -7,6 +7,7 @@
 #include <iterator>
 #include <queue>
 #include <stdexcept>
+#include <type_traits>
 
 #include "quad/geometry/inflation.hpp"
 
@@ -96,7 +97,13 @@ void DStarLite::forEachStep(Cell c, const Eigen::Vector3i& p, F&& f) const
     if (interior || (static_cast<unsigned>(p.x() + s.dx) < static_cast<unsigned>(dims_.x()) &&
                      static_cast<unsigned>(p.y() + s.dy) < static_cast<unsigned>(dims_.y()) &&
                      static_cast<unsigned>(p.z() + s.dz) < static_cast<unsigned>(dims_.z()))) {
-      f(c + s.delta, s);
+      if constexpr (std::is_same_v<std::invoke_result_t<F, Cell, const Step&>, bool>) {
+        if (!f(c + s.delta, s)) {
+          return;  // f asked to stop
+        }
+      } else {
+        f(c + s.delta, s);
+      }
     }
   }
 }
@@ -278,19 +285,22 @@ DStarLite::Key DStarLite::keyOf(const Vertex& v, const Eigen::Vector3i& p) const
   return {m + distance(p, start_coordinates_) + km_, m};
 }
 
-double DStarLite::bestRhs(Cell u) const
+double DStarLite::bestRhs(Cell u, double floor) const
 {
   if (goal_ && u == *goal_) {
     return 0.0;
   }
-  double best = kInfinity;
-  if (traversable(u)) {
-    forEachNeighbour(u, [&](Cell s, double step) {
-      if (traversable(s)) {
-        best = std::min(best, step + g(s));
-      }
-    });
+  if (!traversable(u)) {
+    return kInfinity;
   }
+  double best = kInfinity;
+  forEachStep(u, coordinates(u), [&](Cell n, const Step& s) {
+    const Vertex* v = find(n);
+    if (v != nullptr && s.cost + v->g < best && traversable(n)) {
+      best = s.cost + v->g;
+    }
+    return best != floor;  // nothing is lower than the floor
+  });
   return best;
 }
 
@@ -535,7 +545,8 @@ PlanResult DStarLite::plan(std::uint64_t max_expansions)
         // g and rhs, so its queued key (a lower bound, refreshed when it reaches the top)
         // stands and its consistency is unchanged.
         if (s != *goal_ && rhs(s) == step.cost + g_old) {
-          setRhs(s, bestRhs(s));
+          // Only u's g rose: no other successor gives less than the old value.
+          setRhs(s, bestRhs(s, step.cost + g_old));
           updateVertex(s);
         }
       });
@@ -558,19 +569,24 @@ PlanResult DStarLite::plan(std::uint64_t max_expansions)
   // Where g is consistent it falls by every step's cost along the way; a step whose g does
   // not fall means it is not yet consistent there (it can happen beyond the start's
   // consistency), and could lead round in a circle: report no path now. g falling strictly
-  // is what ends the walk, without remembering the cells visited.
+  // is what ends the walk, without remembering the cells visited. rhs(s) is that minimum
+  // (kept so at every change of a g or an edge), and the successors come in the order of
+  // their cell numbers: the first that gives rhs(s) is the one, and the rest need no look.
   Cell s = *start_;
   out.cells.push_back(s);
   double value = out.cost;  // g(s), rhs for the start
   while (s != *goal_) {
+    const double least = rhs(s);
     Cell best = -1;
     double best_cost = kInfinity;
-    forEachNeighbour(s, [&](Cell n, double step) {
-      const double c = traversable(n) ? step + g(n) : kInfinity;
-      if (c < best_cost || (c == best_cost && n < best)) {
+    forEachStep(s, coordinates(s), [&](Cell n, const Step& step) {
+      const Vertex* v = find(n);
+      const double c = v != nullptr && traversable(n) ? step.cost + v->g : kInfinity;
+      if (c < best_cost) {
         best_cost = c;
         best = n;
       }
+      return best_cost != least;
     });
     if (best < 0 || best_cost == kInfinity || !(g(best) < value)) {
       out.status = PlanStatus::kNoPath;

@@ -20,15 +20,22 @@ Lattice box(int nx, int ny, int nz)
 
 Cell at(const DStarLite& p, int x, int y, int z) { return *p.lattice().cell(VoxelIndex(x, y, z)); }
 
+/// The path is traversable, visits no cell twice, and its steps add up to the cost reported.
 void expectCollisionFree(const DStarLite& p, const PlanResult& r)
 {
   std::set<Cell> seen;
+  double length = 0.0;
   for (std::size_t i = 0; i < r.cells.size(); ++i) {
     EXPECT_TRUE(p.traversable(r.cells[i])) << "cell " << r.cells[i];
     EXPECT_TRUE(seen.insert(r.cells[i]).second) << "revisits cell " << r.cells[i];  // no oscillation
     if (i > 0) {
-      EXPECT_LT(p.edgeCost(r.cells[i - 1], r.cells[i]), kInfinity);
+      const double step = p.edgeCost(r.cells[i - 1], r.cells[i]);
+      EXPECT_LT(step, kInfinity);
+      length += step;
     }
+  }
+  if (r.status == PlanStatus::kOk) {
+    EXPECT_NEAR(length, r.cost, 1e-9);
   }
 }
 

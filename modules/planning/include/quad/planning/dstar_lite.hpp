@@ -217,8 +217,10 @@ private:
   double rhs(Cell c) const;
   Key calculateKey(Cell c) const;
   Key keyOf(const Vertex& v, const Eigen::Vector3i& p) const;  ///< p: v's coordinates
-  /// rhs(u) from scratch: min over successors of c(u, s') + g(s').
-  double bestRhs(Cell u) const;
+  /// rhs(u) from scratch: min over successors of c(u, s') + g(s'). `floor`: a value rhs(u)
+  /// cannot fall below (its old value, when only costs rose); the scan stops at a successor
+  /// that gives it.
+  double bestRhs(Cell u, double floor = -kInfinity) const;
   void setRhs(Cell u, double value);
   void queue(Cell u, const Key& k);
   /// UpdateVertex of the optimised version: (re)queue u when inconsistent, drop it when not.

@@ -88,29 +88,10 @@ Node::Node(std::string module_name, ParticipantOptions options)
   if (participant_.datagramFaults() != nullptr) {
     fault_layer_ = std::make_unique<FaultLayerControl>(participant_, module_name_, &waker_);
   }
-  // Asserted four times per lease of the heartbeat writer's (its QoS profile's); a writer
-  // without a lease has nothing to assert.
-  if (const auto lease_ns = heartbeat_.livelinessLeaseNs()) {
-    const std::chrono::nanoseconds assert_period(*lease_ns / 4);
-    liveliness_thread_ = std::thread([this, assert_period] {
-      std::unique_lock<std::mutex> lock(liveliness_mutex_);
-      while (!liveliness_cv_.wait_for(lock, assert_period, [this] { return liveliness_quit_; })) {
-        heartbeat_.assertLiveliness();
-      }
-    });
-  }
 }
 
 Node::~Node()
 {
-  {
-    std::lock_guard<std::mutex> lock(liveliness_mutex_);
-    liveliness_quit_ = true;
-  }
-  liveliness_cv_.notify_all();
-  if (liveliness_thread_.joinable()) {
-    liveliness_thread_.join();
-  }
   participant_.events().setNotifier({});
 }
 

@@ -1,14 +1,17 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // ModuleWatch between two real participants: a module is unknown until its first heartbeat,
 // alive while its heartbeat writer asserts liveliness, lost within the 0.5 s lease once it
-// stops, and alive again when it resumes; another module's heartbeats say nothing of it.
+// stops, and alive again when it resumes; another module's heartbeats say nothing of it. A
+// LivelinessKeeper keeps a writer that writes nothing alive, until it goes.
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <memory>
 #include <optional>
 #include <thread>
 
 #include "quad/common/time.hpp"
+#include "quad/dds/liveliness.hpp"
 #include "quad/dds/module_watch.hpp"
 #include "quad/dds/participant.hpp"
 #include "quad/dds/publisher.hpp"
@@ -18,7 +21,8 @@
 namespace quad::dds {
 namespace {
 
-constexpr int kDomain = 167;  // this test's own
+constexpr int kDomain = 167;        // this test's own
+constexpr int kKeeperDomain = 82;   // and the keeper's
 
 msg::Heartbeat heartbeat(const std::string& module)
 {
@@ -30,12 +34,15 @@ msg::Heartbeat heartbeat(const std::string& module)
   return hb;
 }
 
+ParticipantOptions options(const char* name, int domain)
+{
+  return ParticipantOptions{.name = name, .domain_id = domain, .transport = Transport::kUdp};
+}
+
 TEST(ModuleWatch, FollowsTheHeartbeatWritersLiveliness)
 {
   intraprocessDeliveryOff();  // two participants in one process (participant.hpp)
-  const auto options = [](const char* name) {
-    return ParticipantOptions{.name = name, .domain_id = kDomain, .transport = Transport::kUdp};
-  };
+  const auto options = [](const char* name) { return dds::options(name, kDomain); };
   Participant module(options("module"));
   Participant watcher(options("watcher"));
   Publisher<msg::Heartbeat> mapping(module, topics::kHeartbeat);
@@ -76,6 +83,31 @@ TEST(ModuleWatch, FollowsTheHeartbeatWritersLiveliness)
   // Resumed.
   mapping.assertLiveliness();
   EXPECT_TRUE(test::waitFor([&] { return watch.update() == ModuleWatch::State::kAlive; }));
+}
+
+TEST(LivelinessKeeper, KeepsAWriterThatWritesNothingAliveUntilItGoes)
+{
+  intraprocessDeliveryOff();
+  Participant module(options("module", kKeeperDomain));
+  Participant watcher(options("watcher", kKeeperDomain));
+  Publisher<msg::Heartbeat> mapping(module, topics::kHeartbeat);
+  ModuleWatch watch(watcher, "mapping", nullptr);
+  ASSERT_TRUE(test::waitFor([&] { return mapping.matchedReaders() == 1; }));
+  auto keeper = std::make_unique<LivelinessKeeper>(mapping);
+  ASSERT_TRUE(mapping.write(heartbeat("mapping")));
+  ASSERT_TRUE(test::waitFor([&] { return watch.update() == ModuleWatch::State::kAlive; }));
+
+  // Three leases without a sample (a sim-time writer while the clock stands): still alive.
+  const std::int64_t until = common::steadyTimeNs() + 1'500'000'000;
+  while (common::steadyTimeNs() < until) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    ASSERT_EQ(watch.update(), ModuleWatch::State::kAlive);
+  }
+
+  // The keeper gone (its process stopped): lost within the lease.
+  keeper.reset();
+  EXPECT_TRUE(test::waitFor([&] { return watch.update() == ModuleWatch::State::kLost; },
+                            std::chrono::milliseconds(1500)));
 }
 
 }  // namespace

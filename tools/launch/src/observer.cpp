@@ -8,6 +8,7 @@
 
 #include "quad/common/time.hpp"
 #include "quad/dds/geometry_messages.hpp"
+#include "quad/dds/liveliness.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/sim_clock.hpp"
@@ -57,6 +58,9 @@ struct Observer::Endpoints {
   dds::Subscriber<msg::Path> path;
   dds::Subscriber<msg::SimEvent> events;
   dds::Publisher<msg::Heartbeat> operator_beat;
+  // The beats follow sim time, which stands while the lockstep clock waits: the writer's
+  // liveliness (this process alive) is kept in wall time, as every module's heartbeat is.
+  dds::LivelinessKeeper operator_alive{operator_beat};
 };
 
 /// One followed vehicle: where it is, how its estimator does, its mission once started.

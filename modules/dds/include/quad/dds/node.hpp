@@ -6,7 +6,6 @@
 /// run() loops on a Waker with a tick period until stop() — from a signal or another thread.
 
 #include <atomic>
-#include <condition_variable>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -18,6 +17,7 @@
 #include <quad/msg/Heartbeat.h>
 
 #include "quad/common/params.hpp"
+#include "quad/dds/liveliness.hpp"
 #include "quad/dds/participant.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/sim_clock.hpp"
@@ -127,12 +127,7 @@ private:
   std::unique_ptr<FaultLayerControl> fault_layer_;
   std::unique_ptr<SimClockFollower> sim_clock_;  // with followSimClock() only
   std::atomic<bool> stop_{false};
-  // Asserts the heartbeat writer's liveliness (MANUAL_BY_TOPIC) from a thread of its own, so
-  // that a node busy in a long computation stays alive and a killed or stopped one does not.
-  std::mutex liveliness_mutex_;
-  std::condition_variable liveliness_cv_;
-  bool liveliness_quit_ = false;
-  std::thread liveliness_thread_;
+  LivelinessKeeper heartbeat_alive_{heartbeat_};  // a node busy in a long computation stays alive
   std::int64_t tick_period_ns_ = 0;
   bool lockstep_ = false;
   std::int64_t last_deadline_log_ns_ = 0;

@@ -4,19 +4,51 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <optional>
 
 namespace quad::mapping {
 
-void ScanKeySet::clear()
+void ScanKeySet::clear(const octomap::OcTreeKey& centre, unsigned radius)
 {
-  for (const std::uint32_t slot : order_) {
+  for (const std::uint64_t v : order_) {
+    if (const auto at = windowIndex(unpack(v))) {
+      seen_[*at >> 6] = 0;  // clears the word: every bit set in it was a key of this scan
+      occupied_[*at >> 6] = 0;
+    }
+  }
+  for (const std::uint32_t slot : used_) {
     slots_[slot] = kEmpty;
   }
+  used_.clear();
   order_.clear();
+  side_ = radius > 0 && radius <= kMaxWindowRadius ? 2 * radius + 1 : 0;
+  for (std::size_t a = 0; a < 3; ++a) {
+    lo_[a] = static_cast<int>(centre[static_cast<unsigned>(a)]) - static_cast<int>(radius);
+  }
+  const std::size_t words = (std::size_t{side_} * side_ * side_ + 63) / 64;
+  if (seen_.size() < words) {
+    seen_.assign(words, 0);
+    occupied_.assign(words, 0);
+  }
 }
 
-void ScanKeySet::insert(std::uint64_t key, std::uint64_t flag)
+void ScanKeySet::insert(const octomap::OcTreeKey& key, bool occupied)
+{
+  if (const auto at = windowIndex(key)) {
+    if (!test(seen_, *at)) {
+      set(seen_, *at);
+      order_.push_back(pack(key));
+    }
+    if (occupied) {
+      set(occupied_, *at);
+    }
+    return;
+  }
+  insertHashed(pack(key), occupied ? kOccupiedBit : 0);
+}
+
+void ScanKeySet::insertHashed(std::uint64_t key, std::uint64_t flag)
 {
   if (slots_.empty()) {
     shift_ = 64 - 16;
@@ -28,8 +60,9 @@ void ScanKeySet::insert(std::uint64_t key, std::uint64_t flag)
     std::uint64_t& slot = slots_[i];
     if (slot == kEmpty) {
       slot = key | flag;
-      order_.push_back(static_cast<std::uint32_t>(i));
-      if (order_.size() * 2 > slots_.size()) {
+      used_.push_back(static_cast<std::uint32_t>(i));
+      order_.push_back(key);
+      if (used_.size() * 2 > slots_.size()) {
         grow();
       }
       return;
@@ -41,18 +74,34 @@ void ScanKeySet::insert(std::uint64_t key, std::uint64_t flag)
   }
 }
 
+std::size_t ScanKeySet::find(std::uint64_t key) const
+{
+  const std::size_t mask = slots_.size() - 1;
+  for (std::size_t i = (key * 0x9E3779B97F4A7C15ULL) >> shift_;; i = (i + 1) & mask) {
+    if ((slots_[i] & kKeyMask) == key) {
+      return i;
+    }
+  }
+}
+
 void ScanKeySet::grow()
 {
-  std::vector<std::uint64_t> old;
-  old.reserve(order_.size());
-  for (const std::uint32_t slot : order_) {
-    old.push_back(slots_[slot]);
+  std::vector<std::uint64_t> held;
+  held.reserve(used_.size());
+  for (const std::uint32_t slot : used_) {
+    held.push_back(slots_[slot]);
   }
   slots_.assign(slots_.size() * 2, kEmpty);
   --shift_;
-  order_.clear();
-  for (const std::uint64_t v : old) {
-    insert(v & kKeyMask, v & kOccupiedBit);
+  used_.clear();
+  const std::size_t mask = slots_.size() - 1;
+  for (const std::uint64_t v : held) {
+    std::size_t i = ((v & kKeyMask) * 0x9E3779B97F4A7C15ULL) >> shift_;
+    while (slots_[i] != kEmpty) {
+      i = (i + 1) & mask;
+    }
+    slots_[i] = v;
+    used_.push_back(static_cast<std::uint32_t>(i));
   }
 }
 
@@ -61,7 +110,14 @@ void MapTree::insertPointCloudTracked(const octomap::Pointcloud& cloud, const oc
 {
   // OccupancyOcTreeBase::computeUpdate without a bounding box, expression for expression,
   // so that every ray ends in the same voxel.
-  keys_.clear();
+  // Every key of the scan lies within the range (and a voxel of rounding) of the origin's.
+  octomap::OcTreeKey centre;
+  const double reach = std::ceil(max_range / resolution) + 2.0;
+  if (max_range >= 0.0 && reach <= ScanKeySet::kMaxWindowRadius && coordToKeyChecked(origin, centre)) {
+    keys_.clear(centre, static_cast<unsigned>(reach));
+  } else {
+    keys_.clear();
+  }
   path_valid_ = -1;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const octomap::point3d& p = cloud[i];

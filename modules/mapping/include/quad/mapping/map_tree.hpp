@@ -29,22 +29,35 @@ struct KeyChange {
 
 /// The set of keys one scan touches: free along the rays, occupied at the endpoints, with
 /// an occupied endpoint winning over a ray that crosses the same voxel (OctoMap's rule).
+///
+/// A scan's rays stay within their range of the sensor, so the keys within that range are
+/// kept in a dense window around it, one bit a voxel (a ray's next voxel is a bit test, not a
+/// hash probe into a table that spreads neighbours apart); keys outside it, or every key of a
+/// scan whose range is too long for a window, go into a flat open-addressing set.
 class ScanKeySet {
 public:
-  void clear();
-  void insertFree(const octomap::OcTreeKey& key) { insert(pack(key), 0); }
-  void insertOccupied(const octomap::OcTreeKey& key) { insert(pack(key), kOccupiedBit); }
+  /// Empties the set; keys within `radius` of `centre` along every axis go into the window.
+  /// Without a window (radius 0, or one wider than kMaxWindowRadius) every key is hashed.
+  void clear(const octomap::OcTreeKey& centre, unsigned radius);
+  void clear() { clear(octomap::OcTreeKey(0, 0, 0), 0); }
+  void insertFree(const octomap::OcTreeKey& key) { insert(key, false); }
+  void insertOccupied(const octomap::OcTreeKey& key) { insert(key, true); }
   std::size_t size() const { return order_.size(); }
 
   /// Calls f(key, occupied) once per key, in first-insertion order.
   template <typename F>
   void forEach(F&& f) const
   {
-    for (const std::uint32_t slot : order_) {
-      const std::uint64_t v = slots_[slot];
-      f(unpack(v), (v & kOccupiedBit) != 0);
+    for (const std::uint64_t v : order_) {
+      const octomap::OcTreeKey key = unpack(v);
+      const auto at = windowIndex(key);
+      f(key, at ? test(occupied_, *at) : (slots_[find(v)] & kOccupiedBit) != 0);
     }
   }
+
+  /// The widest window [voxels from the centre]: 2·128 + 1 a side, 2.1 MB for each of its
+  /// two bitmaps. A 0.2 m map's window reaches 25 m.
+  static constexpr unsigned kMaxWindowRadius = 128;
 
 private:
   static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
@@ -60,12 +73,38 @@ private:
     return {static_cast<octomap::key_type>(v & 0xffff), static_cast<octomap::key_type>((v >> 16) & 0xffff),
             static_cast<octomap::key_type>((v >> 32) & 0xffff)};
   }
-  void insert(std::uint64_t key, std::uint64_t flag);
+  static bool test(const std::vector<std::uint64_t>& bits, std::size_t i)
+  {
+    return ((bits[i >> 6] >> (i & 63)) & 1U) != 0;
+  }
+  static void set(std::vector<std::uint64_t>& bits, std::size_t i) { bits[i >> 6] |= std::uint64_t{1} << (i & 63); }
+
+  /// The key's bit in the window, nothing outside it (or without one).
+  std::optional<std::size_t> windowIndex(const octomap::OcTreeKey& k) const
+  {
+    const unsigned dx = static_cast<unsigned>(k[0] - lo_[0]);
+    const unsigned dy = static_cast<unsigned>(k[1] - lo_[1]);
+    const unsigned dz = static_cast<unsigned>(k[2] - lo_[2]);
+    if (dx >= side_ || dy >= side_ || dz >= side_) {
+      return std::nullopt;
+    }
+    return dx + std::size_t{side_} * (dy + std::size_t{side_} * dz);
+  }
+  void insert(const octomap::OcTreeKey& key, bool occupied);
+  void insertHashed(std::uint64_t key, std::uint64_t flag);
+  std::size_t find(std::uint64_t key) const;  ///< the slot holding a hashed key
   void grow();
 
+  // The window: keys lo_ ... lo_ + side_ − 1 per axis (side_ 0: none), a bit each.
+  std::array<int, 3> lo_{};
+  unsigned side_ = 0;
+  std::vector<std::uint64_t> seen_;
+  std::vector<std::uint64_t> occupied_;
+  // The keys outside it.
   std::vector<std::uint64_t> slots_;   // key | flag, or kEmpty
-  std::vector<std::uint32_t> order_;   // occupied slots, in insertion order
+  std::vector<std::uint32_t> used_;    // the slots in use
   int shift_ = 64;                     // 64 − log2(capacity)
+  std::vector<std::uint64_t> order_;   // every key, packed, in insertion order
 };
 
 class MapTree : public octomap::OcTree {

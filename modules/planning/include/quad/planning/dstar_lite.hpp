@@ -206,7 +206,8 @@ private:
   }
   Vertex* find(Cell c) { return const_cast<Vertex*>(std::as_const(*this).find(c)); }
   Vertex& vertex(Cell c);  ///< allocates c's page on first touch
-  /// f(neighbour, step) for each neighbour of c inside the lattice; p: c's coordinates.
+  /// f(neighbour, step) for each neighbour of c inside the lattice, in the order of their
+  /// cell numbers; p: c's coordinates. An f that returns bool stops the scan by returning false.
   template <typename F>
   void forEachStep(Cell c, const Eigen::Vector3i& p, F&& f) const;
   /// f(neighbour, step length) for each neighbour of c inside the lattice.

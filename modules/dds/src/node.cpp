@@ -179,7 +179,10 @@ void Node::onEvent(const EndpointEvent& event)
   }
 }
 
-void Node::followSimClock() { sim_clock_ = std::make_unique<SimClockFollower>(participant_, &waker_); }
+void Node::followSimClock(std::int32_t depth)
+{
+  sim_clock_ = std::make_unique<SimClockFollower>(participant_, &waker_, std::vector<std::uint32_t>{}, depth);
+}
 
 void Node::takeSimClock()
 {

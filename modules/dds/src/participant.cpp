@@ -25,6 +25,7 @@
 #include "quad/wire/fault_transport.hpp"
 #include "quad/dds/environment.hpp"
 #include "quad/dds/security.hpp"
+#include "quad/dds/topics.hpp"
 #include "quad/wire/validating_transport.hpp"
 
 namespace quad::dds {
@@ -256,9 +257,14 @@ ParticipantOptions optionsFromEnvironment(std::string name)
   if (const char* v = env(environment::kParticipantLease)) {
     options.participant_lease_s = parseInt<int>(v, environment::kParticipantLease, 1, std::numeric_limits<int>::max());
   }
+  if (const char* v = env(environment::kMapBudget)) {
+    options.map_budget_ns = 1'000'000LL * parseInt<int>(v, environment::kMapBudget, 0, 1000);
+  }
   options.qos_file = defaultQosFile();
   return options;
 }
+
+std::int64_t ParticipantOptions::mapBudgetNs() const { return map_budget_ns.value_or(topics::kMapUpdateBudgetNs); }
 
 /// Discovery callbacks: copy what was seen and hand it to the participant.
 class Participant::Listener : public fdds::DomainParticipantListener {

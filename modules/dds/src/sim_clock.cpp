@@ -2,13 +2,26 @@
 #include "quad/dds/sim_clock.hpp"
 
 #include <algorithm>
+#include <iterator>
+#include <optional>
 
 #include "quad/dds/topics.hpp"
 
 namespace quad::dds {
 
-SimClockFollower::SimClockFollower(Participant& participant, Waker* waker, std::vector<std::uint32_t> served)
-    : clock_(participant, topics::kSimClock, waker), served_(std::move(served))
+namespace {
+std::optional<eprosima::fastdds::dds::DataReaderQos> deeper(Participant& participant, std::int32_t depth)
+{
+  if (depth <= 0) {
+    return std::nullopt;
+  }
+  return withDepth(participant.readerQos(topics::kSimClock.info.qos_profile), depth);
+}
+}  // namespace
+
+SimClockFollower::SimClockFollower(Participant& participant, Waker* waker, std::vector<std::uint32_t> served,
+                                   std::int32_t depth)
+    : clock_(participant, topics::kSimClock, waker, deeper(participant, depth)), served_(std::move(served))
 {
 }
 
@@ -20,10 +33,35 @@ bool SimClockFollower::update()
     seen_ = true;
     lockstep_ = c->lockstep();
     ns_ = std::max(ns_, c->sim_ns());
-    depth_frames_ = std::max(depth_frames_, c->depth_frames());
+    if (c->depth_frames() > depth_frames_) {
+      depth_frames_ = c->depth_frames();
+      frames_by_ns_.emplace_back(c->sim_ns(), depth_frames_);
+    }
+    if (!c->state_sent() && (unsent_ns_.empty() || unsent_ns_.back() < c->sim_ns())) {
+      unsent_ns_.push_back(c->sim_ns());
+    }
     state_sent_ = c->state_sent();
   }
+  // The count at any time within the history needs the newest entry at or before it.
+  while (frames_by_ns_.size() > 1 && frames_by_ns_[1].first <= ns_ - kHistoryNs) {
+    frames_by_ns_.pop_front();
+  }
+  while (!unsent_ns_.empty() && unsent_ns_.front() < ns_ - kHistoryNs) {
+    unsent_ns_.pop_front();
+  }
   return arrived;
+}
+
+bool SimClockFollower::stateSentAt(std::int64_t ns) const
+{
+  return !std::binary_search(unsent_ns_.begin(), unsent_ns_.end(), ns);
+}
+
+std::uint64_t SimClockFollower::depthFramesAt(std::int64_t ns) const
+{
+  const auto after = std::upper_bound(frames_by_ns_.begin(), frames_by_ns_.end(), ns,
+                                      [](std::int64_t t, const auto& entry) { return t < entry.first; });
+  return after == frames_by_ns_.begin() ? 0 : std::prev(after)->second;
 }
 
 bool SimClockFollower::vouchesFor(std::int64_t stamp_ns) const

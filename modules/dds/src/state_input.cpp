@@ -17,12 +17,17 @@ const TopicInfo& stateTopic(StateSource s)
   return s == StateSource::kTruth ? topics::kSimState.info : topics::kEstimatedState.info;
 }
 
-StateInput::StateInput(Participant& participant, StateSource source, Waker* waker) : source_(source)
+StateInput::StateInput(Participant& participant, StateSource source, Waker* waker, std::int32_t depth)
+    : source_(source)
 {
+  std::optional<eprosima::fastdds::dds::DataReaderQos> qos;
+  if (depth > 0) {
+    qos = withDepth(participant.readerQos(stateTopic(source).qos_profile), depth);
+  }
   if (source == StateSource::kTruth) {
-    truth_.emplace(participant, topics::kSimState, waker);
+    truth_.emplace(participant, topics::kSimState, waker, qos);
   } else {
-    estimate_.emplace(participant, topics::kEstimatedState, waker);
+    estimate_.emplace(participant, topics::kEstimatedState, waker, qos);
   }
 }
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Participant options from the environment: what every quad process shares with the launcher.
 #include "quad/dds/participant.hpp"
+#include "quad/dds/topics.hpp"
 
 #include <gtest/gtest.h>
 
@@ -17,7 +18,7 @@ protected:
   {
     for (const char* v : {"QUAD_DOMAIN_ID", "QUAD_TRANSPORT", "QUAD_INITIAL_PEERS",
                           "QUAD_DISCOVERY_SERVER", "QUAD_VEHICLE_ID", "QUAD_FAULT_LAYER", "QUAD_UDP_MAX_MESSAGE",
-                          "QUAD_INTERFACES", "QUAD_LOCKSTEP", "QUAD_PARTICIPANT_LEASE"}) {
+                          "QUAD_INTERFACES", "QUAD_LOCKSTEP", "QUAD_PARTICIPANT_LEASE", "QUAD_MAP_BUDGET_MS"}) {
       unsetenv(v);
     }
   }
@@ -41,6 +42,7 @@ TEST_F(EnvironmentOptions, DefaultsAreDomainZeroAndBuiltinTransports)
   EXPECT_FALSE(o.qos_file.empty());
   EXPECT_FALSE(o.lockstep);
   EXPECT_EQ(o.participant_lease_s, 0);  // the QoS profile's
+  EXPECT_EQ(o.mapBudgetNs(), topics::kMapUpdateBudgetNs);  // the contract's
 }
 
 TEST_F(EnvironmentOptions, ValidValuesAreTaken)
@@ -55,9 +57,11 @@ TEST_F(EnvironmentOptions, ValidValuesAreTaken)
   setenv("QUAD_INTERFACES", "10.0.0.3,192.168.1.7", 1);
   setenv("QUAD_LOCKSTEP", "1", 1);
   setenv("QUAD_PARTICIPANT_LEASE", "20", 1);
+  setenv("QUAD_MAP_BUDGET_MS", "0", 1);
   const auto o = optionsFromEnvironment("test");
   EXPECT_TRUE(o.lockstep);
   EXPECT_EQ(o.participant_lease_s, 20);
+  EXPECT_EQ(o.mapBudgetNs(), 0);
   EXPECT_EQ(o.interfaces, (std::vector<std::string>{"10.0.0.3", "192.168.1.7"}));
   EXPECT_TRUE(o.fault_layer);
   EXPECT_EQ(o.udp_max_message, 1400U);
@@ -81,6 +85,9 @@ TEST_F(EnvironmentOptions, BadValuesNameTheVariableAndTheValue)
   clear();
   setenv("QUAD_PARTICIPANT_LEASE", "0.5", 1);
   EXPECT_EQ(errorOf(), "QUAD_PARTICIPANT_LEASE: 0.5: expected an integer in [1, 2147483647]");
+  clear();
+  setenv("QUAD_MAP_BUDGET_MS", "1001", 1);
+  EXPECT_EQ(errorOf(), "QUAD_MAP_BUDGET_MS: 1001: expected an integer in [0, 1000]");
   clear();
   setenv("QUAD_UDP_MAX_MESSAGE", "100", 1);
   EXPECT_EQ(errorOf(), "QUAD_UDP_MAX_MESSAGE: 100: expected an integer in [1200, 65500]");

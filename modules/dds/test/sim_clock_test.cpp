@@ -1,8 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Following the plant's clock between two real participants: sim time never goes back, the
 // newest sample says lockstep, frames and state, and a state is vouched for only up to
-// kStateAheadOfClockNs past the clock.
+// kStateAheadOfClockNs past the clock; the depth frames published up to a time, and the times
+// no state was sent, are kept from the samples taken.
 #include <gtest/gtest.h>
+
+#include <tuple>
+#include <vector>
 
 #include "quad/dds/participant.hpp"
 #include "quad/dds/publisher.hpp"
@@ -28,16 +32,24 @@ msg::SimClock tick(std::int64_t sim_ns, bool lockstep, std::uint64_t frames, boo
   return c;
 }
 
+/// The plant's clock writer and a follower on another participant.
+struct ClockLink {
+  static ParticipantOptions options(const char* name)
+  {
+    intraprocessDeliveryOff();  // two participants in one process (participant.hpp)
+    return ParticipantOptions{.name = name, .domain_id = kDomain, .transport = Transport::kUdp};
+  }
+  Participant plant{options("plant")};
+  Participant reader{options("reader")};
+  Publisher<msg::SimClock> clock{plant, topics::kSimClock};
+  SimClockFollower follower{reader};
+};
+
 TEST(SimClockFollower, TimeOnlyMovesForwardAndTheNewestSampleSaysTheRest)
 {
-  intraprocessDeliveryOff();  // two participants in one process (participant.hpp)
-  const auto options = [](const char* name) {
-    return ParticipantOptions{.name = name, .domain_id = kDomain, .transport = Transport::kUdp};
-  };
-  Participant plant(options("plant"));
-  Participant reader(options("reader"));
-  Publisher<msg::SimClock> clock(plant, topics::kSimClock);
-  SimClockFollower follower(reader);
+  ClockLink link;
+  auto& clock = link.clock;
+  auto& follower = link.follower;
   ASSERT_TRUE(test::waitFor([&] { return clock.matchedReaders() == 1; }));
 
   // GIVEN no clock yet: nothing seen, time 0
@@ -61,6 +73,44 @@ TEST(SimClockFollower, TimeOnlyMovesForwardAndTheNewestSampleSaysTheRest)
   EXPECT_TRUE(follower.vouchesFor(2'000'000'000));
   EXPECT_TRUE(follower.vouchesFor(2'000'000'000 + topics::kStateAheadOfClockNs));
   EXPECT_FALSE(follower.vouchesFor(2'000'000'001 + topics::kStateAheadOfClockNs));
+}
+
+TEST(SimClockFollower, KeepsTheFramesPublishedAndTheStatesNotSentUpToATimeForTwoSeconds)
+{
+  ClockLink link;
+  auto& clock = link.clock;
+  auto& follower = link.follower;
+  ASSERT_TRUE(test::waitFor([&] { return clock.matchedReaders() == 1; }));
+
+  // GIVEN clock samples at 0 (no frame yet), 0.1 s (the first), 0.104 s (no state sent: a
+  // fault dropped it), 0.2 s (the second frame)
+  for (const auto& [ns, frames, state_sent] : std::vector<std::tuple<std::int64_t, std::uint64_t, bool>>{
+           {0, 0, true}, {100'000'000, 1, true}, {104'000'000, 1, false}, {200'000'000, 2, true}}) {
+    ASSERT_TRUE(clock.write(tick(ns, true, frames, state_sent)));
+    ASSERT_TRUE(test::waitFor([&] { return follower.update(); }));
+  }
+  // THEN the state of each sample's time was sent but for the one that said not
+  EXPECT_TRUE(follower.stateSentAt(100'000'000));
+  EXPECT_FALSE(follower.stateSentAt(104'000'000));
+  EXPECT_TRUE(follower.stateSentAt(200'000'000));
+  // AND a time counts the frames of the newest sample at or before it
+  EXPECT_EQ(follower.depthFramesAt(-1), 0U);
+  EXPECT_EQ(follower.depthFramesAt(99'999'999), 0U);
+  EXPECT_EQ(follower.depthFramesAt(100'000'000), 1U);
+  EXPECT_EQ(follower.depthFramesAt(199'999'999), 1U);
+  EXPECT_EQ(follower.depthFramesAt(200'000'000), 2U);
+  EXPECT_EQ(follower.depthFramesAt(5'000'000'000), 2U);
+
+  // WHEN the clock reaches 3 s with 30 frames
+  ASSERT_TRUE(clock.write(tick(3'000'000'000, true, 30, true)));
+  ASSERT_TRUE(test::waitFor([&] { return follower.update(); }));
+  // THEN the last two seconds still count as they did, and the newest sample from its time
+  EXPECT_EQ(follower.depthFramesAt(1'000'000'000), 2U);
+  EXPECT_EQ(follower.depthFramesAt(2'999'999'999), 2U);
+  EXPECT_EQ(follower.depthFramesAt(3'000'000'000), 30U);
+  // AND what lies further back is forgotten but for the count in force two seconds ago
+  EXPECT_EQ(follower.depthFramesAt(150'000'000), 0U);
+  EXPECT_TRUE(follower.stateSentAt(104'000'000));
 }
 
 }  // namespace

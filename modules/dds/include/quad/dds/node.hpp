@@ -97,10 +97,14 @@ protected:
   void setLockstep(bool lockstep) { lockstep_ = lockstep; }
   bool lockstep() const { return lockstep_; }
   /// Follows the plant's clock: run() takes its samples before every onWake() and onTick(),
-  /// and lockstep() follows the newest. Call once, from the constructor.
-  void followSimClock();
+  /// and lockstep() follows the newest. Call once, from the constructor. `depth`: as the
+  /// SimClockFollower's.
+  void followSimClock(std::int32_t depth = 0);
   /// The clock followed (followSimClock() first).
   const SimClockFollower& simClock() const { return *sim_clock_; }
+  /// Takes the clock samples that arrived: run() does before every onWake() and onTick(); a
+  /// node whose work takes long calls it to know where the clock got meanwhile.
+  void takeSimClock();
 
   virtual void onStart() {}
   virtual void onWake() {}
@@ -116,7 +120,6 @@ private:
   /// Payloads refused for breaking their IDL (message_types.hpp) and datagrams the validating
   /// transport dropped count as rejected inputs.
   void countRejectedPayloads();
-  void takeSimClock();
 
   std::string module_name_;
   Participant participant_;

@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,11 @@ struct ParticipantOptions {
   /// that a participant goes unheard for longer has its peers drop it, and Fast DDS 2.9 does
   /// not always match the endpoints again once it is heard (docs/fleet.md).
   int participant_lease_s = 0;
+  /// The run's budget for a scan's map update in lockstep [ns]; none: the topic contract's
+  /// (topics::kMapUpdateBudgetNs). The mapper and the planner of a run must agree on it.
+  std::optional<std::int64_t> map_budget_ns;
+  /// The map update's budget this run keeps: map_budget_ns, else the contract's.
+  std::int64_t mapBudgetNs() const;
 };
 
 /// The options a quad process takes from its environment, so that every module and tool of a
@@ -85,8 +91,8 @@ struct ParticipantOptions {
 /// QUAD_DOMAIN_ID, QUAD_TRANSPORT (default|udp|shm), QUAD_INITIAL_PEERS (comma separated),
 /// QUAD_DISCOVERY_SERVER, QUAD_QOS_FILE, QUAD_VEHICLE_ID, QUAD_FAULT_LAYER (0|1),
 /// QUAD_UDP_MAX_MESSAGE (bytes), QUAD_VALIDATE_DATAGRAMS (0|1), QUAD_SECURITY_DIR,
-/// QUAD_SECURITY_IDENTITY, QUAD_LOCKSTEP (0|1), QUAD_PARTICIPANT_LEASE (whole seconds). A bad
-/// value throws std::invalid_argument naming the variable and the value.
+/// QUAD_SECURITY_IDENTITY, QUAD_LOCKSTEP (0|1), QUAD_PARTICIPANT_LEASE (whole seconds),
+/// QUAD_MAP_BUDGET_MS (whole milliseconds, 0 to 1000). A bad value throws std::invalid_argument naming the variable and the value.
 ParticipantOptions optionsFromEnvironment(std::string name);
 
 /// Turns Fast DDS's intraprocess delivery off for the whole process, for the participants

@@ -8,6 +8,8 @@
 /// past the clock than the plant sends one. Nodes follow it through Node::followSimClock().
 
 #include <cstdint>
+#include <deque>
+#include <utility>
 #include <vector>
 
 #include <quad/msg/SimClock.h>
@@ -20,7 +22,10 @@ class SimClockFollower {
 public:
   /// Follows the clock of the participant's own vehicle, or with `served` the clock samples
   /// of those vehicles (the launcher following a fleet: one clock, a sample per vehicle).
-  SimClockFollower(Participant& participant, Waker* waker = nullptr, std::vector<std::uint32_t> served = {});
+  /// `depth` > 0: the reader keeps that many unread samples, not the newest only, so that a
+  /// follower that works while the clock runs on still takes every sample.
+  SimClockFollower(Participant& participant, Waker* waker = nullptr, std::vector<std::uint32_t> served = {},
+                   std::int32_t depth = 0);
 
   /// Takes every clock sample that arrived; true when one did.
   bool update();
@@ -29,6 +34,13 @@ public:
   bool lockstep() const { return lockstep_; }                 ///< of the newest sample
   std::int64_t ns() const { return ns_; }                     ///< [ns] newest sim time; 0 before any
   std::uint64_t depthFrames() const { return depth_frames_; }  ///< published up to then
+  /// Depth frames published up to sim time `ns`, as the newest clock sample taken at or before
+  /// it counted them (0 before the first). Kept for the last kHistoryNs of sim time.
+  std::uint64_t depthFramesAt(std::int64_t ns) const;
+  /// False when a sample of sim time `ns` was taken that said no vehicle state of that time
+  /// was sent (a fault dropped it); true otherwise. Kept for the last kHistoryNs of sim time.
+  bool stateSentAt(std::int64_t ns) const;
+  static constexpr std::int64_t kHistoryNs = 2'000'000'000;
   bool stateSent() const { return state_sent_; }              ///< of the newest sample
 
   /// A vehicle state stamped `stamp_ns` is no further past the newest clock than the plant
@@ -44,6 +56,8 @@ private:
   bool lockstep_ = false;
   std::int64_t ns_ = 0;
   std::uint64_t depth_frames_ = 0;
+  std::deque<std::pair<std::int64_t, std::uint64_t>> frames_by_ns_;  // (sample's time, count) where the count rose
+  std::deque<std::int64_t> unsent_ns_;  // times of the samples that said no state was sent
   bool state_sent_ = true;
 };
 

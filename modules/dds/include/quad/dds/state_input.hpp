@@ -53,7 +53,9 @@ struct StateSample {
 /// Reads the chosen source's topic.
 class StateInput {
 public:
-  StateInput(Participant& participant, StateSource source, Waker* waker);
+  /// `depth` > 0: the reader keeps that many unread samples, not the topic profile's newest
+  /// only (a reader that needs the state of a given time after working for a while).
+  StateInput(Participant& participant, StateSource source, Waker* waker, std::int32_t depth = 0);
 
   /// Every unread sample, oldest first.
   std::vector<StateSample> takeAll();

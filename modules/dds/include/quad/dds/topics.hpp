@@ -150,6 +150,15 @@ constexpr std::int64_t operatorInputDueNs(std::int64_t stamp_ns, std::int64_t cl
   return from + kOperatorInputDelayNs;
 }
 
+/// In lockstep, the mapper's output for a depth frame stamped t (its quad/mapping/update, and
+/// the stats and snapshot of that scan) is due at t plus this, and stamped with that time: what
+/// an onboard mapper would take. The clock runs on while the mapper works and waits at the due
+/// time for an output not yet out (an overrun, which the mapper counts); the planner applies
+/// each update when the clock reaches its due time, so its replans see the same map in every
+/// run. In real time the mapper takes what it takes, and the planner applies updates as they
+/// come.
+inline constexpr std::int64_t kMapUpdateBudgetNs = 50'000'000;
+
 /// Every contract, for tools that iterate over topics.
 inline constexpr std::array kAll{
     kSimClock.info, kSimState.info, kSimImu.info, kSimPosition.info, kSimBaro.info, kSimMag.info,
@@ -175,12 +184,14 @@ constexpr bool isSimPaced(std::string_view topic)
   return std::find(kWallPaced.begin(), kWallPaced.end(), topic) == kWallPaced.end();
 }
 
-/// Members that hold wall-clock or measured compute times ("<scoped struct>.<member>"), and
-/// the writer's sample number, which counts the resends of a participant waiting in wall time
-/// for a reader: in two lockstep runs of one seed every other member of every sim-paced topic
+/// Members that hold wall-clock or measured compute times ("<scoped struct>.<member>"), the
+/// writer's sample number, which counts the resends of a participant waiting in wall time for
+/// a reader, and the mapper's overruns, which count where its compute time outlasted the
+/// clock's: in two lockstep runs of one seed every other member of every sim-paced topic
 /// agrees.
-inline constexpr std::array<std::string_view, 4> kWallClockFields{
-    "quad::msg::Header.publish_ns", "quad::msg::Header.seq", "quad::msg::Path.replan_time_s", "quad::msg::MapStats.insert_time_s"};
+inline constexpr std::array<std::string_view, 5> kWallClockFields{
+    "quad::msg::Header.publish_ns", "quad::msg::Header.seq", "quad::msg::Path.replan_time_s",
+    "quad::msg::MapStats.insert_time_s", "quad::msg::MapStats.overruns"};
 
 /// The contract of a topic name, if quad declares one.
 std::optional<TopicInfo> find(std::string_view name);

@@ -11,9 +11,11 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
+#include "json_lines.hpp"
 #include "module_wait.hpp"
 #include "process.hpp"
 
@@ -115,6 +117,102 @@ TEST(MappingNode, AMapperStartedAgainResumesFromItsCheckpoint)
   EXPECT_GT(compared, 100U);
   again.signal(SIGTERM);
   EXPECT_EQ(again.wait(10s), 0) << again.output();
+  std::filesystem::remove_all(dir);
+}
+
+
+/// The newest sample of the run's clock, as `quad topic echo` prints it.
+nlohmann::json clockSample(const std::map<std::string, std::string>& run_env)
+{
+  ChildProcess echo({QUAD_TOOL, "topic", "echo", "quad/sim/clock", "-n", "1", "--json", "--timeout", "10"}, run_env);
+  EXPECT_EQ(echo.wait(20s), 0) << echo.output();
+  const auto samples = quad::test::jsonLines(echo.output());
+  return samples.empty() ? nlohmann::json::object({{"sim_ns", -1}, {"depth_frames", 0}}) : samples.front();
+}
+
+// In lockstep a scan's outputs are due 50 ms of sim time after its depth frame and stamped
+// with that time; the clock runs on while the mapper works, stands where the mapper's promise
+// ends while it is stopped, and an update out after the clock reached its due time counts as
+// an overrun.
+TEST(MappingNode, AScansOutputsAreDueTheBudgetAfterItAndTheClockStandsForAStoppedMapper)
+{
+  constexpr std::int64_t kBudgetNs = 50'000'000;   // the map update's contract
+  constexpr std::int64_t kFramePeriodNs = 100'000'000;  // the x500's 10 Hz camera
+  const int domain = 83;
+  // Peers keep a stopped participant for 10 s, not the 2 s that would drop the mapper.
+  auto run_env = env(domain);
+  run_env["QUAD_PARTICIPANT_LEASE"] = "10";
+  const auto dir = std::filesystem::temp_directory_path() / "quad_mapping_node_budget_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "mapping.yaml") << "state: {source: truth}\n";
+  writePlantConfig(dir, 30.0);
+  ChildProcess mapping({QUAD_MAPPING_NODE, "--config", (dir / "mapping.yaml").string()}, run_env);
+  ChildProcess controller({QUAD_ALTITUDE_CONTROLLER, "757.5", "2.0"}, run_env);
+  ASSERT_TRUE(quad::test::waitForRunningModule(domain, "mapping", 20s)) << mapping.output();
+  ASSERT_TRUE(controller.waitForOutput("ready", 10s)) << controller.output();
+  // The updates (reliable: every one from the first this reader matched), and most of the
+  // stats (best effort: a burst after the stop may lose a few) for the overruns they count.
+  ChildProcess updates({QUAD_TOOL, "topic", "echo", "quad/mapping/update", "-n", "250", "--json", "--max-elements",
+                        "1", "--timeout", "120"},
+                       run_env);
+  ChildProcess stats({QUAD_TOOL, "topic", "echo", "quad/mapping/stats", "-n", "200", "--json", "--timeout", "120"},
+                     run_env);
+  ChildProcess plant({QUAD_PLANT_NODE, "--config", (dir / "plant.yaml").string()}, run_env);
+  // GIVEN a lockstep run of 30 s past 1 s of sim time
+  nlohmann::json before = clockSample(run_env);
+  for (int i = 0; i < 200 && before["sim_ns"].get<std::int64_t>() < 1'000'000'000; ++i) {
+    before = clockSample(run_env);
+  }
+  ASSERT_GE(before["sim_ns"].get<std::int64_t>(), 1'000'000'000) << plant.output();
+  // WHEN the mapper is stopped for a few seconds
+  mapping.signal(SIGSTOP);
+  std::this_thread::sleep_for(1500ms);
+  const nlohmann::json held = clockSample(run_env);
+  const auto out_before = quad::test::jsonLines(updates.output());  // scans out before the stop
+  ASSERT_FALSE(out_before.empty()) << "no update by sim time 1 s";
+  const std::int64_t first_not_out_ns = (out_before.back()["depth_frames"].get<std::int64_t>() + 1) * kFramePeriodNs;
+  std::this_thread::sleep_for(1500ms);
+  const nlohmann::json still = clockSample(run_env);
+  mapping.signal(SIGCONT);
+  ASSERT_EQ(plant.wait(90s), 0) << plant.output();
+  ASSERT_EQ(updates.wait(30s), 0) << updates.output();
+  ASSERT_EQ(stats.wait(30s), 0) << stats.output();
+
+  // THEN the clock stood short of the run's end while the mapper was stopped
+  const auto held_ns = held["sim_ns"].get<std::int64_t>();
+  EXPECT_EQ(still["sim_ns"].get<std::int64_t>(), held_ns);
+  EXPECT_LT(held_ns, 30'000'000'000);
+  // AND every scan's update is stamped its frame's time (on the camera's 10 Hz grid) plus the
+  // budget, one per frame in order, each frame once (however often a waiting plant resent it)
+  const auto scans = quad::test::jsonLines(updates.output());
+  ASSERT_EQ(scans.size(), 250U);
+  for (std::size_t i = 0; i < scans.size(); ++i) {
+    const auto frame = scans[i]["depth_frames"].get<std::int64_t>();
+    EXPECT_EQ(scans[i]["header"]["stamp_ns"].get<std::int64_t>(), frame * kFramePeriodNs + kBudgetNs) << scans[i];
+    if (i > 0) {
+      EXPECT_EQ(frame, scans[i - 1]["depth_frames"].get<std::int64_t>() + 1) << scans[i];
+    }
+  }
+  // AND the stats carry the same stamps, and the overruns, counted since the start, never go back
+  const auto samples = quad::test::jsonLines(stats.output());
+  ASSERT_EQ(samples.size(), 200U) << stats.output();
+  std::uint64_t overruns = 0;
+  for (const auto& sample : samples) {
+    EXPECT_EQ(sample["header"]["stamp_ns"].get<std::int64_t>() % kFramePeriodNs, kBudgetNs) << sample;
+    EXPECT_GE(sample["overruns"].get<std::uint64_t>(), overruns);
+    overruns = sample["overruns"].get<std::uint64_t>();
+  }
+  // at most one a scan
+  EXPECT_LE(static_cast<std::int64_t>(overruns),
+            (samples.back()["header"]["stamp_ns"].get<std::int64_t>() - kBudgetNs) / kFramePeriodNs);
+  // AND where the clock stood at or past the due time of the first scan not out at the stop,
+  // the mapper, resumed, counted it as an overrun
+  if (held_ns >= first_not_out_ns + kBudgetNs) {
+    EXPECT_GE(overruns, 1U) << "the clock stood at " << held_ns << " ns; the first scan not out: " << first_not_out_ns;
+  }
+  mapping.signal(SIGTERM);
+  EXPECT_EQ(mapping.wait(10s), 0) << mapping.output();
   std::filesystem::remove_all(dir);
 }
 

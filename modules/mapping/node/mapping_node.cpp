@@ -18,6 +18,8 @@ namespace quad::mapping {
 namespace {
 constexpr std::size_t kMaxChangesPerMessage = 262144;  // MapUpdate's bound
 constexpr std::uint64_t kSeqReserve = 1'000'000;  // update numbers a checkpoint reserves ahead
+constexpr std::int32_t kHeldClouds = 32;   // 3.2 s of the camera's 10 Hz: beyond the largest budget
+constexpr std::int32_t kHeldStates = 512;  // 2 s of 250 Hz states
 
 msg::VoxelState toMessage(VoxelState s)
 {
@@ -78,15 +80,19 @@ MappingNode::MappingNode(MappingNodeConfig config, dds::ParticipantOptions optio
     : Node("mapping", std::move(options)),
       config_(std::move(config)),
       mapper_(config_.map),
-      depth_(participant(), dds::topics::kSimDepth, waker()),
-      state_(participant(), config_.state_source, waker()),
+      // In lockstep the clock runs on while a cloud is integrated, up to the map update's
+      // budget: the clouds and the states that come meanwhile wait here, none replaced by a
+      // newer one (the next cloud is placed with the state of its own time).
+      depth_(participant(), dds::topics::kSimDepth, waker(),
+             dds::withDepth(participant().readerQos(dds::topics::kSimDepth.info.qos_profile), kHeldClouds)),
+      state_(participant(), config_.state_source, waker(), kHeldStates),
       commands_(participant(), dds::topics::kVehicleCommand, waker()),
       updates_(participant(), dds::topics::kMapUpdate),
       snapshots_(participant(), dds::topics::kMapSnapshot),
       stats_(participant(), dds::topics::kMapStats),
       lockstep_(participant(), "mapping")
 {
-  followSimClock();
+  followSimClock(kHeldStates);  // a sample at the state's rate, each saying whether a state went out
   spdlog::info("mapping: resolution {} m, max range {} m, clouds placed on the {} ({})", config_.map.resolution,
                config_.map.max_range, dds::toString(config_.state_source), state_.topic().name);
   map_bytes_ = mapper_.bytes();  // the empty map's; resume() counts a resumed one
@@ -179,10 +185,10 @@ void MappingNode::integratePending()
     const std::int64_t stamp = cloud.header().stamp_ns();
     const auto body = poses_.at(stamp);
     // No state will come for it: states of its time or later came (it fell in a gap, or the
-    // estimator was still aligning), the lockstep clock of its time says none was sent, or in
+    // estimator was still aligning), the lockstep clock of its time said none was sent, or in
     // real time it has waited long enough.
     const bool never = (!body && states_heard_ns_ >= stamp) ||
-                       (lockstep() && simClock().seen() && simClock().ns() >= stamp && !simClock().stateSent()) ||
+                       (lockstep() && simClock().ns() >= stamp && !simClock().stateSentAt(stamp)) ||
                        (!lockstep() && simClock().ns() - stamp > kPoseWaitNs);
     // In lockstep the state of its own time, not one carried on to it: runs repeat.
     const bool wait = lockstep() ? states_heard_ns_ < stamp : !body;
@@ -234,6 +240,16 @@ void MappingNode::integrate(const msg::PointCloud& cloud, const std::optional<ge
     // Still one (empty) update below: consumers count clouds through them.
   }
   last_stamp_ns_ = cloud.header().stamp_ns();
+  taken_stamp_ns_ = last_stamp_ns_;
+  // Out when it is due (in lockstep the clock waits at that time for what is not): an
+  // overrun when the clock got there first, meanwhile or before.
+  const std::int64_t due_ns = last_stamp_ns_ + participant().options().mapBudgetNs();
+  takeSimClock();
+  if (lockstep() && simClock().ns() >= due_ns) {
+    ++overruns_;
+    spdlog::debug("mapping: the update for depth frame {} is {:.3f} s past its due time", frames_taken_,
+                  common::toSeconds(simClock().ns() - due_ns));
+  }
   // The change set, in as many messages as its bound needs, each with its own number.
   const std::uint64_t first_seq = update_seq_ + 1;
   const std::uint64_t messages = std::max<std::size_t>(1, (result.changes.size() + kMaxChangesPerMessage - 1) /
@@ -244,7 +260,7 @@ void MappingNode::integrate(const msg::PointCloud& cloud, const std::optional<ge
   }
   for (std::size_t begin = 0; begin == 0 || begin < result.changes.size(); begin += kMaxChangesPerMessage) {
     msg::MapUpdate update;
-    update.header().stamp_ns(cloud.header().stamp_ns());
+    update.header().stamp_ns(due_ns);
     update.update_seq(++update_seq_);
     update.resolution(mapper_.resolution());
     update.depth_frames(frames_taken_);
@@ -264,7 +280,7 @@ void MappingNode::integrate(const msg::PointCloud& cloud, const std::optional<ge
     counters().samples_out++;
   }
   msg::MapStats stats;
-  stats.header().stamp_ns(cloud.header().stamp_ns());
+  stats.header().stamp_ns(due_ns);
   stats.update_seq(first_seq);
   stats.points(static_cast<std::uint32_t>(result.points));
   stats.changed_voxels(static_cast<std::uint32_t>(result.changes.size()));
@@ -273,6 +289,7 @@ void MappingNode::integrate(const msg::PointCloud& cloud, const std::optional<ge
   stats.map_bytes(map_bytes_);
   stats.rejected_clouds(rejected_);
   stats.skipped_clouds(skipped_);
+  stats.overruns(overruns_);
   stats_.write(stats);
   if (match_pending_) {
     match_pending_ = false;
@@ -286,7 +303,7 @@ void MappingNode::integrate(const msg::PointCloud& cloud, const std::optional<ge
     next_snapshot_ns_ = cloud.header().stamp_ns() + common::toNanoseconds(config_.snapshot_period_s);
   }
   if (cloud.header().stamp_ns() <= match_until_ns_ || periodic) {
-    publishSnapshot(cloud.header().stamp_ns());
+    publishSnapshot(due_ns);
     checkpoint(last_stamp_ns_, reserved_seq_);
   }
 }
@@ -308,16 +325,23 @@ void MappingNode::onEvent(const dds::EndpointEvent& event)
 
 void MappingNode::reportLockstep()
 {
-  // Done with time t once every depth frame published up to t is integrated.
-  if (!lockstep() || simClock().ns() <= reported_ns_) {
+  if (!lockstep() || !simClock().seen()) {
     return;
   }
-  if (frames_taken_ < simClock().depthFrames()) {
+  // Done up to just before the due time of the oldest depth frame not yet dealt with: one
+  // waiting here, else one published and not yet here (stamped after the last taken), else
+  // the next to come (stamped after the clock's time, whose frames are all taken).
+  const std::int64_t oldest = !pending_.empty()                           ? pending_.front().header().stamp_ns()
+                              : frames_taken_ < simClock().depthFrames() ? taken_stamp_ns_ + 1
+                                                                          : simClock().ns() + 1;
+  const std::int64_t done = oldest + participant().options().mapBudgetNs() - 1;
+  if (done < simClock().ns()) {
     lockstep_.holding(simClock().ns(), [this] {
       return fmt::format("{} of {} depth frames integrated", frames_taken_, simClock().depthFrames());
     });
-  } else if (lockstep_.reportDone(simClock().ns())) {
-    reported_ns_ = simClock().ns();
+  }
+  if (done > reported_ns_ && lockstep_.reportDone(done)) {
+    reported_ns_ = done;
   }
 }
 
@@ -341,12 +365,16 @@ void MappingNode::onWake()
     }
   }
   takeStates();
-  auto clouds = depth_.takeAll();
-  // A cloud resent by a lockstep plant waiting for us is one we have, or one waiting for its
-  // state: known by its frame.
-  const std::uint64_t have = pending_.empty() ? frames_taken_ : std::max(frames_taken_, pending_.back().frame());
-  std::erase_if(clouds, [have](const msg::PointCloud& c) { return c.frame() != 0 && c.frame() <= have; });
-  pending_.insert(pending_.end(), clouds.begin(), clouds.end());
+  // A cloud resent by a lockstep plant waiting for us is one we have, one waiting for its
+  // state, or one taken just before it (its copies queue while we work): known by its frame.
+  std::uint64_t have = pending_.empty() ? frames_taken_ : std::max(frames_taken_, pending_.back().frame());
+  for (auto& cloud : depth_.takeAll()) {
+    if (cloud.frame() != 0 && cloud.frame() <= have) {
+      continue;
+    }
+    have = std::max(have, cloud.frame());
+    pending_.push_back(std::move(cloud));
+  }
   if (!lockstep() && pending_.size() > 1) {
     // Behind in real time: the newest cloud carries the freshest view; count the others
     // (integrate() then accounts for every frame up to the newest's number, those the

@@ -92,6 +92,8 @@ private:
   std::uint64_t update_seq_ = 0;
   std::uint64_t reserved_seq_ = 0;  // numbers below this are in the checkpoint's reservation
   std::int64_t last_stamp_ns_ = 0;  // the newest cloud integrated
+  std::int64_t taken_stamp_ns_ = -1;  // the newest cloud dealt with in this run (-1: none)
+  std::uint64_t overruns_ = 0;       // updates the lockstep clock reached the due time of first
   std::int64_t next_snapshot_ns_ = 0;
   // A newly matched update reader: snapshots go with every cloud up to match_until_ns_.
   bool match_pending_ = false;

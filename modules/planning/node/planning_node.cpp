@@ -133,6 +133,49 @@ void PlanningNode::answerGoal(std::uint32_t goal_id, bool accepted, const std::s
   counters().samples_out++;
 }
 
+std::int64_t PlanningNode::mapTimeNs() const
+{
+  // A state comes with the clock sample of its time, on another topic: either may be first.
+  return std::max(now_ns_, simClock().ns());
+}
+
+std::uint64_t PlanningNode::framesDue()
+{
+  // In lockstep an update takes effect at its due time, the mapper's budget after its depth
+  // frame: the frames due are those the clock had published the budget earlier. In real time
+  // every update as it comes.
+  return lockstep() ? simClock().depthFramesAt(mapTimeNs() - participant().options().mapBudgetNs())
+                    : simClock().depthFrames();
+}
+
+void PlanningNode::takeMap()
+{
+  while (auto s = snapshots_.take()) {
+    held_snapshots_.push_back(std::move(*s));
+  }
+  for (auto& u : updates_.takeAll()) {
+    counters().samples_in++;
+    held_updates_.push_back(std::move(u));
+  }
+  // Snapshots first: one sent with the updates it contains must not undo newer ones. Taking
+  // each when it is due (by the state's time or the clock's, whichever is newer), not when it
+  // came, makes the map a replan sees the same in every run (the mapper works ahead of the
+  // clock up to its budget).
+  const std::int64_t now_ns = mapTimeNs();
+  std::erase_if(held_snapshots_, [&](const msg::MapSnapshot& snapshot) {
+    const bool due = !lockstep() || snapshot.header().stamp_ns() <= now_ns;
+    if (due) {
+      applySnapshot(snapshot);
+    }
+    return due;
+  });
+  const std::uint64_t frames_due = framesDue();
+  while (!held_updates_.empty() && (!lockstep() || held_updates_.front().depth_frames() <= frames_due)) {
+    applyUpdate(held_updates_.front());
+    held_updates_.pop_front();
+  }
+}
+
 void PlanningNode::applySnapshot(const msg::MapSnapshot& snapshot)
 {
   bool bad = false;
@@ -223,11 +266,11 @@ void PlanningNode::noticeLostUpdate()
       mapper_done_ns_ = std::max(mapper_done_ns_, r->done_ns());
     }
   }
-  // The mapper reports a time done once the updates for every cloud up to it are out; reliable
+  // The mapper reports a time done once every update due by then is out; reliable
   // delivery repairs a lost datagram within a few 100 ms heartbeats. An update still missing
   // a second after that report was corrupted past recognition (another vehicle's id, a wrong
   // count) and will not come: without this, lockstep would wait for it for ever.
-  if (!lockstep() || update_lost_ || frames_applied_ >= simClock().depthFrames() || mapper_done_ns_ < simClock().ns()) {
+  if (!lockstep() || update_lost_ || frames_applied_ >= framesDue() || mapper_done_ns_ < mapTimeNs()) {
     mapper_done_wall_ns_ = 0;
     return;
   }
@@ -239,7 +282,7 @@ void PlanningNode::noticeLostUpdate()
     counters().errors++;
     spdlog::warn("{}: the mapper was done up to {:.3f} s a second ago and the update for depth frame {} "
                  "never came: lost; a gap until the next snapshot", dds::topics::kMapUpdate.info.name,
-                 common::toSeconds(mapper_done_ns_), simClock().depthFrames());
+                 common::toSeconds(mapper_done_ns_), framesDue());
   }
 }
 
@@ -397,14 +440,6 @@ void PlanningNode::takeGoal(const msg::Goal& g)
 
 void PlanningNode::onWake()
 {
-  // Snapshots first: one sent with the updates it contains must not undo newer ones.
-  while (auto s = snapshots_.take()) {
-    applySnapshot(*s);
-  }
-  for (const auto& u : updates_.takeAll()) {
-    counters().samples_in++;
-    applyUpdate(u);
-  }
   // An update refused on receipt (its payload broke the IDL) is lost for good: the middleware
   // counts it delivered and never sends it again. The follower sees the gap at the next
   // update and waits for a snapshot; until then what the lost one accounted for is unknown.
@@ -446,25 +481,27 @@ void PlanningNode::onWake()
     takeGoal(goals_due_.front().second);
     goals_due_.pop_front();
   }
-  // In lockstep a replan sees every depth cloud published up to its time, so that runs
-  // repeat; the clock waits for this node's report. A lost update is not waited for (it
-  // never comes, and the next one only comes once sim time moves on).
+  // In lockstep a replan sees every map update due by its time, so that runs repeat; the
+  // clock waits for this node's report. A lost update is not waited for (it never comes, and
+  // the next one only comes once sim time moves on).
+  takeMap();
   noticeLostUpdate();
-  const bool caught_up = !lockstep() || frames_applied_ >= simClock().depthFrames() || update_lost_;
+  const std::uint64_t frames_due = framesDue();
+  const bool caught_up = !lockstep() || frames_applied_ >= frames_due || update_lost_;
   // A planner that joined late or missed an update plans nothing until a snapshot fills the
   // gap: a path through what it does not know the mapper saw could hit it. Without paths the
   // controller holds position.
   // A mapper that stopped (killed, stopped, starved) leaves the map behind what the camera
   // saw: flying it would meet what only the camera knows.
-  const bool map_whole = !follower_.gapOpen() && !update_lost_ && !(follower_.appliedSeq() == 0 && simClock().depthFrames() > 0) &&
-                         simClock().depthFrames() <= frames_applied_ + config_.map_frames_behind;
+  const bool map_whole = !follower_.gapOpen() && !update_lost_ && !(follower_.appliedSeq() == 0 && frames_due > 0) &&
+                         frames_due <= frames_applied_ + config_.map_frames_behind;
   if (map_whole != map_whole_) {
     map_whole_ = map_whole;
     if (map_whole) {
       spdlog::info("planning: the map is whole again; planning");
     } else {
       spdlog::warn("planning: the map lags the camera ({} of {} depth frames{}): no paths until it catches up",
-                   frames_applied_, simClock().depthFrames(),
+                   frames_applied_, frames_due,
                    follower_.gapOpen() || update_lost_ ? ", a gap in the updates" : "");
     }
   }
@@ -507,7 +544,7 @@ void PlanningNode::onWake()
   // round waits for the snapshot that fills the gap (latched, it comes): the replans then fall
   // on the rounds they would have without the gap. Not for ever: a map too large for a
   // snapshot would never come.
-  const bool joining = lockstep() && follower_.appliedSeq() == 0 && simClock().depthFrames() > 0;
+  const bool joining = lockstep() && follower_.appliedSeq() == 0 && frames_due > 0 && held_snapshots_.empty();
   const std::int64_t wall_ns = common::steadyTimeNs();
   if (!joining) {
     joining_since_ns_ = 0;
@@ -522,8 +559,8 @@ void PlanningNode::onWake()
         return hold_for_snapshot ? std::string("joined after the mapper's first update: waiting for its snapshot")
                : caught_up       ? fmt::format("no vehicle state of that time yet (the last at {:.3f} s)",
                                                common::toSeconds(now_ns_))
-                                 : fmt::format("map updates cover {} of {} depth frames", frames_applied_,
-                                               simClock().depthFrames());
+                                 : fmt::format("map updates cover {} of the {} depth frames due", frames_applied_,
+                                               frames_due);
       });
     } else if (lockstep_.reportDone(simClock().ns())) {
       reported_ns_ = simClock().ns();

@@ -47,6 +47,12 @@ protected:
   void onWake() override;
 
 private:
+  /// The map's updates and snapshots that arrived, held until they take effect (see the .cpp).
+  void takeMap();
+  /// The time the map is due up to: the newest state's or the clock's (see the .cpp).
+  std::int64_t mapTimeNs() const;
+  /// Depth frames whose updates have taken effect by then (see the .cpp).
+  std::uint64_t framesDue();
   void applySnapshot(const msg::MapSnapshot& snapshot);
   void applyUpdate(const msg::MapUpdate& update);
   /// The voxel changes taken since the last replan, into the planner's graph (see the .cpp).
@@ -76,6 +82,8 @@ private:
   dds::ModuleWatch mapper_;
   dds::LockstepReporter lockstep_;
 
+  std::deque<msg::MapSnapshot> held_snapshots_;  // arrived, not yet due
+  std::deque<msg::MapUpdate> held_updates_;      // arrived, not yet due
   std::vector<std::pair<VoxelIndex, Occupancy>> pending_;  // voxel changes not yet in the graph
   std::uint64_t frames_applied_ = 0;    // depth clouds the applied updates account for
   std::uint64_t refused_updates_ = 0;   // MapUpdate payloads refused on receipt, so far

@@ -104,6 +104,11 @@ void MissionTracker::onCollision(double t)
   progress_.push_back(fmt::format("t = {:.1f} s: COLLISION", t));
 }
 
+void MissionTracker::onMapStats(std::uint64_t overruns)
+{
+  map_overruns_ = std::max(map_overruns_.value_or(0), overruns);
+}
+
 std::vector<std::string> MissionTracker::takeProgress() { return std::exchange(progress_, {}); }
 
 void MissionTracker::finishAtGoal(const std::string& outcome)
@@ -137,6 +142,7 @@ MissionSummary MissionTracker::summary(double wall_s) const
   s.path_length_m = length_;
   s.straight_line_m = (goal_ - world_.start()).norm();
   s.paths = paths_;
+  s.map_overruns = map_overruns_;
   s.min_clearance_m = std::isfinite(min_clearance_) ? min_clearance_ : 0.0;
   s.mode_changes = static_cast<int>(modes_.size());
   s.modes = modes_;
@@ -261,6 +267,9 @@ MissionSummary fleetSummary(std::vector<MissionSummary> vehicles, std::optional<
     s.straight_line_m += v.straight_line_m;
     optimum = optimum && v.optimum_m ? std::optional<double>(*optimum + *v.optimum_m) : std::nullopt;
     s.paths += v.paths;
+    if (v.map_overruns) {
+      s.map_overruns = s.map_overruns.value_or(0) + *v.map_overruns;
+    }
     s.min_clearance_m = std::min(s.min_clearance_m, v.min_clearance_m);
     s.mode_changes += v.mode_changes;
     s.goal_distance_m = std::max(s.goal_distance_m, v.goal_distance_m);
@@ -304,6 +313,7 @@ nlohmann::ordered_json jsonOf(const MissionSummary& s)
   j["flown_over_optimum"] = s.optimum_m && *s.optimum_m > 0.0 ? nlohmann::ordered_json(s.path_length_m / *s.optimum_m)
                                                               : nlohmann::ordered_json(nullptr);
   j["paths"] = s.paths;
+  j["map_overruns"] = s.map_overruns ? nlohmann::ordered_json(*s.map_overruns) : nlohmann::ordered_json(nullptr);
   j["min_clearance_m"] = s.min_clearance_m;
   j["mode_changes"] = s.mode_changes;
   j["modes"] = s.modes;
@@ -368,6 +378,15 @@ std::string estimateText(const MissionSummary& s)
                      100.0 * e.position_rms_m, 100.0 * e.position_max_m, e.attitude_rms_deg, e.attitude_max_deg,
                      e.yaw_rms_deg, e.position_nees_mean, 100.0 * e.within_3sigma);
 }
+/// "  map updates over the mapper's budget: 3 (the lockstep clock waited for them)"; empty
+/// without a mapper's stats.
+std::string overrunText(const MissionSummary& s)
+{
+  return s.map_overruns ? fmt::format("  map updates over the mapper's budget: {}{}\n", *s.map_overruns,
+                                      *s.map_overruns > 0 ? " (the lockstep clock waited for them)" : "")
+                        : "";
+}
+
 /// A fleet's vehicles, a line each, and the least separation; empty for one vehicle.
 std::string fleetText(const MissionSummary& s)
 {
@@ -402,7 +421,7 @@ std::string toText(const MissionSummary& s)
           ? fmt::format(", a {:.1f} m known-map optimum ({:.2f}x)", *s.optimum_m, s.path_length_m / *s.optimum_m)
           : "",
       s.paths, s.min_clearance_m, s.collisions, s.mode_changes, s.goal_distance_m) + fleetText(s) + estimateText(s) +
-         costText(s);
+         overrunText(s) + costText(s);
 }
 
 }  // namespace quad::launch

@@ -50,6 +50,7 @@ struct Observer::Endpoints {
         status(p, topics::kControlStatus),
         path(p, topics::kPath),
         events(p, topics::kSimEvents),
+        map_stats(p, topics::kMapStats),
         operator_beat(p, topics::kOperatorHeartbeat)
   {
   }
@@ -57,6 +58,7 @@ struct Observer::Endpoints {
   dds::Subscriber<msg::ControlStatus> status;
   dds::Subscriber<msg::Path> path;
   dds::Subscriber<msg::SimEvent> events;
+  dds::Subscriber<msg::MapStats> map_stats;
   dds::Publisher<msg::Heartbeat> operator_beat;
   // The beats follow sim time, which stands while the lockstep clock waits: the writer's
   // liveliness (this process alive) is kept in wall time, as every module's heartbeat is.
@@ -302,6 +304,11 @@ void Observer::update()
   for (const auto& e : endpoints_->events.takeAll(ids_)) {
     if (auto* m = missionOf(e); m != nullptr && e.kind() == msg::SIM_EVENT_COLLISION) {
       m->onCollision(common::toSeconds(e.header().stamp_ns()));
+    }
+  }
+  for (const auto& m : endpoints_->map_stats.takeAll(ids_)) {
+    if (auto* mission = missionOf(m)) {
+      mission->onMapStats(m.overruns());
     }
   }
   constexpr std::int64_t kOperatorBeatNs = 500'000'000;  // the contract's 2 Hz, in sim time

@@ -62,6 +62,25 @@ TEST(MissionTracker, LandingAtTheGoalWithoutCollisionIsASuccess)
   // Closest to the sphere: the point (5, 0, 2), 3 m from its centre: 3 − 1 − 0.25.
   EXPECT_NEAR(s.min_clearance_m, 1.75, 1e-9);
   EXPECT_NE(toJson(s).find("\"success\": true"), std::string::npos);
+  // No mapper's stats heard: its overruns are unknown, not zero
+  EXPECT_FALSE(s.map_overruns.has_value());
+  EXPECT_NE(toJson(s).find("\"map_overruns\": null"), std::string::npos);
+}
+
+TEST(MissionTracker, TheMappersOverrunsAreItsNewestCountInTheSummary)
+{
+  const auto w = world();
+  MissionTracker t(mission(true), w, 0.25);
+  // GIVEN the mapper's stats, counting since its start, one of them overtaken by a newer one
+  t.onMapStats(0);
+  t.onMapStats(3);
+  t.onMapStats(2);
+  // THEN the summary holds the newest count, in its JSON and its text
+  const MissionSummary s = t.summary(1.0);
+  ASSERT_TRUE(s.map_overruns.has_value());
+  EXPECT_EQ(*s.map_overruns, 3U);
+  EXPECT_NE(toJson(s).find("\"map_overruns\": 3"), std::string::npos) << toJson(s);
+  EXPECT_NE(toText(s).find("map updates over the mapper's budget: 3"), std::string::npos) << toText(s);
 }
 
 TEST(MissionTracker, ACollisionFailsTheMissionEvenAtTheGoal)
@@ -237,6 +256,13 @@ TEST(FleetSummary, TheFleetSucceedsWhenEveryVehicleDoesAndSumsOrBoundsTheirFigur
   const std::string json = toJson(s);
   EXPECT_NE(json.find("\"min_separation_m\": 0.8"), std::string::npos) << json;
   EXPECT_NE(json.find("\"vehicle_id\": 2"), std::string::npos) << json;
+  EXPECT_FALSE(s.map_overruns.has_value());  // no vehicle's mapper was heard
+  // Each vehicle's mapper heard: the fleet's overruns are theirs summed
+  MissionSummary a = vehicleSummary(1, MissionEnd::kSuccess, 10.0, 9.0);
+  MissionSummary b = vehicleSummary(2, MissionEnd::kSuccess, 20.0, 18.0);
+  a.map_overruns = 2;
+  b.map_overruns = 5;
+  EXPECT_EQ(fleetSummary({a, b}, 0.8, 5.0).map_overruns, std::optional<std::uint64_t>(7));
 
   // One vehicle without a path and one failed: the fleet failed, naming both; no total optimum.
   s = fleetSummary({vehicleSummary(1, MissionEnd::kNoPath, 10.0, std::nullopt),

@@ -55,6 +55,9 @@ struct MissionSummary {
   double straight_line_m = 0.0; ///< start to goal
   std::optional<double> optimum_m; ///< the known-map optimum (quad plan), when the run has a planner
   int paths = 0;                ///< path versions received (the planner's replans that changed the path)
+  /// Map updates the lockstep clock reached the due time of before the mapper had them out
+  /// (MapStats.overruns, the newest heard); nothing when no mapper's stats came.
+  std::optional<std::uint64_t> map_overruns;
   double min_clearance_m = 0.0; ///< closest the vehicle's bounding sphere came to an obstacle
   int mode_changes = 0;
   std::vector<std::string> modes;  ///< "t MODE" in order
@@ -96,6 +99,8 @@ public:
   void onPath(std::uint32_t version, const std::string& no_path = {});
   /// The plant reported a collision.
   void onCollision(double t);
+  /// The mapper's count of updates over its budget (MapStats.overruns).
+  void onMapStats(std::uint64_t overruns);
 
   /// Lines worth printing while the mission flies ("t = 12.3 s: MISSION -> HOVER"), once each.
   std::vector<std::string> takeProgress();
@@ -121,6 +126,7 @@ private:
   std::vector<std::string> modes_;
   std::uint32_t last_version_ = 0;
   int paths_ = 0;
+  std::optional<std::uint64_t> map_overruns_;
   int collisions_ = 0;
   bool goal_reached_ = false;
   bool finished_ = false;

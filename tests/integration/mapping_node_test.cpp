@@ -120,7 +120,6 @@ TEST(MappingNode, AMapperStartedAgainResumesFromItsCheckpoint)
   std::filesystem::remove_all(dir);
 }
 
-
 /// The newest sample of the run's clock, as `quad topic echo` prints it.
 nlohmann::json clockSample(const std::map<std::string, std::string>& run_env)
 {

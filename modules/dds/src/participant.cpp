@@ -556,6 +556,14 @@ fdds::DataReaderQos Participant::readerQos(const TopicInfo& info) const
   return qos;
 }
 
+std::optional<fdds::DataReaderQos> deeperReaderQos(Participant& participant, const TopicInfo& topic, std::int32_t depth)
+{
+  if (depth <= 0) {
+    return std::nullopt;
+  }
+  return withDepth(participant.readerQos(topic.qos_profile), depth);
+}
+
 fdds::DataReaderQos withDepth(fdds::DataReaderQos qos, std::int32_t depth)
 {
   if (qos.history().kind != fdds::KEEP_LAST_HISTORY_QOS || qos.history().depth >= depth) {

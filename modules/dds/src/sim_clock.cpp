@@ -3,25 +3,14 @@
 
 #include <algorithm>
 #include <iterator>
-#include <optional>
 
 #include "quad/dds/topics.hpp"
 
 namespace quad::dds {
 
-namespace {
-std::optional<eprosima::fastdds::dds::DataReaderQos> deeper(Participant& participant, std::int32_t depth)
-{
-  if (depth <= 0) {
-    return std::nullopt;
-  }
-  return withDepth(participant.readerQos(topics::kSimClock.info.qos_profile), depth);
-}
-}  // namespace
-
 SimClockFollower::SimClockFollower(Participant& participant, Waker* waker, std::vector<std::uint32_t> served,
                                    std::int32_t depth)
-    : clock_(participant, topics::kSimClock, waker, deeper(participant, depth)), served_(std::move(served))
+    : clock_(participant, topics::kSimClock, waker, deeperReaderQos(participant, topics::kSimClock.info, depth)), served_(std::move(served))
 {
 }
 

@@ -20,10 +20,7 @@ const TopicInfo& stateTopic(StateSource s)
 StateInput::StateInput(Participant& participant, StateSource source, Waker* waker, std::int32_t depth)
     : source_(source)
 {
-  std::optional<eprosima::fastdds::dds::DataReaderQos> qos;
-  if (depth > 0) {
-    qos = withDepth(participant.readerQos(stateTopic(source).qos_profile), depth);
-  }
+  const auto qos = deeperReaderQos(participant, stateTopic(source), depth);
   if (source == StateSource::kTruth) {
     truth_.emplace(participant, topics::kSimState, waker, qos);
   } else {

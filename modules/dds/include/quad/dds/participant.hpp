@@ -92,7 +92,8 @@ struct ParticipantOptions {
 /// QUAD_DISCOVERY_SERVER, QUAD_QOS_FILE, QUAD_VEHICLE_ID, QUAD_FAULT_LAYER (0|1),
 /// QUAD_UDP_MAX_MESSAGE (bytes), QUAD_VALIDATE_DATAGRAMS (0|1), QUAD_SECURITY_DIR,
 /// QUAD_SECURITY_IDENTITY, QUAD_LOCKSTEP (0|1), QUAD_PARTICIPANT_LEASE (whole seconds),
-/// QUAD_MAP_BUDGET_MS (whole milliseconds, 0 to 1000). A bad value throws std::invalid_argument naming the variable and the value.
+/// QUAD_MAP_BUDGET_MS (whole milliseconds, 0 to 1000). A bad value throws
+/// std::invalid_argument naming the variable and the value.
 ParticipantOptions optionsFromEnvironment(std::string name);
 
 /// Turns Fast DDS's intraprocess delivery off for the whole process, for the participants
@@ -207,5 +208,10 @@ private:
 /// resource limits widened to match. For a tool that reads every sample (a recorder, an echo)
 /// and must not lose the ones it falls a few behind on; KEEP_ALL is left as it is.
 eprosima::fastdds::dds::DataReaderQos withDepth(eprosima::fastdds::dds::DataReaderQos qos, std::int32_t depth);
+
+/// A reader of `topic` deepened to `depth` (withDepth of its profile's QoS), for a subscriber
+/// that takes an optional depth; nothing (the profile's) when `depth` <= 0.
+std::optional<eprosima::fastdds::dds::DataReaderQos> deeperReaderQos(Participant& participant, const TopicInfo& topic,
+                                                                     std::int32_t depth);
 
 }  // namespace quad::dds

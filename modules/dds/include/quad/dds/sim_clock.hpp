@@ -34,6 +34,7 @@ public:
   bool lockstep() const { return lockstep_; }                 ///< of the newest sample
   std::int64_t ns() const { return ns_; }                     ///< [ns] newest sim time; 0 before any
   std::uint64_t depthFrames() const { return depth_frames_; }  ///< published up to then
+  bool stateSent() const { return state_sent_; }              ///< of the newest sample
   /// Depth frames published up to sim time `ns`, as the newest clock sample taken at or before
   /// it counted them (0 before the first). Kept for the last kHistoryNs of sim time.
   std::uint64_t depthFramesAt(std::int64_t ns) const;
@@ -41,7 +42,6 @@ public:
   /// was sent (a fault dropped it); true otherwise. Kept for the last kHistoryNs of sim time.
   bool stateSentAt(std::int64_t ns) const;
   static constexpr std::int64_t kHistoryNs = 2'000'000'000;
-  bool stateSent() const { return state_sent_; }              ///< of the newest sample
 
   /// A vehicle state stamped `stamp_ns` is no further past the newest clock than the plant
   /// sends one (topics::kStateAheadOfClockNs): the plant sends both each step on separate

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "quad/dds/lockstep.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <string_view>
 
@@ -22,7 +23,16 @@ bool LockstepReporter::reportDone(std::int64_t done_ns)
   report.header().stamp_ns(done_ns);
   report.participant(name_);
   report.done_ns(done_ns);
-  return publisher_.write(report);
+  if (!publisher_.write(report)) {
+    return false;
+  }
+  reported_ns_ = std::max(reported_ns_, done_ns);
+  return true;
+}
+
+bool LockstepReporter::reportAhead(std::int64_t done_ns, std::int64_t clock_ns, std::int64_t budget_ns)
+{
+  return done_ns > reported_ns_ && reported_ns_ < clock_ns + budget_ns / 2 && reportDone(done_ns);
 }
 
 void LockstepReporter::holding(std::int64_t clock_ns, const std::function<std::string()>& why)

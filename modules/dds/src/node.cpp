@@ -191,6 +191,16 @@ void Node::takeSimClock()
   }
 }
 
+bool Node::overran(std::int64_t due_ns, std::string_view what)
+{
+  takeSimClock();
+  if (!lockstep_ || !sim_clock_ || sim_clock_->ns() < due_ns) {
+    return false;
+  }
+  spdlog::debug("{}: {} is {:.3f} s past its due time", module_name_, what, common::toSeconds(sim_clock_->ns() - due_ns));
+  return true;
+}
+
 void Node::run()
 {
   onStart();

@@ -29,6 +29,9 @@ bool SimClockFollower::update()
     if (!c->state_sent() && (unsent_ns_.empty() || unsent_ns_.back() < c->sim_ns())) {
       unsent_ns_.push_back(c->sim_ns());
     }
+    if (c->state_sent()) {
+      last_sent_ns_ = std::max(last_sent_ns_, c->sim_ns());
+    }
     state_sent_ = c->state_sent();
   }
   // The count at any time within the history needs the newest entry at or before it.

@@ -19,7 +19,6 @@ namespace {
 constexpr std::size_t kMaxChangesPerMessage = 262144;  // MapUpdate's bound
 constexpr std::uint64_t kSeqReserve = 1'000'000;  // update numbers a checkpoint reserves ahead
 constexpr std::int32_t kHeldClouds = 32;   // 3.2 s of the camera's 10 Hz: beyond the largest budget
-constexpr std::int32_t kHeldStates = 512;  // 2 s of 250 Hz states
 
 msg::VoxelState toMessage(VoxelState s)
 {
@@ -85,14 +84,14 @@ MappingNode::MappingNode(MappingNodeConfig config, dds::ParticipantOptions optio
       // newer one (the next cloud is placed with the state of its own time).
       depth_(participant(), dds::topics::kSimDepth, waker(),
              dds::withDepth(participant().readerQos(dds::topics::kSimDepth.info.qos_profile), kHeldClouds)),
-      state_(participant(), config_.state_source, waker(), kHeldStates),
+      state_(participant(), config_.state_source, waker(), dds::kHeldStates),
       commands_(participant(), dds::topics::kVehicleCommand, waker()),
       updates_(participant(), dds::topics::kMapUpdate),
       snapshots_(participant(), dds::topics::kMapSnapshot),
       stats_(participant(), dds::topics::kMapStats),
       lockstep_(participant(), "mapping")
 {
-  followSimClock(kHeldStates);  // a sample at the state's rate, each saying whether a state went out
+  followSimClock(dds::kHeldStates);  // a sample at the state's rate, each saying whether a state went out
   spdlog::info("mapping: resolution {} m, max range {} m, clouds placed on the {} ({})", config_.map.resolution,
                config_.map.max_range, dds::toString(config_.state_source), state_.topic().name);
   map_bytes_ = mapper_.bytes();  // the empty map's; resume() counts a resumed one
@@ -244,11 +243,8 @@ void MappingNode::integrate(const msg::PointCloud& cloud, const std::optional<ge
   // Out when it is due (in lockstep the clock waits at that time for what is not): an
   // overrun when the clock got there first, meanwhile or before.
   const std::int64_t due_ns = last_stamp_ns_ + participant().options().mapBudgetNs();
-  takeSimClock();
-  if (lockstep() && simClock().ns() >= due_ns) {
+  if (overran(due_ns, fmt::format("the update for depth frame {}", frames_taken_))) {
     ++overruns_;
-    spdlog::debug("mapping: the update for depth frame {} is {:.3f} s past its due time", frames_taken_,
-                  common::toSeconds(simClock().ns() - due_ns));
   }
   // The change set, in as many messages as its bound needs, each with its own number.
   const std::uint64_t first_seq = update_seq_ + 1;
@@ -340,9 +336,7 @@ void MappingNode::reportLockstep()
       return fmt::format("{} of {} depth frames integrated", frames_taken_, simClock().depthFrames());
     });
   }
-  if (done > reported_ns_ && lockstep_.reportDone(done)) {
-    reported_ns_ = done;
-  }
+  lockstep_.reportAhead(done, simClock().ns(), participant().options().mapBudgetNs());
 }
 
 void MappingNode::save()

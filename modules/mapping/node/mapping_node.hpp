@@ -88,7 +88,6 @@ private:
   std::int64_t states_heard_ns_ = -1;    // the newest state's stamp, an estimate still aligning included
   std::deque<msg::PointCloud> pending_;  // clouds waiting for the state of their time
   std::uint64_t frames_taken_ = 0;         // depth frames dealt with (integrated, refused or skipped)
-  std::int64_t reported_ns_ = -1;
   std::uint64_t update_seq_ = 0;
   std::uint64_t reserved_seq_ = 0;  // numbers below this are in the checkpoint's reservation
   std::int64_t last_stamp_ns_ = 0;  // the newest cloud integrated

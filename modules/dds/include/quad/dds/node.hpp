@@ -105,6 +105,10 @@ protected:
   /// Takes the clock samples that arrived: run() does before every onWake() and onTick(); a
   /// node whose work takes long calls it to know where the clock got meanwhile.
   void takeSimClock();
+  /// For an output due at `due_ns` about to go out: takes the clock's samples and, in
+  /// lockstep, says whether the clock reached that time first (it waits there for the output:
+  /// an overrun, which the caller counts), logging how far past it is at debug level as `what`.
+  bool overran(std::int64_t due_ns, std::string_view what);
 
   virtual void onStart() {}
   virtual void onWake() {}

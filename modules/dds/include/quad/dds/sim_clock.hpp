@@ -41,6 +41,9 @@ public:
   /// False when a sample of sim time `ns` was taken that said no vehicle state of that time
   /// was sent (a fault dropped it); true otherwise. Kept for the last kHistoryNs of sim time.
   bool stateSentAt(std::int64_t ns) const;
+  /// [ns] The newest sim time whose sample said a vehicle state of that time was sent (-1:
+  /// none yet): a reader that handled its states up to then has every state sent so far.
+  std::int64_t lastStateSentNs() const { return last_sent_ns_; }
   static constexpr std::int64_t kHistoryNs = 2'000'000'000;
 
   /// A vehicle state stamped `stamp_ns` is no further past the newest clock than the plant
@@ -59,6 +62,7 @@ private:
   std::deque<std::pair<std::int64_t, std::uint64_t>> frames_by_ns_;  // (sample's time, count) where the count rose
   std::deque<std::int64_t> unsent_ns_;  // times of the samples that said no state was sent
   bool state_sent_ = true;
+  std::int64_t last_sent_ns_ = -1;
 };
 
 }  // namespace quad::dds

@@ -50,6 +50,10 @@ struct StateSample {
   geometry::Vector3 gyro_bias_B = geometry::Vector3::Zero();   ///< [rad/s]
 };
 
+/// The unread states (and clock samples) kept by a reader that works while the lockstep clock
+/// runs on up to its budget: 2 s at the contract's 250 Hz, beyond the largest budget (1 s).
+inline constexpr std::int32_t kHeldStates = 512;
+
 /// Reads the chosen source's topic.
 class StateInput {
 public:

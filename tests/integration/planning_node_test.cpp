@@ -1,9 +1,17 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The planning node as a process: a goal and the vehicle's state in, a path out.
+// The planning node as a process: a goal and the vehicle's state in, a path out; in a lockstep
+// run with the plant and the mapper, its paths due a budget after their states.
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
 #include <string>
+#include <thread>
+
+#include <nlohmann/json.hpp>
 
 #include "json_lines.hpp"
 #include "module_wait.hpp"
@@ -50,6 +58,108 @@ TEST(PlanningNode, PlansFromTheVehicleToTheGoalAndRefusesGoalsOutsideTheBounds)
   ASSERT_EQ(paths.size(), 1U) << still.output();
   EXPECT_EQ(paths.front()["goal_id"], 1) << still.output();
   EXPECT_EQ(paths.front()["status"], "PLAN_OK") << still.output();
+}
+
+/// The newest sample of the run's clock, as `quad topic echo` prints it.
+std::int64_t clockNs(const std::map<std::string, std::string>& run_env)
+{
+  ChildProcess echo({QUAD_TOOL, "topic", "echo", "quad/sim/clock", "-n", "1", "--json", "--timeout", "10"}, run_env);
+  EXPECT_EQ(echo.wait(20s), 0) << echo.output();
+  const auto samples = quad::test::jsonLines(echo.output());
+  return samples.empty() ? -1 : samples.front()["sim_ns"].get<std::int64_t>();
+}
+
+// In lockstep a path is due the planner's budget of sim time after the vehicle state it was
+// planned on, stamped with that time, and starts where the vehicle will be then; the clock runs
+// on while the planner works, stands where its promise ends while it is stopped, and a path
+// out after the clock reached its due time counts as an overrun.
+TEST(PlanningNode, InLockstepAPathIsDueTheBudgetAfterItsStateAndTheClockStandsForAStoppedPlanner)
+{
+  // One step of the plant: the clock is at the due time of a replan as soon as the planner
+  // has its state, so the planner overruns.
+  constexpr std::int64_t kBudgetNs = 4'000'000;
+  auto run_env = env(87);
+  run_env["QUAD_PATH_BUDGET_MS"] = "4";
+  run_env["QUAD_LOCKSTEP"] = "1";
+  run_env["QUAD_PARTICIPANT_LEASE"] = "10";  // peers keep a stopped participant
+  const auto dir = std::filesystem::temp_directory_path() / "quad_planning_node_budget_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  // Everyone on the plant's true state: no estimator runs here.
+  std::ofstream(dir / "mapping.yaml") << "state: {source: truth}\n";
+  std::ofstream(dir / "plant.yaml") << "vehicle: " << QUAD_CONFIG_DIR << "/vehicles/x500.yaml\nworld: "
+                                    << QUAD_CONFIG_DIR << "/worlds/demo.yaml\n"
+                                    << "sim: {mode: lockstep, duration: 30}\nlockstep: {participants: "
+                                       "'mapping,planning'}\nstate: {source: truth}\n";
+  ChildProcess mapping({QUAD_MAPPING_NODE, "--config", (dir / "mapping.yaml").string()}, run_env);
+  ChildProcess planning({QUAD_PLANNING_NODE, "--config", std::string(QUAD_CONFIG_DIR) + "/planning.yaml", "--set",
+                         "state.source=truth"},
+                        run_env);
+  ChildProcess controller({QUAD_ALTITUDE_CONTROLLER, "757.5", "2.0"}, run_env);
+  ASSERT_TRUE(quad::test::waitForRunningModule(87, "mapping", 20s)) << mapping.output();
+  ASSERT_TRUE(quad::test::waitForRunningModule(87, "planning", 20s)) << planning.output();
+  ASSERT_TRUE(controller.waitForOutput("ready", 10s)) << controller.output();
+  ChildProcess goal({QUAD_TOOL, "topic", "pub", "quad/planning/goal",
+                     "{header: {stamp_ns: 0}, goal_id: 1, p_W: {x: 10, y: 0, z: 2}, tolerance: 0.3}", "--wait-match",
+                     "5"},
+                    run_env);
+  ASSERT_EQ(goal.wait(15s), 0) << goal.output();
+  ChildProcess paths({QUAD_TOOL, "topic", "echo", "quad/planning/path", "-n", "40", "--json", "--timeout", "120"},
+                     run_env);
+  ChildProcess states({QUAD_TOOL, "topic", "echo", "quad/sim/state", "--json"}, run_env);  // until stopped
+  std::this_thread::sleep_for(1s);  // the echoes matched
+  ChildProcess plant({QUAD_PLANT_NODE, "--config", (dir / "plant.yaml").string()}, run_env);
+  // GIVEN a lockstep run of 30 s, its planner past its fifth path
+  ASSERT_TRUE(paths.waitForOutput("\"version\":5,", 60s)) << paths.output() << plant.output();
+  // WHEN the planner is stopped for a few seconds
+  planning.signal(SIGSTOP);
+  std::this_thread::sleep_for(1500ms);
+  const std::int64_t held_ns = clockNs(run_env);
+  std::this_thread::sleep_for(1500ms);
+  const std::int64_t still_ns = clockNs(run_env);
+  planning.signal(SIGCONT);
+  ASSERT_EQ(plant.wait(90s), 0) << plant.output();
+  ASSERT_EQ(paths.wait(30s), 0) << paths.output();
+  states.signal(SIGINT);
+  ASSERT_EQ(states.wait(10s), 0);
+
+  // THEN the clock stood short of the run's end while the planner was stopped
+  EXPECT_GT(held_ns, 0);
+  EXPECT_EQ(still_ns, held_ns);
+  EXPECT_LT(held_ns, 30'000'000'000);
+  // AND each path is stamped the budget after a vehicle state and starts where the vehicle
+  // would be by then at that state's velocity (checked on the states the best-effort echo
+  // caught)
+  std::map<std::int64_t, nlohmann::json> state_at;
+  for (const auto& s : quad::test::jsonLines(states.output())) {
+    state_at[s["header"]["stamp_ns"].get<std::int64_t>()] = s;
+  }
+  const auto component = [](const nlohmann::json& v, const char* axis) { return v[axis].get<double>(); };
+  int checked = 0;
+  std::uint64_t overruns = 0;
+  for (const auto& p : quad::test::jsonLines(paths.output())) {
+    const std::int64_t planned_ns = p["header"]["stamp_ns"].get<std::int64_t>() - kBudgetNs;
+    EXPECT_GE(p["overruns"].get<std::uint64_t>(), overruns) << p;  // counted since the start
+    overruns = p["overruns"].get<std::uint64_t>();
+    const auto state = state_at.find(planned_ns);
+    if (p["waypoints_W"].empty() || state == state_at.end()) {
+      continue;
+    }
+    for (const char* axis : {"x", "y", "z"}) {
+      const double expected = component(state->second["p_W"], axis) +
+                              component(state->second["v_W"], axis) * static_cast<double>(kBudgetNs) * 1e-9;
+      EXPECT_NEAR(component(p["waypoints_W"].front(), axis), expected, 1e-12) << axis << " " << p << state->second;
+    }
+    ++checked;
+  }
+  EXPECT_GE(checked, 3) << paths.output();
+  // AND the clock reached the due time of a path before it was out: an overrun
+  EXPECT_GE(overruns, 1U) << paths.output();
+  planning.signal(SIGTERM);
+  mapping.signal(SIGTERM);
+  EXPECT_EQ(planning.wait(10s), 0) << planning.output();
+  EXPECT_EQ(mapping.wait(10s), 0) << mapping.output();
+  std::filesystem::remove_all(dir);
 }
 
 TEST(PlanningNode, ARepublishPeriodReadersWouldCallStaleIsRefusedNamingTheKey)

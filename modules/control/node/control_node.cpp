@@ -91,10 +91,10 @@ void ControlNode::takeInputs()
                          dds::topics::operatorInputDueNs(c->header().stamp_ns(), simClock().ns())});
   }
   // In lockstep a path, goal or command takes effect at a sim time fixed by its stamp, not
-  // when it happens to arrive, so that runs repeat: a path planned on the state of time t
-  // with the next state (the plant's round waits for the planner, so it has come by then);
-  // an operator's goal or command, whose station waits for no round, the contract's delay
-  // after its stamp.
+  // when it happens to arrive, so that runs repeat: a path with the first state after its
+  // stamp, its due time (the planner's budget after the state it was planned on; the clock
+  // waits there for a path not yet out, so it has come by then); an operator's goal or
+  // command, whose station waits for no round, the contract's delay after its stamp.
   while (auto g = goal_.take()) {
     counters().samples_in++;
     if (lockstep()) {

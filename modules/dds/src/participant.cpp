@@ -260,11 +260,16 @@ ParticipantOptions optionsFromEnvironment(std::string name)
   if (const char* v = env(environment::kMapBudget)) {
     options.map_budget_ns = 1'000'000LL * parseInt<int>(v, environment::kMapBudget, 0, 1000);
   }
+  if (const char* v = env(environment::kPathBudget)) {
+    options.path_budget_ns = 1'000'000LL * parseInt<int>(v, environment::kPathBudget, 0, 1000);
+  }
   options.qos_file = defaultQosFile();
   return options;
 }
 
 std::int64_t ParticipantOptions::mapBudgetNs() const { return map_budget_ns.value_or(topics::kMapUpdateBudgetNs); }
+
+std::int64_t ParticipantOptions::pathBudgetNs() const { return path_budget_ns.value_or(topics::kPathBudgetNs); }
 
 /// Discovery callbacks: copy what was seen and hand it to the participant.
 class Participant::Listener : public fdds::DomainParticipantListener {

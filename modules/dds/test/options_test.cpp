@@ -18,7 +18,8 @@ protected:
   {
     for (const char* v : {"QUAD_DOMAIN_ID", "QUAD_TRANSPORT", "QUAD_INITIAL_PEERS",
                           "QUAD_DISCOVERY_SERVER", "QUAD_VEHICLE_ID", "QUAD_FAULT_LAYER", "QUAD_UDP_MAX_MESSAGE",
-                          "QUAD_INTERFACES", "QUAD_LOCKSTEP", "QUAD_PARTICIPANT_LEASE", "QUAD_MAP_BUDGET_MS"}) {
+                          "QUAD_INTERFACES", "QUAD_LOCKSTEP", "QUAD_PARTICIPANT_LEASE", "QUAD_MAP_BUDGET_MS",
+                          "QUAD_PATH_BUDGET_MS"}) {
       unsetenv(v);
     }
   }
@@ -43,6 +44,7 @@ TEST_F(EnvironmentOptions, DefaultsAreDomainZeroAndBuiltinTransports)
   EXPECT_FALSE(o.lockstep);
   EXPECT_EQ(o.participant_lease_s, 0);  // the QoS profile's
   EXPECT_EQ(o.mapBudgetNs(), topics::kMapUpdateBudgetNs);  // the contract's
+  EXPECT_EQ(o.pathBudgetNs(), topics::kPathBudgetNs);
 }
 
 TEST_F(EnvironmentOptions, ValidValuesAreTaken)
@@ -58,10 +60,12 @@ TEST_F(EnvironmentOptions, ValidValuesAreTaken)
   setenv("QUAD_LOCKSTEP", "1", 1);
   setenv("QUAD_PARTICIPANT_LEASE", "20", 1);
   setenv("QUAD_MAP_BUDGET_MS", "0", 1);
+  setenv("QUAD_PATH_BUDGET_MS", "250", 1);
   const auto o = optionsFromEnvironment("test");
   EXPECT_TRUE(o.lockstep);
   EXPECT_EQ(o.participant_lease_s, 20);
   EXPECT_EQ(o.mapBudgetNs(), 0);
+  EXPECT_EQ(o.pathBudgetNs(), 250'000'000);
   EXPECT_EQ(o.interfaces, (std::vector<std::string>{"10.0.0.3", "192.168.1.7"}));
   EXPECT_TRUE(o.fault_layer);
   EXPECT_EQ(o.udp_max_message, 1400U);
@@ -88,6 +92,9 @@ TEST_F(EnvironmentOptions, BadValuesNameTheVariableAndTheValue)
   clear();
   setenv("QUAD_MAP_BUDGET_MS", "1001", 1);
   EXPECT_EQ(errorOf(), "QUAD_MAP_BUDGET_MS: 1001: expected an integer in [0, 1000]");
+  clear();
+  setenv("QUAD_PATH_BUDGET_MS", "-1", 1);
+  EXPECT_EQ(errorOf(), "QUAD_PATH_BUDGET_MS: -1: expected an integer in [0, 1000]");
   clear();
   setenv("QUAD_UDP_MAX_MESSAGE", "100", 1);
   EXPECT_EQ(errorOf(), "QUAD_UDP_MAX_MESSAGE: 100: expected an integer in [1200, 65500]");

@@ -102,7 +102,10 @@ PlanningNode::PlanningNode(PlanningNodeConfig config, dds::ParticipantOptions op
       follower_(config_.resolution),
       updates_(participant(), dds::topics::kMapUpdate, waker()),
       snapshots_(participant(), dds::topics::kMapSnapshot, waker()),
-      state_(participant(), config_.state_source, waker()),
+      // In lockstep the clock runs on while a replan works, up to the path's budget: the
+      // states that come meanwhile wait here, none replaced by a newer one (each is handled
+      // in turn, with the map due by its time).
+      state_(participant(), config_.state_source, waker(), dds::kHeldStates),
       goal_(participant(), dds::topics::kGoal, waker()),
       // Every path of every vehicle, none replaced by a newer before it is taken: the one in
       // effect at a replan may be older than the newest heard (kPathEffectDelayNs).
@@ -117,7 +120,7 @@ PlanningNode::PlanningNode(PlanningNodeConfig config, dds::ParticipantOptions op
       deconfliction_(participant().options().vehicle_id, config_.fleet, config_.planner.vehicle_radius,
                      config_.planner.vehicle_radius - config_.safety_margin)
 {
-  followSimClock();
+  followSimClock(dds::kHeldStates);  // every sample: the depth frames due at each state's time
   spdlog::info("planning: lattice {} cells at {} m, inflation {} m", planner_.lattice().size(), config_.resolution,
                config_.planner.vehicle_radius);
 }
@@ -133,22 +136,34 @@ void PlanningNode::answerGoal(std::uint32_t goal_id, bool accepted, const std::s
   counters().samples_out++;
 }
 
-std::int64_t PlanningNode::mapTimeNs() const
+void PlanningNode::takeStates()
 {
-  // A state comes with the clock sample of its time, on another topic: either may be first.
-  return std::max(now_ns_, simClock().ns());
+  for (auto& s : state_.takeAll()) {
+    // The sim time and the start of every replan: a state stamped past the clock, older than
+    // the last, or not finite is a bad input (a time an hour ahead stopped every replan). An
+    // estimate still aligning gives the time only.
+    const std::int64_t last = held_states_.empty() ? now_ns_ : held_states_.back().stamp_ns;
+    if (!s.p_W.allFinite() || s.stamp_ns < last || (simClock().seen() && !simClock().vouchesFor(s.stamp_ns))) {
+      counters().errors++;
+      spdlog::warn("{}: sample seq {} rejected: position not finite, or stamp {:.3f} s out of order or "
+                   "past the sim clock ({:.3f} s)", state_.topic().name,
+                   s.seq, common::toSeconds(s.stamp_ns), common::toSeconds(simClock().ns()));
+      continue;
+    }
+    held_states_.push_back(std::move(s));
+  }
 }
 
-std::uint64_t PlanningNode::framesDue()
+std::uint64_t PlanningNode::framesDueAt(std::int64_t at_ns)
 {
   // In lockstep an update takes effect at its due time, the mapper's budget after its depth
   // frame: the frames due are those the clock had published the budget earlier. In real time
   // every update as it comes.
-  return lockstep() ? simClock().depthFramesAt(mapTimeNs() - participant().options().mapBudgetNs())
+  return lockstep() ? simClock().depthFramesAt(at_ns - participant().options().mapBudgetNs())
                     : simClock().depthFrames();
 }
 
-void PlanningNode::takeMap()
+void PlanningNode::takeMapSamples()
 {
   while (auto s = snapshots_.take()) {
     held_snapshots_.push_back(std::move(*s));
@@ -157,19 +172,22 @@ void PlanningNode::takeMap()
     counters().samples_in++;
     held_updates_.push_back(std::move(u));
   }
+}
+
+void PlanningNode::applyMapDue(std::int64_t at_ns)
+{
   // Snapshots first: one sent with the updates it contains must not undo newer ones. Taking
-  // each when it is due (by the state's time or the clock's, whichever is newer), not when it
-  // came, makes the map a replan sees the same in every run (the mapper works ahead of the
-  // clock up to its budget).
-  const std::int64_t now_ns = mapTimeNs();
+  // each when it is due by the time of the state handled, not when it came, makes the map a
+  // replan sees the same in every run (the mapper works ahead of the clock up to its budget,
+  // and the clock runs ahead of this planner up to the path's).
   std::erase_if(held_snapshots_, [&](const msg::MapSnapshot& snapshot) {
-    const bool due = !lockstep() || snapshot.header().stamp_ns() <= now_ns;
+    const bool due = !lockstep() || snapshot.header().stamp_ns() <= at_ns;
     if (due) {
       applySnapshot(snapshot);
     }
     return due;
   });
-  const std::uint64_t frames_due = framesDue();
+  const std::uint64_t frames_due = framesDueAt(at_ns);
   while (!held_updates_.empty() && (!lockstep() || held_updates_.front().depth_frames() <= frames_due)) {
     applyUpdate(held_updates_.front());
     held_updates_.pop_front();
@@ -259,7 +277,7 @@ void PlanningNode::applyPending()
   pending_.clear();
 }
 
-void PlanningNode::noticeLostUpdate()
+void PlanningNode::noticeLostUpdate(std::int64_t at_ns)
 {
   while (auto r = reports_.take()) {
     if (r->participant() == "mapping") {
@@ -270,7 +288,7 @@ void PlanningNode::noticeLostUpdate()
   // delivery repairs a lost datagram within a few 100 ms heartbeats. An update still missing
   // a second after that report was corrupted past recognition (another vehicle's id, a wrong
   // count) and will not come: without this, lockstep would wait for it for ever.
-  if (!lockstep() || update_lost_ || frames_applied_ >= framesDue() || mapper_done_ns_ < mapTimeNs()) {
+  if (!lockstep() || update_lost_ || frames_applied_ >= framesDueAt(at_ns) || mapper_done_ns_ < at_ns) {
     mapper_done_wall_ns_ = 0;
     return;
   }
@@ -282,7 +300,7 @@ void PlanningNode::noticeLostUpdate()
     counters().errors++;
     spdlog::warn("{}: the mapper was done up to {:.3f} s a second ago and the update for depth frame {} "
                  "never came: lost; a gap until the next snapshot", dds::topics::kMapUpdate.info.name,
-                 common::toSeconds(mapper_done_ns_), framesDue());
+                 common::toSeconds(mapper_done_ns_), framesDueAt(at_ns));
   }
 }
 
@@ -291,7 +309,14 @@ void PlanningNode::publish(std::int64_t t_ns, bool changed)
   if (changed) {
     current_.version(++version_);
   }
-  current_.header().stamp_ns(t_ns);
+  // Due, and stamped, the path's budget after the state it answers; in lockstep an overrun
+  // when the clock got there first (it waits there for this path).
+  const std::int64_t due_ns = t_ns + participant().options().pathBudgetNs();
+  if (overran(due_ns, fmt::format("path {}", version_))) {
+    ++overruns_;
+  }
+  current_.overruns(overruns_);
+  current_.header().stamp_ns(due_ns);
   path_.write(current_);
   counters().samples_out++;
   next_publish_ns_ = t_ns + common::toNanoseconds(config_.republish_period_s);
@@ -328,14 +353,17 @@ void PlanningNode::replan(std::int64_t t_ns)
   if (!goal_id_ || !position_) {
     return;
   }
+  // From where the vehicle will be when the path takes effect, the budget on at the state's
+  // velocity: the path starts at the vehicle, not the budget behind it.
+  const Vector3 from = *position_ + velocity_ * common::toSeconds(participant().options().pathBudgetNs());
   applyPending();
   applyKeepOut(t_ns);
   // Outside the lattice (below the ground clearance taking off, or between the geofence and
   // its margin), plan from its nearest cell: the controller, not the planner, answers for a
   // vehicle outside the geofence.
   std::optional<Cell> start;
-  if (position_->allFinite()) {
-    start = planner_.lattice().nearestCell(*position_);
+  if (from.allFinite()) {
+    start = planner_.lattice().nearestCell(from);
   }
   if (start && !planner_.traversable(*start)) {
     // Drifted into an inflated margin (or a cell just became blocked): leave it by the
@@ -360,16 +388,16 @@ void PlanningNode::replan(std::int64_t t_ns)
   std::optional<double> frontier;  // arc length where the path leaves known-free space
   if (r.status == PlanStatus::kOk) {
     waypoints = shortcut(planner_, r.cells);
-    // From where the vehicle is, not its cell's centre; when that is not its own cell (below
+    // From where the vehicle will be, not its cell's centre; when that is not its own cell (below
     // the lattice, taking off, or pushed out of an inflated margin), by way of the cell the
     // search started from: a straight line from the ground to the goal would skim the ground.
-    if ((waypoints.front() - *position_).norm() > config_.resolution) {
-      waypoints.insert(waypoints.begin(), *position_);
+    if ((waypoints.front() - from).norm() > config_.resolution) {
+      waypoints.insert(waypoints.begin(), from);
     } else {
-      waypoints.front() = *position_;
+      waypoints.front() = from;
     }
     if (config_.known_space.horizon > 0.0) {
-      frontier = knownFreeLength(planner_, waypoints, *position_, config_.known_space);
+      frontier = knownFreeLength(planner_, waypoints, from, config_.known_space);
     }
   }
   const double known_free = frontier ? *frontier : geometry::polylineLength(waypoints);
@@ -438,56 +466,48 @@ void PlanningNode::takeGoal(const msg::Goal& g)
   answerGoal(g.goal_id(), true, fmt::format("planning to goal {} at ({}, {}, {})", g.goal_id(), p.x(), p.y(), p.z()));
 }
 
-void PlanningNode::onWake()
+bool PlanningNode::handleState(const dds::StateSample& s)
 {
-  // An update refused on receipt (its payload broke the IDL) is lost for good: the middleware
-  // counts it delivered and never sends it again. The follower sees the gap at the next
-  // update and waits for a snapshot; until then what the lost one accounted for is unknown.
-  const std::uint64_t refused = dds::rejectedPayloadCount(dds::MessageTraits<msg::MapUpdate>::kTypeName);
-  if (refused > refused_updates_) {
-    refused_updates_ = refused;
-    update_lost_ = true;
-    spdlog::warn("{}: an update was refused on receipt: a gap until the next snapshot",
-                 dds::topics::kMapUpdate.info.name);
+  const std::int64_t t = s.stamp_ns;
+  // The frames due at t come from the clock's samples up to t, sent reliably on another topic
+  // than the state: a state that came first waits for the clock of its time.
+  if (lockstep() && simClock().ns() < t) {
+    waiting_for_ = fmt::format("the clock's sample of the state's time {:.3f} s", common::toSeconds(t));
+    return false;
   }
-  takeFleetPaths();
-  // In lockstep an operator's goal takes effect a fixed delay after its stamp, not when it
-  // happens to arrive: the replans that follow it, and so the runs, repeat.
-  while (auto g = goal_.take()) {
-    counters().samples_in++;
-    if (lockstep()) {
-      goals_due_.emplace_back(dds::topics::operatorInputDueNs(g->header().stamp_ns(), simClock().ns()), std::move(*g));
-    } else {
-      takeGoal(*g);
-    }
+  // In lockstep a replan sees every map update due by its state's time, so that runs repeat;
+  // the clock waits at the path's due time for what is not handled by then. A lost update is
+  // not waited for (it never comes).
+  applyMapDue(t);
+  noticeLostUpdate(t);
+  const std::uint64_t frames_due = framesDueAt(t);
+  const bool caught_up = !lockstep() || frames_applied_ >= frames_due || update_lost_;
+  // Joined after the mapper's first update (it depends on when this participant matched), the
+  // planner waits for the snapshot that fills the gap (latched, it comes): the replans then
+  // fall on the states they would have without the gap. Not for ever: a map too large for a
+  // snapshot would never come.
+  const bool joining = lockstep() && follower_.appliedSeq() == 0 && frames_due > 0 && held_snapshots_.empty();
+  const std::int64_t wall_ns = common::steadyTimeNs();
+  if (!joining) {
+    joining_since_ns_ = 0;
+  } else if (joining_since_ns_ == 0) {
+    joining_since_ns_ = wall_ns;
   }
-  for (const auto& s : state_.takeAll()) {
-    // The sim time and the start of every replan: a state stamped past the clock, older than
-    // the last, or not finite is a bad input (a time an hour ahead stopped every replan). An
-    // estimate still aligning gives the time only.
-    if (!s.p_W.allFinite() || s.stamp_ns < now_ns_ || (simClock().seen() && !simClock().vouchesFor(s.stamp_ns))) {
-      counters().errors++;
-      spdlog::warn("{}: sample seq {} rejected: position not finite, or stamp {:.3f} s out of order or "
-                   "past the sim clock ({:.3f} s)", state_.topic().name,
-                   s.seq, common::toSeconds(s.stamp_ns), common::toSeconds(simClock().ns()));
-      continue;
-    }
-    if (s.aligned) {
-      position_ = s.p_W;
-    }
-    now_ns_ = s.stamp_ns;
+  if (!caught_up || (joining && wall_ns - joining_since_ns_ < kJoiningHoldNs)) {
+    waiting_for_ = caught_up ? std::string("joined after the mapper's first update: waiting for its snapshot")
+                             : fmt::format("map updates cover {} of the {} depth frames due at the state of {:.3f} s",
+                                           frames_applied_, frames_due, common::toSeconds(t));
+    return false;
   }
+  if (s.aligned) {
+    position_ = s.p_W;
+    velocity_ = s.v_W;
+  }
+  now_ns_ = t;
   while (!goals_due_.empty() && goals_due_.front().first <= now_ns_) {
     takeGoal(goals_due_.front().second);
     goals_due_.pop_front();
   }
-  // In lockstep a replan sees every map update due by its time, so that runs repeat; the
-  // clock waits for this node's report. A lost update is not waited for (it never comes, and
-  // the next one only comes once sim time moves on).
-  takeMap();
-  noticeLostUpdate();
-  const std::uint64_t frames_due = framesDue();
-  const bool caught_up = !lockstep() || frames_applied_ >= frames_due || update_lost_;
   // A planner that joined late or missed an update plans nothing until a snapshot fills the
   // gap: a path through what it does not know the mapper saw could hit it. Without paths the
   // controller holds position.
@@ -534,38 +554,72 @@ void PlanningNode::onWake()
   if (!goal_id_) {
     applyPending();  // no search to keep in step: the map only
   }
-  if (goal_id_ && position_ && caught_up && map_whole && !mapper_lost &&
-      (goal_changed_ || now_ns_ >= next_replan_ns_)) {
+  if (goal_id_ && position_ && map_whole && !mapper_lost && (goal_changed_ || now_ns_ >= next_replan_ns_)) {
     replan(now_ns_);
     goal_changed_ = false;
     next_replan_ns_ = now_ns_ + common::toNanoseconds(config_.replan_period_s);
   }
-  // Joined after the mapper's first update (it depends on when this participant matched), the
-  // round waits for the snapshot that fills the gap (latched, it comes): the replans then fall
-  // on the rounds they would have without the gap. Not for ever: a map too large for a
-  // snapshot would never come.
-  const bool joining = lockstep() && follower_.appliedSeq() == 0 && frames_due > 0 && held_snapshots_.empty();
-  const std::int64_t wall_ns = common::steadyTimeNs();
-  if (!joining) {
-    joining_since_ns_ = 0;
-  } else if (joining_since_ns_ == 0) {
-    joining_since_ns_ = wall_ns;
+  return true;
+}
+
+std::int64_t PlanningNode::handledNs() const
+{
+  // The last state handled; the clock's time once no state is held and none was sent since
+  // (a fault dropped them): nothing before then can still ask for a path.
+  const bool all_handled = held_states_.empty() && simClock().lastStateSentNs() <= now_ns_;
+  return all_handled ? std::max(now_ns_, simClock().ns()) : now_ns_;
+}
+
+void PlanningNode::reportLockstep()
+{
+  if (!lockstep() || !simClock().seen()) {
+    return;
   }
-  const bool hold_for_snapshot = joining && wall_ns - joining_since_ns_ < kJoiningHoldNs;
-  if (lockstep() && simClock().ns() > reported_ns_) {
-    const bool state_seen = now_ns_ >= simClock().ns() || !simClock().stateSent();
-    if (!caught_up || !state_seen || hold_for_snapshot) {
-      lockstep_.holding(simClock().ns(), [&] {
-        return hold_for_snapshot ? std::string("joined after the mapper's first update: waiting for its snapshot")
-               : caught_up       ? fmt::format("no vehicle state of that time yet (the last at {:.3f} s)",
-                                               common::toSeconds(now_ns_))
-                                 : fmt::format("map updates cover {} of the {} depth frames due", frames_applied_,
-                                               frames_due);
-      });
-    } else if (lockstep_.reportDone(simClock().ns())) {
-      reported_ns_ = simClock().ns();
+  // A state handled at t answers by t plus the budget: done up to then. With the budget 0 the
+  // clock waits every round for the state of its time to be handled.
+  const std::int64_t budget = participant().options().pathBudgetNs();
+  const std::int64_t done = handledNs() + budget;
+  if (done < simClock().ns()) {
+    lockstep_.holding(simClock().ns(), [&] {
+      return !held_states_.empty() ? waiting_for_
+                                    : fmt::format("no vehicle state of that time yet (the last at {:.3f} s)",
+                                                  common::toSeconds(now_ns_));
+    });
+  }
+  lockstep_.reportAhead(done, simClock().ns(), budget);
+}
+
+void PlanningNode::onWake()
+{
+  // An update refused on receipt (its payload broke the IDL) is lost for good: the middleware
+  // counts it delivered and never sends it again. The follower sees the gap at the next
+  // update and waits for a snapshot; until then what the lost one accounted for is unknown.
+  const std::uint64_t refused = dds::rejectedPayloadCount(dds::MessageTraits<msg::MapUpdate>::kTypeName);
+  if (refused > refused_updates_) {
+    refused_updates_ = refused;
+    update_lost_ = true;
+    spdlog::warn("{}: an update was refused on receipt: a gap until the next snapshot",
+                 dds::topics::kMapUpdate.info.name);
+  }
+  takeFleetPaths();
+  // In lockstep an operator's goal takes effect a fixed delay after its stamp, not when it
+  // happens to arrive: the replans that follow it, and so the runs, repeat.
+  while (auto g = goal_.take()) {
+    counters().samples_in++;
+    if (lockstep()) {
+      goals_due_.emplace_back(dds::topics::operatorInputDueNs(g->header().stamp_ns(), simClock().ns()), std::move(*g));
+    } else {
+      takeGoal(*g);
     }
   }
+  takeStates();
+  takeMapSamples();
+  // Each state in its order, with the map due by its time: in lockstep the clock runs on
+  // while a replan works, up to the path's budget, and the states meanwhile wait here.
+  while (!held_states_.empty() && handleState(held_states_.front())) {
+    held_states_.pop_front();
+  }
+  reportLockstep();
 }
 
 }  // namespace quad::planning

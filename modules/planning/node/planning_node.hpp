@@ -8,6 +8,7 @@
 #include <deque>
 #include <memory>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -47,18 +48,28 @@ protected:
   void onWake() override;
 
 private:
-  /// The map's updates and snapshots that arrived, held until they take effect (see the .cpp).
-  void takeMap();
-  /// The time the map is due up to: the newest state's or the clock's (see the .cpp).
-  std::int64_t mapTimeNs() const;
-  /// Depth frames whose updates have taken effect by then (see the .cpp).
-  std::uint64_t framesDue();
+  /// The states that arrived, in order, held until handled (see the .cpp).
+  void takeStates();
+  /// The map's updates and snapshots that arrived, held until they take effect.
+  void takeMapSamples();
+  /// The held map samples due by sim time `at_ns` into the map (see the .cpp).
+  void applyMapDue(std::int64_t at_ns);
+  /// Depth frames whose updates have taken effect by sim time `at_ns` (see the .cpp).
+  std::uint64_t framesDueAt(std::int64_t at_ns);
+  /// The oldest held state, once the map due by its time is in (see the .cpp): its goals, its
+  /// replan. False when it must wait.
+  bool handleState(const dds::StateSample& s);
+  /// The sim time up to which every input is handled (see the .cpp).
+  std::int64_t handledNs() const;
+  /// In lockstep: reports done up to the handled time plus the path's budget, or says why not.
+  void reportLockstep();
   void applySnapshot(const msg::MapSnapshot& snapshot);
   void applyUpdate(const msg::MapUpdate& update);
   /// The voxel changes taken since the last replan, into the planner's graph (see the .cpp).
   void applyPending();
-  /// In lockstep: an update the mapper sent that never came (see the .cpp) is declared lost.
-  void noticeLostUpdate();
+  /// In lockstep: an update due by `at_ns` that the mapper sent and never came (see the .cpp)
+  /// is declared lost.
+  void noticeLostUpdate(std::int64_t at_ns);
   /// A goal taking effect (or refused, and answered).
   void takeGoal(const msg::Goal& goal);
   void replan(std::int64_t t_ns);
@@ -82,6 +93,7 @@ private:
   dds::ModuleWatch mapper_;
   dds::LockstepReporter lockstep_;
 
+  std::deque<dds::StateSample> held_states_;     // arrived, not yet handled
   std::deque<msg::MapSnapshot> held_snapshots_;  // arrived, not yet due
   std::deque<msg::MapUpdate> held_updates_;      // arrived, not yet due
   std::vector<std::pair<VoxelIndex, Occupancy>> pending_;  // voxel changes not yet in the graph
@@ -95,18 +107,20 @@ private:
   // How long, in lockstep, a lapse of its heartbeat lasts before it counts: its liveliness
   // lease, in sim time.
   planning::MapperLapse mapper_lapse_;
-  std::int64_t reported_ns_ = -1;
   std::int64_t joining_since_ns_ = 0;   // steady time it began waiting for the first snapshot (0: not)
+  std::string waiting_for_;             // why the oldest held state waits (for lockstep's log)
   bool goal_changed_ = false;
   std::deque<std::pair<std::int64_t, msg::Goal>> goals_due_;  // in lockstep: goals taken, not yet due
   std::optional<std::uint32_t> goal_id_;
   /// Answers a goal on quad/planning/goal_ack.
   void answerGoal(std::uint32_t goal_id, bool accepted, const std::string& reason);
   std::optional<Vector3> position_;
+  Vector3 velocity_ = Vector3::Zero();  // at position_
   std::int64_t now_ns_ = 0;
   std::int64_t next_replan_ns_ = 0;
   std::int64_t next_publish_ns_ = 0;
   std::uint32_t version_ = 0;
+  std::uint64_t overruns_ = 0;  // paths the lockstep clock reached the due time of first
   msg::Path current_;
   std::optional<Vector3> frontier_W_;  // where the published path leaves known-free space, if it does
   Deconfliction deconfliction_;

@@ -24,5 +24,6 @@ inline constexpr const char* kLockstep = "QUAD_LOCKSTEP";
 inline constexpr const char* kLockstepRecorder = "QUAD_LOCKSTEP_RECORDER";
 inline constexpr const char* kParticipantLease = "QUAD_PARTICIPANT_LEASE";
 inline constexpr const char* kMapBudget = "QUAD_MAP_BUDGET_MS";
+inline constexpr const char* kPathBudget = "QUAD_PATH_BUDGET_MS";
 
 }  // namespace quad::dds::environment

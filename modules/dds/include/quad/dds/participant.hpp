@@ -84,6 +84,11 @@ struct ParticipantOptions {
   std::optional<std::int64_t> map_budget_ns;
   /// The map update's budget this run keeps: map_budget_ns, else the contract's.
   std::int64_t mapBudgetNs() const;
+  /// The run's budget for a replan's path [ns]; none: the topic contract's
+  /// (topics::kPathBudgetNs).
+  std::optional<std::int64_t> path_budget_ns;
+  /// The path's budget this run keeps: path_budget_ns, else the contract's.
+  std::int64_t pathBudgetNs() const;
 };
 
 /// The options a quad process takes from its environment, so that every module and tool of a
@@ -92,7 +97,7 @@ struct ParticipantOptions {
 /// QUAD_DISCOVERY_SERVER, QUAD_QOS_FILE, QUAD_VEHICLE_ID, QUAD_FAULT_LAYER (0|1),
 /// QUAD_UDP_MAX_MESSAGE (bytes), QUAD_VALIDATE_DATAGRAMS (0|1), QUAD_SECURITY_DIR,
 /// QUAD_SECURITY_IDENTITY, QUAD_LOCKSTEP (0|1), QUAD_PARTICIPANT_LEASE (whole seconds),
-/// QUAD_MAP_BUDGET_MS (whole milliseconds, 0 to 1000). A bad value throws
+/// QUAD_MAP_BUDGET_MS and QUAD_PATH_BUDGET_MS (whole milliseconds, 0 to 1000). A bad value throws
 /// std::invalid_argument naming the variable and the value.
 ParticipantOptions optionsFromEnvironment(std::string name);
 

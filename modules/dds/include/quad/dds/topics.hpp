@@ -159,6 +159,15 @@ constexpr std::int64_t operatorInputDueNs(std::int64_t stamp_ns, std::int64_t cl
 /// come.
 inline constexpr std::int64_t kMapUpdateBudgetNs = 50'000'000;
 
+/// In lockstep, the planner's path from the vehicle state of time t (the replan on that state,
+/// and the map updates due by t) is due at t plus this, and stamped with that time: what an
+/// onboard planner would take. The clock runs on while the planner works and waits at the
+/// due time for a path not yet out (an overrun, which the planner counts in Path.overruns);
+/// the controller flies a path from the first state after its stamp. 0: a path takes effect
+/// with the state after the one it was planned on, and the clock waits for the planner every
+/// round.
+inline constexpr std::int64_t kPathBudgetNs = 100'000'000;
+
 /// Every contract, for tools that iterate over topics.
 inline constexpr std::array kAll{
     kSimClock.info, kSimState.info, kSimImu.info, kSimPosition.info, kSimBaro.info, kSimMag.info,
@@ -186,12 +195,12 @@ constexpr bool isSimPaced(std::string_view topic)
 
 /// Members that hold wall-clock or measured compute times ("<scoped struct>.<member>"), the
 /// writer's sample number, which counts the resends of a participant waiting in wall time for
-/// a reader, and the mapper's overruns, which count where its compute time outlasted the
-/// clock's: in two lockstep runs of one seed every other member of every sim-paced topic
-/// agrees.
-inline constexpr std::array<std::string_view, 5> kWallClockFields{
+/// a reader, and the mapper's and the planner's overruns, which count where their compute
+/// time outlasted the clock's: in two lockstep runs of one seed every other member of every
+/// sim-paced topic agrees.
+inline constexpr std::array<std::string_view, 6> kWallClockFields{
     "quad::msg::Header.publish_ns", "quad::msg::Header.seq", "quad::msg::Path.replan_time_s",
-    "quad::msg::MapStats.insert_time_s", "quad::msg::MapStats.overruns"};
+    "quad::msg::Path.overruns", "quad::msg::MapStats.insert_time_s", "quad::msg::MapStats.overruns"};
 
 /// The contract of a topic name, if quad declares one.
 std::optional<TopicInfo> find(std::string_view name);

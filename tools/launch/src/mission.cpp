@@ -104,10 +104,24 @@ void MissionTracker::onCollision(double t)
   progress_.push_back(fmt::format("t = {:.1f} s: COLLISION", t));
 }
 
-void MissionTracker::onMapStats(std::uint64_t overruns)
+namespace {
+/// A count since a module's start, heard in samples that may come out of order: the largest.
+void keepNewest(std::optional<std::uint64_t>& count, std::uint64_t heard)
 {
-  map_overruns_ = std::max(map_overruns_.value_or(0), overruns);
+  count = std::max(count.value_or(0), heard);
 }
+/// A fleet's count: the vehicles' summed, unknown when no vehicle's was heard.
+void addCount(std::optional<std::uint64_t>& sum, const std::optional<std::uint64_t>& vehicle)
+{
+  if (vehicle) {
+    sum = sum.value_or(0) + *vehicle;
+  }
+}
+}  // namespace
+
+void MissionTracker::onMapStats(std::uint64_t overruns) { keepNewest(map_overruns_, overruns); }
+
+void MissionTracker::onPathOverruns(std::uint64_t overruns) { keepNewest(path_overruns_, overruns); }
 
 std::vector<std::string> MissionTracker::takeProgress() { return std::exchange(progress_, {}); }
 
@@ -143,6 +157,7 @@ MissionSummary MissionTracker::summary(double wall_s) const
   s.straight_line_m = (goal_ - world_.start()).norm();
   s.paths = paths_;
   s.map_overruns = map_overruns_;
+  s.path_overruns = path_overruns_;
   s.min_clearance_m = std::isfinite(min_clearance_) ? min_clearance_ : 0.0;
   s.mode_changes = static_cast<int>(modes_.size());
   s.modes = modes_;
@@ -267,9 +282,8 @@ MissionSummary fleetSummary(std::vector<MissionSummary> vehicles, std::optional<
     s.straight_line_m += v.straight_line_m;
     optimum = optimum && v.optimum_m ? std::optional<double>(*optimum + *v.optimum_m) : std::nullopt;
     s.paths += v.paths;
-    if (v.map_overruns) {
-      s.map_overruns = s.map_overruns.value_or(0) + *v.map_overruns;
-    }
+    addCount(s.map_overruns, v.map_overruns);
+    addCount(s.path_overruns, v.path_overruns);
     s.min_clearance_m = std::min(s.min_clearance_m, v.min_clearance_m);
     s.mode_changes += v.mode_changes;
     s.goal_distance_m = std::max(s.goal_distance_m, v.goal_distance_m);
@@ -314,6 +328,7 @@ nlohmann::ordered_json jsonOf(const MissionSummary& s)
                                                               : nlohmann::ordered_json(nullptr);
   j["paths"] = s.paths;
   j["map_overruns"] = s.map_overruns ? nlohmann::ordered_json(*s.map_overruns) : nlohmann::ordered_json(nullptr);
+  j["path_overruns"] = s.path_overruns ? nlohmann::ordered_json(*s.path_overruns) : nlohmann::ordered_json(nullptr);
   j["min_clearance_m"] = s.min_clearance_m;
   j["mode_changes"] = s.mode_changes;
   j["modes"] = s.modes;
@@ -378,13 +393,16 @@ std::string estimateText(const MissionSummary& s)
                      100.0 * e.position_rms_m, 100.0 * e.position_max_m, e.attitude_rms_deg, e.attitude_max_deg,
                      e.yaw_rms_deg, e.position_nees_mean, 100.0 * e.within_3sigma);
 }
-/// "  map updates over the mapper's budget: 3 (the lockstep clock waited for them)"; empty
-/// without a mapper's stats.
+/// "  map updates over the mapper's budget: 3 (the lockstep clock waited for them)", and the
+/// planner's paths alike; a line for each count heard.
 std::string overrunText(const MissionSummary& s)
 {
-  return s.map_overruns ? fmt::format("  map updates over the mapper's budget: {}{}\n", *s.map_overruns,
-                                      *s.map_overruns > 0 ? " (the lockstep clock waited for them)" : "")
-                        : "";
+  const auto line = [](const std::optional<std::uint64_t>& count, const char* what) {
+    return count ? fmt::format("  {}: {}{}\n", what, *count, *count > 0 ? " (the lockstep clock waited for them)" : "")
+                 : std::string();
+  };
+  return line(s.map_overruns, "map updates over the mapper's budget") +
+         line(s.path_overruns, "paths over the planner's budget");
 }
 
 /// A fleet's vehicles, a line each, and the least separation; empty for one vehicle.

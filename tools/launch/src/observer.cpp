@@ -299,6 +299,7 @@ void Observer::update()
   for (const auto& p : endpoints_->path.takeAll(ids_)) {
     if (auto* m = missionOf(p)) {
       m->onPath(p.version(), noPathReason(p.status()));
+      m->onPathOverruns(p.overruns());
     }
   }
   for (const auto& e : endpoints_->events.takeAll(ids_)) {

@@ -65,9 +65,10 @@ TEST(MissionTracker, LandingAtTheGoalWithoutCollisionIsASuccess)
   // No mapper's stats heard: its overruns are unknown, not zero
   EXPECT_FALSE(s.map_overruns.has_value());
   EXPECT_NE(toJson(s).find("\"map_overruns\": null"), std::string::npos);
+  EXPECT_FALSE(s.path_overruns.has_value());
 }
 
-TEST(MissionTracker, TheMappersOverrunsAreItsNewestCountInTheSummary)
+TEST(MissionTracker, TheMappersAndThePlannersOverrunsAreTheirNewestCountsInTheSummary)
 {
   const auto w = world();
   MissionTracker t(mission(true), w, 0.25);
@@ -75,12 +76,22 @@ TEST(MissionTracker, TheMappersOverrunsAreItsNewestCountInTheSummary)
   t.onMapStats(0);
   t.onMapStats(3);
   t.onMapStats(2);
-  // THEN the summary holds the newest count, in its JSON and its text
-  const MissionSummary s = t.summary(1.0);
+  // THEN the summary holds the newest count, in its JSON and its text, and no planner's
+  MissionSummary s = t.summary(1.0);
   ASSERT_TRUE(s.map_overruns.has_value());
   EXPECT_EQ(*s.map_overruns, 3U);
   EXPECT_NE(toJson(s).find("\"map_overruns\": 3"), std::string::npos) << toJson(s);
   EXPECT_NE(toText(s).find("map updates over the mapper's budget: 3"), std::string::npos) << toText(s);
+  EXPECT_EQ(toText(s).find("paths over the planner's budget"), std::string::npos) << toText(s);
+  // AND GIVEN the planner's paths alike THEN the same for its count
+  t.onPathOverruns(1);
+  t.onPathOverruns(4);
+  t.onPathOverruns(2);
+  s = t.summary(1.0);
+  ASSERT_TRUE(s.path_overruns.has_value());
+  EXPECT_EQ(*s.path_overruns, 4U);
+  EXPECT_NE(toJson(s).find("\"path_overruns\": 4"), std::string::npos) << toJson(s);
+  EXPECT_NE(toText(s).find("paths over the planner's budget: 4"), std::string::npos) << toText(s);
 }
 
 TEST(MissionTracker, ACollisionFailsTheMissionEvenAtTheGoal)
@@ -262,7 +273,9 @@ TEST(FleetSummary, TheFleetSucceedsWhenEveryVehicleDoesAndSumsOrBoundsTheirFigur
   MissionSummary b = vehicleSummary(2, MissionEnd::kSuccess, 20.0, 18.0);
   a.map_overruns = 2;
   b.map_overruns = 5;
+  b.path_overruns = 3;  // a's planner unheard
   EXPECT_EQ(fleetSummary({a, b}, 0.8, 5.0).map_overruns, std::optional<std::uint64_t>(7));
+  EXPECT_EQ(fleetSummary({a, b}, 0.8, 5.0).path_overruns, std::optional<std::uint64_t>(3));
 
   // One vehicle without a path and one failed: the fleet failed, naming both; no total optimum.
   s = fleetSummary({vehicleSummary(1, MissionEnd::kNoPath, 10.0, std::nullopt),

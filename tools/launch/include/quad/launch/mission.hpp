@@ -58,6 +58,9 @@ struct MissionSummary {
   /// Map updates the lockstep clock reached the due time of before the mapper had them out
   /// (MapStats.overruns, the newest heard); nothing when no mapper's stats came.
   std::optional<std::uint64_t> map_overruns;
+  /// Paths the lockstep clock reached the due time of before the planner had them out
+  /// (Path.overruns, the newest heard); nothing when no path came.
+  std::optional<std::uint64_t> path_overruns;
   double min_clearance_m = 0.0; ///< closest the vehicle's bounding sphere came to an obstacle
   int mode_changes = 0;
   std::vector<std::string> modes;  ///< "t MODE" in order
@@ -101,6 +104,8 @@ public:
   void onCollision(double t);
   /// The mapper's count of updates over its budget (MapStats.overruns).
   void onMapStats(std::uint64_t overruns);
+  /// The planner's count of paths over its budget (Path.overruns).
+  void onPathOverruns(std::uint64_t overruns);
 
   /// Lines worth printing while the mission flies ("t = 12.3 s: MISSION -> HOVER"), once each.
   std::vector<std::string> takeProgress();
@@ -127,6 +132,7 @@ private:
   std::uint32_t last_version_ = 0;
   int paths_ = 0;
   std::optional<std::uint64_t> map_overruns_;
+  std::optional<std::uint64_t> path_overruns_;
   int collisions_ = 0;
   bool goal_reached_ = false;
   bool finished_ = false;

@@ -8,6 +8,9 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
+#include <sstream>
+#include <vector>
 #include <string>
 #include <thread>
 
@@ -69,6 +72,65 @@ std::int64_t clockNs(const std::map<std::string, std::string>& run_env)
   return samples.empty() ? -1 : samples.front()["sim_ns"].get<std::int64_t>();
 }
 
+/// The plant in lockstep for 30 s of sim time with the mapper and the planner, and a
+/// controller that holds 2 m over the start, everyone on the plant's true state (no
+/// estimator runs here), on `run_env`'s domain; the plant starts with start().
+struct LockstepStack {
+  LockstepStack(const std::map<std::string, std::string>& run_env, const std::string& name)
+      : env(run_env),
+        dir(prepared(name)),
+        mapping({QUAD_MAPPING_NODE, "--config", (dir / "mapping.yaml").string()}, env),
+        planning({QUAD_PLANNING_NODE, "--config", std::string(QUAD_CONFIG_DIR) + "/planning.yaml", "--set",
+                  "state.source=truth"},
+                 env),
+        controller({QUAD_ALTITUDE_CONTROLLER, "757.5", "2.0"}, env)
+  {
+  }
+  ~LockstepStack() { std::filesystem::remove_all(dir); }
+
+  /// A fresh folder `name` with the mapper's and the plant's configs.
+  static std::filesystem::path prepared(const std::string& name)
+  {
+    const auto dir = std::filesystem::temp_directory_path() / name;
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "mapping.yaml") << "state: {source: truth}\n";
+    std::ofstream(dir / "plant.yaml") << "vehicle: " << QUAD_CONFIG_DIR << "/vehicles/x500.yaml\nworld: "
+                                      << QUAD_CONFIG_DIR << "/worlds/demo.yaml\n"
+                                      << "sim: {mode: lockstep, duration: 30}\nlockstep: {participants: "
+                                         "'mapping,planning'}\nstate: {source: truth}\n";
+    return dir;
+  }
+  /// The modules are up, and the planner has goal 1 at (10, 0, 2), stamped at sim time 0.
+  void ready(int domain)
+  {
+    ASSERT_TRUE(quad::test::waitForRunningModule(domain, "mapping", 20s)) << mapping.output();
+    ASSERT_TRUE(quad::test::waitForRunningModule(domain, "planning", 20s)) << planning.output();
+    ASSERT_TRUE(controller.waitForOutput("ready", 10s)) << controller.output();
+    ChildProcess goal({QUAD_TOOL, "topic", "pub", "quad/planning/goal",
+                       "{header: {stamp_ns: 0}, goal_id: 1, p_W: {x: 10, y: 0, z: 2}, tolerance: 0.3}", "--wait-match",
+                       "5"},
+                      env);
+    ASSERT_EQ(goal.wait(15s), 0) << goal.output();
+  }
+  void start() { plant.emplace(std::vector<std::string>{QUAD_PLANT_NODE, "--config", (dir / "plant.yaml").string()}, env); }
+  /// Stops the mapper and the planner, which must end cleanly.
+  void stop()
+  {
+    planning.signal(SIGTERM);
+    mapping.signal(SIGTERM);
+    EXPECT_EQ(planning.wait(10s), 0) << planning.output();
+    EXPECT_EQ(mapping.wait(10s), 0) << mapping.output();
+  }
+
+  std::map<std::string, std::string> env;
+  std::filesystem::path dir;
+  ChildProcess mapping;
+  ChildProcess planning;
+  ChildProcess controller;
+  std::optional<ChildProcess> plant;
+};
+
 // In lockstep a path is due the planner's budget of sim time after the vehicle state it was
 // planned on, stamped with that time, and starts where the vehicle will be then; the clock runs
 // on while the planner works, stands where its promise ends while it is stopped, and a path
@@ -82,42 +144,31 @@ TEST(PlanningNode, InLockstepAPathIsDueTheBudgetAfterItsStateAndTheClockStandsFo
   run_env["QUAD_PATH_BUDGET_MS"] = "4";
   run_env["QUAD_LOCKSTEP"] = "1";
   run_env["QUAD_PARTICIPANT_LEASE"] = "10";  // peers keep a stopped participant
-  const auto dir = std::filesystem::temp_directory_path() / "quad_planning_node_budget_test";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  // Everyone on the plant's true state: no estimator runs here.
-  std::ofstream(dir / "mapping.yaml") << "state: {source: truth}\n";
-  std::ofstream(dir / "plant.yaml") << "vehicle: " << QUAD_CONFIG_DIR << "/vehicles/x500.yaml\nworld: "
-                                    << QUAD_CONFIG_DIR << "/worlds/demo.yaml\n"
-                                    << "sim: {mode: lockstep, duration: 30}\nlockstep: {participants: "
-                                       "'mapping,planning'}\nstate: {source: truth}\n";
-  ChildProcess mapping({QUAD_MAPPING_NODE, "--config", (dir / "mapping.yaml").string()}, run_env);
-  ChildProcess planning({QUAD_PLANNING_NODE, "--config", std::string(QUAD_CONFIG_DIR) + "/planning.yaml", "--set",
-                         "state.source=truth"},
-                        run_env);
-  ChildProcess controller({QUAD_ALTITUDE_CONTROLLER, "757.5", "2.0"}, run_env);
-  ASSERT_TRUE(quad::test::waitForRunningModule(87, "mapping", 20s)) << mapping.output();
-  ASSERT_TRUE(quad::test::waitForRunningModule(87, "planning", 20s)) << planning.output();
-  ASSERT_TRUE(controller.waitForOutput("ready", 10s)) << controller.output();
-  ChildProcess goal({QUAD_TOOL, "topic", "pub", "quad/planning/goal",
-                     "{header: {stamp_ns: 0}, goal_id: 1, p_W: {x: 10, y: 0, z: 2}, tolerance: 0.3}", "--wait-match",
-                     "5"},
-                    run_env);
-  ASSERT_EQ(goal.wait(15s), 0) << goal.output();
+  LockstepStack stack(run_env, "quad_planning_node_budget_test");
+  stack.ready(87);
+  if (::testing::Test::HasFatalFailure()) {
+    return;
+  }
   ChildProcess paths({QUAD_TOOL, "topic", "echo", "quad/planning/path", "-n", "40", "--json", "--timeout", "120"},
                      run_env);
-  ChildProcess states({QUAD_TOOL, "topic", "echo", "quad/sim/state", "--json"}, run_env);  // until stopped
+  // Every state, into a file: a pipe nobody reads while the test waits would stall the echo,
+  // and its reader would drop what comes meanwhile.
+  const auto states_file = stack.dir / "states.jsonl";
+  ChildProcess states({"/bin/sh", "-c",
+                       std::string("exec ") + QUAD_TOOL + " topic echo quad/sim/state --json > " + states_file.string()},
+                      run_env);  // until stopped
   std::this_thread::sleep_for(1s);  // the echoes matched
-  ChildProcess plant({QUAD_PLANT_NODE, "--config", (dir / "plant.yaml").string()}, run_env);
+  stack.start();
+  ChildProcess& plant = *stack.plant;
   // GIVEN a lockstep run of 30 s, its planner past its fifth path
   ASSERT_TRUE(paths.waitForOutput("\"version\":5,", 60s)) << paths.output() << plant.output();
   // WHEN the planner is stopped for a few seconds
-  planning.signal(SIGSTOP);
+  stack.planning.signal(SIGSTOP);
   std::this_thread::sleep_for(1500ms);
   const std::int64_t held_ns = clockNs(run_env);
   std::this_thread::sleep_for(1500ms);
   const std::int64_t still_ns = clockNs(run_env);
-  planning.signal(SIGCONT);
+  stack.planning.signal(SIGCONT);
   ASSERT_EQ(plant.wait(90s), 0) << plant.output();
   ASSERT_EQ(paths.wait(30s), 0) << paths.output();
   states.signal(SIGINT);
@@ -131,7 +182,9 @@ TEST(PlanningNode, InLockstepAPathIsDueTheBudgetAfterItsStateAndTheClockStandsFo
   // would be by then at that state's velocity (checked on the states the best-effort echo
   // caught)
   std::map<std::int64_t, nlohmann::json> state_at;
-  for (const auto& s : quad::test::jsonLines(states.output())) {
+  std::stringstream caught;
+  caught << std::ifstream(states_file).rdbuf();
+  for (const auto& s : quad::test::jsonLines(caught.str())) {
     state_at[s["header"]["stamp_ns"].get<std::int64_t>()] = s;
   }
   const auto component = [](const nlohmann::json& v, const char* axis) { return v[axis].get<double>(); };
@@ -152,14 +205,45 @@ TEST(PlanningNode, InLockstepAPathIsDueTheBudgetAfterItsStateAndTheClockStandsFo
     }
     ++checked;
   }
-  EXPECT_GE(checked, 3) << paths.output();
+  EXPECT_GE(checked, 10) << paths.output();
   // AND the clock reached the due time of a path before it was out: an overrun
   EXPECT_GE(overruns, 1U) << paths.output();
-  planning.signal(SIGTERM);
-  mapping.signal(SIGTERM);
-  EXPECT_EQ(planning.wait(10s), 0) << planning.output();
-  EXPECT_EQ(mapping.wait(10s), 0) << mapping.output();
-  std::filesystem::remove_all(dir);
+  stack.stop();
+}
+
+// A map update that counts depth frames the clock never reached (one bit flipped on a link
+// did so) is refused as a bad input: held until the clock got there, it would hold every
+// later update back, and the planner would never plan again.
+TEST(PlanningNode, InLockstepAnUpdateCountingFramesPastTheClockIsRefusedAndPlanningGoesOn)
+{
+  auto run_env = env(88);
+  run_env["QUAD_LOCKSTEP"] = "1";
+  LockstepStack stack(run_env, "quad_planning_node_bad_update_test");
+  stack.ready(88);
+  if (::testing::Test::HasFatalFailure()) {
+    return;
+  }
+  ChildProcess paths({QUAD_TOOL, "topic", "echo", "quad/planning/path", "--json"}, run_env);  // until stopped
+  std::this_thread::sleep_for(1s);  // the echo matched
+  stack.start();
+  // GIVEN a lockstep run of 30 s, its planner past its third path
+  ASSERT_TRUE(paths.waitForOutput("\"version\":3,", 60s)) << paths.output() << stack.plant->output();
+  // WHEN an update counting 2^31 depth frames comes
+  ChildProcess bad({QUAD_TOOL, "topic", "pub", "quad/mapping/update",
+                    "{update_seq: 1000000, resolution: 0.2, depth_frames: 2147483648}", "--wait-match", "5"},
+                   run_env);
+  ASSERT_EQ(bad.wait(15s), 0) << bad.output();
+  // THEN the planner counts it as an error
+  EXPECT_TRUE(quad::test::waitForModuleErrors(88, "planning", 1, 20s)) << stack.planning.output();
+  ASSERT_EQ(stack.plant->wait(90s), 0) << stack.plant->output();
+  paths.signal(SIGINT);
+  ASSERT_EQ(paths.wait(10s), 0);
+  // AND plans on to the run's end: its last path is a path, from the run's last seconds
+  const auto heard = quad::test::jsonLines(paths.output());
+  ASSERT_FALSE(heard.empty());
+  EXPECT_EQ(heard.back()["status"], "PLAN_OK") << heard.back();
+  EXPECT_GT(heard.back()["header"]["stamp_ns"].get<std::int64_t>(), 25'000'000'000) << heard.back();
+  stack.stop();
 }
 
 TEST(PlanningNode, ARepublishPeriodReadersWouldCallStaleIsRefusedNamingTheKey)

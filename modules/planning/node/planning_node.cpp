@@ -23,6 +23,9 @@ constexpr std::int64_t kLostUpdateGraceNs = 1'000'000'000;
 /// How long a planner that joined after the mapper's first update holds lockstep for the
 /// snapshot that fills the gap [ns of wall time].
 constexpr std::int64_t kJoiningHoldNs = 2'000'000'000;
+/// How many more depth frames a map update may count than the clock's newest sample here:
+/// the clock's samples lag the mapper's updates by a repair at most (2 s of the 10 Hz camera).
+constexpr std::uint64_t kFramesAheadOfClock = 20;
 
 Occupancy fromMessage(msg::VoxelState s)
 {
@@ -170,6 +173,17 @@ void PlanningNode::takeMapSamples()
   }
   for (auto& u : updates_.takeAll()) {
     counters().samples_in++;
+    // A count of depth frames the clock has not reached, by more than its samples can lag
+    // the mapper's, is a bad input: held until the clock gets there, it would hold every
+    // later update back for ever (seen: one bit flipped on the link, 2^31 frames more).
+    // Refused, it is a lost update: a gap until the next snapshot.
+    if (simClock().seen() && u.depth_frames() > simClock().depthFrames() + kFramesAheadOfClock) {
+      counters().errors++;
+      update_lost_ = true;
+      spdlog::warn("{}: update {} counts {} depth frames, the clock {}: refused; a gap until the next snapshot",
+                   dds::topics::kMapUpdate.info.name, u.update_seq(), u.depth_frames(), simClock().depthFrames());
+      continue;
+    }
     held_updates_.push_back(std::move(u));
   }
 }

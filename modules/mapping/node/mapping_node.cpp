@@ -83,7 +83,7 @@ MappingNode::MappingNode(MappingNodeConfig config, dds::ParticipantOptions optio
       // budget: the clouds and the states that come meanwhile wait here, none replaced by a
       // newer one (the next cloud is placed with the state of its own time).
       depth_(participant(), dds::topics::kSimDepth, waker(),
-             dds::withDepth(participant().readerQos(dds::topics::kSimDepth.info.qos_profile), kHeldClouds)),
+             dds::deeperReaderQos(participant(), dds::topics::kSimDepth.info, kHeldClouds)),
       state_(participant(), config_.state_source, waker(), dds::kHeldStates),
       commands_(participant(), dds::topics::kVehicleCommand, waker()),
       updates_(participant(), dds::topics::kMapUpdate),

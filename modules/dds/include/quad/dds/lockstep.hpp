@@ -41,8 +41,6 @@ public:
   /// reports a few times a budget, not every round, and the clock still never waits for a
   /// report of work that is done. True when a report went out.
   bool reportAhead(std::int64_t done_ns, std::int64_t clock_ns, std::int64_t budget_ns);
-  /// [ns] The newest done time reported (-1: none yet).
-  std::int64_t reportedNs() const { return reported_ns_; }
 
   /// Says that the work due up to `clock_ns` is not finished, and why (called only when it is
   /// logged). Once the clock has waited for this participant for 2 s of wall time, logs
@@ -55,7 +53,7 @@ public:
 private:
   std::string name_;
   Publisher<msg::LockstepReport> publisher_;
-  std::int64_t reported_ns_ = -1;
+  std::int64_t reported_ns_ = -1;  // the newest done time reported (-1: none yet)
   std::int64_t holding_clock_ns_ = -1;  // the clock time held since holding_since_ns_ (wall)
   std::int64_t holding_since_ns_ = 0;
   std::int64_t next_holding_log_ns_ = 0;

@@ -41,34 +41,55 @@ std::string writeFile(const std::string& name, const std::string& body)
   return path.string();
 }
 
-/// The samples a `quad topic echo --json` printed, one JSON object a line.
+/// The control node (autostart, auto mission, on the plant's true state) with an operator's
+/// goal at (20, 5, 3) and a path to it across the open world, which the operator vouches is free
+/// all along (known_free_m: the controller flies no further), sent again twice a second. The
+/// config files are named after the domain (tests run side by side).
+struct OperatorMission {
+  explicit OperatorMission(int domain)
+      // The operator's path comes at a wall-clock rate, while lockstep sim time runs many times
+      // faster: path staleness (tested in the core) is judged in sim time, so give it room here.
+      : control({QUAD_CONTROL_NODE, "--config",
+                 writeFile("control_" + std::to_string(domain) + ".yaml",
+                           std::string("vehicle: ") + QUAD_CONFIG_DIR +
+                               "/vehicles/x500.yaml\nautostart: true\nmodes: {auto_mission: true}\n"
+                               "timeouts: {path: 600}\nstate: {source: truth}\n")},
+                env(domain)),
+        running(quad::test::waitForRunningModule(domain, "control", 20s)),
+        goal({QUAD_TOOL, "topic", "pub", "quad/planning/goal", "{goal_id: 1, p_W: {x: 20, y: 5, z: 3}, tolerance: 0.3}",
+              "--wait-match", "5"},
+             env(domain)),
+        path({QUAD_TOOL, "topic", "pub", "quad/planning/path",
+              "{version: 1, goal_id: 1, status: PLAN_OK, waypoints_W: [{x: 0, y: 0, z: 2}, "
+              "{x: 10, y: 0, z: 2}, {x: 20, y: 5, z: 3}], known_free_m: 1000}",
+              "--count", "100", "--rate", "2", "--wait-match", "5"},
+             env(domain))
+  {
+  }
+  /// The controller runs, and the goal and the path are out.
+  bool ready() { return running && goal.waitForOutput("published", 10s) && path.waitForOutput("published", 10s); }
+
+  ChildProcess control;
+  bool running;
+  ChildProcess goal;
+  ChildProcess path;
+};
+
+/// A lockstep plant config on the open world, with `extra` keys; named after `name`.
+std::string lockstepOpenWorld(const std::string& name, double duration_s, const std::string& extra = "")
+{
+  return writeFile(name, std::string("vehicle: ") + QUAD_CONFIG_DIR + "/vehicles/x500.yaml\nworld: " +
+                             QUAD_CONFIG_DIR + "/worlds/open.yaml\nsim: {mode: lockstep, duration: " +
+                             std::to_string(duration_s) + "}\nstate: {source: truth}\n" + extra);
+}
+
 TEST(Flight, LockstepMissionReachesItsGoalWithoutCollision)
 {
   const int domain = 150;
-  const std::string plant_config =
-      writeFile("plant.yaml", std::string("vehicle: ") + QUAD_CONFIG_DIR + "/vehicles/x500.yaml\nworld: " +
-                                  QUAD_CONFIG_DIR + "/worlds/open.yaml\nsim: {mode: lockstep, duration: 25.0}\n"
-                                  "state: {source: truth}\n");
-  // The operator's path comes at a wall-clock rate, while lockstep sim time runs many times
-  // faster: path staleness (tested in the core) is judged in sim time, so give it room here.
-  const std::string control_config =
-      writeFile("control.yaml", std::string("vehicle: ") + QUAD_CONFIG_DIR +
-                                    "/vehicles/x500.yaml\nautostart: true\nmodes: {auto_mission: true}\n"
-                                    "timeouts: {path: 600}\nstate: {source: truth}\n");
-  // GIVEN the control node (autostart, auto mission) and an operator's goal and path, which
-  // the operator vouches is free all along (known_free_m: the controller flies no further)
-  ChildProcess control({QUAD_CONTROL_NODE, "--config", control_config}, env(domain));
-  ASSERT_TRUE(quad::test::waitForRunningModule(domain, "control", 20s)) << control.output();
-  ChildProcess goal({QUAD_TOOL, "topic", "pub", "quad/planning/goal",
-                     "{goal_id: 1, p_W: {x: 20, y: 5, z: 3}, tolerance: 0.3}", "--wait-match", "5"},
-                    env(domain));
-  ChildProcess path({QUAD_TOOL, "topic", "pub", "quad/planning/path",
-                     "{version: 1, goal_id: 1, status: PLAN_OK, waypoints_W: [{x: 0, y: 0, z: 2}, "
-                     "{x: 10, y: 0, z: 2}, {x: 20, y: 5, z: 3}], known_free_m: 1000}",
-                     "--count", "100", "--rate", "2", "--wait-match", "5"},
-                    env(domain));
-  ASSERT_TRUE(goal.waitForOutput("published", 10s)) << goal.output();
-  ASSERT_TRUE(path.waitForOutput("published", 10s)) << path.output();
+  const std::string plant_config = lockstepOpenWorld("plant.yaml", 25.0);
+  // GIVEN the control node (autostart, auto mission) and an operator's goal and path
+  OperatorMission op(domain);
+  ASSERT_TRUE(op.ready()) << op.control.output() << op.goal.output() << op.path.output();
   // AND readers of the plant's events (the run's end carries the final position and the
   // collision count) and of the controller's status
   ChildProcess events({QUAD_TOOL, "topic", "echo", "quad/sim/events", "--json"}, env(domain));
@@ -228,3 +249,74 @@ TEST(Flight, InRealTimeStatesThatStopWhileTheClockRunsGoStaleAtTheirDeadline)
 }
 
 }  // namespace
+
+namespace {
+
+/// A lockstep flight on the plant's true state across the open world, whose state sensor drops
+/// out for 1.5 s at 7 s of sim time (the plant's fault schedule, so at the same sim time in
+/// every run): the plant's run's end (SIM_EVENT_RUN_ENDED) and the controller's statuses.
+struct LockstepDropoutRun {
+  nlohmann::json ended;
+  std::vector<nlohmann::json> statuses;
+};
+
+LockstepDropoutRun lockstepDropoutRun(int domain)
+{
+  const std::string name = "dropout_" + std::to_string(domain);
+  const std::string faults =
+      writeFile(name + "_faults.yaml", "- {id: 1, kind: sensor_dropout, sensor: state, at: 7.0, duration: 1.5}\n");
+  const std::string plant_config =
+      lockstepOpenWorld(name + "_plant.yaml", 24.0, "faults: {schedule: " + faults + "}\n");
+  OperatorMission op(domain);
+  EXPECT_TRUE(op.ready()) << op.control.output() << op.goal.output() << op.path.output();
+  ChildProcess events({QUAD_TOOL, "topic", "echo", "quad/sim/events", "--json"}, env(domain));
+  ChildProcess status({QUAD_TOOL, "topic", "echo", "quad/control/status", "--json"}, env(domain));
+  EXPECT_TRUE(quad::test::waitForReader(domain, "quad/sim/events", 15s));
+  EXPECT_TRUE(quad::test::waitForReader(domain, "quad/control/status", 15s));
+  ChildProcess plant({QUAD_PLANT_NODE, "--config", plant_config}, env(domain));
+  EXPECT_EQ(plant.wait(90s), 0) << plant.output();
+  LockstepDropoutRun run;
+  EXPECT_TRUE(events.waitForOutput("SIM_EVENT_RUN_ENDED", 10s)) << events.output();
+  for (const auto& e : quad::test::jsonLines(events.output())) {
+    if (e["kind"] == "SIM_EVENT_RUN_ENDED") {
+      run.ended = e;
+    }
+  }
+  // (the echo prints all it has once stopped: its output is buffered)
+  std::this_thread::sleep_for(1s);
+  status.signal(SIGINT);
+  status.wait(10s);
+  run.statuses = quad::test::jsonLines(status.output());
+  return run;
+}
+
+}  // namespace
+
+// In lockstep a round whose state a fault dropped is answered too, on the IMU's dead reckoning
+// at the clock's time, and the plant waits for that answer as for a state's: the vehicle is
+// flown through the outage without lag, and two runs of it are the same run.
+TEST(Flight, InLockstepAStateDropoutIsFlownOnDeadReckoningAndTwoRunsOfItAreBitIdentical)
+{
+  // GIVEN a lockstep mission at 2 m/s whose true state drops out for 1.5 s mid-flight
+  // WHEN it is flown twice
+  const LockstepDropoutRun a = lockstepDropoutRun(80);
+  const LockstepDropoutRun b = lockstepDropoutRun(81);
+  // THEN the controller held on its dead reckoning while the state was stale, and flew the
+  // mission on once it was back
+  ASSERT_FALSE(a.ended.is_null());
+  ASSERT_FALSE(b.ended.is_null());
+  const auto held = std::find_if(a.statuses.begin(), a.statuses.end(), [](const nlohmann::json& s) {
+    return s["mode"] == "CONTROL_HOVER" && s["failsafe_reason"] == "FAILSAFE_STATE_STALE";
+  });
+  ASSERT_NE(held, a.statuses.end()) << a.statuses.size() << " statuses";
+  EXPECT_NEAR((*held)["header"]["stamp_ns"].get<double>() * 1e-9, 7.1, 0.06) << *held;
+  EXPECT_NE(std::find_if(held, a.statuses.end(), [](const nlohmann::json& s) { return s["mode"] == "CONTROL_MISSION"; }),
+            a.statuses.end());
+  // AND it hit nothing and reached the goal
+  EXPECT_EQ(a.ended["subject_id"], 0) << "collisions: " << a.ended;
+  EXPECT_NEAR(a.ended["p_W"]["x"].get<double>(), 20.0, 0.3) << a.ended;
+  EXPECT_NEAR(a.ended["p_W"]["y"].get<double>(), 5.0, 0.3) << a.ended;
+  // AND the two runs ended at the same sim time at the same position, to the last bit
+  EXPECT_EQ(a.ended["header"]["stamp_ns"], b.ended["header"]["stamp_ns"]);
+  EXPECT_EQ(a.ended["p_W"].dump(17), b.ended["p_W"].dump(17)) << a.ended << "\n" << b.ended;
+}

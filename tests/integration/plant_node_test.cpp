@@ -78,21 +78,6 @@ TEST(PlantNode, RealTimeRunPublishesStateAndStopsAtItsDuration)
   EXPECT_EQ(ended["header"]["stamp_ns"], 3'000'000'000LL) << ended;
 }
 
-/// Waits up to 15 s until `quad topic info` sees a reader of `topic` on `domain`.
-bool waitForReader(int domain, const std::string& topic)
-{
-  for (int i = 0; i < 15; ++i) {
-    ChildProcess info({QUAD_TOOL, "topic", "info", topic, "--wait", "1", "--json"}, env(domain));
-    if (info.wait(10s) == 0) {
-      const auto seen = nlohmann::json::parse(info.output(), nullptr, false);
-      if (seen.is_object() && !seen["readers"].empty()) {
-        return true;
-      }
-    }
-  }
-  return false;
-}
-
 /// The run's end (SIM_EVENT_RUN_ENDED) of a lockstep run of 4 s. Such a run lasts well under a
 /// second of wall time, so the events reader is matched before the run starts: the plant waits
 /// for the controller's first command, and the controller starts once the reader is seen.
@@ -102,7 +87,7 @@ nlohmann::json lockstepRun(int domain)
                       config("lockstep.yaml", "sim: {mode: lockstep, duration: 4.0, seed: 5}\n")},
                      env(domain));
   ChildProcess events({QUAD_TOOL, "topic", "echo", "quad/sim/events", "--json"}, env(domain));
-  EXPECT_TRUE(waitForReader(domain, "quad/sim/events"));
+  EXPECT_TRUE(quad::test::waitForReader(domain, "quad/sim/events", 15s));
   ChildProcess controller({QUAD_ALTITUDE_CONTROLLER, kHover, "2.0"}, env(domain));
   EXPECT_EQ(plant.wait(60s), 0) << plant.output();
   return runEnded(events);
@@ -237,7 +222,7 @@ std::map<int, nlohmann::json> fleetLockstepRun(int domain)
                       config("fleet_lockstep.yaml", "fleet: " + fleet + "\nsim: {mode: lockstep, duration: 4.0, seed: 5}\n")},
                      env(domain));
   ChildProcess events({QUAD_TOOL, "topic", "echo", "quad/sim/events", "--json"}, env(domain));
-  EXPECT_TRUE(waitForReader(domain, "quad/sim/events"));
+  EXPECT_TRUE(quad::test::waitForReader(domain, "quad/sim/events", 15s));
   auto as = [&](int vehicle) {
     auto e = env(domain);
     e["QUAD_VEHICLE_ID"] = std::to_string(vehicle);

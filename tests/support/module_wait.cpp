@@ -59,4 +59,20 @@ bool waitForModuleErrors(int domain, const std::string& module, std::uint64_t er
       domain, module, [errors](const msg::Heartbeat& hb) { return hb.errors() >= errors; }, timeout);
 }
 
+bool waitForReader(int domain, const std::string& topic, std::chrono::milliseconds timeout)
+{
+  dds::ParticipantOptions options;
+  options.name = "quad_test_wait";
+  options.domain_id = domain;
+  options.transport = dds::Transport::kUdp;
+  const dds::Participant participant(options);
+  return waitFor(
+      [&] {
+        const auto seen = participant.remoteEndpoints();
+        return std::any_of(seen.begin(), seen.end(),
+                           [&](const dds::RemoteEndpoint& e) { return !e.writer && e.topic == topic; });
+      },
+      timeout);
+}
+
 }  // namespace quad::test

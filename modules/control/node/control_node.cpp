@@ -330,15 +330,19 @@ void ControlNode::onWake()
 
 void ControlNode::controlWithoutState()
 {
-  // When the states stop coming (in lockstep only a fault drops them, and the plant then does
-  // not wait for us) the controller must still reach its failsafe and fly it: on the clock's
-  // time in lockstep, on the IMU samples' in real time (which carry the dead reckoning).
+  // When the states stop coming the controller must still fly, on the IMU's dead reckoning,
+  // and reach its failsafe. In lockstep only a fault drops them, and the clock says so
+  // (SimClock.state_sent): every such round is answered at the clock's time, and the plant
+  // waits for that answer as for a state's, so that the vehicle is flown without lag and runs
+  // repeat. In real time, once the state is stale, at the IMU samples' time.
   const std::int64_t now_ns = lockstep() ? simClock().ns() : imu_ns_;
-  if (latest_t_ < 0.0 || now_ns <= last_stateless_ns_) {
+  if (now_ns <= last_stateless_ns_ || now_ns <= answered_ns_) {
     return;
   }
   const double t = common::toSeconds(now_ns);
-  if (t - latest_t_ > config_.flight.state_timeout) {
+  const bool dropped = lockstep() && !simClock().stateSentAt(now_ns);
+  const bool stale = latest_t_ >= 0.0 && t - latest_t_ > config_.flight.state_timeout;
+  if (dropped || stale) {
     last_stateless_ns_ = now_ns;
     applySensorsBefore(now_ns);
     control(t, now_ns);

@@ -254,6 +254,7 @@ void PlantNode::publish(std::size_t vehicle, const StepOutputs& out)
     counters().samples_out++;
   }
   if (out.state_due) {
+    io.state_due_ns = fleet_->timeNs();
     publishClock(vehicle);  // at the state's rate (its contract's 250 Hz), even when a fault drops the state
     counters().samples_out++;
   }
@@ -337,12 +338,14 @@ void PlantNode::runLockstep()
     // A round may run once every vehicle's controller answered the state of its start and
     // every participant finished its work up to then.
     const std::int64_t round_start = round_end_ns_ - config_.lockstep_period_ns;
-    // The controller answers states (true ones, or the estimates of IMU samples): a round whose
-    // input a fault dropped has nothing to answer.
+    // The controller answers states (true ones, or the estimates of IMU samples), and, once it
+    // has answered one, a state's time whose input a fault dropped: the clock's sample of it
+    // (on its dead reckoning).
     std::vector<std::uint32_t> unanswered;
     for (const VehicleIo& io : io_) {
-      const bool state_sent = answeredInputNs(io) >= round_start;
-      if (config_.lockstep_wait_for_command && state_sent && io.latest_command_stamp_ns < round_start) {
+      const bool owed = answeredInputNs(io) >= round_start ||
+                        (io.state_due_ns == round_start && io.latest_command_stamp_ns >= 0);
+      if (config_.lockstep_wait_for_command && owed && io.latest_command_stamp_ns < round_start) {
         unanswered.push_back(io.id);
       }
     }

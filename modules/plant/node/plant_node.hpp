@@ -41,6 +41,7 @@ private:
     std::uint32_t id = 0;
     std::int64_t latest_command_stamp_ns = -1;
     std::uint64_t depth_frames = 0;              // depth frames published so far
+    std::int64_t state_due_ns = -1;              // the newest time a state was due (a clock sample went out)
     std::optional<msg::PointCloud> last_depth;   // lockstep: resent with the state while a round waits
     std::optional<StateSample> last_state;       // last state published
     std::optional<msg::Imu> last_imu;            // last IMU sample published: on an estimate, resent while a round waits

@@ -157,6 +157,8 @@ TEST(MappingNode, AScansOutputsAreDueTheBudgetAfterItAndTheClockStandsForAStoppe
                        run_env);
   ChildProcess stats({QUAD_TOOL, "topic", "echo", "quad/mapping/stats", "-n", "200", "--json", "--timeout", "120"},
                      run_env);
+  ASSERT_TRUE(quad::test::waitForReader(domain, "quad/mapping/update", 15s));
+  ASSERT_TRUE(quad::test::waitForReader(domain, "quad/mapping/stats", 15s));
   ChildProcess plant({QUAD_PLANT_NODE, "--config", (dir / "plant.yaml").string()}, run_env);
   // GIVEN a lockstep run of 30 s past its tenth scan (the run may be over in a few seconds:
   // watched on the updates as they come, not on samples of the clock taken one by one)

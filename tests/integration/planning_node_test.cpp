@@ -157,7 +157,8 @@ TEST(PlanningNode, InLockstepAPathIsDueTheBudgetAfterItsStateAndTheClockStandsFo
   ChildProcess states({"/bin/sh", "-c",
                        std::string("exec ") + QUAD_TOOL + " topic echo quad/sim/state --json > " + states_file.string()},
                       run_env);  // until stopped
-  std::this_thread::sleep_for(1s);  // the echoes matched
+  ASSERT_TRUE(quad::test::waitForReader(87, "quad/planning/path", 15s));
+  std::this_thread::sleep_for(1s);  // the states' echo matched (the mapper's and the planner's readers tell nothing)
   stack.start();
   ChildProcess& plant = *stack.plant;
   // GIVEN a lockstep run of 30 s, its planner past its fifth path
@@ -224,7 +225,7 @@ TEST(PlanningNode, InLockstepAnUpdateCountingFramesPastTheClockIsRefusedAndPlann
     return;
   }
   ChildProcess paths({QUAD_TOOL, "topic", "echo", "quad/planning/path", "--json"}, run_env);  // until stopped
-  std::this_thread::sleep_for(1s);  // the echo matched
+  ASSERT_TRUE(quad::test::waitForReader(88, "quad/planning/path", 15s));
   stack.start();
   // GIVEN a lockstep run of 30 s, its planner past its third path
   ASSERT_TRUE(paths.waitForOutput("\"version\":3,", 60s)) << paths.output() << stack.plant->output();

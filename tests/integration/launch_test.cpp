@@ -114,6 +114,8 @@ void flyMission(const std::string& manifest, int domain, std::vector<std::string
     ASSERT_TRUE(cost["max_rss_mib"].is_number()) << process << " " << summary;
     EXPECT_GT(cost["max_rss_mib"].get<double>(), 1.0) << process;
     EXPECT_LT(cost["max_rss_mib"].get<double>(), 4096.0) << process;
+    ASSERT_TRUE(cost["waits"].is_number_unsigned()) << process << " " << summary;
+    EXPECT_GT(cost["waits"].get<std::uint64_t>(), 0U) << process;  // each waited for its inputs
   }
   EXPECT_LE(busy, static_cast<double>(std::thread::hardware_concurrency()) + 0.05) << summary;
   const auto record = runRecord(dir / "run");

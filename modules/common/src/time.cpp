@@ -40,4 +40,13 @@ double processMaxResidentMiB()
   return maxResidentMiB(usage);
 }
 
+std::uint64_t waits(const ::rusage& usage) { return static_cast<std::uint64_t>(usage.ru_nvcsw); }
+
+std::uint64_t processWaits()
+{
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return waits(usage);
+}
+
 }  // namespace quad::common

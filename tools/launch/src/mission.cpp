@@ -337,7 +337,8 @@ nlohmann::ordered_json jsonOf(const MissionSummary& s)
   for (const ProcessCost& p : s.processes) {
     processes[p.name] = {{"cpu_seconds", orNull(p.cpu_s)},
                          {"busy_share", orNull(busyShare(p, s.wall_s))},
-                         {"max_rss_mib", orNull(p.max_rss_mib)}};
+                         {"max_rss_mib", orNull(p.max_rss_mib)},
+                         {"waits", p.waits ? nlohmann::ordered_json(*p.waits) : nlohmann::ordered_json(nullptr)}};
   }
   j["processes"] = processes;
   if (s.estimate) {

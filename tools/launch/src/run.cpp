@@ -413,12 +413,14 @@ std::vector<launch::ProcessCost> LaunchRun::processCosts() const
     const Module* mod = m_.findModule(name);
     const bool remote = mod != nullptr && m_.host(mod->host).kind == launch::HostKind::kSsh;
     costs.push_back({name, remote ? std::nullopt : supervisor_.cpuSeconds(name),
-                     remote ? std::nullopt : supervisor_.maxResidentMiB(name)});
+                     remote ? std::nullopt : supervisor_.maxResidentMiB(name),
+                     remote ? std::nullopt : supervisor_.waits(name)});
   }
   if (m_.discovery == launch::Discovery::kServer && m_.host(m_.discovery_host).kind != launch::HostKind::kSsh) {
-    costs.push_back({"discovery", supervisor_.cpuSeconds("discovery"), supervisor_.maxResidentMiB("discovery")});
+    costs.push_back({"discovery", supervisor_.cpuSeconds("discovery"), supervisor_.maxResidentMiB("discovery"),
+                     supervisor_.waits("discovery")});
   }
-  costs.push_back({"launch", common::processCpuSeconds(), common::processMaxResidentMiB()});
+  costs.push_back({"launch", common::processCpuSeconds(), common::processMaxResidentMiB(), common::processWaits()});
   return costs;
 }
 

@@ -156,6 +156,9 @@ void Supervisor::ended(Child& child)
   if (const auto rss = child.process->maxResidentMiB()) {
     child.max_rss_mib = std::max(child.max_rss_mib.value_or(0.0), *rss);
   }
+  if (const auto w = child.process->waits()) {
+    child.waits = child.waits.value_or(0) + *w;
+  }
 }
 
 std::optional<double> Supervisor::cpuSeconds(const std::string& name) const
@@ -168,6 +171,12 @@ std::optional<double> Supervisor::maxResidentMiB(const std::string& name) const
 {
   const auto it = children_.find(name);
   return it == children_.end() ? std::nullopt : it->second.max_rss_mib;
+}
+
+std::optional<std::uint64_t> Supervisor::waits(const std::string& name) const
+{
+  const auto it = children_.find(name);
+  return it == children_.end() ? std::nullopt : it->second.waits;
 }
 
 bool Supervisor::signal(const std::string& name, int signal)

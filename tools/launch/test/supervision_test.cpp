@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdint>
 #include <fstream>
 #include <sstream>
 #include <thread>
@@ -100,6 +101,25 @@ TEST(Supervisor, AProcessIsChargedThePeakMemoryItHeldAndARestartKeepsTheLargest)
   EXPECT_GE(*s.maxResidentMiB("copy"), 64.0);
   copy("160M");
   EXPECT_GE(*s.maxResidentMiB("copy"), 160.0);
+  fs::remove_all(dir);
+}
+
+TEST(Supervisor, AProcessIsChargedTheTimesItWaitedAndARestartAddsThem)
+{
+  const fs::path dir = quad::test::scratchDir("quad_supervisor_waits");
+  Supervisor s(dir, nullptr, false);
+  // Five sleeps: the shell waits for each, each sleep waits its time out.
+  const auto sleeper = [&] {
+    s.start("sleeper", {"sh", "-c", "for i in 1 2 3 4 5; do sleep 0.02; done"}, {});
+    EXPECT_EQ(waitExit(s, "sleeper"), 0);
+  };
+  EXPECT_FALSE(s.waits("sleeper"));  // nothing known before one ended
+  sleeper();
+  ASSERT_TRUE(s.waits("sleeper"));
+  const std::uint64_t first = *s.waits("sleeper");
+  EXPECT_GE(first, 5U);
+  sleeper();
+  EXPECT_GE(*s.waits("sleeper"), first + 5U);  // the second instance's waits are added
   fs::remove_all(dir);
 }
 

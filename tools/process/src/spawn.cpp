@@ -117,6 +117,7 @@ std::optional<int> Spawned::poll()
       status_ = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
       cpu_s_ = common::cpuSeconds(usage);
       max_rss_mib_ = common::maxResidentMiB(usage);
+      waits_ = common::waits(usage);
     }
   }
   return status_;

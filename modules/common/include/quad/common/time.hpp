@@ -28,6 +28,11 @@ double processCpuSeconds();
 double maxResidentMiB(const ::rusage& usage);
 /// [MiB] The most memory this process held resident so far.
 double processMaxResidentMiB();
+/// The times the threads of a resource usage gave up the processor to wait (its voluntary
+/// context switches: for a sample, a lock, a timeout), each ended by a wake-up.
+std::uint64_t waits(const ::rusage& usage);
+/// The times this process's threads waited so far.
+std::uint64_t processWaits();
 
 constexpr double toSeconds(std::int64_t ns) { return static_cast<double>(ns) * 1e-9; }
 

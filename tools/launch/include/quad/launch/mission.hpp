@@ -31,6 +31,8 @@ struct ProcessCost {
   std::string name;               ///< the manifest's module name, "record", "discovery", or "launch" itself
   std::optional<double> cpu_s;
   std::optional<double> max_rss_mib;  ///< the most it held resident at once [MiB]
+  /// Its threads' waits (common::waits): each a wake-up, by a sample, a lock or a timeout.
+  std::optional<std::uint64_t> waits;
 };
 /// cpu_s over the run's wall time; nothing when either is unknown.
 std::optional<double> busyShare(const ProcessCost& p, double wall_s);

@@ -5,6 +5,7 @@
 /// they print with their name on the console and keeps it in <log dir>/<name>.log, reports
 /// their exits, and stops them (SIGTERM, then SIGKILL after a grace period).
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -52,6 +53,9 @@ public:
   /// The most memory [MiB] any of those processes held resident at once; nothing while none
   /// has ended.
   std::optional<double> maxResidentMiB(const std::string& name) const;
+  /// The times those processes' threads waited (common::waits), summed over those that
+  /// ended; nothing while none has ended.
+  std::optional<std::uint64_t> waits(const std::string& name) const;
 
   /// A line of the launcher's own, on the console and in launch.log.
   void say(const std::string& line);
@@ -67,6 +71,7 @@ private:
     bool exited = false;
     std::optional<double> cpu_s;  // of the instances that ended
     std::optional<double> max_rss_mib;  // the most any of them held resident
+    std::optional<std::uint64_t> waits;  // of the instances that ended
   };
   /// Bookkeeping for a child whose exit status came: marks it exited, counts its CPU time.
   static void ended(Child& child);

@@ -5,6 +5,7 @@
 /// pipe: what the launcher supervises and what multi-process tests drive. It gets SIGTERM
 /// when its parent dies, however that happens.
 
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -43,6 +44,8 @@ public:
   /// The most memory the child held resident at once [MiB] (its rusage's maximum resident
   /// set size); known once poll() gave its exit status.
   std::optional<double> maxResidentMiB() const { return max_rss_mib_; }
+  /// The times the child's threads waited (common::waits); known once poll() gave its exit status.
+  std::optional<std::uint64_t> waits() const { return waits_; }
 
 private:
   pid_t pid_ = -1;
@@ -50,6 +53,7 @@ private:
   std::optional<int> status_;
   std::optional<double> cpu_s_;
   std::optional<double> max_rss_mib_;
+  std::optional<std::uint64_t> waits_;
 };
 
 /// Describes an exit status as poll() gives it: "exit 0", "killed by SIGKILL".

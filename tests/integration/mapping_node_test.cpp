@@ -18,6 +18,7 @@
 #include "json_lines.hpp"
 #include "module_wait.hpp"
 #include "process.hpp"
+#include "wait.hpp"
 
 namespace {
 
@@ -162,7 +163,8 @@ TEST(MappingNode, AScansOutputsAreDueTheBudgetAfterItAndTheClockStandsForAStoppe
   ChildProcess plant({QUAD_PLANT_NODE, "--config", (dir / "plant.yaml").string()}, run_env);
   // GIVEN a lockstep run of 30 s past its tenth scan (the run may be over in a few seconds:
   // watched on the updates as they come, not on samples of the clock taken one by one)
-  ASSERT_TRUE(updates.waitForOutput("\"depth_frames\":10,", 60s)) << updates.output() << plant.output();
+  ASSERT_TRUE(quad::test::waitFor([&] { return quad::test::newestReached(updates.output(), "depth_frames", 10); }, 60s))
+      << updates.output() << plant.output();
   // WHEN the mapper is stopped for a few seconds
   mapping.signal(SIGSTOP);
   std::this_thread::sleep_for(1500ms);

@@ -25,4 +25,12 @@ inline std::vector<nlohmann::json> jsonLines(const std::string& output)
   return out;
 }
 
+/// Whether the newest sample in `output` has the number `key` at `value` or past it: an echo
+/// may match its writer after the first samples went out, so it waits for "the n-th or later".
+inline bool newestReached(const std::string& output, const char* key, std::int64_t value)
+{
+  const auto samples = jsonLines(output);
+  return !samples.empty() && samples.back().contains(key) && samples.back()[key].get<std::int64_t>() >= value;
+}
+
 }  // namespace quad::test

@@ -109,12 +109,23 @@ TEST(Contracts, ParticipantUsesTheBaselineLeaseNotTheTwentySecondDefault)
   EXPECT_DOUBLE_EQ(seconds(discovery.leaseDuration_announcementperiod), 0.5);
 }
 
-TEST(Contracts, ReliableWritersHeartbeatEvery100msAndAssertLivelinessEvery500ms)
+TEST(Contracts, ReliableWritersHeartbeatEvery100msAndOnlyTheModulesHeartbeatHasALivelinessLease)
 {
   Participant p = testParticipant(152);
   for (const auto& t : topics::kAll) {
     const auto w = p.writerQos(t.qos_profile);
-    EXPECT_DOUBLE_EQ(seconds(w.liveliness().lease_duration), 0.5) << t.name;
+    const auto r = p.readerQos(t.qos_profile);
+    if (t.qos_profile == "heartbeat") {
+      // a module's life: asserted by its node, lost within half a second of its end
+      EXPECT_EQ(w.liveliness().kind, fdds::MANUAL_BY_TOPIC_LIVELINESS_QOS) << t.name;
+      EXPECT_DOUBLE_EQ(seconds(w.liveliness().lease_duration), 0.5) << t.name;
+      EXPECT_DOUBLE_EQ(seconds(r.liveliness().lease_duration), 0.5) << t.name;
+    } else {
+      // data: no lease offered or asked (a writer of any vendor's defaults matches)
+      EXPECT_EQ(w.liveliness().kind, fdds::AUTOMATIC_LIVELINESS_QOS) << t.name;
+      EXPECT_EQ(w.liveliness().lease_duration, eprosima::fastrtps::c_TimeInfinite) << t.name;
+      EXPECT_EQ(r.liveliness().lease_duration, eprosima::fastrtps::c_TimeInfinite) << t.name;
+    }
     if (w.reliability().kind == fdds::RELIABLE_RELIABILITY_QOS) {
       EXPECT_DOUBLE_EQ(seconds(w.reliable_writer_qos().times.heartbeatPeriod), 0.1) << t.name;
     }

@@ -20,6 +20,7 @@
 
 #include "quad/common/time.hpp"
 #include "wait.hpp"
+#include "quad/dds/liveliness.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/wire/rtps_check.hpp"
 #include "quad/dds/subscriber.hpp"
@@ -214,21 +215,25 @@ TEST(HostileDatagrams, RealTrafficPassesTheCheckWhole)
   }));
   ASSERT_TRUE(got);
   EXPECT_EQ(got->octree(), snapshot.octree());
-  // Liveliness assertions (the lockstep writer's AUTOMATIC lease is 0.5 s) for 1.5 s.
-  Publisher<msg::LockstepReport> reports_out(talk.talker, topics::kLockstep);
-  Subscriber<msg::LockstepReport> reports_in(talk.listener, topics::kLockstep);
-  ASSERT_TRUE(test::waitFor([&] { return reports_in.matchedWriters() == 1; }));
-  int reports = 0;
-  for (int i = 1; i <= 15; ++i) {
-    msg::LockstepReport r;
-    r.done_ns(i);
-    reports_out.write(r);
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    reports += static_cast<int>(reports_in.takeAll().size());
+  // Liveliness assertions for 1.5 s: a module's heartbeat writer's (MANUAL_BY_TOPIC, 0.5 s
+  // lease), asserted by its keeper every 125 ms between the beats.
+  Publisher<msg::Heartbeat> beats_out(talk.talker, topics::kHeartbeat);
+  Subscriber<msg::Heartbeat> beats_in(talk.listener, topics::kHeartbeat);
+  ASSERT_TRUE(test::waitFor([&] { return beats_in.matchedWriters() == 1; }));
+  int beats = 0;
+  {
+    dds::LivelinessKeeper alive(beats_out);
+    for (int i = 1; i <= 3; ++i) {
+      msg::Heartbeat beat;
+      beat.header().seq(static_cast<std::uint32_t>(i));
+      beats_out.write(beat);
+      std::this_thread::sleep_for(std::chrono::milliseconds(500));
+      beats += static_cast<int>(beats_in.takeAll().size());
+    }
   }
   EXPECT_TRUE(test::waitFor([&] {
-    reports += static_cast<int>(reports_in.takeAll().size());
-    return reports == 15;
+    beats += static_cast<int>(beats_in.takeAll().size());
+    return beats == 3;
   }));
   const MalformedDatagrams m = malformedDatagrams();
   EXPECT_EQ(m.count, before.count) << m.last;

@@ -189,6 +189,24 @@ void BM_TreeData_OctoMapStream(benchmark::State& state)
   });
 }
 
+// What the running mapper writes with each periodic snapshot: the .bt, the checkpoint's node
+// data and the map's memory use; from one walk, against a walk each (OctoMap's own
+// memoryUsage() counting the leaves).
+void BM_SnapshotWithCheckpoint_OneWalk(benchmark::State& state)
+{
+  writeTreeBench(state, [](const octomap::OcTree& t) {
+    const mapping::TreeImage image = mapping::treeImage(t, true);
+    return image.binary.size() + image.data.size() + image.memory_bytes;
+  });
+}
+
+void BM_SnapshotWithCheckpoint_WalkEach(benchmark::State& state)
+{
+  writeTreeBench(state, [](const octomap::OcTree& t) {
+    return mapping::binaryTreeBytes(t).size() + mapping::treeDataBytes(t).size() + t.memoryUsage();
+  });
+}
+
 // A planner joining (or started again): from nothing to the snapshot's map; items are voxels.
 void BM_MapFollower_Join(benchmark::State& state)
 {
@@ -228,6 +246,8 @@ BENCHMARK(BM_Snapshot_TreeBytes)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Snapshot_OctoMapStream)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TreeData_TreeBytes)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TreeData_OctoMapStream)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SnapshotWithCheckpoint_OneWalk)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SnapshotWithCheckpoint_WalkEach)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -117,13 +117,13 @@ void MappingNode::resume()
                meta->next_update_seq);
   // The resumed map at once, latched: a consumer holding the map from before fills the gap
   // the new numbering opens with it.
-  map_bytes_ = mapper_.bytes();
-  publishSnapshot(meta->stamp_ns);
+  TreeImage image = mapper_.image(false);
+  map_bytes_ = image.memory_bytes;
+  publishSnapshot(meta->stamp_ns, std::move(image.binary));
 }
 
-void MappingNode::publishSnapshot(std::int64_t stamp_ns)
+void MappingNode::publishSnapshot(std::int64_t stamp_ns, std::vector<std::uint8_t> bytes)
 {
-  auto bytes = mapper_.snapshot();
   if (bytes.size() > 4194304) {
     spdlog::warn("mapping: snapshot of {} bytes exceeds the 4 MiB a MapSnapshot carries; not sent", bytes.size());
     return;
@@ -136,13 +136,17 @@ void MappingNode::publishSnapshot(std::int64_t stamp_ns)
   snapshots_.write(snapshot);
 }
 
-void MappingNode::checkpoint(std::int64_t stamp_ns, std::uint64_t floor)
+void MappingNode::checkpoint(std::int64_t stamp_ns, std::uint64_t floor, const std::vector<std::uint8_t>* tree_data)
 {
   if (config_.checkpoint_file.empty()) {
     return;
   }
   try {
-    writeCheckpoint(config_.checkpoint_file, mapper_, {floor, stamp_ns});
+    if (tree_data != nullptr) {
+      writeCheckpoint(config_.checkpoint_file, mapper_.resolution(), *tree_data, {floor, stamp_ns});
+    } else {
+      writeCheckpoint(config_.checkpoint_file, mapper_, {floor, stamp_ns});
+    }
     reserved_seq_ = floor;
   } catch (const std::exception& e) {
     counters().errors++;
@@ -294,13 +298,16 @@ void MappingNode::integrate(const msg::PointCloud& cloud, const std::optional<ge
   // The periodic snapshots keep their sim-time schedule whatever readers join (the extra
   // ones for a reader that joined depend on when it did).
   const bool periodic = cloud.header().stamp_ns() >= next_snapshot_ns_;
-  if (periodic) {
-    map_bytes_ = mapper_.bytes();  // a walk of the tree: with the period's snapshots only
-    next_snapshot_ns_ = cloud.header().stamp_ns() + common::toNanoseconds(config_.snapshot_period_s);
-  }
   if (cloud.header().stamp_ns() <= match_until_ns_ || periodic) {
-    publishSnapshot(due_ns);
-    checkpoint(last_stamp_ns_, reserved_seq_);
+    // One walk of the tree for the snapshot, the checkpoint and the memory use: a walk costs
+    // the cache misses of reaching every node.
+    TreeImage image = mapper_.image(!config_.checkpoint_file.empty());
+    if (periodic) {
+      map_bytes_ = image.memory_bytes;  // with the period's snapshots only
+      next_snapshot_ns_ = cloud.header().stamp_ns() + common::toNanoseconds(config_.snapshot_period_s);
+    }
+    publishSnapshot(due_ns, std::move(image.binary));
+    checkpoint(last_stamp_ns_, reserved_seq_, &image.data);
   }
 }
 
@@ -385,8 +392,9 @@ void MappingNode::onStop()
 {
   save();
   checkpoint(last_stamp_ns_, std::max(reserved_seq_, update_seq_ + 1));
-  spdlog::info("mapping: {} updates, {} clouds rejected, {} skipped, map {} nodes", update_seq_, rejected_, skipped_,
-               mapper_.nodes());
+  spdlog::info("mapping: {} updates, {} clouds rejected, {} skipped, map {} nodes, {} voxel updates skipped at a "
+               "clamping bound",
+               update_seq_, rejected_, skipped_, mapper_.nodes(), mapper_.tree().updatesSkippedAtBounds());
 }
 
 }  // namespace quad::mapping

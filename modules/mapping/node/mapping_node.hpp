@@ -67,12 +67,13 @@ private:
   void integrate(const msg::PointCloud& cloud, const std::optional<geometry::Pose3>& body_W, const std::string& why);
   void reportLockstep();
   void save();
-  /// The map as it is, on the latched snapshot topic, stamped `stamp_ns`.
-  void publishSnapshot(std::int64_t stamp_ns);
+  /// The map as it is (its .bt bytes), on the latched snapshot topic, stamped `stamp_ns`.
+  void publishSnapshot(std::int64_t stamp_ns, std::vector<std::uint8_t> bytes);
   /// Resumes from the checkpoint file, if there is one (throws naming it when it is bad).
   void resume();
-  /// Writes the checkpoint (when there is a file), reserving update numbers up to `floor`.
-  void checkpoint(std::int64_t stamp_ns, std::uint64_t floor);
+  /// Writes the checkpoint (when there is a file), reserving update numbers up to `floor`;
+  /// `tree_data`: the tree's node data when the caller has it (a snapshot's walk gave it).
+  void checkpoint(std::int64_t stamp_ns, std::uint64_t floor, const std::vector<std::uint8_t>* tree_data = nullptr);
 
   MappingNodeConfig config_;
   Mapper mapper_;

@@ -36,15 +36,21 @@ bool get(std::istream& in, T& value)
 
 void writeCheckpoint(const std::filesystem::path& file, const Mapper& mapper, const MapCheckpoint& meta)
 {
+  writeCheckpoint(file, mapper.resolution(), treeDataBytes(mapper.tree()), meta);
+}
+
+void writeCheckpoint(const std::filesystem::path& file, double resolution, const std::vector<std::uint8_t>& tree_data,
+                     const MapCheckpoint& meta)
+{
   std::filesystem::path tmp = file;
   tmp += ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     out.write(kMagic, sizeof(kMagic));
-    put(out, mapper.resolution());
+    put(out, resolution);
     put(out, meta.next_update_seq);
     put(out, meta.stamp_ns);
-    mapper.writeTree(out);
+    out.write(reinterpret_cast<const char*>(tree_data.data()), static_cast<std::streamsize>(tree_data.size()));
     out.flush();
     if (!out) {
       throw std::runtime_error(tmp.string() + ": cannot write the map checkpoint");

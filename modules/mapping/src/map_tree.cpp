@@ -105,9 +105,45 @@ void ScanKeySet::grow()
   }
 }
 
+void MapTree::limitTo(const octomap::OcTreeKey& lo, const octomap::OcTreeKey& hi)
+{
+  box_lo_ = lo;
+  box_hi_ = hi;
+  limited_ = true;
+  std::array<std::size_t, 3> side{};
+  for (unsigned a = 0; a < 3; ++a) {
+    side[a] = hi[a] >= lo[a] ? std::size_t{hi[a]} - lo[a] + 1U : 0U;
+  }
+  box_side_ = {side[0], side[1]};
+  const std::size_t voxels = side[0] * side[1] * side[2];
+  bounds_.clear();
+  if (voxels > 0 && voxels <= kMaxBoundVoxels) {
+    bounds_.assign((2 * voxels + 63) / 64, 0);
+  }
+}
+
+void MapTree::forgetBounds() { std::fill(bounds_.begin(), bounds_.end(), 0); }
+
+void MapTree::noteBounds(const octomap::OcTreeKey& key, float value)
+{
+  if (bounds_.empty() || !inBox(key)) {
+    return;
+  }
+  const std::size_t bit = 2 * boundIndex(key);
+  std::uint64_t& word = bounds_[bit >> 6];
+  const unsigned shift = bit & 63;  // even: both of the voxel's bits lie in this word
+  const std::uint64_t state = (value <= clamping_thres_min ? 1U : 0U) | (value >= clamping_thres_max ? 2U : 0U);
+  word = (word & ~(std::uint64_t{3} << shift)) | (state << shift);
+}
+
 void MapTree::insertPointCloudTracked(const octomap::Pointcloud& cloud, const octomap::point3d& origin,
                                       double max_range, std::vector<KeyChange>& changes)
 {
+  if (clamping_thres_min != bounds_min_ || clamping_thres_max != bounds_max_) {
+    forgetBounds();  // bounds set since the bits were
+    bounds_min_ = clamping_thres_min;
+    bounds_max_ = clamping_thres_max;
+  }
   // OccupancyOcTreeBase::computeUpdate without a bounding box, expression for expression,
   // so that every ray ends in the same voxel.
   // Every key of the scan lies within the range (and a voxel of rounding) of the origin's.
@@ -138,7 +174,12 @@ void MapTree::insertPointCloudTracked(const octomap::Pointcloud& cloud, const oc
   }
   // Each voxel is updated once per scan and only its own update changes its value, so the
   // order of the updates changes neither the leaves nor the pruning the tree ends with.
+  const bool bounded = !bounds_.empty();  // every key of the set lies in the box then
   keys_.forEach([&](const octomap::OcTreeKey& key, bool occupied) {
+    if (bounded && atBound(boundIndex(key), occupied)) {
+      ++skipped_at_bounds_;
+      return;
+    }
     if (const std::optional<bool> after = updateTracked(key, occupied)) {
       changes.push_back({key, *after});
     }
@@ -180,6 +221,7 @@ std::optional<bool> MapTree::updateTracked(const octomap::OcTreeKey& key, bool o
     const float value = path[depth]->getLogOdds();
     if ((delta >= 0 && value >= clamping_thres_max) || (delta <= 0 && value <= clamping_thres_min)) {
       path_valid_ = static_cast<int>(depth);
+      noteBounds(key, value);
       return std::nullopt;
     }
   }
@@ -203,6 +245,7 @@ std::optional<bool> MapTree::updateTracked(const octomap::OcTreeKey& key, bool o
   octomap::OcTreeNode* leaf = path[tree_depth];
   const bool occupied_before = !created && isNodeOccupied(leaf);
   updateNodeLogOdds(leaf, delta);
+  noteBounds(key, leaf->getLogOdds());
   const bool occupied_after = isNodeOccupied(leaf);
   const bool changed = created || occupied_before != occupied_after;
   // Back up: prune where the eight children agree, else refresh the inner node's value.

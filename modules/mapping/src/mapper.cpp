@@ -211,18 +211,13 @@ bool Mapper::save(const std::filesystem::path& file) const
   return tree_.writeBinaryConst(file.string());
 }
 
-void Mapper::writeTree(std::ostream& out) const
-{
-  const std::vector<std::uint8_t> bytes = treeDataBytes(tree_);
-  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-}
-
 bool Mapper::readTree(std::istream& in)
 {
   if (tree_.size() != 0) {
     return false;
   }
   tree_.readData(in);
+  tree_.forgetBounds();
   if (!in) {
     tree_.clear();
     return false;

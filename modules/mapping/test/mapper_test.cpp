@@ -251,5 +251,67 @@ TEST(Mapper, ABoxedMapIsTheUnboundedMapCutToItsBox)
   EXPECT_LT(boxed.nodes() * 2, free_mapper.nodes());
 }
 
+TEST(Mapper, ABoxedMapsVoxelsHoldTheUnboundedMapsLogOddsWhateverUpdatesItsBoundsSkipped)
+{
+  // GIVEN two mappers fed the same noisy scans of a box approached slowly (so that most
+  // voxels reach a clamping bound, and noise moves hits on and off the box's face), one
+  // limited to a box around it, whose voxels' bounds it keeps
+  const world::World world = boxWorld();
+  MapperConfig boxed_config;
+  boxed_config.max_range = 8.0;
+  boxed_config.box = std::make_pair(Vector3(-1.0, -3.0, 0.0), Vector3(8.0, 3.0, 3.0));
+  MapperConfig free_config;
+  free_config.max_range = 8.0;
+  Mapper free_mapper(free_config);
+  Mapper boxed(boxed_config);
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::normal_distribution<double> noise(0.0, 0.08);
+  const auto& tree = boxed.tree();
+  octomap::OcTreeKey lo, hi;
+  ASSERT_TRUE(tree.coordToKeyChecked(octomap::point3d(-0.99F, -2.99F, 0.01F), lo));
+  ASSERT_TRUE(tree.coordToKeyChecked(octomap::point3d(7.99F, 2.99F, 2.99F), hi));
+  for (int k = 0; k < 40; ++k) {
+    Scan scan = scanFrom(world, Vector3(-0.5 + 0.05 * k, 0.5 * u(rng), 1.5 + 0.3 * u(rng)), 0.2 * u(rng), rng);
+    for (Vector3& p : scan.points_W) {
+      p += Vector3(noise(rng), noise(rng), noise(rng));
+    }
+    const IntegrationResult free_result = free_mapper.integrate(scan);
+    const IntegrationResult boxed_result = boxed.integrate(scan);
+    ASSERT_TRUE(free_result.accepted && boxed_result.accepted);
+    // THEN every scan reclassifies the same voxels within the box
+    const geometry::VoxelGrid grid(boxed.resolution());
+    const VoxelIndex box_lo = grid.toIndex(boxed_config.box->first);
+    const VoxelIndex box_hi = grid.toIndex(boxed_config.box->second);
+    std::vector<VoxelChange> cut;
+    for (const auto& c : free_result.changes) {
+      if ((c.index.array() >= box_lo.array()).all() && (c.index.array() <= box_hi.array()).all()) {
+        cut.push_back(c);
+      }
+    }
+    test::expectSameClassification(cut, boxed_result.changes);
+    if (k % 8 != 7) {
+      continue;
+    }
+    // AND each voxel of the box holds the unbounded map's log-odds, or is unknown in both
+    for (auto x = lo[0]; x <= hi[0]; ++x) {
+      for (auto y = lo[1]; y <= hi[1]; ++y) {
+        for (auto z = lo[2]; z <= hi[2]; ++z) {
+          const octomap::OcTreeKey key(x, y, z);
+          const octomap::OcTreeNode* ours = tree.search(key);
+          const octomap::OcTreeNode* theirs = free_mapper.tree().search(key);
+          ASSERT_EQ(ours == nullptr, theirs == nullptr) << "scan " << k;
+          if (ours != nullptr) {
+            ASSERT_EQ(ours->getLogOdds(), theirs->getLogOdds()) << "scan " << k;
+          }
+        }
+      }
+    }
+  }
+  // AND most updates within the box found their voxel at its bound and skipped the descent
+  EXPECT_GT(tree.updatesSkippedAtBounds(), 100'000U);
+  EXPECT_EQ(free_mapper.tree().updatesSkippedAtBounds(), 0U);
+}
+
 }  // namespace
 }  // namespace quad::mapping

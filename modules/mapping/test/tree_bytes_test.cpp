@@ -38,11 +38,18 @@ TEST(TreeBytes, AreOctoMapsOwnAfterEveryScanOfAFlight)
   Mapper mapper(MapperConfig{});
   ASSERT_EQ(binaryTreeBytes(mapper.tree()), octomapBinary(mapper.tree()));
   ASSERT_TRUE(treeDataBytes(mapper.tree()).empty());
+  ASSERT_EQ(treeImage(mapper.tree(), true).memory_bytes, mapper.tree().memoryUsage());
   for (int k = 0; k < 12; ++k) {
     const Vector3 p(-2.0 + 0.4 * k, 3.0 * u(rng), 1.0 + 0.5 * (u(rng) + 1.0));
     ASSERT_TRUE(mapper.integrate(test::scanFrom(world, p, 0.8 * u(rng), rng)).accepted);
     ASSERT_EQ(binaryTreeBytes(mapper.tree()), octomapBinary(mapper.tree())) << "after scan " << k;
     ASSERT_EQ(treeDataBytes(mapper.tree()), octomapData(mapper.tree())) << "after scan " << k;
+    // AND one walk gives both, and the memory use OctoMap counts with a walk of its own
+    const TreeImage image = treeImage(mapper.tree(), true);
+    ASSERT_EQ(image.binary, octomapBinary(mapper.tree())) << "after scan " << k;
+    ASSERT_EQ(image.data, octomapData(mapper.tree())) << "after scan " << k;
+    ASSERT_EQ(image.memory_bytes, mapper.tree().memoryUsage()) << "after scan " << k;
+    ASSERT_TRUE(treeImage(mapper.tree(), false).data.empty());
   }
   EXPECT_GT(mapper.nodes(), 10'000U);
 }

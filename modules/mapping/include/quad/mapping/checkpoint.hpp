@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <vector>
 
 #include "quad/mapping/mapper.hpp"
 
@@ -26,6 +27,9 @@ struct MapCheckpoint {
 /// Writes `mapper`'s tree and `meta` to `file` (via `file`.tmp, renamed). Throws
 /// std::runtime_error naming the file when it cannot.
 void writeCheckpoint(const std::filesystem::path& file, const Mapper& mapper, const MapCheckpoint& meta);
+/// The same, for a tree of `resolution` whose node data (treeDataBytes) the caller has.
+void writeCheckpoint(const std::filesystem::path& file, double resolution, const std::vector<std::uint8_t>& tree_data,
+                     const MapCheckpoint& meta);
 
 /// Reads `file` into `mapper`, which must hold nothing yet. Nothing when the file does not
 /// exist. Throws std::runtime_error naming the file when it is not a checkpoint, is cut

@@ -118,13 +118,21 @@ public:
 
   /// Only voxels whose keys lie in [lo, hi] (inclusive, per axis) are updated from now on, as
   /// OctoMap's bounding-box limit does: rays still run their whole length, what they cross
-  /// outside the box is left alone.
-  void limitTo(const octomap::OcTreeKey& lo, const octomap::OcTreeKey& hi)
-  {
-    box_lo_ = lo;
-    box_hi_ = hi;
-    limited_ = true;
-  }
+  /// outside the box is left alone. A box of at most kMaxBoundVoxels voxels also keeps, for
+  /// each of its voxels, whether it sits at a clamping bound (below).
+  void limitTo(const octomap::OcTreeKey& lo, const octomap::OcTreeKey& hi);
+
+  /// The tree was changed other than by insertPointCloudTracked (read from a stream,
+  /// cleared): what was known of its voxels' clamping bounds is dropped.
+  void forgetBounds();
+
+  /// Updates that OctoMap's early abort would have dropped (the voxel already at the
+  /// clamping bound the update pushes towards) and that were dropped without a descent,
+  /// from the voxel's bits: a measure of what the bits save.
+  std::uint64_t updatesSkippedAtBounds() const { return skipped_at_bounds_; }
+
+  /// The largest box whose voxels' clamping bounds are kept: two bits a voxel, 32 MiB.
+  static constexpr std::size_t kMaxBoundVoxels = std::size_t{1} << 27;
 
 private:
   bool inBox(const octomap::OcTreeKey& k) const
@@ -147,6 +155,32 @@ private:
   bool limited_ = false;  // updates only inside [box_lo_, box_hi_]
   octomap::OcTreeKey box_lo_;
   octomap::OcTreeKey box_hi_;
+
+  // Within the box: two bits a voxel, set while its value (its leaf's, or the pruned node's
+  // holding it) is known to equal the lower clamping bound (bit 0) or the upper (bit 1).
+  // Each voxel's value changes only by an update of its own key (pruning and expanding keep
+  // values), so a bit set when an update leaves the voxel at a bound holds until the next
+  // update of that voxel, which sets or clears it again. An update towards the bound a
+  // voxel's bit says it sits at changes nothing (OctoMap's early abort): it is dropped
+  // without descending the tree, the descent's cache misses being most of an update's cost.
+  // A bit never set only costs the descent. Empty: no box, or one too large.
+  std::size_t boundIndex(const octomap::OcTreeKey& k) const
+  {
+    return (k[0] - box_lo_[0]) +
+           box_side_[0] * ((k[1] - box_lo_[1]) + box_side_[1] * std::size_t{static_cast<unsigned>(k[2] - box_lo_[2])});
+  }
+  bool atBound(std::size_t voxel, bool occupied) const
+  {
+    const std::size_t bit = 2 * voxel + (occupied ? 1 : 0);
+    return ((bounds_[bit >> 6] >> (bit & 63)) & 1U) != 0;
+  }
+  /// Records a voxel's value after its update: at the lower bound, the upper, or neither.
+  void noteBounds(const octomap::OcTreeKey& key, float value);
+  std::vector<std::uint64_t> bounds_;
+  std::array<std::size_t, 2> box_side_{};  // voxels along x and y
+  float bounds_min_ = 0.0F;                 // the clamping bounds the bits were set under
+  float bounds_max_ = 0.0F;
+  std::uint64_t skipped_at_bounds_ = 0;
 };
 
 }  // namespace quad::mapping

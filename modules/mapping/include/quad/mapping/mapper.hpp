@@ -21,6 +21,7 @@
 #include "quad/common/param_table.hpp"
 #include "quad/geometry/grid.hpp"
 #include "quad/mapping/map_tree.hpp"
+#include "quad/mapping/tree_bytes.hpp"
 #include "quad/mapping/voxel_map.hpp"
 
 namespace quad::mapping {
@@ -91,18 +92,19 @@ public:
 
   /// The map as OctoMap's binary (.bt) bytes: maximum-likelihood free/occupied per voxel.
   std::vector<std::uint8_t> snapshot() const;
+  /// The snapshot, with the tree's node data (`with_data`) and its memory use, from one walk.
+  TreeImage image(bool with_data) const { return treeImage(tree_, with_data); }
   /// Writes a .bt file that OctoMap's own tools (octovis, binvox2bt ...) read; false on I/O failure.
   bool save(const std::filesystem::path& file) const;
-  /// The tree with every node's log-odds (OctoMap's node data, as in its .ot files).
-  void writeTree(std::ostream& out) const;
-  /// Replaces an empty tree with one writeTree wrote; false (the tree left empty) when the
-  /// bytes are cut short or the mapper already holds voxels.
+  /// Replaces an empty tree with its node data (OctoMap's, as in its .ot files: every node's
+  /// log-odds; treeDataBytes, image()); false (the tree left empty) when the bytes are cut
+  /// short or the mapper already holds voxels.
   bool readTree(std::istream& in);
 
   std::size_t nodes() const { return tree_.size(); }
   std::size_t bytes() const { return tree_.memoryUsage(); }
   double resolution() const { return config_.resolution; }
-  const octomap::OcTree& tree() const { return tree_; }
+  const MapTree& tree() const { return tree_; }
 
 private:
   MapperConfig config_;

@@ -290,13 +290,16 @@ bool ReaderEndpoint::servedVehicle(std::uint32_t vehicle_id, std::span<const std
   return false;
 }
 
-bool ReaderEndpoint::takeSample(void* sample, std::uint64_t* writer)
+bool ReaderEndpoint::takeSample(void* sample, std::uint64_t* writer, std::int64_t* received_ns)
 {
   fdds::SampleInfo info;
   while (reader_->take_next_sample(sample, &info) == ReturnCode_t::RETCODE_OK) {
     if (info.valid_data) {
       if (writer != nullptr) {
         *writer = writerId(info.publication_handle);
+      }
+      if (received_ns != nullptr) {
+        *received_ns = info.reception_timestamp.to_ns();
       }
       return true;
     }

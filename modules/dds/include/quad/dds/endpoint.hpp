@@ -125,8 +125,9 @@ public:
 
 protected:
   /// Takes the next sample with valid data into `sample`; false when none is left. `writer`,
-  /// when given, receives an id of the writer that sent it (a hash of its GUID).
-  bool takeSample(void* sample, std::uint64_t* writer = nullptr);
+  /// when given, receives an id of the writer that sent it (a hash of its GUID);
+  /// `received_ns`, the wall time (CLOCK_REALTIME) at which the middleware received it.
+  bool takeSample(void* sample, std::uint64_t* writer = nullptr, std::int64_t* received_ns = nullptr);
   /// True for a sample of this participant's vehicle; else counts it and reports it (the 1st,
   /// 2nd, 4th, 8th... time) as an event.
   bool ownVehicle(std::uint32_t vehicle_id);

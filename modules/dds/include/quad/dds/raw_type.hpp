@@ -58,8 +58,12 @@ public:
   RawSubscriber(Participant& participant, const TopicInfo& info, Waker* waker,
                 std::optional<eprosima::fastdds::dds::DataReaderQos> qos = std::nullopt);
   bool take(RawSample& sample) { return takeSample(&sample); }
-  /// Also says which writer sent it (an id stable for the writer's life).
-  bool take(RawSample& sample, std::uint64_t& writer) { return takeSample(&sample, &writer); }
+  /// Also says which writer sent it (an id stable for the writer's life) and when the
+  /// middleware received it (wall time, ns).
+  bool take(RawSample& sample, std::uint64_t& writer, std::int64_t& received_ns)
+  {
+    return takeSample(&sample, &writer, &received_ns);
+  }
 };
 
 }  // namespace quad::dds

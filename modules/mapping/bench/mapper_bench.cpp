@@ -76,6 +76,24 @@ void BM_Mapper_Integrate(benchmark::State& state)
   state.counters["points_per_scan"] = static_cast<double>(scans().scans.front().points_W.size());
 }
 
+// The same flight in a map limited to the forest's box (one voxel beyond), as the mapping
+// node limits its map to the flown world's: updates of voxels at their clamping bound are
+// dropped without a descent, and rays stop where they leave the box.
+void BM_Mapper_IntegrateBoxed(benchmark::State& state)
+{
+  const world::Bounds b = world::parseWorld(kForest, "forest").bounds();
+  mapping::MapperConfig config;
+  const geometry::Vector3 margin = geometry::Vector3::Constant(config.resolution);
+  config.box = std::make_pair(geometry::Vector3(b.min - margin), geometry::Vector3(b.max + margin));
+  for (auto _ : state) {
+    mapping::Mapper mapper(config);
+    for (const auto& s : scans().scans) {
+      benchmark::DoNotOptimize(mapper.integrate(s));
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(scans().scans.size()));
+}
+
 void BM_OcTree_InsertPointCloud(benchmark::State& state)
 {
   std::vector<octomap::Pointcloud> clouds;
@@ -238,6 +256,7 @@ void BM_MapFollower_FillGap(benchmark::State& state)
 }
 
 BENCHMARK(BM_Mapper_Integrate)->Unit(benchmark::kMillisecond)->MinTime(5.0);
+BENCHMARK(BM_Mapper_IntegrateBoxed)->Unit(benchmark::kMillisecond)->MinTime(5.0);
 BENCHMARK(BM_OcTree_InsertPointCloud)->Unit(benchmark::kMillisecond)->MinTime(5.0);
 BENCHMARK(BM_ClassificationAgreement)->Iterations(1);
 BENCHMARK(BM_MapFollower_Join)->Unit(benchmark::kMillisecond);

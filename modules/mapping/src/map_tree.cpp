@@ -5,6 +5,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 namespace quad::mapping {
@@ -136,6 +137,86 @@ void MapTree::noteBounds(const octomap::OcTreeKey& key, float value)
   word = (word & ~(std::uint64_t{3} << shift)) | (state << shift);
 }
 
+bool MapTree::beyondBox(const octomap::OcTreeKey& key, unsigned axis, int step) const
+{
+  // A ray's key moves along each axis one way only (its step's sign), or not at all.
+  return limited_ && ((step >= 0 && key[axis] > box_hi_[axis]) || (step <= 0 && key[axis] < box_lo_[axis]));
+}
+
+void MapTree::freeAlongRay(const octomap::point3d& origin, const octomap::point3d& end)
+{
+  // OcTreeBaseImpl::computeRayKeys (Amanatides & Woo's DDA), expression for expression, so
+  // that each ray crosses the same voxels; each goes into the scan's key set as it is
+  // reached instead of into a KeyRay first, and the walk stops once the ray has left the
+  // box for good (a fifth of the demo's ray steps lay beyond it).
+  octomap::OcTreeKey key_origin, key_end;
+  if (!coordToKeyChecked(origin, key_origin) || !coordToKeyChecked(end, key_end)) {
+    return;  // OctoMap warns and leaves the ray out
+  }
+  if (key_origin == key_end) {
+    return;  // the same cell: OctoMap's ray holds no key
+  }
+  octomap::point3d direction = (end - origin);
+  const float length = static_cast<float>(direction.norm());
+  direction /= length;
+  int step[3];
+  double t_max[3];
+  double t_delta[3];
+  octomap::OcTreeKey current_key = key_origin;
+  // The floats promoted to double where OctoMap's expressions promote them.
+  for (unsigned i = 0; i < 3; ++i) {
+    const auto d = static_cast<double>(direction(i));
+    if (d > 0.0) {
+      step[i] = 1;
+    } else if (d < 0.0) {
+      step[i] = -1;
+    } else {
+      step[i] = 0;
+    }
+    if (step[i] != 0) {
+      double voxel_border = keyToCoord(current_key[i]);
+      voxel_border += static_cast<double>(static_cast<float>(step[i] * resolution * 0.5));
+      t_max[i] = (voxel_border - static_cast<double>(origin(i))) / d;
+      t_delta[i] = resolution / static_cast<double>(std::fabs(direction(i)));
+    } else {
+      t_max[i] = std::numeric_limits<double>::max();
+      t_delta[i] = std::numeric_limits<double>::max();
+    }
+  }
+  for (unsigned i = 0; i < 3; ++i) {
+    if (beyondBox(current_key, i, step[i])) {
+      return;  // no key of this ray lies in the box
+    }
+  }
+  const auto visit = [&](const octomap::OcTreeKey& k) {
+    if (inBox(k)) {
+      keys_.insertFree(k);
+    }
+  };
+  visit(current_key);
+  while (true) {
+    unsigned dim;
+    if (t_max[0] < t_max[1]) {
+      dim = t_max[0] < t_max[2] ? 0 : 2;
+    } else {
+      dim = t_max[1] < t_max[2] ? 1 : 2;
+    }
+    current_key[dim] = static_cast<octomap::key_type>(current_key[dim] + step[dim]);
+    t_max[dim] += t_delta[dim];
+    if (current_key == key_end) {
+      return;
+    }
+    // The ray's length reached without reaching the end's cell (rounding): OctoMap stops too.
+    if (std::min(std::min(t_max[0], t_max[1]), t_max[2]) > static_cast<double>(length)) {
+      return;
+    }
+    if (beyondBox(current_key, dim, step[dim])) {
+      return;  // every later key lies beyond the box too
+    }
+    visit(current_key);
+  }
+}
+
 void MapTree::insertPointCloudTracked(const octomap::Pointcloud& cloud, const octomap::point3d& origin,
                                       double max_range, std::vector<KeyChange>& changes)
 {
@@ -160,13 +241,7 @@ void MapTree::insertPointCloudTracked(const octomap::Pointcloud& cloud, const oc
     // A point beyond range clears space up to the range only; its end is not a hit.
     const bool hit = max_range < 0.0 || (p - origin).norm() <= max_range;
     const octomap::point3d end = hit ? p : origin + (p - origin).normalized() * static_cast<float>(max_range);
-    if (computeRayKeys(origin, end, ray_)) {
-      for (const octomap::OcTreeKey& k : ray_) {
-        if (inBox(k)) {
-          keys_.insertFree(k);
-        }
-      }
-    }
+    freeAlongRay(origin, end);
     octomap::OcTreeKey key;
     if (hit && coordToKeyChecked(p, key) && inBox(key)) {
       keys_.insertOccupied(key);

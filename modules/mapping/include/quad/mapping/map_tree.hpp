@@ -140,6 +140,11 @@ private:
     return !limited_ || (k[0] >= box_lo_[0] && k[0] <= box_hi_[0] && k[1] >= box_lo_[1] && k[1] <= box_hi_[1] &&
                          k[2] >= box_lo_[2] && k[2] <= box_hi_[2]);
   }
+  /// Puts the keys of the ray from `origin` to `end` (OctoMap's computeRayKeys: the voxels
+  /// crossed, without the end's) that lie in the box into the scan's key set as free.
+  void freeAlongRay(const octomap::point3d& origin, const octomap::point3d& end);
+  /// The key has passed the box along `axis`, moving that way (`step`'s sign) or not at all.
+  bool beyondBox(const octomap::OcTreeKey& key, unsigned axis, int step) const;
   /// OcTree::updateNode(key, occupied) in one descent; the voxel's classification after it
   /// (true: occupied) when that changed, nothing when it did not. The descent starts where
   /// the previous update's path and this key's part (a ray's voxels come one after another).
@@ -151,7 +156,6 @@ private:
   std::array<octomap::OcTreeNode*, 17> path_{};
   octomap::OcTreeKey path_key_;
   int path_valid_ = -1;
-  octomap::KeyRay ray_;
   bool limited_ = false;  // updates only inside [box_lo_, box_hi_]
   octomap::OcTreeKey box_lo_;
   octomap::OcTreeKey box_hi_;

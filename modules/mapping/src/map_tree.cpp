@@ -148,7 +148,7 @@ void MapTree::freeAlongRay(const octomap::point3d& origin, const octomap::point3
   // OcTreeBaseImpl::computeRayKeys (Amanatides & Woo's DDA), expression for expression, so
   // that each ray crosses the same voxels; each goes into the scan's key set as it is
   // reached instead of into a KeyRay first, and the walk stops once the ray has left the
-  // box for good (a fifth of the demo's ray steps lay beyond it).
+  // box for good (a sixth of the demo's ray steps lay beyond it).
   octomap::OcTreeKey key_origin, key_end;
   if (!coordToKeyChecked(origin, key_origin) || !coordToKeyChecked(end, key_end)) {
     return;  // OctoMap warns and leaves the ray out

@@ -16,6 +16,7 @@
 #include "quad/dds/participant.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/topics.hpp"
+#include "side_by_side.hpp"
 #include "wait.hpp"
 
 namespace quad::dds {
@@ -34,17 +35,10 @@ msg::Heartbeat heartbeat(const std::string& module)
   return hb;
 }
 
-ParticipantOptions options(const char* name, int domain)
-{
-  return ParticipantOptions{.name = name, .domain_id = domain, .transport = Transport::kUdp};
-}
-
 TEST(ModuleWatch, FollowsTheHeartbeatWritersLiveliness)
 {
-  intraprocessDeliveryOff();  // two participants in one process (participant.hpp)
-  const auto options = [](const char* name) { return dds::options(name, kDomain); };
-  Participant module(options("module"));
-  Participant watcher(options("watcher"));
+  Participant module(test::sideBySide("module", kDomain));
+  Participant watcher(test::sideBySide("watcher", kDomain));
   Publisher<msg::Heartbeat> mapping(module, topics::kHeartbeat);
   Publisher<msg::Heartbeat> plant(module, topics::kHeartbeat);
   ModuleWatch watch(watcher, "mapping", nullptr);
@@ -87,9 +81,8 @@ TEST(ModuleWatch, FollowsTheHeartbeatWritersLiveliness)
 
 TEST(LivelinessKeeper, KeepsAWriterThatWritesNothingAliveUntilItGoes)
 {
-  intraprocessDeliveryOff();
-  Participant module(options("module", kKeeperDomain));
-  Participant watcher(options("watcher", kKeeperDomain));
+  Participant module(test::sideBySide("module", kKeeperDomain));
+  Participant watcher(test::sideBySide("watcher", kKeeperDomain));
   Publisher<msg::Heartbeat> mapping(module, topics::kHeartbeat);
   ModuleWatch watch(watcher, "mapping", nullptr);
   ASSERT_TRUE(test::waitFor([&] { return mapping.matchedReaders() == 1; }));

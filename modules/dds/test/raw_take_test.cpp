@@ -11,6 +11,7 @@
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/raw_type.hpp"
 #include "quad/dds/topics.hpp"
+#include "side_by_side.hpp"
 #include "wait.hpp"
 
 namespace quad::dds {
@@ -18,17 +19,11 @@ namespace {
 
 constexpr int kDomain = 96;  // this test's own
 
-ParticipantOptions options(const char* name)
-{
-  intraprocessDeliveryOff();  // two participants in one process (participant.hpp)
-  return ParticipantOptions{.name = name, .domain_id = kDomain, .transport = Transport::kUdp};
-}
-
 TEST(RawSubscriber, SaysWhenTheMiddlewareReceivedASampleNotWhenItWasTaken)
 {
   // GIVEN a clock writer and a raw reader of it on another participant
-  Participant plant(options("plant"));
-  Participant recorder(options("recorder"));
+  Participant plant(test::sideBySide("plant", kDomain));
+  Participant recorder(test::sideBySide("recorder", kDomain));
   Publisher<msg::SimClock> clock(plant, topics::kSimClock);
   RawSubscriber reader(recorder, topics::kSimClock.info, nullptr);
   ASSERT_TRUE(test::waitFor([&] { return clock.matchedReaders() == 1; }));

@@ -12,6 +12,7 @@
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/sim_clock.hpp"
 #include "quad/dds/topics.hpp"
+#include "side_by_side.hpp"
 #include "wait.hpp"
 
 namespace quad::dds {
@@ -37,12 +38,10 @@ msg::SimClock tick(std::int64_t sim_ns, bool lockstep, std::uint64_t frames, boo
 
 /// The plant's clock writer and a follower on another participant, on one domain.
 struct ClockLink {
-  static ParticipantOptions options(const char* name, int domain)
+  explicit ClockLink(int domain)
+      : plant{test::sideBySide("plant", domain)}, reader{test::sideBySide("reader", domain)}
   {
-    intraprocessDeliveryOff();  // two participants in one process (participant.hpp)
-    return ParticipantOptions{.name = name, .domain_id = domain, .transport = Transport::kUdp};
   }
-  explicit ClockLink(int domain) : plant{options("plant", domain)}, reader{options("reader", domain)} {}
   Participant plant;
   Participant reader;
   Publisher<msg::SimClock> clock{plant, topics::kSimClock};

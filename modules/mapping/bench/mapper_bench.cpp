@@ -83,8 +83,7 @@ void BM_Mapper_IntegrateBoxed(benchmark::State& state)
 {
   const world::Bounds b = world::parseWorld(kForest, "forest").bounds();
   mapping::MapperConfig config;
-  const geometry::Vector3 margin = geometry::Vector3::Constant(config.resolution);
-  config.box = std::make_pair(geometry::Vector3(b.min - margin), geometry::Vector3(b.max + margin));
+  config.coverWorld(b.min, b.max);
   for (auto _ : state) {
     mapping::Mapper mapper(config);
     for (const auto& s : scans().scans) {

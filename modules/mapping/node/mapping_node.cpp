@@ -64,8 +64,7 @@ MappingNodeConfig mappingConfigFrom(const common::Params& p)
   c.map = mapperConfigFrom(m.mapper, p.origin());
   if (!m.world_file.empty()) {
     const world::Bounds b = world::loadWorld(m.world_file).bounds();
-    const Vector3 margin = Vector3::Constant(c.map.resolution);
-    c.map.box = std::make_pair(Vector3(b.min - margin), Vector3(b.max + margin));
+    c.map.coverWorld(b.min, b.max);
   }
   c.frames = m.frames;
   c.snapshot_period_s = m.snapshot_period_s;

@@ -124,6 +124,13 @@ TreeImage treeImage(const octomap::OcTree& tree, bool with_data)
 
 std::vector<std::uint8_t> binaryTreeBytes(const octomap::OcTree& tree) { return treeImage(tree, false).binary; }
 
-std::vector<std::uint8_t> treeDataBytes(const octomap::OcTree& tree) { return treeImage(tree, true).data; }
+std::vector<std::uint8_t> treeDataBytes(const octomap::OcTree& tree)
+{
+  std::vector<std::uint8_t> data((sizeof(float) + 1) * tree.size());
+  if (tree.getRoot() != nullptr) {
+    TreeWalk(tree, nullptr, data.data()).root(tree.getRoot());
+  }
+  return data;
+}
 
 }  // namespace quad::mapping

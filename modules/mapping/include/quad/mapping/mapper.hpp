@@ -43,6 +43,14 @@ struct MapperConfig {
   /// [m] The box the map covers (the world's: nothing flies outside it); voxels outside are
   /// never updated, so rays into the sky or past the walls cost no map. Unset: unbounded.
   std::optional<std::pair<Vector3, Vector3>> box;
+
+  /// Limits the map to a world of bounds [min, max], one voxel beyond them (a wall on the
+  /// bounds is mapped whole).
+  void coverWorld(const Vector3& min, const Vector3& max)
+  {
+    const Vector3 margin = Vector3::Constant(resolution);
+    box = std::make_pair(Vector3(min - margin), Vector3(max + margin));
+  }
 };
 
 /// The mapper's parameters as configs/mapping.yaml writes them (its `map.*` keys):

@@ -20,8 +20,10 @@ std::map<std::string, std::uint64_t, std::less<>> rejected_by_type;
 
 bool payloadKeepsToIdl(std::string_view type_name, const eprosima::fastrtps::rtps::SerializedPayload_t& payload)
 {
-  const std::string why = introspection::checkBounds(introspection::quadSchema(), type_name,
-                                                     std::span<const std::uint8_t>(payload.data, payload.length));
+  const std::span<const std::uint8_t> bytes(payload.data, payload.length);
+  const auto* checker = introspection::quadBoundsChecker(type_name);
+  const std::string why = checker != nullptr ? checker->check(bytes)
+                                             : introspection::checkBounds(introspection::quadSchema(), type_name, bytes);
   if (why.empty()) {
     return true;
   }

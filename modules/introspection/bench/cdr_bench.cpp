@@ -6,6 +6,7 @@
 #include <fastcdr/Cdr.h>
 #include <fastcdr/FastBuffer.h>
 
+#include <quad/msg/MapUpdatePubSubTypes.h>
 #include <quad/msg/PointCloudPubSubTypes.h>
 #include <quad/msg/VehicleStatePubSubTypes.h>
 
@@ -75,10 +76,61 @@ void BM_PointCloud1000_SchemaDriven(benchmark::State& s)
   schemaDriven(s, cloud(1000), "quad::msg::PointCloud");
 }
 
+// A reader's check of every sample against its IDL: the types looked up for each payload
+// (checkBounds) against once for all (a BoundsChecker kept), side by side.
+quad::msg::MapUpdate mapUpdate(int changes)
+{
+  quad::msg::MapUpdate u;
+  u.changes().resize(static_cast<std::size_t>(changes));
+  return u;
+}
+
+template <class Message>
+void boundsEachCall(benchmark::State& state, Message m, const char* type)
+{
+  auto bytes = serialize(m);
+  const std::span<const std::uint8_t> payload(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(quad::introspection::checkBounds(quad::introspection::quadSchema(), type, payload));
+  }
+}
+
+template <class Message>
+void boundsChecker(benchmark::State& state, Message m, const char* type)
+{
+  auto bytes = serialize(m);
+  const std::span<const std::uint8_t> payload(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+  const quad::introspection::BoundsChecker checker(quad::introspection::quadSchema(), type);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(checker.check(payload));
+  }
+}
+
+void BM_Bounds_VehicleState_EachCall(benchmark::State& s)
+{
+  boundsEachCall(s, quad::msg::VehicleState{}, "quad::msg::VehicleState");
+}
+void BM_Bounds_VehicleState_Checker(benchmark::State& s)
+{
+  boundsChecker(s, quad::msg::VehicleState{}, "quad::msg::VehicleState");
+}
+void BM_Bounds_MapUpdate5000_EachCall(benchmark::State& s)
+{
+  boundsEachCall(s, mapUpdate(5000), "quad::msg::MapUpdate");
+}
+void BM_Bounds_MapUpdate5000_Checker(benchmark::State& s)
+{
+  boundsChecker(s, mapUpdate(5000), "quad::msg::MapUpdate");
+}
+
 BENCHMARK(BM_VehicleState_Generated);
 BENCHMARK(BM_VehicleState_SchemaDriven);
 BENCHMARK(BM_PointCloud1000_Generated);
 BENCHMARK(BM_PointCloud1000_SchemaDriven);
+BENCHMARK(BM_Bounds_VehicleState_EachCall);
+BENCHMARK(BM_Bounds_VehicleState_Checker);
+BENCHMARK(BM_Bounds_MapUpdate5000_EachCall);
+BENCHMARK(BM_Bounds_MapUpdate5000_Checker);
 
 }  // namespace
 

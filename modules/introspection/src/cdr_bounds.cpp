@@ -3,6 +3,7 @@
 #include <cstring>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "quad/introspection/cdr.hpp"
@@ -11,23 +12,38 @@ namespace quad::introspection {
 namespace {
 
 constexpr std::size_t kEncapsulationSize = 4;
+constexpr std::size_t kEnumSize = 4;  // an enum's value is an unsigned long in CDR
 
 /// Walks a payload as decodeCdr does, without building anything: checks lengths against the
 /// IDL's bounds and the payload's size, enum and boolean values, and skips runs of elements whose
-/// layout is fixed (a struct of primitives of one size has no padding: count * size bytes).
+/// layout is fixed (a struct of fields of one size has no padding: count * size bytes), reading
+/// only their enums' values in place.
+/// With kNamesFields, a fault is a DecodeError naming the member's path; without, which is
+/// faster (nothing kept per member and element), it is a Refused, and the payload is walked
+/// again with the path to say where.
+struct Refused {};
+
+template <bool kNamesFields>
 class BoundsWalker {
 public:
-  BoundsWalker(const Schema& schema, std::span<const std::uint8_t> body, bool little)
-      : schema_(schema), body_(body), little_(little)
+  using Resolved = BoundsChecker::Resolved;
+
+  BoundsWalker(const std::unordered_map<const TypeRef*, Resolved>& resolved, std::span<const std::uint8_t> body,
+               bool little)
+      : resolved_(resolved), body_(body), little_(little)
   {
   }
 
   void walkStruct(const StructDef& def)
   {
     for (const auto& m : def.members) {
-      path_.push_back({&m.name, std::nullopt});
+      if constexpr (kNamesFields) {
+        path_.push_back({&m.name, std::nullopt});
+      }
       walkMember(m);
-      path_.pop_back();
+      if constexpr (kNamesFields) {
+        path_.pop_back();
+      }
     }
   }
 
@@ -37,8 +53,12 @@ private:
     std::optional<std::size_t> index;
   };
 
-  [[noreturn]] void fail(const std::string& why) const
+  template <class Why>
+  [[noreturn]] void fail(Why&& why) const
   {
+    if constexpr (!kNamesFields) {
+      throw Refused{};
+    }
     std::string path;
     for (const auto& p : path_) {
       if (p.name != nullptr) {
@@ -48,14 +68,14 @@ private:
         path += "[" + std::to_string(*p.index) + "]";
       }
     }
-    throw DecodeError(path + ": " + why + " at byte " + std::to_string(pos_ + kEncapsulationSize));
+    throw DecodeError(path + ": " + why() + " at byte " + std::to_string(pos_ + kEncapsulationSize));
   }
 
   void skip(std::size_t n, std::size_t align)
   {
     pos_ = (pos_ + align - 1) / align * align;
     if (pos_ > body_.size() || body_.size() - pos_ < n) {
-      fail("truncated: needs " + std::to_string(n) + " more byte(s)");
+      fail([&] { return "truncated: needs " + std::to_string(n) + " more byte(s)"; });
     }
     pos_ += n;
   }
@@ -63,61 +83,43 @@ private:
   std::uint32_t length()
   {
     skip(4, 4);
+    return word(pos_ - 4);
+  }
+
+  /// The 4-byte unsigned value at `at`, which must be within the payload.
+  std::uint32_t word(std::size_t at) const
+  {
     std::uint32_t v;
-    std::memcpy(&v, body_.data() + pos_ - 4, 4);
+    std::memcpy(&v, body_.data() + at, 4);
     return little_ == (std::endian::native == std::endian::little) ? v : __builtin_bswap32(v);
   }
 
-  /// The size of every primitive in `t` when they all have one size (no padding), else 0.
-  std::size_t uniformSize(const TypeRef& t) const
-  {
-    if (t.kind == TypeRef::Kind::kPrimitive) {
-      // A boolean's byte must be 0 or 1 (Fast CDR throws on anything else): checked one by one.
-      return t.primitive == Primitive::kBool ? 0 : cdrSize(t.primitive);
-    }
-    if (t.kind != TypeRef::Kind::kNamed) {
-      return 0;
-    }
-    if (schema_.findEnum(t.name) != nullptr) {
-      return 0;  // its values must be checked one by one
-    }
-    const StructDef* s = schema_.findStruct(t.name);
-    if (s == nullptr) {
-      return 0;
-    }
-    std::size_t size = 0;
-    for (const auto& m : s->members) {
-      const std::size_t one = m.array_dims.empty() ? uniformSize(m.type) : 0;
-      if (one == 0 || (size != 0 && one != size)) {
-        return 0;
-      }
-      size = one;
-    }
-    return size;
-  }
-
-  std::size_t fieldsOf(const TypeRef& t) const
-  {
-    if (t.kind == TypeRef::Kind::kPrimitive) {
-      return 1;
-    }
-    std::size_t n = 0;
-    for (const auto& m : schema_.findStruct(t.name)->members) {
-      n += fieldsOf(m.type);
-    }
-    return n;
-  }
+  const Resolved& resolved(const TypeRef& t) const { return resolved_.at(&t); }
 
   void walkElements(const TypeRef& element, std::size_t count)
   {
-    if (const std::size_t size = uniformSize(element); size != 0) {
-      skip(count * size * fieldsOf(element), size);
+    // A run of fixed layout is skipped whole, its enums' values read in place; a fault in one
+    // is found again element by element by the walk that names the field.
+    if (const Resolved& r = resolved(element); r.uniform_size != 0 && (!kNamesFields || r.enum_fields.empty())) {
+      skip(count * r.uniform_size * r.fields, r.uniform_size);
+      const std::size_t start = pos_ - count * r.uniform_size * r.fields;
+      for (std::size_t i = 0; i < count && !r.enum_fields.empty(); ++i) {
+        for (const auto& [index, enumerators] : r.enum_fields) {
+          if (word(start + (i * r.fields + index) * kEnumSize) >= enumerators) {
+            throw Refused{};
+          }
+        }
+      }
       return;
     }
     for (std::size_t i = 0; i < count; ++i) {
-      path_.push_back({nullptr, i});
+      if constexpr (kNamesFields) {
+        path_.push_back({nullptr, i});
+      }
       walkType(element);
-      path_.pop_back();
+      if constexpr (kNamesFields) {
+        path_.pop_back();
+      }
     }
   }
 
@@ -128,16 +130,16 @@ private:
         skip(cdrSize(t.primitive), cdrSize(t.primitive));
         if (t.primitive == Primitive::kBool && body_[pos_ - 1] > 1) {
           --pos_;
-          fail("boolean value " + std::to_string(body_[pos_]) + " is neither 0 nor 1");
+          fail([&] { return "boolean value " + std::to_string(body_[pos_]) + " is neither 0 nor 1"; });
         }
         return;
       case TypeRef::Kind::kString: {
         const std::uint32_t n = length();  // with its NUL
         if (n == 0) {
-          fail("string length 0 (CDR strings carry their NUL)");
+          fail([&] { return "string length 0 (CDR strings carry their NUL)"; });
         }
         if (t.bound != 0 && n - 1 > t.bound) {
-          fail("string length " + std::to_string(n - 1) + " exceeds its bound " + std::to_string(t.bound));
+          fail([&] { return "string length " + std::to_string(n - 1) + " exceeds its bound " + std::to_string(t.bound); });
         }
         skip(n, 1);
         return;
@@ -145,23 +147,23 @@ private:
       case TypeRef::Kind::kSequence: {
         const std::uint32_t n = length();
         if (t.bound != 0 && n > t.bound) {
-          fail("sequence length " + std::to_string(n) + " exceeds its bound " + std::to_string(t.bound));
+          fail([&] { return "sequence length " + std::to_string(n) + " exceeds its bound " + std::to_string(t.bound); });
         }
         if (n > body_.size() - pos_) {
-          fail("sequence length " + std::to_string(n) + " exceeds the payload");
+          fail([&] { return "sequence length " + std::to_string(n) + " exceeds the payload"; });
         }
         walkElements(*t.element, n);
         return;
       }
       case TypeRef::Kind::kNamed:
-        if (const StructDef* s = schema_.findStruct(t.name)) {
-          walkStruct(*s);
-        } else if (const EnumDef* e = schema_.findEnum(t.name)) {
+        if (const Resolved& r = resolved(t); r.structure != nullptr) {
+          walkStruct(*r.structure);
+        } else if (const EnumDef* e = r.enumeration) {
           if (const std::uint32_t v = length(); v >= e->enumerators.size()) {
-            fail("enum value " + std::to_string(v) + " is not an enumerator of " + t.name);
+            fail([&] { return "enum value " + std::to_string(v) + " is not an enumerator of " + t.name; });
           }
         } else {
-          fail("unknown type " + t.name);
+          fail([&] { return "unknown type " + t.name; });
         }
         return;
     }
@@ -180,7 +182,7 @@ private:
     }
   }
 
-  const Schema& schema_;
+  const std::unordered_map<const TypeRef*, Resolved>& resolved_;
   std::span<const std::uint8_t> body_;
   bool little_;
   std::size_t pos_ = 0;
@@ -189,21 +191,93 @@ private:
 
 }  // namespace
 
-std::string checkBounds(const Schema& schema, std::string_view type_name, std::span<const std::uint8_t> payload)
+BoundsChecker::BoundsChecker(const Schema& schema, std::string_view type_name)
+    : schema_(schema), type_name_(type_name), root_(schema.findStruct(type_name))
 {
-  const StructDef* def = schema.findStruct(type_name);
-  if (def == nullptr) {
-    return "no IDL struct named '" + std::string(type_name) + "'";
+  if (root_ != nullptr) {
+    for (const auto& m : root_->members) {
+      resolve(m.type);
+    }
+  }
+}
+
+void BoundsChecker::resolve(const TypeRef& t)
+{
+  if (resolved_.contains(&t)) {
+    return;  // seen, or being resolved (a struct reached again through a sequence of itself)
+  }
+  Resolved& r = resolved_[&t];
+  switch (t.kind) {
+    case TypeRef::Kind::kPrimitive:
+      // A boolean's byte must be 0 or 1 (Fast CDR throws on anything else): checked one by one.
+      r.uniform_size = t.primitive == Primitive::kBool ? 0 : cdrSize(t.primitive);
+      r.fields = 1;
+      return;
+    case TypeRef::Kind::kString:
+      return;
+    case TypeRef::Kind::kSequence:
+      resolve(*t.element);
+      return;
+    case TypeRef::Kind::kNamed:
+      break;
+  }
+  const StructDef* s = schema_.findStruct(t.name);
+  const EnumDef* e = s == nullptr ? schema_.findEnum(t.name) : nullptr;
+  std::size_t size = e != nullptr ? kEnumSize : 0;
+  std::size_t fields = e != nullptr ? 1 : 0;
+  std::vector<std::pair<std::size_t, std::size_t>> enum_fields;
+  if (e != nullptr) {
+    enum_fields.emplace_back(0, e->enumerators.size());
+  }
+  bool uniform = s != nullptr || e != nullptr;
+  if (s != nullptr) {
+    for (const auto& m : s->members) {
+      resolve(m.type);
+      const Resolved& member = resolved_.at(&m.type);
+      for (const auto& [index, enumerators] : member.enum_fields) {
+        enum_fields.emplace_back(fields + index, enumerators);
+      }
+      fields += member.fields;
+      if (!m.array_dims.empty() || member.uniform_size == 0 || (size != 0 && member.uniform_size != size)) {
+        uniform = false;
+      }
+      size = member.uniform_size;
+    }
+  }
+  // resolved_ may have rehashed since `r` was taken.
+  Resolved& out = resolved_.at(&t);
+  out.structure = s;
+  out.enumeration = e;
+  out.uniform_size = uniform ? size : 0;
+  out.fields = fields;
+  out.enum_fields = uniform ? std::move(enum_fields) : decltype(enum_fields){};
+}
+
+std::string BoundsChecker::check(std::span<const std::uint8_t> payload) const
+{
+  if (root_ == nullptr) {
+    return "no IDL struct named '" + type_name_ + "'";
   }
   if (payload.size() < kEncapsulationSize || payload[0] != 0 || payload[1] > 1) {
     return "not a plain CDR payload";
   }
+  const auto body = payload.subspan(kEncapsulationSize);
   try {
-    BoundsWalker(schema, payload.subspan(kEncapsulationSize), payload[1] == 1).walkStruct(*def);
+    BoundsWalker<false>(resolved_, body, payload[1] == 1).walkStruct(*root_);
+    return "";
+  } catch (const Refused&) {
+  }
+  try {
+    BoundsWalker<true>(resolved_, body, payload[1] == 1).walkStruct(*root_);
   } catch (const DecodeError& e) {
     return e.what();
   }
-  return "";
+  return "refused, at a place the second walk did not find";  // not reached: the walks are one
+}
+
+std::string checkBounds(const Schema& schema, std::string_view type_name, std::span<const std::uint8_t> payload)
+{
+  return BoundsChecker(schema, type_name).check(payload);
 }
 
 }  // namespace quad::introspection

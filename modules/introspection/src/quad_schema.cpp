@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
+#include "quad/introspection/cdr.hpp"
 #include "quad/introspection/idl.hpp"
 
 namespace quad::msg {
@@ -19,6 +20,19 @@ const Schema& quadSchema()
     return s;
   }();
   return schema;
+}
+
+const BoundsChecker* quadBoundsChecker(std::string_view type_name)
+{
+  static const auto checkers = [] {
+    std::map<std::string, BoundsChecker, std::less<>> all;
+    for (const auto& entry : quadSchema().structs()) {
+      all.try_emplace(entry.first, quadSchema(), entry.first);
+    }
+    return all;
+  }();
+  const auto it = checkers.find(type_name);
+  return it == checkers.end() ? nullptr : &it->second;
 }
 
 }  // namespace quad::introspection

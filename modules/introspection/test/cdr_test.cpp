@@ -304,15 +304,30 @@ TEST(CdrBounds, TruncatedPayloadsLongStringsAndBadEnumsAreRefused)
   EXPECT_EQ(checkBounds(quadSchema(), "quad::msg::Nothing", a), "no IDL struct named 'quad::msg::Nothing'");
 }
 
-TEST(CdrBounds, ElementsOfOneSizeAreSkippedAndOthersWalked)
+TEST(CdrBounds, RunsOfOneFieldSizeAreSkippedTheirEnumsReadAndAFaultNamedWhereItIs)
 {
-  // Map changes (3 longs and an enum each) are walked; points (3 floats) skipped: both must
-  // end exactly where the payload does for a sample that keeps to its IDL.
+  // Map changes (3 longs and an enum each) and points (3 floats) are runs of one field size:
+  // both must end exactly where the payload does for a sample that keeps to its IDL.
   nlohmann::ordered_json update = {{"changes", nlohmann::ordered_json::array()}};
   for (int i = 0; i < 100; ++i) {
     update["changes"].push_back({{"ix", i}, {"iy", -i}, {"iz", 3}, {"state", "VOXEL_OCCUPIED"}});
   }
-  EXPECT_EQ(checkBounds(quadSchema(), "quad::msg::MapUpdate", encodeCdr(quadSchema(), "quad::msg::MapUpdate", update)), "");
+  auto changes = encodeCdr(quadSchema(), "quad::msg::MapUpdate", update);
+  EXPECT_EQ(checkBounds(quadSchema(), "quad::msg::MapUpdate", changes), "");
+  // The run is skipped, not its enums: a state that is no enumerator in change 57 (the
+  // payload's 16-byte changes end it) is refused, and named as a walk element by element would.
+  const std::size_t state_57 = changes.size() - 16 * (100 - 57) + 12;
+  ASSERT_EQ(changes[state_57], 2);  // VOXEL_OCCUPIED
+  changes[state_57] = 7;
+  const std::string why = checkBounds(quadSchema(), "quad::msg::MapUpdate", changes);
+  EXPECT_EQ(why, "changes[57].state: enum value 7 is not an enumerator of quad::msg::VoxelState at byte " +
+                     std::to_string(state_57 + 4));
+  // A checker kept for every sample answers as checkBounds does.
+  const BoundsChecker checker(quadSchema(), "quad::msg::MapUpdate");
+  EXPECT_EQ(checker.check(changes), why);
+  EXPECT_EQ(quadBoundsChecker("quad::msg::MapUpdate")->check(changes), why);
+  EXPECT_EQ(quadBoundsChecker("quad::msg::Nothing"), nullptr);
+
   nlohmann::ordered_json cloud = {{"points", nlohmann::ordered_json::array()}};
   for (int i = 0; i < 1000; ++i) {
     cloud["points"].push_back({{"x", 1.0}, {"y", 2.0}, {"z", 3.0}});

@@ -10,6 +10,8 @@
 #include <span>
 #include <stdexcept>
 #include <string_view>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -40,8 +42,43 @@ nlohmann::ordered_json decodeCdr(const Schema& schema, std::string_view type_nam
 /// than its bound or than the payload, an enum value that is no enumerator, a truncated
 /// member ("waypoints_W: sequence length 5000 exceeds its bound 4096 at byte 40"); "" when
 /// nothing is. Much cheaper than decodeCdr: it builds nothing, and skips runs of elements
-/// made of primitives of one size (points, vectors, voxel indices) without reading them.
+/// made of fields of one size (points, vectors, voxel changes) reading only their enums.
 std::string checkBounds(const Schema& schema, std::string_view type_name, std::span<const std::uint8_t> payload);
+
+/// checkBounds for every payload of one type: each named type it reaches is looked up in the
+/// schema once, here, not by name for every sample and element (a reader checks each sample
+/// it receives). check() is const and safe from several threads. Valid while `schema` lives,
+/// unchanged.
+class BoundsChecker {
+public:
+  BoundsChecker(const Schema& schema, std::string_view type_name);
+
+  /// checkBounds(schema, type_name, payload).
+  std::string check(std::span<const std::uint8_t> payload) const;
+
+  /// What a member's type is, looked up once: a named type's definition, and for a type
+  /// made of fields of one size only (primitives other than booleans, and enums), that size
+  /// (0 otherwise), how many there are and which are enums, whose values must be checked.
+  struct Resolved {
+    const StructDef* structure = nullptr;
+    const EnumDef* enumeration = nullptr;
+    std::size_t uniform_size = 0;
+    std::size_t fields = 0;
+    std::vector<std::pair<std::size_t, std::size_t>> enum_fields;  ///< (field index, enumerators)
+  };
+
+private:
+  void resolve(const TypeRef& t);
+
+  const Schema& schema_;
+  std::string type_name_;
+  const StructDef* root_;
+  std::unordered_map<const TypeRef*, Resolved> resolved_;  // every type reachable from root_
+};
+
+/// The BoundsChecker of a quad message type (quadSchema()), made once for every type; null for
+/// a name that is none.
+const BoundsChecker* quadBoundsChecker(std::string_view type_name);
 
 class EncodeError : public std::runtime_error {
 public:

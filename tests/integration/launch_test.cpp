@@ -68,8 +68,9 @@ auto runningAfterStart(const std::string& module, int starts = 1)
 }
 
 /// Flies a shipped manifest's mission and checks the summary and the run folder; given
-/// `recording`, records the run and keeps the file there.
-void flyMission(const std::string& manifest, int domain, std::vector<std::string> extra, const fs::path& recording = {})
+/// `recording`, records the run and keeps the file there, and given `scores`, the summary.
+void flyMission(const std::string& manifest, int domain, std::vector<std::string> extra, const fs::path& recording = {},
+                nlohmann::json* scores = nullptr)
 {
   const fs::path dir = quad::test::scratchDir("quad_launch_" + std::to_string(domain));
   if (!recording.empty()) {
@@ -85,6 +86,9 @@ void flyMission(const std::string& manifest, int domain, std::vector<std::string
   EXPECT_EQ(*status, 0) << launch.output();
   const auto summary = nlohmann::json::parse(quad::test::readFile(dir / "summary.json"), nullptr, false);
   ASSERT_FALSE(summary.is_discarded()) << launch.output();
+  if (scores != nullptr) {
+    *scores = summary;
+  }
   EXPECT_EQ(summary["end"], "success") << summary;
   EXPECT_EQ(summary["outcome"], "landed at the goal") << summary;
   EXPECT_EQ(summary["collisions"], 0) << summary;
@@ -191,12 +195,19 @@ TEST(Launch, DemoMissionReachesTheGoalInLockstepWithoutCollisionAndTwoRunsRecord
 {
   // GIVEN the demo flown twice in lockstep with one seed, each run recorded
   const fs::path dir = quad::test::scratchDir("quad_launch_determinism");
-  flyMission("demo.yaml", 180, {"--seed", "7"}, dir / "first.mcap");
-  flyMission("demo.yaml", 63, {"--seed", "7"}, dir / "second.mcap");
+  nlohmann::json first;
+  nlohmann::json second;
+  flyMission("demo.yaml", 180, {"--seed", "7"}, dir / "first.mcap", &first);
+  flyMission("demo.yaml", 63, {"--seed", "7"}, dir / "second.mcap", &second);
   // WHEN the recordings are compared message by message THEN every topic paced by sim time
   // holds the same payloads in the same order, but for the members that hold wall-clock and
   // compute times
   quad::test::expectIdenticalRecordings(QUAD_TOOL, dir / "first.mcap", dir / "second.mcap", 15, 50000);
+  // AND the runs score the same: the launcher's observer took in every state from sim time 0
+  // (it holds the start, as the recorder does) and every mode the controller passed through
+  for (const char* score : {"path_length_m", "min_clearance_m", "modes"}) {
+    EXPECT_EQ(first[score], second[score]) << score;
+  }
   if (!::testing::Test::HasFailure()) {
     fs::remove_all(dir);
   }

@@ -254,6 +254,9 @@ ParticipantOptions optionsFromEnvironment(std::string name)
   if (const char* v = env(environment::kLockstepRecorder)) {
     options.lockstep_recorder = parseInt<int>(v, environment::kLockstepRecorder, 0, 1) == 1;
   }
+  if (const char* v = env(environment::kLockstepObserver)) {
+    options.lockstep_observer = parseInt<int>(v, environment::kLockstepObserver, 0, 1) == 1;
+  }
   if (const char* v = env(environment::kParticipantLease)) {
     options.participant_lease_s = parseInt<int>(v, environment::kParticipantLease, 1, std::numeric_limits<int>::max());
   }

@@ -86,12 +86,15 @@ PlantNode::PlantNode(PlantNodeConfig config, dds::ParticipantOptions options)
     io_.push_back({.id = id});
   }
   std::vector<std::string> participants = config_.lockstep_participants;
-  if (participant().options().lockstep_recorder &&
-      std::find(participants.begin(), participants.end(), dds::kRecorderParticipant) == participants.end()) {
-    // The run's recorder holds the first round until it reads what this plant writes: the
-    // recording then starts with the run.
-    participants.emplace_back(dds::kRecorderParticipant);
-  }
+  // The run's recorder and observer hold the first round until they read what this plant
+  // writes: the recording and the run's summary then start with the run.
+  const auto holdsStart = [&](bool holds, const char* name) {
+    if (holds && std::find(participants.begin(), participants.end(), name) == participants.end()) {
+      participants.emplace_back(name);
+    }
+  };
+  holdsStart(participant().options().lockstep_recorder, dds::kRecorderParticipant);
+  holdsStart(participant().options().lockstep_observer, dds::kObserverParticipant);
   if (config_.mode == PlantNodeConfig::Mode::kLockstep && !participants.empty()) {
     // With a fleet file each vehicle has its own participants (its mapper, its planner).
     barrier_ = std::make_unique<dds::LockstepBarrier>(

@@ -87,7 +87,10 @@ void MissionTracker::onMode(double t, const std::string& mode, const std::string
 
 void MissionTracker::onPath(std::uint32_t version, const std::string& no_path)
 {
-  if (no_path != no_path_ && !finished_) {
+  if (finished_) {
+    return;  // the paths of a mission counted up to its end, however late the stack is stopped
+  }
+  if (no_path != no_path_) {
     progress_.push_back(no_path.empty() ? fmt::format("t = {:.1f} s: the planner has a path again", t_)
                                         : fmt::format("t = {:.1f} s: {}", t_, no_path));
   }

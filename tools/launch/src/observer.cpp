@@ -9,6 +9,7 @@
 #include "quad/common/time.hpp"
 #include "quad/dds/geometry_messages.hpp"
 #include "quad/dds/liveliness.hpp"
+#include "quad/dds/lockstep.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/sim_clock.hpp"
@@ -32,7 +33,9 @@ struct Observer::Sim {
   {
   }
   /// Every state is scored, and the goal is reached at the first state within its tolerance
-  /// in every run: a history deep enough for a launcher that falls behind for seconds.
+  /// in every run: a history deep enough for a launcher that falls behind for seconds. The
+  /// controller's statuses too: its latched topic keeps the newest only, and each mode it
+  /// passes through counts (a failsafe, the hover between take-off and mission).
   static eprosima::fastdds::dds::DataReaderQos deep(dds::Participant& p, const dds::TopicInfo& topic)
   {
     return dds::withDepth(p.readerQos(topic.qos_profile), 2048);
@@ -47,7 +50,7 @@ struct Observer::Sim {
 struct Observer::Endpoints {
   explicit Endpoints(dds::Participant& p)
       : goal(p, topics::kGoal),
-        status(p, topics::kControlStatus),
+        status(p, topics::kControlStatus, nullptr, Sim::deep(p, topics::kControlStatus.info)),
         path(p, topics::kPath),
         events(p, topics::kSimEvents),
         map_stats(p, topics::kMapStats),
@@ -55,7 +58,7 @@ struct Observer::Endpoints {
   {
   }
   dds::Publisher<msg::Goal> goal;
-  dds::Subscriber<msg::ControlStatus> status;
+  dds::Subscriber<msg::ControlStatus> status;  // every one (Sim::deep)
   dds::Subscriber<msg::Path> path;
   dds::Subscriber<msg::SimEvent> events;
   dds::Subscriber<msg::MapStats> map_stats;
@@ -63,6 +66,16 @@ struct Observer::Endpoints {
   // The beats follow sim time, which stands while the lockstep clock waits: the writer's
   // liveliness (this process alive) is kept in wall time, as every module's heartbeat is.
   dds::LivelinessKeeper operator_alive{operator_beat};
+};
+
+/// The run's start, held until the readers that score it have matched their writers.
+struct Observer::StartHold {
+  StartHold(dds::Participant& p, std::size_t estimator_count) : estimators(estimator_count), reports(p, topics::kLockstep)
+  {
+  }
+  std::size_t estimators;  // writers of estimates it waits for: one per vehicle's estimator
+  dds::Publisher<msg::LockstepReport> reports;
+  std::vector<std::uint32_t> released;  // vehicles whose start this observer no longer holds
 };
 
 /// One followed vehicle: where it is, how its estimator does, its mission once started.
@@ -87,6 +100,35 @@ Observer::Observer(dds::ParticipantOptions options, std::vector<std::uint32_t> v
 }
 
 Observer::~Observer() = default;
+
+void Observer::holdStart(std::size_t estimators)
+{
+  start_hold_ = std::make_unique<StartHold>(participant_, estimators);
+}
+
+void Observer::releaseStart()
+{
+  if (!start_hold_ || start_hold_->released.size() == ids_.size()) {
+    return;
+  }
+  // The clock seen: the plant runs and waits at its first round, its writers discovered.
+  if (!sim_->clock.seen() || sim_->state.matchedWriters() == 0 ||
+      static_cast<std::size_t>(sim_->estimate.matchedWriters()) < start_hold_->estimators) {
+    return;
+  }
+  for (const std::uint32_t id : ids_) {
+    if (std::find(start_hold_->released.begin(), start_hold_->released.end(), id) != start_hold_->released.end()) {
+      continue;
+    }
+    msg::LockstepReport report;
+    report.header().stamp_ns(sim_->clock.ns());
+    report.participant(dds::kObserverParticipant);
+    report.done_ns(dds::kDoneForGoodNs);
+    if (start_hold_->reports.writeFor(id, report)) {
+      start_hold_->released.push_back(id);
+    }  // else tried again with the next update
+  }
+}
 
 Observer::Track* Observer::track(std::uint32_t id)
 {
@@ -270,6 +312,7 @@ void Observer::onState(Track& v, std::int64_t stamp_ns, const Eigen::Vector3d& p
 void Observer::update()
 {
   sim_->clock.update();
+  releaseStart();
   for (const auto& s : sim_->state.takeAll(ids_)) {
     // Only states the sim clock vouches for, in order: one stamped ahead of it (a bad input)
     // would end the mission by its timeout, an old one would teleport the vehicle.
@@ -281,8 +324,11 @@ void Observer::update()
     onState(v, s.header().stamp_ns(), p, dds::toQuaternion(s.q_WB()));
   }
   for (const auto& e : sim_->estimate.takeAll(ids_)) {
-    track(e.header().vehicle_id())
-        ->score.onEstimate(e.header().stamp_ns(), dds::toVector(e.p_W()), dds::toQuaternion(e.q_WB()),
+    Track& v = *track(e.header().vehicle_id());
+    if (v.tracker && v.tracker->finished()) {
+      continue;  // scored up to the mission's end, however late the stack is stopped
+    }
+    v.score.onEstimate(e.header().stamp_ns(), dds::toVector(e.p_W()), dds::toQuaternion(e.q_WB()),
                            dds::toVector(e.p_std()), e.aligned());
   }
   if (!endpoints_) {

@@ -568,6 +568,9 @@ int LaunchRun::execute(RunExtension* extension)
   if (options_.record && m_.mode == "lockstep") {
     env_[dds::environment::kLockstepRecorder] = "1";  // the recording starts with the run's first step
   }
+  if (m_.mode == "lockstep") {
+    env_[dds::environment::kLockstepObserver] = "1";  // and the summary's scores
+  }
   if (m_.discovery == launch::Discovery::kServer) {
     const auto& host = m_.host(m_.discovery_host);
     const std::vector<std::string> argv{"fastdds", "discovery", "-i", "0", "-l", net_->address(host.name), "-p",
@@ -586,6 +589,10 @@ int LaunchRun::execute(RunExtension* extension)
   po.observe_all = true;
   observer_ = std::make_unique<launch::Observer>(po, m_.vehicles.empty() ? std::vector<std::uint32_t>{}
                                                                           : m_.vehicleIds());
+  if (po.lockstep_observer) {
+    observer_->holdStart(static_cast<std::size_t>(std::count_if(
+        m_.modules.begin(), m_.modules.end(), [](const launch::Module& mod) { return mod.kind == "estimation"; })));
+  }
 
   if (m_.mission.enabled) {
     if (const int code = startMissions(); code != 0) {

@@ -22,6 +22,7 @@ inline constexpr const char* kInlineKeys = "QUAD_INLINE_KEYS";
 inline constexpr const char* kFaultLayer = "QUAD_FAULT_LAYER";
 inline constexpr const char* kLockstep = "QUAD_LOCKSTEP";
 inline constexpr const char* kLockstepRecorder = "QUAD_LOCKSTEP_RECORDER";
+inline constexpr const char* kLockstepObserver = "QUAD_LOCKSTEP_OBSERVER";
 inline constexpr const char* kParticipantLease = "QUAD_PARTICIPANT_LEASE";
 inline constexpr const char* kMapBudget = "QUAD_MAP_BUDGET_MS";
 inline constexpr const char* kPathBudget = "QUAD_PATH_BUDGET_MS";

@@ -22,6 +22,10 @@ namespace quad::dds {
 /// The lockstep name of a run's recorder. It holds only the run's start: once it reads every
 /// topic the clock owner writes, it reports itself done up to kDoneForGoodNs.
 inline constexpr const char* kRecorderParticipant = "record";
+/// The lockstep name of a run's observer (the launcher's participant). It too holds only the
+/// run's start: once it reads the states and clock samples it scores, it reports itself done
+/// up to kDoneForGoodNs.
+inline constexpr const char* kObserverParticipant = "launch";
 /// A report's done_ns from a participant that will never hold the clock again.
 inline constexpr std::int64_t kDoneForGoodNs = std::numeric_limits<std::int64_t>::max();
 

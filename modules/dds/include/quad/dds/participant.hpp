@@ -74,6 +74,10 @@ struct ParticipantOptions {
   /// its first round until the recorder reads every topic it writes (recorder.hpp), so a
   /// recording holds the run from sim time 0, as a replay needs.
   bool lockstep_recorder = false;
+  /// A lockstep run's observer (the launcher's) takes part in its start as its recorder does:
+  /// the clock owner does not step past its first round until the observer reads what it
+  /// scores (observer.hpp), so a run's summary counts every state from sim time 0.
+  bool lockstep_observer = false;
   /// How long other participants keep this one without hearing from it [s]; 0: the QoS
   /// profile's (2 s). Announcements stay as often as the profile says. A machine so loaded
   /// that a participant goes unheard for longer has its peers drop it, and Fast DDS 2.9 does

@@ -56,6 +56,14 @@ public:
   /// Whether every reader of the mission's goal discovered so far has matched its writer and
   /// acknowledged the goal; true without a mission.
   bool goalDelivered();
+  /// In a lockstep run whose plant counts this observer among its participants
+  /// (QUAD_LOCKSTEP_OBSERVER), holds the first round as the run's recorder does: update()
+  /// reports this participant done for good (dds::kObserverParticipant) for each vehicle once
+  /// it reads the plant's clock and states and the states of the run's `estimators`, so
+  /// that the scores take in every one from sim time 0. Best-effort states a reader has not
+  /// matched yet are lost to it: without the hold a machine slow to discover left the
+  /// summary without the first half second of a flight.
+  void holdStart(std::size_t estimators);
   /// Takes what arrived, feeds the trackers, sends the land command when it asks.
   void update();
   /// The modules' heartbeats that arrived since the last call.
@@ -91,6 +99,9 @@ private:
   struct Sim;
   struct Endpoints;
   struct Track;
+  struct StartHold;
+  /// Releases the held start once the readers it waits for have matched.
+  void releaseStart();
   /// The followed vehicle of that id; null for another.
   Track* track(std::uint32_t id);
   void onState(Track& v, std::int64_t stamp_ns, const Eigen::Vector3d& p, const geometry::Quaternion& q);
@@ -100,6 +111,7 @@ private:
   std::vector<Track> tracks_;
   std::unique_ptr<Sim> sim_;
   std::unique_ptr<Endpoints> endpoints_;
+  std::unique_ptr<StartHold> start_hold_;
   std::int64_t first_state_ns_ = 0;
   std::int64_t last_state_ns_ = 0;
   bool operator_link_ = true;

@@ -192,21 +192,21 @@ private:
 }  // namespace
 
 BoundsChecker::BoundsChecker(const Schema& schema, std::string_view type_name)
-    : schema_(schema), type_name_(type_name), root_(schema.findStruct(type_name))
+    : type_name_(type_name), root_(schema.findStruct(type_name))
 {
   if (root_ != nullptr) {
     for (const auto& m : root_->members) {
-      resolve(m.type);
+      resolve(schema, m.type);
     }
   }
 }
 
-void BoundsChecker::resolve(const TypeRef& t)
+void BoundsChecker::resolve(const Schema& schema, const TypeRef& t)
 {
   if (resolved_.contains(&t)) {
     return;  // seen, or being resolved (a struct reached again through a sequence of itself)
   }
-  Resolved& r = resolved_[&t];
+  Resolved& r = resolved_[&t];  // stays where it is as the map grows (a node of it)
   switch (t.kind) {
     case TypeRef::Kind::kPrimitive:
       // A boolean's byte must be 0 or 1 (Fast CDR throws on anything else): checked one by one.
@@ -216,13 +216,13 @@ void BoundsChecker::resolve(const TypeRef& t)
     case TypeRef::Kind::kString:
       return;
     case TypeRef::Kind::kSequence:
-      resolve(*t.element);
+      resolve(schema, *t.element);
       return;
     case TypeRef::Kind::kNamed:
       break;
   }
-  const StructDef* s = schema_.findStruct(t.name);
-  const EnumDef* e = s == nullptr ? schema_.findEnum(t.name) : nullptr;
+  const StructDef* s = schema.findStruct(t.name);
+  const EnumDef* e = s == nullptr ? schema.findEnum(t.name) : nullptr;
   std::size_t size = e != nullptr ? kEnumSize : 0;
   std::size_t fields = e != nullptr ? 1 : 0;
   std::vector<std::pair<std::size_t, std::size_t>> enum_fields;
@@ -232,7 +232,7 @@ void BoundsChecker::resolve(const TypeRef& t)
   bool uniform = s != nullptr || e != nullptr;
   if (s != nullptr) {
     for (const auto& m : s->members) {
-      resolve(m.type);
+      resolve(schema, m.type);
       const Resolved& member = resolved_.at(&m.type);
       for (const auto& [index, enumerators] : member.enum_fields) {
         enum_fields.emplace_back(fields + index, enumerators);
@@ -244,13 +244,13 @@ void BoundsChecker::resolve(const TypeRef& t)
       size = member.uniform_size;
     }
   }
-  // resolved_ may have rehashed since `r` was taken.
-  Resolved& out = resolved_.at(&t);
-  out.structure = s;
-  out.enumeration = e;
-  out.uniform_size = uniform ? size : 0;
-  out.fields = fields;
-  out.enum_fields = uniform ? std::move(enum_fields) : decltype(enum_fields){};
+  r.structure = s;
+  r.enumeration = e;
+  r.uniform_size = uniform ? size : 0;
+  r.fields = fields;
+  if (uniform) {
+    r.enum_fields = std::move(enum_fields);
+  }
 }
 
 std::string BoundsChecker::check(std::span<const std::uint8_t> payload) const

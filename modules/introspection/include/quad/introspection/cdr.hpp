@@ -68,9 +68,8 @@ public:
   };
 
 private:
-  void resolve(const TypeRef& t);
+  void resolve(const Schema& schema, const TypeRef& t);
 
-  const Schema& schema_;
   std::string type_name_;
   const StructDef* root_;
   std::unordered_map<const TypeRef*, Resolved> resolved_;  // every type reachable from root_

@@ -219,7 +219,8 @@ TEST(HostileDatagrams, RealTrafficPassesTheCheckWhole)
   // lease), asserted by its keeper every 125 ms between the beats.
   Publisher<msg::Heartbeat> beats_out(talk.talker, topics::kHeartbeat);
   Subscriber<msg::Heartbeat> beats_in(talk.listener, topics::kHeartbeat);
-  ASSERT_TRUE(test::waitFor([&] { return beats_in.matchedWriters() == 1; }));
+  // Both ways: a beat written before the writer matched the reader (volatile) never reaches it.
+  ASSERT_TRUE(test::waitFor([&] { return beats_in.matchedWriters() == 1 && beats_out.matchedReaders() == 1; }));
   int beats = 0;
   {
     dds::LivelinessKeeper alive(beats_out);

@@ -34,21 +34,6 @@ void ScanKeySet::clear(const octomap::OcTreeKey& centre, unsigned radius)
   }
 }
 
-void ScanKeySet::insert(const octomap::OcTreeKey& key, bool occupied)
-{
-  if (const auto at = windowIndex(key)) {
-    if (!test(seen_, *at)) {
-      set(seen_, *at);
-      order_.push_back(pack(key));
-    }
-    if (occupied) {
-      set(occupied_, *at);
-    }
-    return;
-  }
-  insertHashed(pack(key), occupied ? kOccupiedBit : 0);
-}
-
 void ScanKeySet::insertHashed(std::uint64_t key, std::uint64_t flag)
 {
   if (slots_.empty()) {
@@ -194,26 +179,46 @@ void MapTree::freeAlongRay(const octomap::point3d& origin, const octomap::point3
     }
   };
   visit(current_key);
+  // The walk's state in locals of its own (not arrays indexed by the axis): each step's
+  // comparisons then read registers, not a store to memory just made.
+  double t_x = t_max[0], t_y = t_max[1], t_z = t_max[2];
+  const double d_x = t_delta[0], d_y = t_delta[1], d_z = t_delta[2];
+  auto k_x = static_cast<octomap::key_type>(current_key[0]);
+  auto k_y = static_cast<octomap::key_type>(current_key[1]);
+  auto k_z = static_cast<octomap::key_type>(current_key[2]);
+  const auto s_x = static_cast<octomap::key_type>(step[0]);
+  const auto s_y = static_cast<octomap::key_type>(step[1]);
+  const auto s_z = static_cast<octomap::key_type>(step[2]);
   while (true) {
     unsigned dim;
-    if (t_max[0] < t_max[1]) {
-      dim = t_max[0] < t_max[2] ? 0 : 2;
+    if (t_x < t_y) {
+      dim = t_x < t_z ? 0 : 2;
     } else {
-      dim = t_max[1] < t_max[2] ? 1 : 2;
+      dim = t_y < t_z ? 1 : 2;
     }
-    current_key[dim] = static_cast<octomap::key_type>(current_key[dim] + step[dim]);
-    t_max[dim] += t_delta[dim];
-    if (current_key == key_end) {
+    // A key moves by the step modulo 2^16, as OctoMap's key_type does.
+    if (dim == 0) {
+      t_x += d_x;
+      k_x = static_cast<octomap::key_type>(k_x + s_x);
+    } else if (dim == 1) {
+      t_y += d_y;
+      k_y = static_cast<octomap::key_type>(k_y + s_y);
+    } else {
+      t_z += d_z;
+      k_z = static_cast<octomap::key_type>(k_z + s_z);
+    }
+    const octomap::OcTreeKey key(k_x, k_y, k_z);
+    if (key == key_end) {
       return;
     }
     // The ray's length reached without reaching the end's cell (rounding): OctoMap stops too.
-    if (std::min(std::min(t_max[0], t_max[1]), t_max[2]) > static_cast<double>(length)) {
+    if (std::min(std::min(t_x, t_y), t_z) > static_cast<double>(length)) {
       return;
     }
-    if (beyondBox(current_key, dim, step[dim])) {
+    if (beyondBox(key, dim, step[dim])) {
       return;  // every later key lies beyond the box too
     }
-    visit(current_key);
+    visit(key);
   }
 }
 

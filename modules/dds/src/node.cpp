@@ -84,6 +84,7 @@ Node::Node(std::string module_name, ParticipantOptions options)
       heartbeat_(participant_, topics::kHeartbeat)
 {
   lockstep_ = participant_.options().lockstep;
+  waker_.setRunner([this] { return wakeOnReceipt(); });
   participant_.events().setNotifier([this] { waker_.notify(); });
   if (participant_.datagramFaults() != nullptr) {
     fault_layer_ = std::make_unique<FaultLayerControl>(participant_, module_name_, &waker_);
@@ -201,10 +202,60 @@ bool Node::overran(std::int64_t due_ns, std::string_view what)
   return true;
 }
 
+namespace {
+/// The node whose work this thread is doing (its lock held), if any: a notification from
+/// within that work (a sample the node writes to a reader of its own) must not take the lock
+/// again.
+thread_local const Node* t_working = nullptr;
+
+class Working {
+public:
+  explicit Working(const Node* node) : before_(t_working) { t_working = node; }
+  ~Working() { t_working = before_; }
+  Working(const Working&) = delete;
+  Working& operator=(const Working&) = delete;
+
+private:
+  const Node* before_;
+};
+}  // namespace
+
+void Node::handleWake()
+{
+  takeSimClock();  // events are judged against the clock as it is now
+  for (const auto& event : participant_.events().drain()) {
+    countLoss(event);
+    onEvent(event);
+  }
+  countRejectedPayloads();
+  if (fault_layer_) {
+    fault_layer_->take();
+  }
+  takeSimClock();
+  onWake();
+}
+
+bool Node::wakeOnReceipt()
+{
+  if (!wake_on_receipt_ || !running_.load() || t_working == this) {
+    return false;
+  }
+  std::unique_lock lock(work_mutex_, std::try_to_lock);
+  if (!lock.owns_lock() || !running_.load() || stop_.load()) {
+    return false;  // the node's thread is at work (and will look), or it is stopping
+  }
+  const Working working(this);
+  handleWake();
+  return true;
+}
+
 void Node::run()
 {
+  std::unique_lock lock(work_mutex_);
+  const Working working(this);
   onStart();
   publishHeartbeat(msg::MODULE_RUNNING);
+  running_ = true;
   std::int64_t next_heartbeat = common::steadyTimeNs() + kHeartbeatPeriodNs;
   std::int64_t next_tick = common::steadyTimeNs() + tick_period_ns_;
   while (!stop_) {
@@ -212,22 +263,21 @@ void Node::run()
     if (tick_period_ns_ > 0) {
       deadline = std::min(deadline, next_tick);
     }
+    lock.unlock();
     const bool woken = waker_.waitUntil(deadline);
+    lock.lock();
     if (stop_) {
       break;
     }
-    takeSimClock();  // events are judged against the clock as it is now
-    for (const auto& event : participant_.events().drain()) {
-      countLoss(event);
-      onEvent(event);
-    }
-    countRejectedPayloads();
-    if (woken && fault_layer_) {
-      fault_layer_->take();
-    }
     if (woken) {
+      handleWake();
+    } else {
       takeSimClock();
-      onWake();
+      for (const auto& event : participant_.events().drain()) {
+        countLoss(event);
+        onEvent(event);
+      }
+      countRejectedPayloads();
     }
     const std::int64_t now = common::steadyTimeNs();
     if (tick_period_ns_ > 0 && now >= next_tick) {
@@ -244,6 +294,7 @@ void Node::run()
       next_heartbeat = now + kHeartbeatPeriodNs;
     }
   }
+  running_ = false;
   publishHeartbeat(msg::MODULE_STOPPING);
   if (fault_layer_) {
     fault_layer_->logActive();

@@ -9,6 +9,9 @@ namespace quad::dds {
 
 void Waker::notify()
 {
+  if (runner_ && runner_()) {
+    return;
+  }
   {
     std::lock_guard lock(mutex_);
     pending_ = true;

@@ -22,6 +22,7 @@ EstimationNode::EstimationNode(EstimatorParams params, dds::ParticipantOptions o
       state_(participant(), dds::topics::kEstimatedState)
 {
   followSimClock();  // in lockstep the wall clock's deadlines say nothing
+  setWakeOnReceipt(true);  // each IMU sample is filtered on the thread that received it
   spdlog::info("estimation: gates at probability {}, health bounds {} m and {} rad", params.gate_probability,
                params.max_position_std, params.max_attitude_std);
 }

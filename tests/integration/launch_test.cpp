@@ -204,8 +204,9 @@ TEST(Launch, DemoMissionReachesTheGoalInLockstepWithoutCollisionAndTwoRunsRecord
   // compute times
   quad::test::expectIdenticalRecordings(QUAD_TOOL, dir / "first.mcap", dir / "second.mcap", 15, 50000);
   // AND the runs score the same: the launcher's observer took in every state from sim time 0
-  // (it holds the start, as the recorder does) and every mode the controller passed through
-  for (const char* score : {"path_length_m", "min_clearance_m", "modes"}) {
+  // (it holds the start, as the recorder does) and every mode the controller passed through,
+  // and scored the estimator on exactly the pairs up to the mission's end
+  for (const char* score : {"path_length_m", "min_clearance_m", "modes", "estimate"}) {
     EXPECT_EQ(first[score], second[score]) << score;
   }
   if (!::testing::Test::HasFailure()) {

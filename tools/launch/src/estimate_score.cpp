@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "quad/launch/estimate_score.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -31,6 +32,9 @@ void bound(Map& m)
 
 void EstimateScore::onTruth(std::int64_t t_ns, const geometry::Vector3& p_W, const geometry::Quaternion& q_WB)
 {
+  if (t_ns > end_ns_) {
+    return;
+  }
   const Pose truth{p_W, q_WB.normalized(), geometry::Vector3::Zero()};
   if (const auto e = estimates_.find(t_ns); e != estimates_.end()) {
     score(t_ns, truth, e->second);
@@ -44,7 +48,8 @@ void EstimateScore::onTruth(std::int64_t t_ns, const geometry::Vector3& p_W, con
 void EstimateScore::onEstimate(std::int64_t t_ns, const geometry::Vector3& p_W, const geometry::Quaternion& q_WB,
                                const geometry::Vector3& p_std, bool aligned)
 {
-  if (!aligned || !p_W.allFinite() || !std::isfinite(q_WB.norm()) || !(p_std.array() > 0.0).all()) {
+  if (t_ns > end_ns_ || !aligned || !p_W.allFinite() || !std::isfinite(q_WB.norm()) ||
+      !(p_std.array() > 0.0).all()) {
     return;
   }
   const Pose estimate{p_W, q_WB.normalized(), p_std};
@@ -60,40 +65,69 @@ void EstimateScore::onEstimate(std::int64_t t_ns, const geometry::Vector3& p_W, 
 void EstimateScore::score(std::int64_t t_ns, const Pose& truth, const Pose& estimate)
 {
   const geometry::Vector3 e = estimate.p - truth.p;
-  const double p = e.norm();
-  const double a = geometry::geodesicAngle(truth.q, estimate.q) * 180.0 / std::numbers::pi;
   double yaw = headingOf(estimate.q) - headingOf(truth.q);
   yaw = std::remainder(yaw, 2.0 * std::numbers::pi) * 180.0 / std::numbers::pi;
   const geometry::Vector3 z = e.cwiseQuotient(estimate.std);
-  ++n_;
-  sum_p2_ += p * p;
-  max_p_ = std::max(max_p_, p);
-  sum_a2_ += a * a;
-  max_a_ = std::max(max_a_, a);
-  sum_yaw2_ += yaw * yaw;
-  sum_nees_ += z.squaredNorm();
-  within_ += (z.cwiseAbs().array() <= 3.0).all() ? 1U : 0U;
-  if (t_ns >= next_point_ns_) {
-    series_.push_back({static_cast<double>(t_ns) * 1e-9, p, 3.0 * estimate.std.norm(), a, yaw});
-    next_point_ns_ = (t_ns / kSeriesPeriodNs + 1) * kSeriesPeriodNs;
+  held_[t_ns] = {e.norm(), 3.0 * estimate.std.norm(),
+                 geometry::geodesicAngle(truth.q, estimate.q) * 180.0 / std::numbers::pi, yaw, z.squaredNorm(),
+                 (z.cwiseAbs().array() <= 3.0).all()};
+  commitBefore(held_.rbegin()->first - kHoldNs);
+}
+
+void EstimateScore::commitBefore(std::int64_t t_ns)
+{
+  while (!held_.empty() && held_.begin()->first < t_ns) {
+    const auto [t, term] = *held_.begin();
+    held_.erase(held_.begin());
+    ++n_;
+    sum_p2_ += term.position_m * term.position_m;
+    max_p_ = std::max(max_p_, term.position_m);
+    sum_a2_ += term.attitude_deg * term.attitude_deg;
+    max_a_ = std::max(max_a_, term.attitude_deg);
+    sum_yaw2_ += term.yaw_deg * term.yaw_deg;
+    sum_nees_ += term.nees;
+    within_ += term.within_3sigma ? 1U : 0U;
+    if (t >= next_point_ns_) {
+      series_.push_back({static_cast<double>(t) * 1e-9, term.position_m, term.position_3sigma_m, term.attitude_deg,
+                         term.yaw_deg});
+      next_point_ns_ = (t / kSeriesPeriodNs + 1) * kSeriesPeriodNs;
+    }
   }
 }
 
+void EstimateScore::endAt(std::int64_t t_ns)
+{
+  end_ns_ = std::min(end_ns_, t_ns);
+  held_.erase(held_.upper_bound(end_ns_), held_.end());
+  truths_.erase(truths_.upper_bound(end_ns_), truths_.end());
+  estimates_.erase(estimates_.upper_bound(end_ns_), estimates_.end());
+}
+
+EstimateScore EstimateScore::committed() const
+{
+  EstimateScore all = *this;
+  all.commitBefore(std::numeric_limits<std::int64_t>::max());
+  return all;
+}
+
+std::vector<EstimateErrorPoint> EstimateScore::series() const { return committed().series_; }
+
 std::optional<EstimateErrors> EstimateScore::errors() const
 {
-  if (n_ == 0) {
+  const EstimateScore all = committed();
+  if (all.n_ == 0) {
     return std::nullopt;
   }
-  const double n = static_cast<double>(n_);
+  const double n = static_cast<double>(all.n_);
   EstimateErrors out;
-  out.samples = n_;
-  out.position_rms_m = std::sqrt(sum_p2_ / n);
-  out.position_max_m = max_p_;
-  out.attitude_rms_deg = std::sqrt(sum_a2_ / n);
-  out.attitude_max_deg = max_a_;
-  out.yaw_rms_deg = std::sqrt(sum_yaw2_ / n);
-  out.position_nees_mean = sum_nees_ / n;
-  out.within_3sigma = static_cast<double>(within_) / n;
+  out.samples = all.n_;
+  out.position_rms_m = std::sqrt(all.sum_p2_ / n);
+  out.position_max_m = all.max_p_;
+  out.attitude_rms_deg = std::sqrt(all.sum_a2_ / n);
+  out.attitude_max_deg = all.max_a_;
+  out.yaw_rms_deg = std::sqrt(all.sum_yaw2_ / n);
+  out.position_nees_mean = all.sum_nees_ / n;
+  out.within_3sigma = static_cast<double>(all.within_) / n;
   return out;
 }
 

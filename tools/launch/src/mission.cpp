@@ -37,7 +37,7 @@ void MissionTracker::onState(double t, const Eigen::Vector3d& p)
     goal_reached_ = true;
     progress_.push_back(fmt::format("t = {:.1f} s: goal reached ({:.2f} m from it)", t, to_goal));
     if (!mission_.land) {
-      finishAtGoal("reached the goal");
+      finishAtGoal(t, "reached the goal");
     }
   }
   if (t >= next_progress_t_) {
@@ -46,7 +46,7 @@ void MissionTracker::onState(double t, const Eigen::Vector3d& p)
     next_progress_t_ += 10.0;
   }
   if (!finished_ && t >= mission_.timeout_s) {
-    finish(MissionEnd::kFailed, fmt::format("timed out after {:.0f} s of sim time, {:.2f} m from the goal", t, to_goal),
+    finish(t, MissionEnd::kFailed, fmt::format("timed out after {:.0f} s of sim time, {:.2f} m from the goal", t, to_goal),
            no_path_.empty() ? "timed out" : "timed out; " + no_path_);
   }
 }
@@ -73,14 +73,14 @@ void MissionTracker::onMode(double t, const std::string& mode, const std::string
   if (was_landing && mode == "IDLE") {
     const double to_goal = last_p_ ? (last_p_->head<2>() - goal_.head<2>()).norm() : 0.0;
     if (goal_reached_ && to_goal <= mission_.tolerance_m + 0.5) {
-      finishAtGoal("landed at the goal");
+      finishAtGoal(t, "landed at the goal");
     } else if (!ended_by_.empty()) {
       const std::string why = fmt::format("{} at t = {:.1f} s", ended_by_, ended_by_t_);
-      finish(MissionEnd::kFailed, fmt::format("landed {:.2f} m from the goal: {}", to_goal, why), why);
+      finish(t, MissionEnd::kFailed, fmt::format("landed {:.2f} m from the goal: {}", to_goal, why), why);
     } else if (const std::string& why = gave_up_.empty() ? no_path_ : gave_up_; !why.empty()) {
-      finish(MissionEnd::kNoPath, fmt::format("landed {:.2f} m from the goal: {}", to_goal, why), why);
+      finish(t, MissionEnd::kNoPath, fmt::format("landed {:.2f} m from the goal: {}", to_goal, why), why);
     } else {
-      finish(MissionEnd::kFailed, fmt::format("landed {:.2f} m from the goal", to_goal), "landed short of the goal");
+      finish(t, MissionEnd::kFailed, fmt::format("landed {:.2f} m from the goal", to_goal), "landed short of the goal");
     }
   }
 }
@@ -128,19 +128,20 @@ void MissionTracker::onPathOverruns(std::uint64_t overruns) { keepNewest(path_ov
 
 std::vector<std::string> MissionTracker::takeProgress() { return std::exchange(progress_, {}); }
 
-void MissionTracker::finishAtGoal(const std::string& outcome)
+void MissionTracker::finishAtGoal(double t, const std::string& outcome)
 {
   if (collisions_ == 0) {
-    finish(MissionEnd::kSuccess, outcome);
+    finish(t, MissionEnd::kSuccess, outcome);
   } else {
-    finish(MissionEnd::kFailed, fmt::format("{} after {} collisions", outcome, collisions_),
+    finish(t, MissionEnd::kFailed, fmt::format("{} after {} collisions", outcome, collisions_),
            fmt::format("{} collisions", collisions_));
   }
 }
 
-void MissionTracker::finish(MissionEnd end, std::string outcome, std::string failure)
+void MissionTracker::finish(double t, MissionEnd end, std::string outcome, std::string failure)
 {
   finished_ = true;
+  end_t_ = t;
   end_ = end;
   outcome_ = std::move(outcome);
   failure_ = std::move(failure);

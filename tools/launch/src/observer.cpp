@@ -325,9 +325,6 @@ void Observer::update()
   }
   for (const auto& e : sim_->estimate.takeAll(ids_)) {
     Track& v = *track(e.header().vehicle_id());
-    if (v.tracker && v.tracker->finished()) {
-      continue;  // scored up to the mission's end, however late the stack is stopped
-    }
     v.score.onEstimate(e.header().stamp_ns(), dds::toVector(e.p_W()), dds::toQuaternion(e.q_WB()),
                            dds::toVector(e.p_std()), e.aligned());
   }
@@ -356,6 +353,14 @@ void Observer::update()
   for (const auto& m : endpoints_->map_stats.takeAll(ids_)) {
     if (auto* mission = missionOf(m)) {
       mission->onMapStats(m.overruns());
+    }
+  }
+  // The estimator is scored up to the mission's end, however late that end is heard beside
+  // the estimates taken meanwhile (the state or mode that ended it may come in a later take
+  // than estimates stamped after it), and however late the stack is stopped.
+  for (Track& v : tracks_) {
+    if (v.tracker && v.tracker->finished()) {
+      v.score.endAt(std::llround(v.tracker->endTime() * 1e9));
     }
   }
   constexpr std::int64_t kOperatorBeatNs = 500'000'000;  // the contract's 2 Hz, in sim time

@@ -75,5 +75,65 @@ TEST(EstimateScore, OnlyAlignedEstimatesWithATruthOfTheirStampCount)
   EXPECT_EQ(e->within_3sigma, 0.0) << "5σ off on y";
 }
 
+TEST(EstimateScore, ARunEndedLateScoresWhatAnEndHeardAtOnceScoresAndNothingAfterTheEnd)
+{
+  // The same seeded pairs, with errors growing over time, fed in two takes' orders: one
+  // hears the end before any pair after it, the other only after 3 s of pairs past it, each
+  // side in shuffled batches. Both score exactly the pairs up to the end.
+  constexpr std::int64_t kStep = 4'000'000;
+  constexpr std::int64_t kEnd = 1'000 * kStep;
+  const auto feed = [&](EstimateScore& s, std::int64_t k) {
+    const std::int64_t t = k * kStep;
+    const Vector3 p(0.01 * static_cast<double>(k), 0.0, 2.0);
+    s.onTruth(t, p, yawed(10.0));
+    s.onEstimate(t, p + Vector3(1e-5 * static_cast<double>(k), 0.0, 0.0), yawed(10.0 + 0.001 * static_cast<double>(k)),
+                 Vector3::Constant(0.02), true);
+  };
+  EstimateScore at_once;
+  EstimateScore late;
+  for (std::int64_t k = 0; k <= 1'000; ++k) {
+    feed(at_once, k);
+  }
+  at_once.endAt(kEnd);
+  for (std::int64_t k = 1'001; k <= 1'750; ++k) {
+    feed(at_once, k);  // the stack runs on after its mission ended
+  }
+  for (std::int64_t k = 0; k <= 1'750; ++k) {
+    feed(late, k);
+  }
+  late.endAt(kEnd);
+  const auto a = at_once.errors();
+  const auto b = late.errors();
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(a->samples, 1'001U);
+  EXPECT_EQ(b->samples, 1'001U);
+  EXPECT_DOUBLE_EQ(a->position_rms_m, b->position_rms_m);
+  EXPECT_DOUBLE_EQ(a->position_max_m, b->position_max_m);
+  EXPECT_NEAR(a->position_max_m, 1e-2, 1e-12);  // the pair at the end, k = 1000
+  EXPECT_DOUBLE_EQ(a->attitude_max_deg, b->attitude_max_deg);
+  EXPECT_DOUBLE_EQ(a->position_nees_mean, b->position_nees_mean);
+  ASSERT_EQ(a->samples, b->samples);
+  EXPECT_EQ(at_once.series().size(), late.series().size());
+  EXPECT_LE(late.series().back().t_s, 4.0 + 1e-9);
+}
+
+TEST(EstimateScore, PairsOlderThanTheHoldAreKeptWhateverEndComesAfter)
+{
+  // An end heard more than kHoldNs of sim time after it no longer revokes what was scored:
+  // the hold bounds what is kept per pair (a run of hours keeps only its sums).
+  EstimateScore s;
+  constexpr std::int64_t kStep = 4'000'000;
+  const std::int64_t steps = 2 * EstimateScore::kHoldNs / kStep;
+  for (std::int64_t k = 0; k <= steps; ++k) {
+    s.onTruth(k * kStep, Vector3::Zero(), Quaternion::identity());
+    s.onEstimate(k * kStep, Vector3(0.01, 0, 0), Quaternion::identity(), Vector3::Constant(0.1), true);
+  }
+  s.endAt(0);
+  const auto e = s.errors();
+  ASSERT_TRUE(e);
+  // Kept: the pairs stamped more than kHoldNs before the newest (k < steps − kHoldNs / kStep).
+  EXPECT_EQ(e->samples, static_cast<std::uint64_t>(steps - EstimateScore::kHoldNs / kStep));
+}
+
 }  // namespace
 }  // namespace quad::launch

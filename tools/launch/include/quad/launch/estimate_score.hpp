@@ -3,9 +3,10 @@
 /// @file
 /// How far the estimator's state was from the truth over a run, and whether its own 1σ said
 /// so: each estimate is paired with the true state of the same stamp (both follow the plant's
-/// steps) and scored while the filter is aligned.
+/// steps) and scored while the filter is aligned, up to the run's end (endAt).
 
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -47,10 +48,16 @@ public:
   /// An estimate at `t_ns` with its per-axis position 1σ [m]; not aligned: not scored.
   void onEstimate(std::int64_t t_ns, const geometry::Vector3& p_W, const geometry::Quaternion& q_WB,
                   const geometry::Vector3& p_std, bool aligned);
+  /// Scores nothing stamped after `t_ns` from now on, and drops what was (kHoldNs of sim
+  /// time back): the pairs a run scores end where its mission ended, however late that end
+  /// is heard beside the samples that came meanwhile.
+  void endAt(std::int64_t t_ns);
   /// Nothing before the first pair.
   std::optional<EstimateErrors> errors() const;
   /// The error against time (10 points a second; a run of an hour holds 36,000).
-  const std::vector<EstimateErrorPoint>& series() const { return series_; }
+  std::vector<EstimateErrorPoint> series() const;
+  /// [ns] How far behind the newest pair a pair stays revocable by endAt.
+  static constexpr std::int64_t kHoldNs = 10'000'000'000;
 
 private:
   struct Pose {
@@ -58,10 +65,25 @@ private:
     geometry::Quaternion q;
     geometry::Vector3 std;
   };
+  /// One pair's errors.
+  struct Term {
+    double position_m;
+    double position_3sigma_m;
+    double attitude_deg;
+    double yaw_deg;
+    double nees;
+    bool within_3sigma;
+  };
   void score(std::int64_t t_ns, const Pose& truth, const Pose& estimate);
+  /// Adds the held pairs stamped before `t_ns` to the totals, in stamp order.
+  void commitBefore(std::int64_t t_ns);
+  /// A copy with every held pair added up.
+  EstimateScore committed() const;
   /// Samples waiting for their other half, by stamp; bounded.
   std::map<std::int64_t, Pose> truths_;
   std::map<std::int64_t, Pose> estimates_;
+  std::map<std::int64_t, Term> held_;  // scored within kHoldNs of the newest, not yet added up
+  std::int64_t end_ns_ = std::numeric_limits<std::int64_t>::max();
   std::uint64_t n_ = 0;
   double sum_p2_ = 0.0;
   double max_p_ = 0.0;

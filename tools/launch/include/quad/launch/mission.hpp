@@ -113,13 +113,16 @@ public:
   std::vector<std::string> takeProgress();
 
   bool finished() const { return finished_; }
+  /// [s] The sim time of the state or mode that ended the mission (finished() only): what
+  /// is scored of a run ends there, however late its end is heard.
+  double endTime() const { return end_t_; }
   double simTime() const { return t_; }
   MissionSummary summary(double wall_s) const;
 
 private:
-  void finish(MissionEnd end, std::string outcome, std::string failure = {});
+  void finish(double t, MissionEnd end, std::string outcome, std::string failure = {});
   /// At the goal: a success unless the vehicle collided on the way.
-  void finishAtGoal(const std::string& outcome);
+  void finishAtGoal(double t, const std::string& outcome);
 
   Mission mission_;
   const world::World& world_;
@@ -138,6 +141,7 @@ private:
   int collisions_ = 0;
   bool goal_reached_ = false;
   bool finished_ = false;
+  double end_t_ = 0.0;
   MissionEnd end_ = MissionEnd::kUnfinished;
   std::string outcome_;
   std::string failure_;

@@ -335,7 +335,11 @@ void ControlNode::controlWithoutState()
   // and reach its failsafe. In lockstep only a fault drops them, and the clock says so
   // (SimClock.state_sent): every such round is answered at the clock's time, and the plant
   // waits for that answer as for a state's, so that the vehicle is flown without lag and runs
-  // repeat. In real time, once the state is stale, at the IMU samples' time.
+  // repeat. A round whose state was sent is answered by that state only, however stale the
+  // last one is (the first round after an outage): its clock sample may be handled before
+  // its state comes or after, and answering it twice, on dead reckoning and on the state,
+  // would let whichever answer reached the plant first fly the round. In real time, once the
+  // state is stale, at the IMU samples' time.
   const std::int64_t now_ns = lockstep() ? simClock().ns() : imu_ns_;
   if (now_ns <= last_stateless_ns_ || now_ns <= answered_ns_) {
     return;
@@ -343,7 +347,7 @@ void ControlNode::controlWithoutState()
   const double t = common::toSeconds(now_ns);
   const bool dropped = lockstep() && !simClock().stateSentAt(now_ns);
   const bool stale = latest_t_ >= 0.0 && t - latest_t_ > config_.flight.state_timeout;
-  if (dropped || stale) {
+  if (lockstep() ? dropped : stale) {
     last_stateless_ns_ = now_ns;
     applySensorsBefore(now_ns);
     control(t, now_ns);

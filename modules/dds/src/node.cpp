@@ -220,7 +220,7 @@ private:
 };
 }  // namespace
 
-void Node::handleWake()
+void Node::handleEvents()
 {
   takeSimClock();  // events are judged against the clock as it is now
   for (const auto& event : participant_.events().drain()) {
@@ -228,6 +228,11 @@ void Node::handleWake()
     onEvent(event);
   }
   countRejectedPayloads();
+}
+
+void Node::handleWake()
+{
+  handleEvents();
   if (fault_layer_) {
     fault_layer_->take();
   }
@@ -272,12 +277,7 @@ void Node::run()
     if (woken) {
       handleWake();
     } else {
-      takeSimClock();
-      for (const auto& event : participant_.events().drain()) {
-        countLoss(event);
-        onEvent(event);
-      }
-      countRejectedPayloads();
+      handleEvents();
     }
     const std::int64_t now = common::steadyTimeNs();
     if (tick_period_ns_ > 0 && now >= next_tick) {

@@ -125,7 +125,10 @@ protected:
   virtual void onStop() {}
 
 private:
-  /// What a notification of the waker asks for: events, the fault layer's commands, the
+  /// The events that came (onEvent), judged against the clock as it is now, and the
+  /// payloads refused. The node's lock held.
+  void handleEvents();
+  /// What a notification of the waker asks for: the events, the fault layer's commands, the
   /// clock and onWake(). The node's lock held.
   void handleWake();
   /// The waker's runner: handleWake() on the notifying thread, when wake-on-receipt is on,

@@ -110,23 +110,30 @@ std::vector<std::int64_t> oneTo(std::int64_t n)
   return out;
 }
 
+/// Runs a node, sends it `n` samples 5 ms apart (its thread back to waiting between them),
+/// and once it took them all, stops it: what it took.
+std::vector<EventNode::Taken> sendSpaced(int domain, bool wake_on_receipt, int n)
+{
+  EventNode node(domain, wake_on_receipt);
+  std::thread running([&] { node.run(); });
+  Talker talker(domain);
+  EXPECT_TRUE(test::waitFor([&] { return talker.writer.matchedReaders() == 1; }));
+  for (int i = 1; i <= n; ++i) {
+    talker.send(i);
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  EXPECT_TRUE(test::waitFor([&] { return node.taken().size() >= static_cast<std::size_t>(n); }));
+  node.stop();
+  running.join();
+  return node.taken();
+}
+
 }  // namespace
 
 TEST(NodeWake, SamplesAreTakenOnTheReceivingThreadWhileTheNodeWaitsEachOnceInOrder)
 {
   constexpr int kSamples = 40;
-  EventNode node(kReceiptDomain, true);
-  std::thread running([&] { node.run(); });
-  Talker talker(kReceiptDomain);
-  ASSERT_TRUE(test::waitFor([&] { return talker.writer.matchedReaders() == 1; }));
-  for (int i = 1; i <= kSamples; ++i) {
-    talker.send(i);
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));  // the node's thread back to waiting
-  }
-  ASSERT_TRUE(test::waitFor([&] { return node.taken().size() >= kSamples; }));
-  node.stop();
-  running.join();
-  const auto taken = node.taken();
+  const auto taken = sendSpaced(kReceiptDomain, true, kSamples);
   EXPECT_EQ(ids(taken), oneTo(kSamples));
   std::size_t elsewhere = 0;
   for (const auto& t : taken) {
@@ -161,18 +168,7 @@ TEST(NodeWake, ASampleThatComesWhileTheNodeIsBusyWaitsForItsThreadAndIsNotLost)
 TEST(NodeWake, WithoutWakeOnReceiptEverySampleIsTakenOnTheNodesThread)
 {
   constexpr int kSamples = 10;
-  EventNode node(kLoopDomain, false);
-  std::thread running([&] { node.run(); });
-  Talker talker(kLoopDomain);
-  ASSERT_TRUE(test::waitFor([&] { return talker.writer.matchedReaders() == 1; }));
-  for (int i = 1; i <= kSamples; ++i) {
-    talker.send(i);
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  ASSERT_TRUE(test::waitFor([&] { return node.taken().size() >= kSamples; }));
-  node.stop();
-  running.join();
-  const auto taken = node.taken();
+  const auto taken = sendSpaced(kLoopDomain, false, kSamples);
   EXPECT_EQ(ids(taken), oneTo(kSamples));
   for (const auto& t : taken) {
     EXPECT_TRUE(t.on_run_thread) << "sample " << t.id;

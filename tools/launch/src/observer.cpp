@@ -360,7 +360,7 @@ void Observer::update()
   // than estimates stamped after it), and however late the stack is stopped.
   for (Track& v : tracks_) {
     if (v.tracker && v.tracker->finished()) {
-      v.score.endAt(std::llround(v.tracker->endTime() * 1e9));
+      v.score.endAt(common::toNanoseconds(v.tracker->endTime()));
     }
   }
   constexpr std::int64_t kOperatorBeatNs = 500'000'000;  // the contract's 2 Hz, in sim time

@@ -11,6 +11,7 @@
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
 
 #include "quad/common/time.hpp"
+#include "quad/dds/sim_period_filter.hpp"
 
 namespace quad::dds {
 
@@ -231,14 +232,18 @@ ReaderEndpoint::ReaderEndpoint(Participant& participant, const TopicInfo& info,
                                std::optional<fdds::DataReaderQos> qos)
     : participant_(participant), info_(info), listener_(std::make_unique<Listener>(*this, waker))
 {
-  auto* topic = participant_.topic(info_, type);
-  const fdds::DataReaderQos reader_qos = qos ? *qos : participant_.readerQos(info_);
+  fdds::DataReaderQos reader_qos = qos ? *qos : participant_.readerQos(info_);
+  // A minimum separation is kept in sim time by a content filter (sim_period_filter.hpp), not
+  // asked of Fast DDS, which would not keep it.
+  topic_ = participant_.readerTopic(info_, type, minimumSeparationNs(reader_qos));
+  reader_qos = withMinimumSeparation(std::move(reader_qos), 0);
   participant_.addLocalEndpoint(std::string(info_.name), type.get_type_name(),
                                 type->m_isGetKeyDefined, false);
-  reader_ = participant_.subscriber()->create_datareader(topic, reader_qos, listener_.get(),
+  reader_ = participant_.subscriber()->create_datareader(topic_, reader_qos, listener_.get(),
                                                          fdds::StatusMask::all());
   if (reader_ == nullptr) {
     participant_.removeLocalEndpoint(std::string(info_.name), false);
+    participant_.releaseReaderTopic(topic_);
     throw std::runtime_error("cannot create reader on " + std::string(info_.name) + " (QoS profile " +
                              std::string(info_.qos_profile) + ".reader" +
                              (participant_.options().security_dir.empty()
@@ -251,6 +256,7 @@ ReaderEndpoint::~ReaderEndpoint()
 {
   reader_->set_listener(nullptr);
   participant_.subscriber()->delete_datareader(reader_);
+  participant_.releaseReaderTopic(topic_);
   participant_.removeLocalEndpoint(std::string(info_.name), false);
 }
 

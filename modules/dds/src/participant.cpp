@@ -25,6 +25,7 @@
 #include "quad/wire/fault_transport.hpp"
 #include "quad/dds/environment.hpp"
 #include "quad/dds/security.hpp"
+#include "quad/dds/sim_period_filter.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/wire/validating_transport.hpp"
 
@@ -431,6 +432,11 @@ Participant::Participant(ParticipantOptions options)
              : " (security: its certificate, permissions or governance in " + options_.security_dir.string() +
                    " was refused: expired, not signed by ca.pem, or not for this domain; see the log above)"));
   }
+  if (participant_->register_content_filter_factory(kSimPeriodFilterClass, &simPeriodFilterFactory()) !=
+      ReturnCode_t::RETCODE_OK) {
+    factory->delete_participant(participant_);
+    throw std::runtime_error("cannot register the sim-time period filter on participant '" + options_.name + "'");
+  }
   publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
   if (publisher_ == nullptr || subscriber_ == nullptr) {
@@ -480,6 +486,33 @@ fdds::Topic* Participant::topic(const TopicInfo& info, const fdds::TypeSupport& 
   }
   topics_.emplace(std::string(info.name), topic);
   return topic;
+}
+
+fdds::TopicDescription* Participant::readerTopic(const TopicInfo& info, const fdds::TypeSupport& type,
+                                                 std::int64_t period_ns)
+{
+  fdds::Topic* plain = topic(info, type);
+  if (period_ns <= 0) {
+    return plain;
+  }
+  std::lock_guard lock(endpoints_mutex_);
+  // A topic of its own for each such reader: the filter remembers what it passed.
+  const std::string name = std::string(info.name) + "|sim_period_" + std::to_string(++filtered_topics_);
+  auto* filtered = participant_->create_contentfilteredtopic(name, plain, kSimPeriodFilterExpression,
+                                                             {std::to_string(period_ns)}, kSimPeriodFilterClass);
+  if (filtered == nullptr) {
+    throw std::runtime_error("cannot filter " + std::string(info.name) + " to one sample per " +
+                             std::to_string(period_ns) + " ns of sim time");
+  }
+  return filtered;
+}
+
+void Participant::releaseReaderTopic(fdds::TopicDescription* topic)
+{
+  if (auto* filtered = dynamic_cast<fdds::ContentFilteredTopic*>(topic)) {
+    std::lock_guard lock(endpoints_mutex_);
+    participant_->delete_contentfilteredtopic(filtered);
+  }
 }
 
 namespace {

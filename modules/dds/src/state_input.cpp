@@ -2,6 +2,7 @@
 #include "quad/dds/state_input.hpp"
 
 #include "quad/dds/geometry_messages.hpp"
+#include "quad/dds/sim_period_filter.hpp"
 
 namespace quad::dds {
 
@@ -17,10 +18,14 @@ const TopicInfo& stateTopic(StateSource s)
   return s == StateSource::kTruth ? topics::kSimState.info : topics::kEstimatedState.info;
 }
 
-StateInput::StateInput(Participant& participant, StateSource source, Waker* waker, std::int32_t depth)
+StateInput::StateInput(Participant& participant, StateSource source, Waker* waker, std::int32_t depth,
+                       std::int64_t period_ns)
     : source_(source)
 {
-  const auto qos = deeperReaderQos(participant, stateTopic(source), depth);
+  auto qos = deeperReaderQos(participant, stateTopic(source), depth);
+  if (period_ns > 0) {
+    qos = withMinimumSeparation(qos.value_or(participant.readerQos(stateTopic(source))), period_ns);
+  }
   if (source == StateSource::kTruth) {
     truth_.emplace(participant, topics::kSimState, waker, qos);
   } else {

@@ -9,6 +9,7 @@
 #include "quad/common/layout.hpp"
 #include "quad/common/time.hpp"
 #include "quad/dds/geometry_messages.hpp"
+#include "quad/dds/sim_period_filter.hpp"
 #include "quad/introspection/idl.hpp"
 #include "quad/mapping/mapper.hpp"
 #include "quad/world/world_file.hpp"
@@ -22,6 +23,12 @@ constexpr std::size_t kShapesPerEntity = 4096;
 constexpr std::size_t kEntitiesPerScene = 32;  // foxglove/SceneUpdate.idl
 /// [ns] of wall time between drains of the readers: a viewer's refresh rate (50 Hz).
 constexpr std::int64_t kTickPeriodNs = 20'000'000;
+
+/// The sim time between two states read (`state.rate`); 0: every state.
+std::int64_t statePeriodNs(const DisplayParams& p)
+{
+  return p.state_rate > 0.0 ? common::toNanoseconds(1.0 / p.state_rate) : 0;
+}
 
 foxglove::Time toTime(std::int64_t t_ns)
 {
@@ -173,7 +180,7 @@ DisplayNode::DisplayNode(DisplayNodeConfig config, dds::ParticipantOptions optio
       config_(std::move(config)),
       trace_(config_.trace),
       true_trace_(config_.trace),
-      state_(participant(), config_.state_source, nullptr),
+      state_(participant(), config_.state_source, nullptr, 0, statePeriodNs(config_)),
       depth_(participant(), dds::topics::kSimDepth, nullptr),
       updates_(participant(), dds::topics::kMapUpdate, nullptr),
       snapshots_(participant(), dds::topics::kMapSnapshot, nullptr),
@@ -194,7 +201,9 @@ DisplayNode::DisplayNode(DisplayNodeConfig config, dds::ParticipantOptions optio
       log_(participant(), dds::topics::kDisplayLog)
 {
   if (config_.state_source == dds::StateSource::kEstimate) {
-    truth_.emplace(participant(), dds::topics::kSimState, nullptr);
+    truth_.emplace(participant(), dds::topics::kSimState, nullptr,
+                   dds::withMinimumSeparation(participant().readerQos(dds::topics::kSimState.info),
+                                              statePeriodNs(config_)));
   }
   if (!config_.world_file.empty()) {
     obstacles_ = obstacleShapes(world::loadWorld(config_.world_file));

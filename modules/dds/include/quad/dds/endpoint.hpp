@@ -140,6 +140,7 @@ private:
   Participant& participant_;
   TopicInfo info_;
   std::unique_ptr<Listener> listener_;
+  eprosima::fastdds::dds::TopicDescription* topic_ = nullptr;  // the topic, or a filtered one of its own
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
   std::atomic<int> matched_{0};
   MatchedPeers peers_;

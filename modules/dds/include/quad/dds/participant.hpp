@@ -15,6 +15,7 @@
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/ContentFilteredTopic.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
@@ -152,6 +153,14 @@ public:
   eprosima::fastdds::dds::Topic* topic(const TopicInfo& info,
                                        const eprosima::fastdds::dds::TypeSupport& type);
 
+  /// What a reader of `info` reads: the topic itself, or, with `period_ns` > 0, a topic of its
+  /// own filtered to one sample per that much sim time (sim_period_filter.hpp). A filtered one
+  /// is deleted by releaseReaderTopic once its reader is.
+  eprosima::fastdds::dds::TopicDescription* readerTopic(const TopicInfo& info,
+                                                        const eprosima::fastdds::dds::TypeSupport& type,
+                                                        std::int64_t period_ns);
+  void releaseReaderTopic(eprosima::fastdds::dds::TopicDescription* topic);
+
   eprosima::fastdds::dds::Publisher* publisher() { return publisher_; }
   eprosima::fastdds::dds::Subscriber* subscriber() { return subscriber_; }
   eprosima::fastdds::dds::DomainParticipant* raw() { return participant_; }
@@ -206,6 +215,7 @@ private:
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   std::map<std::string, eprosima::fastdds::dds::Topic*, std::less<>> topics_;
+  std::uint64_t filtered_topics_ = 0;  // readerTopic's filtered ones made so far: their names
 
   mutable std::mutex endpoints_mutex_;
   std::map<std::string, LocalEndpoint, std::less<>> local_;

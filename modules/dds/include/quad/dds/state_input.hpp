@@ -59,7 +59,9 @@ class StateInput {
 public:
   /// `depth` > 0: the reader keeps that many unread samples, not the topic profile's newest
   /// only (a reader that needs the state of a given time after working for a while).
-  StateInput(Participant& participant, StateSource source, Waker* waker, std::int32_t depth = 0);
+  /// `period_ns` > 0: at most one sample per that much sim time (withMinimumSeparation).
+  StateInput(Participant& participant, StateSource source, Waker* waker, std::int32_t depth = 0,
+             std::int64_t period_ns = 0);
 
   /// Every unread sample, oldest first.
   std::vector<StateSample> takeAll();

@@ -70,12 +70,15 @@ TEST(SimPeriodGate, RefusesAPeriodThatIsNotPositive)
   EXPECT_THROW(SimPeriodGate(-5), std::invalid_argument);
 }
 
+void deleteFilter(fdds::IContentFilter* filter)
+{
+  simPeriodFilterFactory().delete_content_filter(kSimPeriodFilterClass, filter);
+}
+
 /// The factory's answer to an expression and parameters; the filter made, if any.
 struct Made {
   ReturnCode_t code;
-  std::unique_ptr<fdds::IContentFilter, void (*)(fdds::IContentFilter*)> filter{nullptr, [](fdds::IContentFilter* f) {
-                                                                                    simPeriodFilterFactory().delete_content_filter(kSimPeriodFilterClass, f);
-                                                                                  }};
+  std::unique_ptr<fdds::IContentFilter, void (*)(fdds::IContentFilter*)> filter{nullptr, &deleteFilter};
 };
 
 Made make(const char* expression, std::vector<const char*> parameters)

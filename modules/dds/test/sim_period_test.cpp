@@ -39,7 +39,8 @@ TEST(SimPeriod, AReaderTakesTheFirstSampleOfEachPeriodAndTheWriterSendsItNoOther
   const auto every = withDepth(scorer.readerQos(topics::kSimState.info), 512);
   Subscriber<msg::VehicleState> all(scorer, topics::kSimState, nullptr, every);
   Subscriber<msg::VehicleState> decimated(viewer, topics::kSimState, nullptr, withMinimumSeparation(every, 40'000'000));
-  ASSERT_TRUE(test::waitFor([&] { return states.matchedReaders() == 2 && all.matchedWriters() == 1 && decimated.matchedWriters() == 1; }));
+  ASSERT_TRUE(test::waitFor(
+      [&] { return states.matchedReaders() == 2 && all.matchedWriters() == 1 && decimated.matchedWriters() == 1; }));
   std::this_thread::sleep_for(kReaderMatchSettle);  // the writer learns the viewer's filter with it
 
   // WHEN one second of sim time is written at 250 Hz

@@ -32,6 +32,16 @@ std::map<std::string, std::string> env(int domain)
   return {{"QUAD_DOMAIN_ID", std::to_string(domain)}, {"QUAD_TRANSPORT", "udp"}};
 }
 
+/// A lockstep run's, as `quad launch` gives a lockstep manifest's modules: each node follows
+/// lockstep's rules from its start, so an input it takes before the clock's first sample (the
+/// battery and state of the first round, written ahead of it) is taken as it would be after.
+std::map<std::string, std::string> lockstepEnv(int domain)
+{
+  auto e = env(domain);
+  e["QUAD_LOCKSTEP"] = "1";
+  return e;
+}
+
 std::string writeFile(const std::string& name, const std::string& body)
 {
   const auto dir = std::filesystem::temp_directory_path() / "quad_flight_test";
@@ -43,8 +53,9 @@ std::string writeFile(const std::string& name, const std::string& body)
 
 /// The control node (autostart, auto mission, on the plant's true state) with an operator's
 /// goal at (20, 5, 3) and a path to it across the open world, which the operator vouches is free
-/// all along (known_free_m: the controller flies no further), sent again twice a second. The
-/// config files are named after the domain (tests run side by side).
+/// all along (known_free_m: the controller flies no further), sent again twice a second, both
+/// stamped at sim time 0 (in lockstep an operator's input takes effect at a sim time its stamp
+/// fixes). The config files are named after the domain (tests run side by side).
 struct OperatorMission {
   explicit OperatorMission(int domain)
       // The operator's path comes at a wall-clock rate, while lockstep sim time runs many times
@@ -54,16 +65,16 @@ struct OperatorMission {
                            std::string("vehicle: ") + QUAD_CONFIG_DIR +
                                "/vehicles/x500.yaml\nautostart: true\nmodes: {auto_mission: true}\n"
                                "timeouts: {path: 600}\nstate: {source: truth}\n")},
-                env(domain)),
+                lockstepEnv(domain)),
         running(quad::test::waitForRunningModule(domain, "control", 20s)),
-        goal({QUAD_TOOL, "topic", "pub", "quad/planning/goal", "{goal_id: 1, p_W: {x: 20, y: 5, z: 3}, tolerance: 0.3}",
-              "--wait-match", "5"},
-             env(domain)),
+        goal({QUAD_TOOL, "topic", "pub", "quad/planning/goal",
+              "{header: {stamp_ns: 0}, goal_id: 1, p_W: {x: 20, y: 5, z: 3}, tolerance: 0.3}", "--wait-match", "5"},
+             lockstepEnv(domain)),
         path({QUAD_TOOL, "topic", "pub", "quad/planning/path",
-              "{version: 1, goal_id: 1, status: PLAN_OK, waypoints_W: [{x: 0, y: 0, z: 2}, "
+              "{header: {stamp_ns: 0}, version: 1, goal_id: 1, status: PLAN_OK, waypoints_W: [{x: 0, y: 0, z: 2}, "
               "{x: 10, y: 0, z: 2}, {x: 20, y: 5, z: 3}], known_free_m: 1000}",
               "--count", "100", "--rate", "2", "--wait-match", "5"},
-             env(domain))
+             lockstepEnv(domain))
   {
   }
   /// The controller runs, and the goal and the path are out.
@@ -92,10 +103,10 @@ TEST(Flight, LockstepMissionReachesItsGoalWithoutCollision)
   ASSERT_TRUE(op.ready()) << op.control.output() << op.goal.output() << op.path.output();
   // AND readers of the plant's events (the run's end carries the final position and the
   // collision count) and of the controller's status
-  ChildProcess events({QUAD_TOOL, "topic", "echo", "quad/sim/events", "--json"}, env(domain));
-  ChildProcess status({QUAD_TOOL, "topic", "echo", "quad/control/status", "--json"}, env(domain));
+  ChildProcess events({QUAD_TOOL, "topic", "echo", "quad/sim/events", "--json"}, lockstepEnv(domain));
+  ChildProcess status({QUAD_TOOL, "topic", "echo", "quad/control/status", "--json"}, lockstepEnv(domain));
   // WHEN the plant runs 25 s of lockstep sim time
-  ChildProcess plant({QUAD_PLANT_NODE, "--config", plant_config}, env(domain));
+  ChildProcess plant({QUAD_PLANT_NODE, "--config", plant_config}, lockstepEnv(domain));
   ASSERT_EQ(plant.wait(90s), 0) << plant.output();
   // THEN the vehicle took off, flew the mission, reached the goal, and hit nothing
   ASSERT_TRUE(events.waitForOutput("SIM_EVENT_RUN_ENDED", 10s)) << events.output();
@@ -269,11 +280,11 @@ LockstepDropoutRun lockstepDropoutRun(int domain)
       lockstepOpenWorld(name + "_plant.yaml", 24.0, "faults: {schedule: " + faults + "}\n");
   OperatorMission op(domain);
   EXPECT_TRUE(op.ready()) << op.control.output() << op.goal.output() << op.path.output();
-  ChildProcess events({QUAD_TOOL, "topic", "echo", "quad/sim/events", "--json"}, env(domain));
-  ChildProcess status({QUAD_TOOL, "topic", "echo", "quad/control/status", "--json"}, env(domain));
+  ChildProcess events({QUAD_TOOL, "topic", "echo", "quad/sim/events", "--json"}, lockstepEnv(domain));
+  ChildProcess status({QUAD_TOOL, "topic", "echo", "quad/control/status", "--json"}, lockstepEnv(domain));
   EXPECT_TRUE(quad::test::waitForReader(domain, "quad/sim/events", 15s));
   EXPECT_TRUE(quad::test::waitForReader(domain, "quad/control/status", 15s));
-  ChildProcess plant({QUAD_PLANT_NODE, "--config", plant_config}, env(domain));
+  ChildProcess plant({QUAD_PLANT_NODE, "--config", plant_config}, lockstepEnv(domain));
   EXPECT_EQ(plant.wait(90s), 0) << plant.output();
   LockstepDropoutRun run;
   EXPECT_TRUE(events.waitForOutput("SIM_EVENT_RUN_ENDED", 10s)) << events.output();

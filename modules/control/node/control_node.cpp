@@ -45,7 +45,7 @@ ControlNode::ControlNode(ControlNodeConfig config, dds::ParticipantOptions optio
 {
   setTickPeriod(kTickNs);
   followSimClock();
-  setWakeOnReceipt(true);
+  setWakeOnReceipt(true);  // each round's state is answered on the thread that received it
   spdlog::info("control: vehicle {}, autostart {}, flying on the {} ({})", config_.vehicle_file.string(),
                config_.autostart, dds::toString(config_.state_source), state_.topic().name);
 }

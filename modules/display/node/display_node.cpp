@@ -9,7 +9,6 @@
 #include "quad/common/layout.hpp"
 #include "quad/common/time.hpp"
 #include "quad/dds/geometry_messages.hpp"
-#include "quad/dds/sim_period_filter.hpp"
 #include "quad/introspection/idl.hpp"
 #include "quad/mapping/mapper.hpp"
 #include "quad/world/world_file.hpp"
@@ -201,9 +200,7 @@ DisplayNode::DisplayNode(DisplayNodeConfig config, dds::ParticipantOptions optio
       log_(participant(), dds::topics::kDisplayLog)
 {
   if (config_.state_source == dds::StateSource::kEstimate) {
-    truth_.emplace(participant(), dds::topics::kSimState, nullptr,
-                   dds::withMinimumSeparation(participant().readerQos(dds::topics::kSimState.info),
-                                              statePeriodNs(config_)));
+    truth_.emplace(participant(), dds::StateSource::kTruth, nullptr, 0, statePeriodNs(config_));
   }
   if (!config_.world_file.empty()) {
     obstacles_ = obstacleShapes(world::loadWorld(config_.world_file));
@@ -241,7 +238,7 @@ void DisplayNode::takeStates()
   if (truth_) {
     for (const auto& m : truth_->takeAll()) {
       counters().samples_in++;
-      const TracePose p{m.header().stamp_ns(), dds::toVector(m.p_W()), dds::toQuaternion(m.q_WB())};
+      const TracePose p{m.stamp_ns, m.p_W, m.q_WB};
       body_true_ = p;
       true_trace_.add(p);
     }

@@ -60,7 +60,7 @@ private:
   EventLog events_;
 
   dds::StateInput state_;
-  std::optional<dds::Subscriber<msg::VehicleState>> truth_;  // when the stack flies on the estimate
+  std::optional<dds::StateInput> truth_;  // when the stack flies on the estimate
   dds::Subscriber<msg::PointCloud> depth_;
   dds::Subscriber<msg::MapUpdate> updates_;
   dds::Subscriber<msg::MapSnapshot> snapshots_;

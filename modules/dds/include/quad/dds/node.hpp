@@ -94,8 +94,9 @@ protected:
   /// Arriving samples are handled on the middleware's thread that received them, when the
   /// node's own thread is not busy: onWake() runs there and then (under the node's lock, as
   /// everything run() calls does), instead of that thread waking this one for it. For a
-  /// node on the lockstep clock's critical path whose onWake() is short (the estimator):
-  /// each sample then costs one thread woken, not two. Call from the constructor.
+  /// node on the lockstep clock's critical path whose onWake() is short (the estimator, the
+  /// controller): each sample then costs one thread woken, not two. Call from the
+  /// constructor.
   void setWakeOnReceipt(bool on) { wake_on_receipt_ = on; }
   /// In lockstep, sim time waits for the slowest module: wall-clock deadlines say nothing,
   /// and onEvent's default stops reporting them. From the start as the environment says

@@ -216,4 +216,62 @@ TEST(MappingNode, AScansOutputsAreDueTheBudgetAfterItAndTheClockStandsForAStoppe
   std::filesystem::remove_all(dir);
 }
 
+// A mapper reading one state a period places a cloud that falls between two on the pose
+// interpolated between them, once the later one came: within the map's budget when the period
+// is no longer than it, and with every state read when it is (the budget 0: the clock stands at
+// every frame until its update is out). A 15 Hz camera's frames fall off the states' grid.
+TEST(MappingNode, CloudsBetweenTheStatesReadAreAllPlacedAndTheLockstepRunEnds)
+{
+  struct Case {
+    int domain;
+    const char* budget_ms;  // QUAD_MAP_BUDGET_MS; empty: the contract's 50 ms
+    double state_rate;
+  };
+  for (const Case c : {Case{114, "", 20.0}, Case{115, "0", 50.0}}) {
+    SCOPED_TRACE("budget " + std::string(c.budget_ms) + " ms, states at " + std::to_string(c.state_rate) + " Hz");
+    auto run_env = env(c.domain);
+    if (*c.budget_ms != '\0') {
+      run_env["QUAD_MAP_BUDGET_MS"] = c.budget_ms;
+    }
+    const auto dir = std::filesystem::temp_directory_path() / ("quad_mapping_node_rate_test_" + std::to_string(c.domain));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "mapping.yaml") << "state: {source: truth, rate: " << c.state_rate << "}\n";
+    writePlantConfig(dir, 3.0);
+    std::ofstream(dir / "plant.yaml", std::ios::app) << "depth: {rate: 15.0}\n";
+    // GIVEN a mapper reading states at the rate, and a controller holding the vehicle at 2 m
+    ChildProcess mapping({QUAD_MAPPING_NODE, "--config", (dir / "mapping.yaml").string()}, run_env);
+    ChildProcess controller({QUAD_ALTITUDE_CONTROLLER, "757.5", "2.0"}, run_env);
+    ASSERT_TRUE(quad::test::waitForRunningModule(c.domain, "mapping", 20s)) << mapping.output();
+    ASSERT_TRUE(controller.waitForOutput("ready", 10s)) << controller.output();
+    ChildProcess stats({QUAD_TOOL, "topic", "echo", "quad/mapping/stats", "-n", "40", "--json", "--timeout", "120"},
+                       run_env);
+    ASSERT_TRUE(quad::test::waitForReader(c.domain, "quad/mapping/stats", 15s));
+    // WHEN the plant runs 3 s of lockstep time with its camera at 15 Hz (45 frames)
+    ChildProcess plant({QUAD_PLANT_NODE, "--config", (dir / "plant.yaml").string()}, run_env);
+    // THEN the run ends (no frame's update waits for a state that never comes)
+    ASSERT_EQ(plant.wait(30s), 0) << plant.output() << mapping.output();
+    ASSERT_EQ(stats.wait(10s), 0) << stats.output();
+    // AND every cloud was placed: none refused for want of a pose
+    const auto samples = quad::test::jsonLines(stats.output());
+    ASSERT_EQ(samples.size(), 40U) << stats.output();
+    for (const auto& sample : samples) {
+      EXPECT_EQ(sample["rejected_clouds"].get<std::uint64_t>(), 0U) << sample;
+    }
+    mapping.signal(SIGTERM);
+    EXPECT_EQ(mapping.wait(10s), 0) << mapping.output();
+    std::filesystem::remove_all(dir);
+  }
+}
+
+// A state rate under which clouds could not be placed is refused, naming the key.
+TEST(MappingNode, AStateRateTooLowToPlaceCloudsIsRefusedNamingTheKey)
+{
+  ChildProcess mapping({QUAD_MAPPING_NODE, "--config", std::string(QUAD_CONFIG_DIR) + "/mapping.yaml", "--set",
+                        "state.rate=5"},
+                       env(116));
+  EXPECT_NE(mapping.wait(15s), 0) << mapping.output();
+  EXPECT_NE(mapping.output().find("state.rate: 5: below 20 Hz"), std::string::npos) << mapping.output();
+}
+
 }  // namespace

@@ -598,12 +598,14 @@ fdds::DataReaderQos Participant::readerQos(const TopicInfo& info) const
   return qos;
 }
 
-std::optional<fdds::DataReaderQos> deeperReaderQos(Participant& participant, const TopicInfo& topic, std::int32_t depth)
+std::optional<fdds::DataReaderQos> readerQosWith(Participant& participant, const TopicInfo& topic, std::int32_t depth,
+                                                 std::int64_t period_ns)
 {
-  if (depth <= 0) {
+  if (depth <= 0 && period_ns <= 0) {
     return std::nullopt;
   }
-  return withDepth(participant.readerQos(topic.qos_profile), depth);
+  auto qos = withDepth(participant.readerQos(topic), depth);
+  return period_ns > 0 ? withMinimumSeparation(std::move(qos), period_ns) : qos;
 }
 
 fdds::DataReaderQos withDepth(fdds::DataReaderQos qos, std::int32_t depth)

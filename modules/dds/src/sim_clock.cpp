@@ -10,7 +10,7 @@ namespace quad::dds {
 
 SimClockFollower::SimClockFollower(Participant& participant, Waker* waker, std::vector<std::uint32_t> served,
                                    std::int32_t depth)
-    : clock_(participant, topics::kSimClock, waker, deeperReaderQos(participant, topics::kSimClock.info, depth)),
+    : clock_(participant, topics::kSimClock, waker, readerQosWith(participant, topics::kSimClock.info, depth)),
       served_(std::move(served))
 {
 }

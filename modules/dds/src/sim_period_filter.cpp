@@ -24,16 +24,28 @@ SimPeriodGate::SimPeriodGate(std::int64_t period_ns) : period_ns_(period_ns)
   }
 }
 
+namespace {
+/// Floor division: a stamp before 0 (none the plant writes) still has a window of its own.
+std::int64_t windowOf(std::int64_t stamp_ns, std::int64_t period_ns)
+{
+  return stamp_ns / period_ns - (stamp_ns % period_ns < 0 ? 1 : 0);
+}
+}  // namespace
+
+std::int64_t simPeriodWindowEnd(std::int64_t stamp_ns, std::int64_t period_ns)
+{
+  return (windowOf(stamp_ns, period_ns) + 1) * period_ns;
+}
+
 bool SimPeriodGate::pass(std::uint32_t vehicle_id, std::int64_t stamp_ns)
 {
-  // Floor division: a stamp before 0 (none the plant writes) still has a window of its own.
-  const std::int64_t window = stamp_ns / period_ns_ - (stamp_ns % period_ns_ < 0 ? 1 : 0);
+  const std::int64_t window = windowOf(stamp_ns, period_ns_);
   std::lock_guard lock(mutex_);
-  const auto [it, first] = window_.try_emplace(vehicle_id, window);
-  if (!first && it->second == window) {
+  const auto [it, first] = passed_.try_emplace(vehicle_id, Passed{window, stamp_ns});
+  if (!first && it->second.window == window && it->second.stamp_ns != stamp_ns) {
     return false;
   }
-  it->second = window;
+  it->second = {window, stamp_ns};
   return true;
 }
 

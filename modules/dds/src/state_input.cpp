@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "quad/dds/state_input.hpp"
 
+#include "quad/common/time.hpp"
+
 #include "quad/dds/geometry_messages.hpp"
 #include "quad/dds/sim_period_filter.hpp"
 
@@ -18,14 +20,16 @@ const TopicInfo& stateTopic(StateSource s)
   return s == StateSource::kTruth ? topics::kSimState.info : topics::kEstimatedState.info;
 }
 
+std::int64_t statePeriodNs(double rate_hz)
+{
+  return rate_hz > 0.0 ? common::toNanoseconds(1.0 / rate_hz) : 0;
+}
+
 StateInput::StateInput(Participant& participant, StateSource source, Waker* waker, std::int32_t depth,
                        std::int64_t period_ns)
     : source_(source)
 {
-  auto qos = deeperReaderQos(participant, stateTopic(source), depth);
-  if (period_ns > 0) {
-    qos = withMinimumSeparation(qos.value_or(participant.readerQos(stateTopic(source))), period_ns);
-  }
+  const auto qos = readerQosWith(participant, stateTopic(source), depth, period_ns);
   if (source == StateSource::kTruth) {
     truth_.emplace(participant, topics::kSimState, waker, qos);
   } else {

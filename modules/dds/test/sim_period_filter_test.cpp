@@ -36,19 +36,23 @@ TEST(SimPeriodGate, EachPeriodAlignedWindowPassesItsFirstSampleOnly)
 
 TEST(SimPeriodGate, ForAnyStampsItPassesOnePerWindowEntered)
 {
-  // Random increasing stamps with gaps longer and shorter than the period: a sample passes
-  // exactly when its window differs from the previous sample's.
+  // Random increasing stamps with gaps longer and shorter than the period, and none (a
+  // sample sent again): a sample passes exactly when its window differs from the previous
+  // sample's, or it is stamped as the last one passed.
   std::mt19937_64 rng(11);
   std::uniform_int_distribution<std::int64_t> gap(0, 45'000'000);
   constexpr std::int64_t kPeriod = 10'000'000;
   SimPeriodGate gate(kPeriod);
   std::int64_t t = 3;
   std::int64_t last_window = -1;
+  std::int64_t last_passed = -1;
   for (int i = 0; i < 5000; ++i) {
-    t += gap(rng);
+    t += gap(rng) < 4'000'000 ? 0 : gap(rng);
     const std::int64_t window = t / kPeriod;
-    EXPECT_EQ(gate.pass(2, t), window != last_window) << "stamp " << t;
+    const bool passes = window != last_window || t == last_passed;
+    EXPECT_EQ(gate.pass(2, t), passes) << "stamp " << t;
     last_window = window;
+    last_passed = passes ? t : last_passed;
   }
 }
 
@@ -62,6 +66,39 @@ TEST(SimPeriodGate, VehiclesAreFilteredApartAndAClockThatStartsAgainOpensWindows
   EXPECT_TRUE(gate.pass(1, 500'000'000));
   EXPECT_TRUE(gate.pass(1, 0));  // earlier than the last: another window
   EXPECT_FALSE(gate.pass(1, 4'000'000));
+}
+
+TEST(SimPeriodGate, ASamplePassedIsPassedAgainWhenSentAgain)
+{
+  // A lockstep plant resends its clock while it waits: a reader that matched after the first
+  // copy went out must still take the time.
+  SimPeriodGate gate(20'000'000);
+  EXPECT_TRUE(gate.pass(0, 0));
+  EXPECT_TRUE(gate.pass(0, 0));
+  EXPECT_FALSE(gate.pass(0, 4'000'000));
+  EXPECT_FALSE(gate.pass(0, 4'000'000));  // never passed: not sent again to this reader either
+  EXPECT_TRUE(gate.pass(0, 0));           // still the last one passed
+  EXPECT_TRUE(gate.pass(0, 20'000'000));
+  EXPECT_TRUE(gate.pass(0, 20'000'000));
+}
+
+TEST(SimPeriodWindowEnd, IsTheStartOfTheNextWindowBeforeZeroToo)
+{
+  constexpr std::int64_t kPeriod = 20'000'000;
+  EXPECT_EQ(simPeriodWindowEnd(0, kPeriod), kPeriod);
+  EXPECT_EQ(simPeriodWindowEnd(kPeriod - 1, kPeriod), kPeriod);
+  EXPECT_EQ(simPeriodWindowEnd(kPeriod, kPeriod), 2 * kPeriod);
+  EXPECT_EQ(simPeriodWindowEnd(-1, kPeriod), 0);
+  EXPECT_EQ(simPeriodWindowEnd(-kPeriod, kPeriod), 0);
+  // No sample the gate passes after one of a window falls before its end, unless a new one opens.
+  SimPeriodGate gate(kPeriod);
+  for (std::int64_t t = 0; t < 10 * kPeriod; t += kStepNs) {
+    if (gate.pass(0, t)) {
+      for (std::int64_t u = t + 1; u < simPeriodWindowEnd(t, kPeriod); u += 1'000'000) {
+        EXPECT_FALSE(gate.pass(0, u)) << t << " then " << u;
+      }
+    }
+  }
 }
 
 TEST(SimPeriodGate, RefusesAPeriodThatIsNotPositive)

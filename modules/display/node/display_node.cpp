@@ -24,11 +24,6 @@ constexpr std::size_t kEntitiesPerScene = 32;  // foxglove/SceneUpdate.idl
 constexpr std::int64_t kTickPeriodNs = 20'000'000;
 
 /// The sim time between two states read (`state.rate`); 0: every state.
-std::int64_t statePeriodNs(const DisplayParams& p)
-{
-  return p.state_rate > 0.0 ? common::toNanoseconds(1.0 / p.state_rate) : 0;
-}
-
 foxglove::Time toTime(std::int64_t t_ns)
 {
   const std::int64_t t = std::max<std::int64_t>(t_ns, 0);
@@ -161,7 +156,9 @@ const common::ParamTable<DisplayNodeConfig>& displayNodeTable()
     common::ParamTable<N> t;
     t.include(displayTable(), [](N& n) -> DisplayParams& { return n; })
         .choice("state.source", [](N& n) -> dds::StateSource& { return n.state_source; }, dds::stateSourceNames(),
-                "the state drawn as the body frame: " + std::string(dds::kStateSourceDescription));
+                "the state drawn as the body frame: " + std::string(dds::kStateSourceDescription))
+        .number("state.rate", [](N& n) -> double& { return n.state_rate; }, {0.0, 1000.0}, "Hz",
+                std::string(dds::kStateRateDescription) + " (the truth's too)");
     return t;
   }();
   return table;
@@ -179,7 +176,7 @@ DisplayNode::DisplayNode(DisplayNodeConfig config, dds::ParticipantOptions optio
       config_(std::move(config)),
       trace_(config_.trace),
       true_trace_(config_.trace),
-      state_(participant(), config_.state_source, nullptr, 0, statePeriodNs(config_)),
+      state_(participant(), config_.state_source, nullptr, 0, dds::statePeriodNs(config_.state_rate)),
       depth_(participant(), dds::topics::kSimDepth, nullptr),
       updates_(participant(), dds::topics::kMapUpdate, nullptr),
       snapshots_(participant(), dds::topics::kMapSnapshot, nullptr),
@@ -200,7 +197,7 @@ DisplayNode::DisplayNode(DisplayNodeConfig config, dds::ParticipantOptions optio
       log_(participant(), dds::topics::kDisplayLog)
 {
   if (config_.state_source == dds::StateSource::kEstimate) {
-    truth_.emplace(participant(), dds::StateSource::kTruth, nullptr, 0, statePeriodNs(config_));
+    truth_.emplace(participant(), dds::StateSource::kTruth, nullptr, 0, dds::statePeriodNs(config_.state_rate));
   }
   if (!config_.world_file.empty()) {
     obstacles_ = obstacleShapes(world::loadWorld(config_.world_file));

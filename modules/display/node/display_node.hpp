@@ -27,6 +27,7 @@ inline constexpr const char* kTrueBodyFrame = "body_true";  ///< the simulator's
 
 struct DisplayNodeConfig : DisplayParams {
   dds::StateSource state_source = dds::StateSource::kEstimate;
+  double state_rate = 50.0;  ///< [Hz] of sim time, at most: the states read (flown on, and the truth); 0: every one
 };
 
 const common::ParamTable<DisplayNodeConfig>& displayNodeTable();

@@ -10,9 +10,6 @@ const common::ParamTable<DisplayParams>& displayTable()
     common::ParamTable<P> t;
     t.path("world", [](P& p) -> std::filesystem::path& { return p.world_file; },
            "world file whose obstacles are drawn (empty: none)")
-        .number("state.rate", [](P& p) -> double& { return p.state_rate; }, {0.0, 1000.0}, "Hz",
-                "states (flown on, and the truth) read per second of sim time, at most: their writers send "
-                "no more; 0: every one")
         .number("transforms.rate", [](P& p) -> double& { return p.transforms_rate; }, {0.1, 1000.0}, "Hz",
                 "frame transforms per second of sim time")
         .number("trajectory.rate", [](P& p) -> double& { return p.trajectory_rate; }, {0.01, 100.0}, "Hz",

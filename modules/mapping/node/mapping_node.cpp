@@ -19,6 +19,10 @@ namespace {
 constexpr std::size_t kMaxChangesPerMessage = 262144;  // MapUpdate's bound
 constexpr std::uint64_t kSeqReserve = 1'000'000;  // update numbers a checkpoint reserves ahead
 constexpr std::int32_t kHeldClouds = 32;   // 3.2 s of the camera's 10 Hz: beyond the largest budget
+// A cloud between two states read is placed on the pose interpolated between them, which
+// PoseHistory does over at most 100 ms: two periods (the first state of a period can come late
+// in it) within that.
+constexpr double kMinStateRate = 20.0;
 
 msg::VoxelState toMessage(VoxelState s)
 {
@@ -49,7 +53,10 @@ const common::ParamTable<MappingParams>& mappingTable()
         .text("checkpoint.file", [](P& p) -> std::string& { return p.checkpoint_file; }, {},
               "the map resumed from at the start and written with every snapshot; empty: none")
         .choice("state.source", [](P& p) -> dds::StateSource& { return p.state_source; }, dds::stateSourceNames(),
-                dds::kStateSourceDescription);
+                dds::kStateSourceDescription)
+        .number("state.rate", [](P& p) -> double& { return p.state_rate; }, {0.0, 1000.0}, "Hz",
+                std::string(dds::kStateRateDescription) + "; at least " + common::formatValue(kMinStateRate) +
+                    ": a cloud is placed on the pose interpolated between the states around it");
     return t;
   }();
   return table;
@@ -71,6 +78,13 @@ MappingNodeConfig mappingConfigFrom(const common::Params& p)
   c.save_path = m.save_path;
   c.checkpoint_file = m.checkpoint_file;
   c.state_source = m.state_source;
+  if (m.state_rate > 0.0 && m.state_rate < kMinStateRate) {
+    throw common::ConfigError({common::configProblem(p.origin(), "state.rate", m.state_rate,
+                                                     "below " + common::formatValue(kMinStateRate) +
+                                                         " Hz: clouds between its states could not be placed "
+                                                         "(0 reads every state)")});
+  }
+  c.state_period_ns = dds::statePeriodNs(m.state_rate);
   return c;
 }
 
@@ -82,8 +96,8 @@ MappingNode::MappingNode(MappingNodeConfig config, dds::ParticipantOptions optio
       // budget: the clouds and the states that come meanwhile wait here, none replaced by a
       // newer one (the next cloud is placed with the state of its own time).
       depth_(participant(), dds::topics::kSimDepth, waker(),
-             dds::deeperReaderQos(participant(), dds::topics::kSimDepth.info, kHeldClouds)),
-      state_(participant(), config_.state_source, waker(), dds::kHeldStates),
+             dds::readerQosWith(participant(), dds::topics::kSimDepth.info, kHeldClouds)),
+      state_(participant(), config_.state_source, waker(), dds::kHeldStates, statePeriodNs()),
       commands_(participant(), dds::topics::kVehicleCommand, waker()),
       updates_(participant(), dds::topics::kMapUpdate),
       snapshots_(participant(), dds::topics::kMapSnapshot),
@@ -95,6 +109,20 @@ MappingNode::MappingNode(MappingNodeConfig config, dds::ParticipantOptions optio
                config_.map.max_range, dds::toString(config_.state_source), state_.topic().name);
   map_bytes_ = mapper_.bytes();  // the empty map's; resume() counts a resumed one
   resume();
+}
+
+std::int64_t MappingNode::statePeriodNs()
+{
+  // In lockstep a cloud's update is due its budget after the cloud, and it can be made only once
+  // a state at or after the cloud's time came: up to a period later. A budget shorter than the
+  // period (0: the clock waits at every cloud) needs every state.
+  const std::int64_t budget = participant().options().mapBudgetNs();
+  if (config_.state_period_ns > budget) {
+    spdlog::info("mapping: every state read: the map's budget ({} ms) is shorter than the state period ({} ms)",
+                 budget / 1'000'000, config_.state_period_ns / 1'000'000);
+    return 0;
+  }
+  return config_.state_period_ns;
 }
 
 void MappingNode::resume()

@@ -30,6 +30,9 @@ struct MappingNodeConfig {
   /// empty: none (a mapper started again begins with an empty map).
   std::filesystem::path checkpoint_file;
   dds::StateSource state_source = dds::StateSource::kEstimate;  ///< where the body's pose comes from
+  /// [ns] of sim time: one state read per period (a cloud between two is placed on the pose
+  /// interpolated between them); 0: every state.
+  std::int64_t state_period_ns = 0;
 };
 
 /// configs/mapping.yaml as written.
@@ -41,6 +44,7 @@ struct MappingParams {
   std::string save_path;                                 ///< .bt file; empty: never saved
   std::string checkpoint_file;                           ///< empty: none
   dds::StateSource state_source = dds::StateSource::kEstimate;
+  double state_rate = 50.0;  ///< [Hz] of sim time, at most; 0: every state
 };
 
 /// Each key with its unit, range and the field it fills; the defaults are MappingParams'.
@@ -69,6 +73,8 @@ private:
   void save();
   /// The map as it is (its .bt bytes), on the latched snapshot topic, stamped `stamp_ns`.
   void publishSnapshot(std::int64_t stamp_ns, std::vector<std::uint8_t> bytes);
+  /// The period the states are read at: the config's, or 0 (every one) when the budget is shorter.
+  std::int64_t statePeriodNs();
   /// Resumes from the checkpoint file, if there is one (throws naming it when it is bad).
   void resume();
   /// Writes the checkpoint (when there is a file), reserving update numbers up to `floor`;

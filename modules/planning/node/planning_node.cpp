@@ -9,6 +9,7 @@
 
 #include "quad/common/time.hpp"
 #include "quad/dds/geometry_messages.hpp"
+#include "quad/dds/sim_period_filter.hpp"
 #include "quad/world/world_file.hpp"
 #include "quad/geometry/polyline.hpp"
 #include "quad/planning/shortcut.hpp"
@@ -73,7 +74,9 @@ const common::ParamTable<PlanningNodeConfig>& planningNodeTable()
     common::ParamTable<N> t;
     t.include(planningTable(), [](N& n) -> PlanningParams& { return n; })
         .choice("state.source", [](N& n) -> dds::StateSource& { return n.state_source; }, dds::stateSourceNames(),
-                dds::kStateSourceDescription);
+                dds::kStateSourceDescription)
+        .number("state.rate", [](N& n) -> double& { return n.state_rate; }, {0.0, 1000.0}, "Hz",
+                std::string(dds::kStateRateDescription) + ": a replan starts at a state read");
     return t;
   }();
   return table;
@@ -108,7 +111,7 @@ PlanningNode::PlanningNode(PlanningNodeConfig config, dds::ParticipantOptions op
       // In lockstep the clock runs on while a replan works, up to the path's budget: the
       // states that come meanwhile wait here, none replaced by a newer one (each is handled
       // in turn, with the map due by its time).
-      state_(participant(), config_.state_source, waker(), dds::kHeldStates),
+      state_(participant(), config_.state_source, waker(), dds::kHeldStates, dds::statePeriodNs(config_.state_rate)),
       goal_(participant(), dds::topics::kGoal, waker()),
       // Every path of every vehicle, none replaced by a newer before it is taken: the one in
       // effect at a replan may be older than the newest heard (kPathEffectDelayNs).
@@ -578,10 +581,16 @@ bool PlanningNode::handleState(const dds::StateSample& s)
 
 std::int64_t PlanningNode::handledNs() const
 {
-  // The last state handled; the clock's time once no state is held and none was sent since
-  // (a fault dropped them): nothing before then can still ask for a path.
-  const bool all_handled = held_states_.empty() && simClock().lastStateSentNs() <= now_ns_;
-  return all_handled ? std::max(now_ns_, simClock().ns()) : now_ns_;
+  // The last state handled, and when one a period is read the rest of its period (no other state
+  // of it comes); the clock's time once no state is held and none was sent since (a fault
+  // dropped them): nothing before then can still ask for a path.
+  const std::int64_t period = dds::statePeriodNs(config_.state_rate);
+  std::int64_t through = period > 0 ? dds::simPeriodWindowEnd(now_ns_, period) - 1 : now_ns_;
+  if (!held_states_.empty()) {
+    through = std::min(through, held_states_.front().stamp_ns - 1);  // the first state, held
+  }
+  const bool all_handled = held_states_.empty() && simClock().lastStateSentNs() <= through;
+  return all_handled ? std::max(through, simClock().ns()) : through;
 }
 
 void PlanningNode::reportLockstep()

@@ -592,11 +592,13 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
   }
 
   if (YAML::Node mission = root["mission"]; mission) {
-    r.onlyKeys(mission, "mission.", {"tolerance", "land", "timeout", "vehicle"});
+    r.onlyKeys(mission, "mission.", {"tolerance", "land", "timeout", "vehicle", "score_rate"});
     m.mission.enabled = true;
     m.mission.tolerance_m = r.number(mission["tolerance"], "mission.tolerance", 0.4, 0.01, 100.0).value_or(0.4);
     m.mission.land = r.flag(mission["land"], "mission.land", true).value_or(true);
     m.mission.timeout_s = r.number(mission["timeout"], "mission.timeout", 180.0, 1.0, 86400.0).value_or(180.0);
+    m.mission.score_rate_hz =
+        r.number(mission["score_rate"], "mission.score_rate", 50.0, 0.0, 1000.0).value_or(50.0);
     if (mission["vehicle"]) {
       m.mission.vehicle = r.path(r.text(mission["vehicle"], "mission.vehicle", "").value_or(""));
       if (!fs::is_regular_file(m.mission.vehicle)) {

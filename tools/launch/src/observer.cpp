@@ -25,9 +25,9 @@ namespace topics = dds::topics;
 /// which it alone reads in flight, to score the run), the estimator's state to score it,
 /// the modules' heartbeats.
 struct Observer::Sim {
-  Sim(dds::Participant& p, const std::vector<std::uint32_t>& vehicles)
-      : state(p, topics::kSimState, nullptr, deep(p, topics::kSimState.info)),
-        estimate(p, topics::kEstimatedState, nullptr, deep(p, topics::kEstimatedState.info)),
+  Sim(dds::Participant& p, const std::vector<std::uint32_t>& vehicles, std::int64_t state_period_ns)
+      : state(p, topics::kSimState, nullptr, deep(p, topics::kSimState.info, state_period_ns)),
+        estimate(p, topics::kEstimatedState, nullptr, deep(p, topics::kEstimatedState.info, state_period_ns)),
         clock(p, nullptr, vehicles),
         heartbeats(p, topics::kHeartbeat)
   {
@@ -36,9 +36,11 @@ struct Observer::Sim {
   /// in every run: a history deep enough for a launcher that falls behind for seconds. The
   /// controller's statuses too: its latched topic keeps the newest only, and each mode it
   /// passes through counts (a failsafe, the hover between take-off and mission).
-  static eprosima::fastdds::dds::DataReaderQos deep(dds::Participant& p, const dds::TopicInfo& topic)
+  /// The states one a period of sim time, the same stamps of both (0: every one).
+  static eprosima::fastdds::dds::DataReaderQos deep(dds::Participant& p, const dds::TopicInfo& topic,
+                                                    std::int64_t period_ns = 0)
   {
-    return dds::withDepth(p.readerQos(topic.qos_profile), 2048);
+    return *dds::readerQosWith(p, topic, 2048, period_ns);
   }
   dds::Subscriber<msg::VehicleState> state;
   dds::Subscriber<msg::EstimatedState> estimate;
@@ -89,10 +91,11 @@ struct Observer::Track {
   std::unique_ptr<MissionTracker> tracker;
 };
 
-Observer::Observer(dds::ParticipantOptions options, std::vector<std::uint32_t> vehicles)
+Observer::Observer(dds::ParticipantOptions options, std::vector<std::uint32_t> vehicles,
+                   std::int64_t state_period_ns)
     : participant_(std::move(options)),
       ids_(vehicles.empty() ? std::vector<std::uint32_t>{participant_.options().vehicle_id} : std::move(vehicles)),
-      sim_(std::make_unique<Sim>(participant_, ids_))
+      sim_(std::make_unique<Sim>(participant_, ids_, state_period_ns))
 {
   for (const std::uint32_t id : ids_) {
     tracks_.emplace_back().id = id;

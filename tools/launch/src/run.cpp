@@ -22,6 +22,7 @@
 #include "quad/plan/known_map.hpp"
 #include "quad/dds/environment.hpp"
 #include "quad/dds/node.hpp"
+#include "quad/dds/state_input.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/report/report.hpp"
 #include "quad/world/world_file.hpp"
@@ -587,8 +588,9 @@ int LaunchRun::execute(RunExtension* extension)
   }
   dds::ParticipantOptions po = dds::optionsFromEnvironment("quad_launch");
   po.observe_all = true;
-  observer_ = std::make_unique<launch::Observer>(po, m_.vehicles.empty() ? std::vector<std::uint32_t>{}
-                                                                          : m_.vehicleIds());
+  observer_ = std::make_unique<launch::Observer>(
+      po, m_.vehicles.empty() ? std::vector<std::uint32_t>{} : m_.vehicleIds(),
+      dds::statePeriodNs(m_.mission.score_rate_hz));
   if (po.lockstep_observer) {
     observer_->holdStart(static_cast<std::size_t>(std::count_if(
         m_.modules.begin(), m_.modules.end(), [](const launch::Module& mod) { return mod.kind == "estimation"; })));

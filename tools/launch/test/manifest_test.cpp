@@ -262,6 +262,16 @@ TEST_F(ManifestTest, AMissionNeedsAWorld)
   EXPECT_NE(p[0].find(":mission: "), std::string::npos) << p[0];
 }
 
+TEST_F(ManifestTest, AMissionIsScoredOnFiftyStatesASecondUnlessItSaysOtherwise)
+{
+  const std::string head = "world: ../configs/worlds/w.yaml\nmodules: {control: {}}\n";
+  EXPECT_DOUBLE_EQ(parse(head + "mission: {tolerance: 0.5}\n").mission.score_rate_hz, 50.0);
+  EXPECT_DOUBLE_EQ(parse(head + "mission: {score_rate: 0}\n").mission.score_rate_hz, 0.0);  // every state
+  const auto p = problems(head + "mission: {score_rate: -1}\n");
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NE(p[0].find("mission.score_rate"), std::string::npos) << p[0];
+}
+
 /// A fleet manifest of two vehicles in the scratch world, with `extra` lines at the end.
 std::string fleetManifest(const std::string& extra = "")
 {

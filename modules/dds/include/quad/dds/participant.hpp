@@ -227,9 +227,10 @@ private:
 /// and must not lose the ones it falls a few behind on; KEEP_ALL is left as it is.
 eprosima::fastdds::dds::DataReaderQos withDepth(eprosima::fastdds::dds::DataReaderQos qos, std::int32_t depth);
 
-/// A reader of `topic` deepened to `depth` (withDepth of its profile's QoS), for a subscriber
-/// that takes an optional depth; nothing (the profile's) when `depth` <= 0.
-std::optional<eprosima::fastdds::dds::DataReaderQos> deeperReaderQos(Participant& participant, const TopicInfo& topic,
-                                                                     std::int32_t depth);
+/// A reader of `topic` deepened to `depth` (withDepth of its profile's QoS) and, with
+/// `period_ns` > 0, taking at most one sample per that much sim time (withMinimumSeparation),
+/// for a subscriber that takes an optional QoS; nothing (the profile's) when both are 0.
+std::optional<eprosima::fastdds::dds::DataReaderQos> readerQosWith(Participant& participant, const TopicInfo& topic,
+                                                                   std::int32_t depth, std::int64_t period_ns = 0);
 
 }  // namespace quad::dds

@@ -24,10 +24,16 @@ inline constexpr const char* kSimPeriodFilterClass = "QUAD_SIM_PERIOD";
 /// Its one expression; parameter %0 is the period [ns of sim time], a positive integer.
 inline constexpr const char* kSimPeriodFilterExpression = "first Header.stamp_ns in each %0 ns";
 
+/// [ns] The start of the window after the one `stamp_ns` falls in: [k·period, (k+1)·period).
+/// A reader that took a sample of the window has no other of it to wait for.
+std::int64_t simPeriodWindowEnd(std::int64_t stamp_ns, std::int64_t period_ns);
+
 /// Which samples a period lets through: of each vehicle, the first one stamped in each window
-/// [k·period, (k+1)·period) of sim time, in the order they are offered. A sample in the window
-/// of the last one passed goes; any other window (one later, or earlier: a clock that started
-/// again) opens anew. Thread-safe.
+/// [k·period, (k+1)·period) of sim time, in the order they are offered, and again any sample
+/// stamped as the last one passed (a writer sending one again: a lockstep plant resends its
+/// clock while it waits, and a reader that matched late takes the resend). Another sample in
+/// the window of the last one passed goes; any other window (one later, or earlier: a clock
+/// that started again) opens anew. Thread-safe.
 class SimPeriodGate {
 public:
   explicit SimPeriodGate(std::int64_t period_ns);
@@ -37,7 +43,11 @@ public:
 private:
   std::int64_t period_ns_;
   std::mutex mutex_;
-  std::map<std::uint32_t, std::int64_t> window_;  // vehicle -> the window of the last one passed
+  struct Passed {
+    std::int64_t window;
+    std::int64_t stamp_ns;
+  };
+  std::map<std::uint32_t, Passed> passed_;  // vehicle -> the last one passed
 };
 
 /// The factory every quad participant registers under kSimPeriodFilterClass. A payload without

@@ -28,6 +28,13 @@ inline constexpr const char* kStateSourceDescription =
     "(quad/sim/state) to compare against it";
 /// The topic a source is read from.
 const TopicInfo& stateTopic(StateSource s);
+/// What `state.rate` means, for the parameter tables of the modules that need fewer states than
+/// the plant's steps (StateInput's period).
+inline constexpr const char* kStateRateDescription =
+    "states read per second of sim time, at most (the first of each period): their writers send no "
+    "more; 0: every one";
+/// [ns] The sim-time period of `rate_hz` states a second: StateInput's `period_ns`; 0 for 0.
+std::int64_t statePeriodNs(double rate_hz);
 
 /// One vehicle state, whichever the source.
 struct StateSample {

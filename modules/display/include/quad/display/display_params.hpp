@@ -12,7 +12,6 @@ namespace quad::display {
 
 struct DisplayParams {
   std::filesystem::path world_file;  ///< the world whose obstacles are drawn; empty: none
-  double state_rate = 50.0;          ///< [Hz] of sim time, at most: the states read; 0: every one
   double transforms_rate = 30.0;     ///< [Hz] of sim time
   double trajectory_rate = 2.0;      ///< [Hz] of sim time
   double map_rate = 1.0;             ///< [Hz] of sim time, at most

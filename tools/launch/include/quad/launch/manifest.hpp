@@ -70,6 +70,7 @@ struct Mission {
   bool land = true;           ///< land once the goal is reached
   double timeout_s = 180.0;   ///< sim seconds before the mission counts as failed
   std::filesystem::path vehicle;  ///< its radius turns centre distances into clearances
+  double score_rate_hz = 50.0;    ///< true and estimated states scored per second of sim time; 0: every one
 };
 
 struct Manifest {

@@ -43,8 +43,11 @@ struct MissionVehicle {
 class Observer {
 public:
   /// Follows the vehicles `vehicles` (their states, estimates and clock samples; the
-  /// participant's own vehicle when empty): one, or a fleet's.
-  explicit Observer(dds::ParticipantOptions options, std::vector<std::uint32_t> vehicles = {});
+  /// participant's own vehicle when empty): one, or a fleet's. `state_period_ns` > 0: of
+  /// the true and estimated states, the first of each such period of sim time only (the
+  /// flight is scored on them), the rest never sent to it.
+  explicit Observer(dds::ParticipantOptions options, std::vector<std::uint32_t> vehicles = {},
+                    std::int64_t state_period_ns = 0);
   ~Observer();
 
   /// The topics of `topics` with no writer discovered yet.

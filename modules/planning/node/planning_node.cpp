@@ -74,9 +74,7 @@ const common::ParamTable<PlanningNodeConfig>& planningNodeTable()
     common::ParamTable<N> t;
     t.include(planningTable(), [](N& n) -> PlanningParams& { return n; })
         .choice("state.source", [](N& n) -> dds::StateSource& { return n.state_source; }, dds::stateSourceNames(),
-                dds::kStateSourceDescription)
-        .number("state.rate", [](N& n) -> double& { return n.state_rate; }, {0.0, 1000.0}, "Hz",
-                std::string(dds::kStateRateDescription) + ": a replan starts at a state read");
+                dds::kStateSourceDescription);
     return t;
   }();
   return table;

@@ -26,14 +26,13 @@
 
 namespace quad::planning {
 
-/// The node's parameters: the planner's (shared with `quad plan`), where the vehicle state
-/// comes from and how many a second are read.
+/// The node's parameters: the planner's (shared with `quad plan`, `state.rate` among them) and
+/// where the vehicle state comes from.
 struct PlanningNodeConfig : PlanningParams {
   dds::StateSource state_source = dds::StateSource::kEstimate;
-  double state_rate = 50.0;  ///< [Hz] of sim time, at most: the states read (a replan starts at one); 0: every one
 };
 
-/// configs/planning.yaml as the node reads it: planningTable(), `state.source` and `state.rate`.
+/// configs/planning.yaml as the node reads it: planningTable() and `state.source`.
 const common::ParamTable<PlanningNodeConfig>& planningNodeTable();
 common::ParamSchema planningNodeSchema();
 

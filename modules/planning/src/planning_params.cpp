@@ -36,6 +36,9 @@ const common::ParamTable<PlanningParams>& planningTable()
               "plan through unknown space")
         .number("replan_period", [](P& p) -> double& { return p.replan_period_s; }, {0.01, 60.0}, "s",
                 "sim time between replans")
+        .number("state.rate", [](P& p) -> double& { return p.state_rate; }, {0.0, 1000.0}, "Hz",
+                "the node's vehicle states read per second of sim time, at most (the first of each period: their "
+                "writers send no more), a replan starting at one; 0: every one")
         .number("republish_period", [](P& p) -> double& { return p.republish_period_s; }, {0.01, 60.0}, "s",
                 "sim time between repeats of an unchanged path (at most half the path contract's deadline)")
         .number("max_expansions", [](P& p) -> std::uint64_t& { return p.max_expansions; }, {1, 100000000}, "",

@@ -27,6 +27,15 @@ TEST(PlanningParams, WithoutAGeofenceTheLatticeCoversTheWorldLessTheInflation)
   EXPECT_TRUE(p.bounds_max.isApprox(Vector3(39.35, 9.35, 11.35)));
 }
 
+TEST(PlanningParams, TheShippedConfigIsReadWholeByThePlannerCoreAsQuadPlanReadsIt)
+{
+  // configs/planning.yaml serves the node and `quad plan` (the known-map optimum) alike: every
+  // key in it is the core's.
+  const PlanningParams p = planningParamsOf(common::loadParams(QUAD_CONFIG_DIR "/planning.yaml", planningSchema()));
+  EXPECT_DOUBLE_EQ(p.replan_period_s, 0.2);
+  EXPECT_DOUBLE_EQ(p.state_rate, 50.0);
+}
+
 TEST(PlanningParams, TheGeofenceLessTheMarginClipsTheLattice)
 {
   PlanningParams p = read("safety_margin: 0.3\ngeofence: {min: [0, -3, -1], max: [50, 3, 6]}\n");

@@ -29,7 +29,7 @@ struct PlanningParams {
   PlannerConfig planner;                ///< vehicle_radius: the vehicle's plus the safety margin
   KnownSpaceCheck known_space;          ///< horizon 0: unknown space is flown like free space
   double replan_period_s = 0.2;         ///< [s] of sim time between replans
-  double state_rate = 50.0;             ///< [Hz] of sim time, at most: the states read (the node's); 0: every one
+  double state_rate = 0.0;              ///< [Hz] of sim time, at most: the states read (the node's); 0: every one
   double republish_period_s = 0.5;      ///< [s] of sim time between repeats of an unchanged path
   std::uint64_t max_expansions = 200000;
   std::uint64_t map_frames_behind = 5;  ///< depth frames the map may lag the camera before paths stop

@@ -23,7 +23,6 @@ constexpr std::size_t kEntitiesPerScene = 32;  // foxglove/SceneUpdate.idl
 /// [ns] of wall time between drains of the readers: a viewer's refresh rate (50 Hz).
 constexpr std::int64_t kTickPeriodNs = 20'000'000;
 
-/// The sim time between two states read (`state.rate`); 0: every state.
 foxglove::Time toTime(std::int64_t t_ns)
 {
   const std::int64_t t = std::max<std::int64_t>(t_ns, 0);

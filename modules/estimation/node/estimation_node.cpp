@@ -21,7 +21,12 @@ EstimationNode::EstimationNode(EstimatorParams params, dds::ParticipantOptions o
       mag_(participant(), dds::topics::kSimMag, waker()),
       state_(participant(), dds::topics::kEstimatedState)
 {
-  followSimClock();  // in lockstep the wall clock's deadlines say nothing
+  // The clock says whether the run is a lockstep one, where the wall clock's deadlines say
+  // nothing. A run known to be one from the start (QUAD_LOCKSTEP) stays one: its clock sample
+  // of every round would wake this process for nothing (each IMU sample paces it already).
+  if (!lockstep()) {
+    followSimClock();
+  }
   setWakeOnReceipt(true);  // each IMU sample is filtered on the thread that received it
   spdlog::info("estimation: gates at probability {}, health bounds {} m and {} rad", params.gate_probability,
                params.max_position_std, params.max_attitude_std);

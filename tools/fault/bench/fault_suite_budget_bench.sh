@@ -19,14 +19,10 @@ if [[ ${1:-} == -d ]]; then
   domain=${2:?-d needs a domain id}
   shift 2
 fi
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)
-quad="$build/tools/quad/quad"
-[[ -x $quad ]] || { echo "fault_suite_budget_bench.sh: no $quad: build first" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/../../bench_common.sh"
+benchSetup fault_suite_budget_bench.sh "$build" quad_fault_budget
 scenarios=("$@")
 ((${#scenarios[@]})) || scenarios=("$root"/tests/scenarios/*.yaml)
-out=$(mktemp -d /tmp/quad_fault_budget_XXXXXX)
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
-echo "runs in $out"
 modeOf() {  # scenario: its mode, or its manifest's
   local mode manifest
   mode=$(sed -n 's/^mode:[[:space:]]*\([a-z]*\).*/\1/p' "$1")

@@ -39,12 +39,8 @@ while [[ ${1:-} == -* ]]; do
   esac
   shift 2
 done
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)
-quad="$build/tools/quad/quad"
-[[ -x $quad ]] || { echo "lockstep_budget_bench.sh: no $quad: build first" >&2; exit 1; }
-out=$(mktemp -d /tmp/quad_lockstep_budget_XXXXXX)
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
-echo "runs in $out"
+source "$(dirname "${BASH_SOURCE[0]}")/../../bench_common.sh"
+benchSetup lockstep_budget_bench.sh "$build" quad_lockstep_budget
 side="${budget}_${path_budget}"
 for ((i = 1; i <= pairs; ++i)); do
   for b in 0_0 "$side"; do

@@ -36,12 +36,8 @@ while [[ ${1:-} == -* ]]; do
   esac
   shift 2
 done
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)
-quad="$build/tools/quad/quad"
-[[ -x $quad ]] || { echo "loop_ceiling_bench.sh: no $quad: build first" >&2; exit 1; }
-out=$(mktemp -d /tmp/quad_loop_ceiling_XXXXXX)
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
-echo "runs in $out"
+source "$(dirname "${BASH_SOURCE[0]}")/../../bench_common.sh"
+benchSetup loop_ceiling_bench.sh "$build" quad_loop_ceiling
 
 # The hovering stacks: the demo's world, configs, vehicle and mission, without the mapper and
 # the planner (and the plant's lockstep waits for them), stopped after SIM_S of sim time.

@@ -2,10 +2,21 @@
 #include "quad/geometry/polyline.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 
 namespace quad::geometry {
+
+namespace {
+/// The parameter u in [0, 1] of the point of segment a → b nearest to p.
+double nearestOnSegment(const Vector3& a, const Vector3& b, const Vector3& p)
+{
+  const Vector3 segment = b - a;
+  const double length2 = segment.squaredNorm();
+  return length2 > 0.0 ? std::clamp((p - a).dot(segment) / length2, 0.0, 1.0) : 0.0;
+}
+}  // namespace
 
 double polylineLength(const std::vector<Vector3>& points)
 {
@@ -63,10 +74,9 @@ double nearestArcLength(const std::vector<Vector3>& points, const Vector3& p)
   double walked = 0.0;
   for (std::size_t i = 1; i < points.size(); ++i) {
     const Vector3 segment = points[i] - points[i - 1];
-    const double length2 = segment.squaredNorm();
-    const double u = length2 > 0.0 ? std::clamp((p - points[i - 1]).dot(segment) / length2, 0.0, 1.0) : 0.0;
+    const double u = nearestOnSegment(points[i - 1], points[i], p);
     const double d = (points[i - 1] + u * segment - p).norm();
-    const double length = std::sqrt(length2);
+    const double length = segment.norm();
     if (d < best) {
       best = d;
       best_s = walked + u * length;
@@ -74,6 +84,19 @@ double nearestArcLength(const std::vector<Vector3>& points, const Vector3& p)
     walked += length;
   }
   return best_s;
+}
+
+double distanceToPolyline(const std::vector<Vector3>& points, const Vector3& p)
+{
+  if (points.size() == 1) {
+    return (points.front() - p).norm();
+  }
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    const double u = nearestOnSegment(points[i - 1], points[i], p);
+    best = std::min(best, (points[i - 1] + u * (points[i] - points[i - 1]) - p).norm());
+  }
+  return best;
 }
 
 }  // namespace quad::geometry

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace quad::geometry {
 namespace {
 
@@ -41,6 +43,15 @@ TEST(Polyline, NearestArcLengthProjectsOntoTheClosestSegment)
   EXPECT_NEAR(nearestArcLength(kL, Vector3(1, 2, 0)), 1.0, 1e-12);
   EXPECT_NEAR(nearestArcLength(kL, Vector3(5, 0, 3)), 6.0, 1e-12);
   EXPECT_NEAR(nearestArcLength(kL, Vector3(-4, 0, 0)), 0.0, 1e-12);
+}
+
+TEST(Polyline, DistanceToPolylineIsToTheNearestSegmentOrEnd)
+{
+  EXPECT_NEAR(distanceToPolyline(kL, Vector3(1, 2, 0)), 2.0, 1e-12);   // beside the first segment
+  EXPECT_NEAR(distanceToPolyline(kL, Vector3(-3, -4, 0)), 5.0, 1e-12);  // past its first end
+  EXPECT_NEAR(distanceToPolyline(kL, Vector3(4, 0, 3)), 1.0, 1e-12);   // beside the second
+  EXPECT_NEAR(distanceToPolyline({Vector3(1, 1, 1)}, Vector3(1, 1, 3)), 2.0, 1e-12);
+  EXPECT_TRUE(std::isinf(distanceToPolyline({}, Vector3::Zero())));
 }
 
 }  // namespace

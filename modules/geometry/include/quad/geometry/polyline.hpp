@@ -25,4 +25,8 @@ std::vector<Vector3> truncated(const std::vector<Vector3>& points, double s);
 /// fewer than two points.
 double nearestArcLength(const std::vector<Vector3>& points, const Vector3& p);
 
+/// The distance [m] from p to the nearest point of the polyline (to its one point when it has
+/// one); infinite for an empty polyline.
+double distanceToPolyline(const std::vector<Vector3>& points, const Vector3& p);
+
 }  // namespace quad::geometry

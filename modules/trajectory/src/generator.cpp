@@ -4,6 +4,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
+#include <utility>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -27,6 +29,10 @@ constexpr double kProfileLateral = 0.7;
 constexpr double kHardestBraking = 0.85;
 /// Samples may come this close to a limit: between two, a smooth piece rises a little more.
 constexpr double kSampleMargin = 0.97;
+/// How far (as a factor of the piece's duration, as Excess counts) the turn from a moving
+/// start's motion onto the path may go past the limits: 5 % of the speed, 21 % of the
+/// acceleration, 33 % of the jerk.
+constexpr double kTransitionTolerance = 1.1;
 /// Solves without getting nearer to the limits before a path is given up.
 constexpr int kPatience = 6;
 /// [s] a moving start is not held to the curve before this: the spline goes from its state to
@@ -38,6 +44,20 @@ constexpr double kPieceDuration = 0.2;
 constexpr std::size_t kMaxPieces = 200;
 /// [m/s] the slowest the time law moves (a cusp's speed limit is 0).
 constexpr double kCreep = 0.05;
+/// A stop's tries, hardest first: the share of the acceleration limit it brakes at, and how many
+/// times the jerk limit's time its braking takes to ramp in.
+constexpr std::array<std::pair<double, double>, 8> kStopSchedule{
+    {{kHardestBraking, 1.05}, {kHardestBraking, 1.6}, {0.7, 1.05}, {0.7, 1.6}, {0.55, 1.6}, {0.55, 2.5}, {0.4, 2.5},
+     {0.3, 4.0}}};
+/// [m] a path shorter than this, from rest, is one straight hop (hop()), too short for a time
+/// law to resolve; [s] the shortest hop.
+constexpr double kShortHop = 0.3;
+constexpr double kMinHopDuration = 0.2;
+/// A moving start faster than this [m/s] whose velocity is more than kLeadInAngle [rad] off the
+/// path's way goes on along it for kLeadInTime [s] before it joins the path (leadIn()).
+constexpr double kLeadInSpeed = 0.3;
+constexpr double kLeadInAngle = 0.05;
+constexpr double kLeadInTime = 0.3;
 /// [s] between the samples of the curve a stop brakes along (its corridor).
 constexpr double kStopSampling = 0.02;
 
@@ -70,6 +90,44 @@ Lead leadOf(double speed, double accel, double duration, double length)
   lead.speed = std::max(0.0, speed + accel * lead.duration);
   lead.arc = std::max(0.0, speed * lead.duration + 0.5 * accel * lead.duration * lead.duration);
   return lead;
+}
+
+/// The points of the curve: `points` (the start and the path), but a moving start whose motion
+/// points off the path's way first goes on along its velocity for kLeadInTime, and joins the
+/// path kLeadInTime at its speed past where the path passes nearest that point (a path vertex
+/// nearer than half that is the join): a curve along the path from the start would have to
+/// turn the velocity at once. The corridor then holds the lead-in only where the caller's free
+/// space (the trajectory flown, ahead) does.
+std::vector<Vector3> leadIn(const State& start, const std::vector<Vector3>& points)
+{
+  const double speed = start.v.norm();
+  if (speed < kLeadInSpeed || points.size() < 2) {
+    return points;
+  }
+  const Vector3 heading = start.v / speed;
+  const double step = kLeadInTime * speed;
+  const Vector3 lead = start.p + heading * step;
+  const double join = geometry::nearestArcLength(points, lead) + step;
+  if (join >= geometry::polylineLength(points)) {
+    return points;  // a path too short to join ahead: flown as it is (or found infeasible)
+  }
+  const Vector3 way = geometry::pointAlong(points, join + 0.1 * step) - geometry::pointAlong(points, join);
+  if (way.norm() > 1e-9 && way.normalized().dot(heading) > std::cos(kLeadInAngle)) {
+    return points;  // the path goes the velocity's way already
+  }
+  std::vector<Vector3> out{start.p, lead};
+  double walked = 0.0;
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    walked += (points[i] - points[i - 1]).norm();
+    if (walked <= join) {
+      continue;
+    }
+    if (out.size() == 2 && walked - join > 0.5 * step) {
+      out.push_back(geometry::pointAlong(points, join));
+    }
+    out.push_back(points[i]);
+  }
+  return out;
 }
 
 /// The speeds: each at most its cap, changing by at most its acceleration, from the lead's
@@ -259,12 +317,18 @@ Excess overLimits(const State& s, const Limits& limits, const Limits& first)
   return e;
 }
 
-/// [m] how far p is from every polyline of `free` (the nearest counts).
-double deviation(const Vector3& p, const std::vector<std::vector<Vector3>>& free)
+/// [m] how far p is from every polyline of `free` (the nearest counts), or any distance up to
+/// `enough` when it is at most that.
+double deviation(const Vector3& p, const std::vector<std::vector<Vector3>>& free, double enough)
 {
+  // Within `enough` of one polyline it is within the corridor: the others need not be read
+  // (the path, first, holds most samples; the trajectory flown is long).
   double best = std::numeric_limits<double>::infinity();
   for (const auto& polyline : free) {
     best = std::min(best, geometry::distanceToPolyline(polyline, p));
+    if (best <= enough) {
+      break;
+    }
   }
   return best;
 }
@@ -278,7 +342,7 @@ struct Judged {
 };
 
 Judged judge(const std::vector<Piece>& pieces, const Limits& limits, const Limits& first,
-             const std::vector<std::vector<Vector3>>& free, int samples)
+             const std::vector<std::vector<Vector3>>& free, double corridor, int samples)
 {
   Judged j;
   for (std::size_t i = 0; i < pieces.size(); ++i) {
@@ -288,7 +352,7 @@ Judged judge(const std::vector<Piece>& pieces, const Limits& limits, const Limit
     for (int k = 1; k <= samples; ++k) {
       const State s = piece.at(piece.duration * k / samples);
       excess.include(overLimits(s, limits, i == 0 ? first : limits));
-      off = std::max(off, deviation(s.p, free));
+      off = std::max(off, deviation(s.p, free, corridor));
     }
     j.excess.push_back(excess);
     j.deviation.push_back(off);
@@ -321,6 +385,29 @@ std::string describe(int solves, const Excess& worst, double worst_deviation, do
                      "(acceleration, jerk, tilt, thrust) in a curve or {:.2f} times less along its way, or strays "
                      "{:.2f} m from the path (corridor {:.2f} m)",
                      solves, worst.speed, worst.lateral, worst.longitudinal, worst_deviation, corridor);
+}
+
+/// From rest at `from` to rest at `to` in one piece: the septic of min_snap.hpp's closed form,
+/// whose speed, acceleration and jerk peak at 2.19, 7.51 and 52.5 times the distance over the
+/// duration's first, second and third power; the duration is the shortest that keeps each
+/// limit (the thrust and tilt of a hop this short are the weight's).
+GenerateResult hop(double t0, const Vector3& from, const Vector3& to, const Limits& l)
+{
+  const double d = (to - from).norm();
+  const double duration = std::max({kMinHopDuration, 1.05 * 35.0 / 16.0 * d / l.max_speed,
+                                    1.05 * std::sqrt(7.51 * d / l.max_acceleration),
+                                    1.05 * std::cbrt(52.5 * d / l.max_jerk)});
+  GenerateResult r;
+  r.iterations = 1;
+  const auto pieces = minimumSnap(State{from}, {}, State{to}, {duration});
+  if (!pieces) {
+    r.status = GenerateStatus::kInfeasible;
+    r.why = "the hop's system is singular";
+    return r;
+  }
+  r.status = GenerateStatus::kOk;
+  r.trajectory = Trajectory(t0, *pieces);
+  return r;
 }
 
 bool finite(const State& s) { return s.p.allFinite() && s.v.allFinite() && s.a.allFinite() && s.j.allFinite(); }
@@ -402,7 +489,7 @@ GenerateResult Generator::generate(double t0, const State& start, const std::vec
   const double start_speed = start.v.norm();
   const double start_accel = start_speed > 1e-6 ? start.a.dot(start.v) / start_speed : 0.0;
   const Lead lead = leadOf(start_speed, start_accel, window, geometry::polylineLength(points));
-  const Curve curve(points, config_.corner_deviation, kCurveSpacing);
+  const Curve curve(leadIn(start, points), config_.corner_deviation, kCurveSpacing);
   if (curve.length() < 1e-3 && start.v.norm() < 1e-6 && start.a.norm() < 1e-6) {
     result.status = GenerateStatus::kOk;
     result.trajectory = restingAt(curve.at(curve.length()).p, t0);  // at rest where it is to be
@@ -410,6 +497,16 @@ GenerateResult Generator::generate(double t0, const State& start, const std::vec
   }
   std::vector<std::vector<Vector3>> free{points};
   free.insert(free.end(), also_free.begin(), also_free.end());
+  const bool at_rest = start.v.norm() < 1e-3 && start.a.norm() < 1e-3 && start.j.norm() < 1e-3;
+  if (at_rest && curve.length() < kShortHop) {
+    const std::vector<Vector3> chord{start.p, curve.at(curve.length()).p};
+    const bool straight = std::all_of(points.begin(), points.end(), [&](const Vector3& p) {
+      return geometry::distanceToPolyline(chord, p) <= config_.corridor;
+    });
+    if (straight) {
+      return hop(t0, chord.front(), chord.back(), config_.limits);
+    }
+  }
   Law law;
   for (const Curve::Sample& c : curve.samples()) {
     law.cap.push_back(c.curvature > 1e-9 ? std::min(limits.max_speed,
@@ -437,7 +534,7 @@ GenerateResult Generator::generate(double t0, const State& start, const std::vec
     // Each piece sampled; where one breaks a limit or strays, the law is lowered over the part of
     // the curve it covers (and a window's worth around: the smoothing spreads the law), and the
     // spline solved again.
-    const Judged judged = judge(*pieces, limits, first, free, samples);
+    const Judged judged = judge(*pieces, limits, first, free, config_.corridor, samples);
     bool within = true;
     bool lowered = false;
     const Law before = law;
@@ -453,8 +550,16 @@ GenerateResult Generator::generate(double t0, const State& start, const std::vec
       if (slower <= 1.0 && excess.longitudinal <= 1.0) {
         continue;
       }
+      // The turn from the start's motion onto the path: a moving start is left free there, and
+      // may ask a little more than the limits for that transient (the limits are a mission's
+      // choice, shares of what the vehicle can: follower.thrust_share, tilt_share).
+      const bool transition = i == 0 || knots.arc[i] < lead.arc;
+      if (transition && judged.deviation[i] <= config_.corridor &&
+          std::max({excess.speed, excess.lateral, excess.longitudinal}) <= kTransitionTolerance) {
+        continue;
+      }
       within = false;
-      if (knots.arc[i] < lead.arc) {
+      if (transition) {
         continue;  // the start's own motion: nothing to lower there (see below)
       }
       lowered = true;
@@ -516,14 +621,18 @@ GenerateResult Generator::stop(const Trajectory& current, double t) const
   free.front().push_back(current.at(current.endTime()).p);
   const Limits& limits = config_.limits;
   const Limits first = firstLimits(limits, s);
-  const double window = kProfileAcceleration * limits.max_acceleration / (0.5 * limits.max_jerk);
   // Along the same curve, slower: flown at σ(τ) of its own time, σ' from 1 down to 0. σ' holds
   // at 1 for a window, then falls at the rate that brakes the start's speed at a share of the
   // acceleration limit, averaged twice over the window (as the generator's time law, so that
-  // the braking ramps in and out); the spline then passes the points of `current` at σ of
-  // equal times. The hardest share first; gentler ones while a limit is broken.
-  for (const double share : {kHardestBraking, 0.7, 0.55, 0.4}) {
+  // the braking ramps in and out, here at about the jerk limit: a stop is in a hurry); the
+  // spline then passes the points of `current` at σ of equal times. The hardest share first;
+  // gentler ones while a limit is broken.
+  for (const auto& [share, ease] : kStopSchedule) {
     ++result.iterations;
+    // The braking's ramp turns the acceleration from the start's, along the motion, to the
+    // braking's: at the jerk limit it takes this long (times `ease`).
+    const double turn = share * limits.max_acceleration + std::max(0.0, s.a.dot(s.v) / speed);
+    const double window = ease * turn / limits.max_jerk;
     const double rate = share * limits.max_acceleration / std::max(speed, 1e-3);  // [1/s]
     const double dt = 0.002;
     const int half = std::max(1, static_cast<int>(std::lround(0.5 * window / dt)));
@@ -563,7 +672,7 @@ GenerateResult Generator::stop(const Trajectory& current, double t) const
     if (!spline) {
       continue;
     }
-    const Judged judged = judge(*spline, limits, first, free, config_.samples_per_piece);
+    const Judged judged = judge(*spline, limits, first, free, config_.corridor, config_.samples_per_piece);
     if (judged.worst.within() && judged.worst_deviation <= config_.corridor) {
       result.status = GenerateStatus::kOk;
       result.trajectory = Trajectory(t, *spline);

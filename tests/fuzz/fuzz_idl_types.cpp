@@ -64,10 +64,10 @@ struct Types {
 using quad::msg::ActuatorCommand, quad::msg::BaroAltitude, quad::msg::ControlReference, quad::msg::ControlStatus, quad::msg::EstimatedState, quad::msg::FaultCommand,
     quad::msg::Goal, quad::msg::Heartbeat, quad::msg::Imu, quad::msg::LockstepReport, quad::msg::MagneticField, quad::msg::MapSnapshot,
     quad::msg::MapStats, quad::msg::MapUpdate, quad::msg::Path, quad::msg::PointCloud, quad::msg::PositionFix, quad::msg::SimClock,
-    quad::msg::SimEvent, quad::msg::VehicleCommand, quad::msg::VehicleState;
+    quad::msg::SimEvent, quad::msg::Trajectory, quad::msg::VehicleCommand, quad::msg::VehicleState;
 using All = Types<ActuatorCommand, BaroAltitude, ControlReference, ControlStatus, EstimatedState, FaultCommand, Goal, Heartbeat, Imu,
                   LockstepReport, MagneticField, MapSnapshot, MapStats, MapUpdate, Path, PointCloud, PositionFix, SimClock,
-                  SimEvent, VehicleCommand, VehicleState>;
+                  SimEvent, Trajectory, VehicleCommand, VehicleState>;
 
 }  // namespace
 

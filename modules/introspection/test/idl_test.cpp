@@ -52,7 +52,7 @@ TEST(Idl, EveryMessageStartsWithTheKeyedHeader)
     }
     const bool is_part = name == "quad::msg::Header" || name == "quad::msg::Vector3" ||
                          name == "quad::msg::Quaternion" || name == "quad::msg::Point3f" ||
-                         name == "quad::msg::VoxelChange";
+                         name == "quad::msg::VoxelChange" || name == "quad::msg::TrajectoryPiece";
     if (is_part) {
       continue;
     }

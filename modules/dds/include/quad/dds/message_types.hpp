@@ -39,6 +39,7 @@
 #include <quad/msg/PositionFixPubSubTypes.h>
 #include <quad/msg/SimClockPubSubTypes.h>
 #include <quad/msg/SimEventPubSubTypes.h>
+#include <quad/msg/TrajectoryPubSubTypes.h>
 #include <quad/msg/VehicleCommandPubSubTypes.h>
 #include <quad/msg/VehicleStatePubSubTypes.h>
 
@@ -173,6 +174,7 @@ QUAD_DDS_MESSAGE(PositionFix);
 QUAD_DDS_MESSAGE(PointCloud);
 QUAD_DDS_MESSAGE(SimClock);
 QUAD_DDS_MESSAGE(SimEvent);
+QUAD_DDS_MESSAGE(Trajectory);
 QUAD_DDS_MESSAGE(VehicleCommand);
 QUAD_DDS_MESSAGE(VehicleState);
 

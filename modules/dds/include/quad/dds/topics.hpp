@@ -15,7 +15,8 @@ namespace quad::dds::topics {
 
 using msg::ActuatorCommand, msg::BaroAltitude, msg::BatteryState, msg::CommandAck, msg::ControlReference, msg::ControlStatus, msg::EstimatedState, msg::FaultCommand, msg::Goal, msg::GoalAck, msg::Heartbeat,
     msg::Imu, msg::LockstepReport, msg::MagneticField, msg::MapSnapshot, msg::MapStats, msg::MapUpdate, msg::Path,
-    msg::PointCloud, msg::PositionFix, msg::SimClock, msg::SimEvent, msg::VehicleCommand, msg::VehicleState;
+    msg::PointCloud, msg::PositionFix, msg::SimClock, msg::SimEvent, msg::Trajectory, msg::VehicleCommand,
+    msg::VehicleState;
 // The display topics carry Foxglove's schemas (foxglove::*), for viewers: docs/recording.md.
 using FrameTransforms = foxglove::FrameTransforms;
 using DisplayLog = foxglove::Log;
@@ -87,6 +88,9 @@ inline constexpr auto kCommandAck = makeTopic<CommandAck>(
 inline constexpr auto kControlReference = makeTopic<ControlReference>(
     "quad/control/reference", "sensor", 250.0, Owner::kControl,
     "The reference the controller tracks, each tick");
+inline constexpr auto kTrajectory = makeTopic<Trajectory>(
+    "quad/control/trajectory", "latched", 0.0, Owner::kControl,
+    "The trajectory the controller flies, whole each time it takes one (a replan, a stop, a hold)");
 inline constexpr auto kHeartbeat = makeTopic<Heartbeat>(
     "quad/system/heartbeat", "heartbeat", 2.0, Owner::kEveryModule,
     "Every module's sign of life");
@@ -116,6 +120,9 @@ inline constexpr auto kDisplayTrueTrajectory = makeTopic<PosesInFrame>(
 inline constexpr auto kDisplayPath = makeTopic<PosesInFrame>(
     "quad/display/path", "display_latched", 0.0, Owner::kDisplay,
     "The planner's current path, in the world frame, per replan");
+inline constexpr auto kDisplayPlan = makeTopic<PosesInFrame>(
+    "quad/display/plan", "display_latched", 0.0, Owner::kDisplay,
+    "The trajectory the controller flies, poses a tenth of a second apart, in the world frame, whole at each new one");
 inline constexpr auto kDisplayMap = makeTopic<DisplayCloud>(
     "quad/display/map", "display_latched", 1.0, Owner::kDisplay,
     "The map's occupied voxels as points at their centres, in the world frame, whole when they changed");
@@ -173,10 +180,10 @@ inline constexpr std::array kAll{
     kSimClock.info, kSimState.info, kSimImu.info, kSimPosition.info, kSimBaro.info, kSimMag.info,
     kEstimatedState.info, kSimBattery.info, kSimDepth.info, kSimEvents.info, kLockstep.info, kMapUpdate.info,
     kMapSnapshot.info, kMapStats.info, kGoal.info, kGoalAck.info, kPath.info, kActuators.info,
-    kControlStatus.info, kCommandAck.info, kControlReference.info, kHeartbeat.info, kOperatorHeartbeat.info,
-    kVehicleCommand.info, kFault.info, kFaultEvents.info, kDisplayTransforms.info, kDisplayTrajectory.info,
-    kDisplayTrueTrajectory.info, kDisplayPath.info, kDisplayMap.info, kDisplayScene.info, kDisplayDepth.info,
-    kDisplayLog.info};
+    kControlStatus.info, kCommandAck.info, kControlReference.info, kTrajectory.info, kHeartbeat.info,
+    kOperatorHeartbeat.info, kVehicleCommand.info, kFault.info, kFaultEvents.info, kDisplayTransforms.info, kDisplayTrajectory.info,
+    kDisplayTrueTrajectory.info, kDisplayPath.info, kDisplayPlan.info, kDisplayMap.info, kDisplayScene.info,
+    kDisplayDepth.info, kDisplayLog.info};
 
 /// Topics whose samples come on wall-clock time (liveliness, what the display draws at its
 /// tick), in the order participants finish (lockstep's reports) or also when a reader matches
@@ -184,8 +191,8 @@ inline constexpr std::array kAll{
 /// lockstep runs of one seed need not agree on them.
 inline constexpr std::array kWallPaced{
     kLockstep.info.name, kMapSnapshot.info.name, kHeartbeat.info.name, kOperatorHeartbeat.info.name, kDisplayTransforms.info.name, kDisplayTrajectory.info.name,
-    kDisplayTrueTrajectory.info.name, kDisplayPath.info.name, kDisplayMap.info.name, kDisplayScene.info.name,
-    kDisplayDepth.info.name, kDisplayLog.info.name};
+    kDisplayTrueTrajectory.info.name, kDisplayPath.info.name, kDisplayPlan.info.name, kDisplayMap.info.name,
+    kDisplayScene.info.name, kDisplayDepth.info.name, kDisplayLog.info.name};
 
 /// Whether `topic` is paced by sim time (not in kWallPaced): what two lockstep runs agree on.
 constexpr bool isSimPaced(std::string_view topic)

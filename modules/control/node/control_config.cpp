@@ -49,20 +49,23 @@ const common::ParamTable<ControlNodeConfig>& controlTable()
         .number("limits.max_acceleration", [](C& c) -> double& { return c.flight.gains.max_acceleration; },
                 {0.1, 50.0}, "m/s^2", "horizontal feedback acceleration")
         .number("follower.max_speed", [](C& c) -> double& { return c.flight.follower.max_speed; }, {0.05, 30.0},
-                "m/s", "along the path")
+                "m/s", "of the trajectory")
         .number("follower.max_acceleration", [](C& c) -> double& { return c.flight.follower.max_acceleration; },
-                {0.05, 30.0}, "m/s^2", "along the path")
+                {0.05, 30.0}, "m/s^2", "of the trajectory (its feed-forward)")
         .number("follower.max_jerk", [](C& c) -> double& { return c.flight.follower.max_jerk; }, {0.1, 500.0},
-                "m/s^3", "along the path")
-        .number("follower.max_lateral_acceleration",
-                [](C& c) -> double& { return c.flight.follower.max_lateral_acceleration; }, {0.05, 30.0}, "m/s^2",
-                "in curves")
+                "m/s^3", "of the trajectory")
         .number("follower.max_yaw_rate", [](C& c) -> double& { return c.flight.follower.max_yaw_rate; },
                 {0.01, 10.0}, "rad/s", "heading change")
         .number("follower.corner_deviation", [](C& c) -> double& { return c.flight.follower.corner_deviation; },
-                {0.0, 5.0}, "m", "rounded corners stay this close to the path")
+                {0.01, 5.0}, "m", "rounded corners pass at most this far from the path's corners")
+        .number("follower.corridor", [](C& c) -> double& { return c.flight.follower.corridor; }, {0.01, 5.0}, "m",
+                "the trajectory keeps this close to the path (or to the trajectory it replaces)")
         .number("follower.max_braking", [](C& c) -> double& { return c.flight.follower.max_braking; }, {0.05, 30.0},
-                "m/s^2", "hardest braking, only when a path joined while moving turns back after its lead-in")
+                "m/s^2", "the hardest braking when the controller must stop (a hold while moving)")
+        .number("follower.thrust_share", [](C& c) -> double& { return c.flight.follower.thrust_share; }, {0.1, 1.0},
+                "", "of the vehicle's top thrust a trajectory may ask for (the rest is the feedback's)")
+        .number("follower.tilt_share", [](C& c) -> double& { return c.flight.follower.tilt_share; }, {0.1, 1.0}, "",
+                "of limits.max_tilt a trajectory may ask for (the rest is the feedback's)")
         .number("takeoff_altitude", [](C& c) -> double& { return c.flight.takeoff_altitude; }, {0.2, 100.0}, "m",
                 "above the take-off point")
         .number("land_speed", [](C& c) -> double& { return c.flight.land_speed; }, {0.05, 5.0}, "m/s",

@@ -5,6 +5,7 @@
 
 #include "conversions.hpp"
 #include "quad/dds/geometry_messages.hpp"
+#include "quad/dds/trajectory_messages.hpp"
 #include "quad/common/time.hpp"
 
 namespace quad::control {
@@ -41,6 +42,7 @@ ControlNode::ControlNode(ControlNodeConfig config, dds::ParticipantOptions optio
       actuators_(participant(), dds::topics::kActuators),
       status_(participant(), dds::topics::kControlStatus),
       reference_(participant(), dds::topics::kControlReference),
+      trajectory_(participant(), dds::topics::kTrajectory),
       acks_(participant(), dds::topics::kCommandAck)
 {
   setTickPeriod(kTickNs);
@@ -227,6 +229,22 @@ void ControlNode::control(double t, std::int64_t stamp_ns)
   ref.header().stamp_ns(stamp_ns);
   reference_.write(ref);
   counters().samples_out += 2;
+  const TrajectoryFollower& follower = fc_.follower();
+  if (follower.refused() > refused_ && fc_.pathVersion() != refused_version_) {
+    // A path the follower cannot fly from where the reference is (it flies on what it has, a
+    // trajectory that ends at rest, and tries again): once a path, not at every try.
+    refused_version_ = fc_.pathVersion();
+    spdlog::info("control: path {} not taken yet at {:.3f} s: {}", fc_.pathVersion().value_or(0), t,
+                 follower.lastRefusal());
+  }
+  refused_ = follower.refused();
+  if (out.trajectories != last_.trajectories) {
+    // What is flown from now on, whole: a replan taken, a stop, a hold.
+    msg::Trajectory m = dds::toMessage(follower.trajectory(), out.trajectories, follower.version().value_or(0));
+    m.header().stamp_ns(stamp_ns);
+    trajectory_.write(m);
+    counters().samples_out++;
+  }
   if (out.transition) {
     spdlog::info("control: {} -> {}: {}", toString(out.transition->from), toString(out.transition->to),
                  out.transition->why);

@@ -57,6 +57,7 @@ private:
   dds::Publisher<msg::ActuatorCommand> actuators_;
   dds::Publisher<msg::ControlStatus> status_;
   dds::Publisher<msg::ControlReference> reference_;
+  dds::Publisher<msg::Trajectory> trajectory_;
   dds::Publisher<msg::CommandAck> acks_;
 
   /// Operator commands taken and not yet applied: one a tick, each answered.
@@ -94,6 +95,8 @@ private:
   double path_t_ = -1.0;                   // sim time it arrived at [s]
   double next_status_t_ = 0.0;
   FlightOutput last_;
+  std::uint64_t refused_ = 0;                        // paths the follower refused so far
+  std::optional<std::uint32_t> refused_version_;     // the last path version a refusal was said of
   int autostart_stage_ = 0;
   std::string autostart_refused_;     // why it was refused the last time, as logged
 };

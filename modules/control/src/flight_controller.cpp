@@ -12,6 +12,8 @@ namespace quad::control {
 
 namespace {
 constexpr double kBreadcrumbSpacing = 0.5;  // [m] between the flown path's points kept for a return
+constexpr double kPathRetryPeriod = 0.1;    // [s] between the first tries of a path the follower refused ...
+constexpr double kPathRetryLongest = 0.8;   // [s] ... growing up to this while it keeps refusing it
 
 double yawOf(const Quaternion& q)
 {
@@ -40,7 +42,7 @@ FlightController::FlightController(const vehicle::VehicleParams& vehicle, Flight
     : vehicle_(vehicle),
       config_(config),
       modes_(config.modes),
-      follower_(config.follower),
+      follower_(config.follower, generatorConfig(config.follower, vehicle, config.gains.max_tilt)),
       controller_(vehicle.mass, vehicle.inertia, config.gains),
       mixer_(vehicle),
       land_detector_(config.land_detector),
@@ -102,6 +104,8 @@ bool FlightController::onPath(const std::vector<Vector3>& waypoints, std::uint32
     path_version_ = version;
     path_known_free_ = known_free_m;
     path_changed_ = true;
+    path_retry_t_ = -1e300;  // a new path: tried at once
+    path_retry_period_ = kPathRetryPeriod / 2.0;
   }
   return true;
 }
@@ -233,45 +237,50 @@ void FlightController::enter(Mode from, Mode mode, double t, const std::optional
   switch (mode) {
     case Mode::kDisarmed:
     case Mode::kIdle:
-      follower_.hold(p, yaw);
+      follower_.hold(p, yaw, t);
       controller_.reset();
       break;
     case Mode::kTakeoff:
-      follower_.hold(p, yaw);
+      follower_.hold(p, yaw, t);
       takeoff_altitude_ = pending_altitude_ > 0.0 ? pending_altitude_ : config_.takeoff_altitude;
       takeoff_target_ = p + Vector3(0.0, 0.0, takeoff_altitude_);
-      follower_.setPath({p, takeoff_target_}, 0);
+      follower_.setPath({p, takeoff_target_}, 0, t);
       flown_ = {takeoff_target_};
       flown_length_ = 0.0;
       break;
     case Mode::kReturn:
       // Back along the flown path: the one way known to be clear (the world stands still).
+      // Taken from the reference; turning back from full speed is not within the limits, so
+      // the vehicle brakes first and update() tries again while the follower refuses it.
       return_path_ = {p};
       return_path_.insert(return_path_.end(), flown_.rbegin(), flown_.rend());
-      follower_.setPath(return_path_, 0);
+      return_pending_ = !follower_.setPath(return_path_, 0, t);
+      if (return_pending_) {
+        follower_.brake(t);
+      }
+      path_retry_t_ = t + kPathRetryPeriod;
       break;
     case Mode::kHover: {
       // Hold where the reference is, unless the vehicle is far from it (after a failsafe), or
       // the controller has just taken over in the air: its reference is nobody's yet.
       if (from == Mode::kDisarmed) {
-        follower_.hold(p, yaw);
+        follower_.hold(p, yaw, t);
         break;
       }
-      // Holding for the state to come back (on dead reckoning): where the vehicle stops,
-      // braking as hard as the follower may, not a point passed that it would fly back to
-      // (still sooner: a restarted estimator aligns once the vehicle is still).
-      if (modes_.reason() == Reason::kStateStale && state) {
-        const Vector3& v = state->v_W;
-        follower_.hold(p + v * v.norm() / (2.0 * follower_.limits().max_braking), follower_.reference().yaw);
+      // Moving (a mission or a way back stopped, or the state gone stale on the way): brake
+      // along the trajectory flown, as hard as its limits allow, to rest in space it was made
+      // for; not a point passed, which the vehicle would fly back to.
+      if (follower_.reference().v_W.norm() > 0.05) {
+        follower_.brake(t);
         break;
       }
       const Vector3 hold = (follower_.reference().p_W - p).norm() < 1.0 ? follower_.reference().p_W : p;
-      follower_.hold(hold, follower_.reference().yaw);
+      follower_.hold(hold, follower_.reference().yaw, t);
       break;
     }
     case Mode::kMission:
-      follower_.setPath(flyablePath(), path_version_.value_or(0));
-      path_changed_ = false;
+      path_changed_ = !follower_.setPath(flyablePath(), path_version_.value_or(0), t);
+      path_retry_t_ = t + kPathRetryPeriod;
       break;
     case Mode::kLand:
     case Mode::kFailsafeLand:
@@ -307,14 +316,14 @@ FlightOutput FlightController::update(double t)
   }
   in.landed = landed_;
   in.estimate_uncertain = !notes_.covariance_ok;
-  in.takeoff_altitude_reached = modes_.mode() == Mode::kTakeoff && state_ && follower_.finished() &&
+  in.takeoff_altitude_reached = modes_.mode() == Mode::kTakeoff && state_ && follower_.finished(t) &&
                                 std::abs(state_->p_W.z() - takeoff_target_.z()) < 0.1;
   // At the goal: within tolerance, and (in a mission) at the end of the path. Outside a
   // mission this keeps auto_mission from starting again for a goal already reached.
   in.goal_reached = state_ && goal_ && (state_->p_W - *goal_).norm() <= goal_tolerance_ &&
-                    (modes_.mode() != Mode::kMission || follower_.finished());
+                    (modes_.mode() != Mode::kMission || follower_.finished(t));
   in.land_at_goal = land_at_goal_;
-  in.returned = modes_.mode() == Mode::kReturn && follower_.finished();
+  in.returned = modes_.mode() == Mode::kReturn && !return_pending_ && follower_.finished(t);
   if (state_) {
     // Taking off from a floor at the ground, an estimate a centimetre below it is no breach.
     Vector3 p = state_->p_W;
@@ -353,9 +362,25 @@ FlightOutput FlightController::update(double t)
   out.mode = modes_.mode();
   out.reason = modes_.reason();
   out.camera = camera_;  // held where no loop runs
-  if (out.mode == Mode::kMission && path_changed_) {
-    follower_.setPath(flyablePath(), path_version_.value_or(0));  // a replan: joined without a jump
-    path_changed_ = false;
+  // A replan (or the way back) is flown from the reference, without a jump. One the follower
+  // refused (no trajectory within the limits from there: a turn too sharp for the speed) is
+  // tried again a little later, from wherever the trajectory it kept has taken the reference
+  // (it stops there at the latest).
+  const bool retry = t >= path_retry_t_;
+  if (out.mode == Mode::kMission && path_changed_ && retry) {
+    path_changed_ = !follower_.setPath(flyablePath(), path_version_.value_or(0), t);
+    // Tried again soon, then less often while it keeps being refused (a new path: at once).
+    path_retry_period_ = path_changed_ ? std::min(2.0 * path_retry_period_, kPathRetryLongest) : kPathRetryPeriod;
+    path_retry_t_ = t + path_retry_period_;
+    // The planner saw what the trajectory flown was not made for: stop along it (the backup,
+    // FASTER's), and take the newest path as soon as the slower reference allows it.
+    if (path_changed_ && braking_for_ != path_version_) {
+      braking_for_ = path_version_;
+      follower_.brake(t);
+    }
+  } else if (out.mode == Mode::kReturn && return_pending_ && retry) {
+    return_pending_ = !follower_.setPath(return_path_, 0, t);
+    path_retry_t_ = t + kPathRetryPeriod;
   }
 
   switch (out.mode) {
@@ -388,10 +413,11 @@ FlightOutput FlightController::update(double t)
     ref.v_W = Vector3(0.0, 0.0, z > -0.3 ? -config_.land_speed : 0.0);
     ref.yaw = follower_.reference().yaw;
   } else {
-    ref = follower_.step(dt);
+    ref = follower_.step(t);
     out.progress = follower_.progress();
   }
   out.reference = ref;
+  out.trajectories = follower_.taken();
   aimCamera(out.mode, state->p_W);
   out.camera = camera_;
   out.dead_reckoning = !in.state_fresh;

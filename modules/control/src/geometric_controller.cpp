@@ -59,7 +59,7 @@ bool finite(const VehicleState& s)
 
 bool finite(const Reference& r)
 {
-  return r.p_W.allFinite() && r.v_W.allFinite() && r.a_W.allFinite() && std::isfinite(r.yaw) &&
+  return r.p_W.allFinite() && r.v_W.allFinite() && r.a_W.allFinite() && r.j_W.allFinite() && std::isfinite(r.yaw) &&
          std::isfinite(r.yaw_rate);
 }
 }  // namespace
@@ -110,7 +110,8 @@ ControlOutput GeometricController::update(const VehicleState& s, const Reference
     integral_ = (integral_ + step).cwiseMax(-bound).cwiseMin(bound);
   }
   const Matrix3 R_WD = desiredAttitude(thrust_W, ref.yaw);
-  // Ω_d from the change of the desired attitude, plus the yaw rate feed-forward.
+  // Ω_d from the change of the desired attitude since the last tick: the feed-forward
+  // acceleration's (its jerk, on a trajectory) and the feedback's, plus the yaw rate.
   Vector3 w_D = Vector3(0.0, 0.0, ref.yaw_rate);
   if (have_previous_ && dt > 0.0) {
     w_D = geometry::logSO3(previous_R_WD_.transpose() * R_WD) / dt;

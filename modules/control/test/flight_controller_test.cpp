@@ -432,14 +432,15 @@ TEST(FlightController, AStateDropoutIsFlownOnDeadReckoningBrakingWhereTheStateWa
   double back_speed = 0.0;
   const double drift = driftThroughAStateDropout(rig, 1.5, &back_speed);
   // THEN the hold is flown on the IMU's estimate: the vehicle brakes (0.2 m in the 0.1 s the
-  // state takes to go stale, then braking at the tilt limit) and holds where it stopped, not
+  // state takes to go stale, then braking along its trajectory at up to follower.max_braking,
+  // the braking ramped in at the jerk limit: about 0.9 m from 2 m/s) and holds where it stopped, not
   // flying back to a point passed (still soon: where a restarted estimator aligns); the
   // estimate stays within 5 cm of the truth
   ASSERT_EQ(rig.mode(), Mode::kHover);
   EXPECT_EQ(rig.fc.reason(), Reason::kStateStale);
   const FlightOutput& last = rig.log.back();
   EXPECT_TRUE(last.dead_reckoning);
-  EXPECT_LT(drift, 1.0);
+  EXPECT_LT(drift, 1.25);
   EXPECT_LT(back_speed, 0.3);
   const Vector3 estimate = last.reference.p_W - last.position_error_W;
   EXPECT_LT((estimate - rig.sim.state().p_W).norm(), 0.05);

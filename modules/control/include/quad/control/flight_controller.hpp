@@ -18,7 +18,7 @@
 #include "quad/control/land_detector.hpp"
 #include "quad/control/mixer.hpp"
 #include "quad/control/modes.hpp"
-#include "quad/control/path_follower.hpp"
+#include "quad/control/trajectory_follower.hpp"
 #include "quad/vehicle/vehicle.hpp"
 
 namespace quad::control {
@@ -104,7 +104,9 @@ struct FlightOutput {
   MixerOutput mixer;
   Vector3 position_error_W = Vector3::Zero();  ///< reference − actual
   Vector3 velocity_error_W = Vector3::Zero();
-  double progress = 0.0;  ///< [m] arc length along the path being followed
+  double progress = 0.0;  ///< [m] arc length along the trajectory being flown
+  /// Trajectories taken so far (TrajectoryFollower::taken()): a new value, a new trajectory
+  std::uint32_t trajectories = 0;
   /// Flown on the IMU's dead reckoning from the last state (the state is stale)
   bool dead_reckoning = false;
   /// Where the depth camera looks: up on take-off, along the path ahead (the end of what the
@@ -185,6 +187,8 @@ public:
   Mode mode() const { return modes_.mode(); }
   Reason reason() const { return modes_.reason(); }
   std::optional<std::uint32_t> pathVersion() const { return path_version_; }
+  /// What is flown: the trajectory, the path version it follows, the paths it refused.
+  const TrajectoryFollower& follower() const { return follower_; }
   double lastStateTime() const { return state_t_; }
 
 private:
@@ -198,7 +202,7 @@ private:
   vehicle::VehicleParams vehicle_;
   FlightControllerConfig config_;
   ModeMachine modes_;
-  PathFollower follower_;
+  TrajectoryFollower follower_;
   GeometricController controller_;
   Mixer mixer_;
   DeadReckoning reckoning_;
@@ -223,7 +227,11 @@ private:
   double flown_length_ = 0.0;         // [m] along flown_
   std::vector<Vector3> return_path_;  // RETURN flies it: back along flown_
   double path_t_ = -1e300;
-  bool path_changed_ = false;
+  bool path_changed_ = false;  // a path to fly that the follower has not taken yet
+  double path_retry_t_ = -1e300;  // [s] when to try it (or the way back) again after the follower refused it
+  double path_retry_period_ = 0.1;  // [s] until the next try
+  bool return_pending_ = false;   // the way back, not taken yet
+  std::optional<std::uint32_t> braking_for_;  // the path version refused that the follower brakes for
   std::optional<Vector3> goal_;
   double goal_tolerance_ = 0.3;
   bool land_at_goal_ = false;

@@ -33,6 +33,9 @@ struct Reference {
   Vector3 a_W = Vector3::Zero();  ///< [m/s²] feed-forward
   double yaw = 0.0;               ///< [rad] heading of body x about world z
   double yaw_rate = 0.0;          ///< [rad/s] feed-forward
+  /// [m/s³] the feed-forward acceleration's rate: it turns the desired thrust direction, and
+  /// so the desired attitude, whose rate Ω_d the attitude loop feeds forward (update())
+  Vector3 j_W = Vector3::Zero();
 };
 
 /// How the attitude error e_R is formed from R_dᵀR, a rotation by θ about an axis a.

@@ -90,8 +90,8 @@ TEST(Foxglove, TheDemosDisplayTopicsHoldTheFlightAsFoxglovesPanelsReadIt)
 
   // Every display topic recorded in Foxglove's schema, and every message decoded.
   for (const char* topic : {"quad/display/transforms", "quad/display/trajectory", "quad/display/true_trajectory",
-                            "quad/display/path", "quad/display/map", "quad/display/scene", "quad/display/depth",
-                            "quad/display/log"}) {
+                            "quad/display/path", "quad/display/plan", "quad/display/map", "quad/display/scene",
+                            "quad/display/depth", "quad/display/log"}) {
     const auto& c = summary["channels"][topic];
     ASSERT_TRUE(c.is_object()) << topic << "\n" << out;
     EXPECT_TRUE(c["schema"].get<std::string>().starts_with("foxglove::")) << topic;

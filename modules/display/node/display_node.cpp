@@ -9,6 +9,8 @@
 #include "quad/common/layout.hpp"
 #include "quad/common/time.hpp"
 #include "quad/dds/geometry_messages.hpp"
+#include "quad/dds/trajectory_messages.hpp"
+#include "quad/display/plan.hpp"
 #include "quad/introspection/idl.hpp"
 #include "quad/mapping/mapper.hpp"
 #include "quad/world/world_file.hpp"
@@ -22,6 +24,8 @@ constexpr std::size_t kShapesPerEntity = 4096;
 constexpr std::size_t kEntitiesPerScene = 32;  // foxglove/SceneUpdate.idl
 /// [ns] of wall time between drains of the readers: a viewer's refresh rate (50 Hz).
 constexpr std::int64_t kTickPeriodNs = 20'000'000;
+/// [s] between the poses the plan is drawn with.
+constexpr double kPlanPeriodS = 0.1;
 
 foxglove::Time toTime(std::int64_t t_ns)
 {
@@ -182,6 +186,7 @@ DisplayNode::DisplayNode(DisplayNodeConfig config, dds::ParticipantOptions optio
       goals_(participant(), dds::topics::kGoal, nullptr),
       goal_acks_(participant(), dds::topics::kGoalAck, nullptr),
       paths_(participant(), dds::topics::kPath, nullptr),
+      trajectories_(participant(), dds::topics::kTrajectory, nullptr),
       status_(participant(), dds::topics::kControlStatus, nullptr),
       command_acks_(participant(), dds::topics::kCommandAck, nullptr),
       sim_events_(participant(), dds::topics::kSimEvents, nullptr),
@@ -190,6 +195,7 @@ DisplayNode::DisplayNode(DisplayNodeConfig config, dds::ParticipantOptions optio
       trajectory_(participant(), dds::topics::kDisplayTrajectory),
       true_trajectory_(participant(), dds::topics::kDisplayTrueTrajectory),
       path_(participant(), dds::topics::kDisplayPath),
+      plan_(participant(), dds::topics::kDisplayPlan),
       map_(participant(), dds::topics::kDisplayMap),
       scene_(participant(), dds::topics::kDisplayScene),
       depth_cloud_(participant(), dds::topics::kDisplayDepth),
@@ -218,6 +224,7 @@ void DisplayNode::onTick(std::int64_t /*steady_ns*/)
   takeMap();
   takeScene();
   takePaths();
+  takeTrajectories();
   takeLogLines();
 }
 
@@ -430,6 +437,28 @@ void DisplayNode::takeScene()
   }
   scene_.write(update);
   counters().samples_out++;
+}
+
+void DisplayNode::takeTrajectories()
+{
+  for (const auto& m : trajectories_.takeAll()) {
+    counters().samples_in++;
+    std::string why;
+    const auto t = dds::fromMessage(m, &why);
+    if (!t) {
+      counters().errors++;
+      spdlog::warn("{}: trajectory {} not drawn: {}", dds::topics::kTrajectory.info.name, m.count(), why);
+      continue;
+    }
+    foxglove::PosesInFrame out;
+    out.timestamp(toTime(m.header().stamp_ns()));
+    out.frame_id(kWorldFrame);
+    for (const TracePose& p : planPoses(*t, kPlanPeriodS)) {
+      out.poses().push_back(toPose(p.p_W, p.q_WB));
+    }
+    plan_.write(out);
+    counters().samples_out++;
+  }
 }
 
 void DisplayNode::takePaths()

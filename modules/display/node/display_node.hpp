@@ -49,6 +49,7 @@ private:
   bool followMap(double resolution, std::string_view topic);
   void takeScene();
   void takePaths();
+  void takeTrajectories();
   void takeLogLines();
   void publishTransforms(std::int64_t t_ns);
   void publishTrajectories(std::int64_t t_ns);
@@ -68,6 +69,7 @@ private:
   dds::Subscriber<msg::Goal> goals_;
   dds::Subscriber<msg::GoalAck> goal_acks_;
   dds::Subscriber<msg::Path> paths_;
+  dds::Subscriber<msg::Trajectory> trajectories_;
   dds::Subscriber<msg::ControlStatus> status_;
   dds::Subscriber<msg::CommandAck> command_acks_;
   dds::Subscriber<msg::SimEvent> sim_events_;
@@ -77,6 +79,7 @@ private:
   dds::Publisher<foxglove::PosesInFrame> trajectory_;
   dds::Publisher<foxglove::PosesInFrame> true_trajectory_;
   dds::Publisher<foxglove::PosesInFrame> path_;
+  dds::Publisher<foxglove::PosesInFrame> plan_;
   dds::Publisher<foxglove::PointCloud> map_;
   dds::Publisher<foxglove::SceneUpdate> scene_;
   dds::Publisher<foxglove::PointCloud> depth_cloud_;

@@ -415,7 +415,15 @@ void PlanningNode::replan(std::int64_t t_ns)
       frontier = knownFreeLength(planner_, waypoints, from, config_.known_space);
     }
   }
-  const double known_free = frontier ? *frontier : geometry::polylineLength(waypoints);
+  // What the follower may fly: up to the frontier, or up to the horizon when everything checked
+  // is known free (what lies beyond was not looked at: FASTER's rule commits to none of it).
+  const double length = geometry::polylineLength(waypoints);
+  const double known_free = frontier                                ? *frontier
+                            : config_.known_space.horizon > 0.0 ? std::min(config_.known_space.horizon, length)
+                                                                    : length;
+  if (!frontier && known_free < length) {
+    frontier = known_free;
+  }
   // Publish a new version only when the path changed meaningfully.
   bool changed = static_cast<msg::PlanStatus>(toMessage(r.status)) != current_.status() ||
                  waypoints.size() != current_.waypoints_W().size();
@@ -423,7 +431,8 @@ void PlanningNode::replan(std::int64_t t_ns)
     const auto& w = current_.waypoints_W()[i];
     changed = (waypoints[i] - Vector3(w.x(), w.y(), w.z())).norm() > config_.resolution;
   }
-  // So does the point where it leaves known-free space, which the follower stops before.
+  // So does the point where it leaves known-free space (or the horizon), which the follower
+  // stops before.
   const std::optional<Vector3> frontier_W =
       frontier ? std::optional<Vector3>(geometry::pointAlong(waypoints, *frontier)) : std::nullopt;
   changed = changed || frontier_W.has_value() != frontier_W_.has_value() ||

@@ -2,6 +2,8 @@
 #include "quad/common/layout.hpp"
 #include "quad/planning/planning_params.hpp"
 
+#include <cmath>
+
 #include <algorithm>
 
 namespace quad::planning {
@@ -24,8 +26,9 @@ const common::ParamTable<PlanningParams>& planningTable()
         .number("altitude.max", [](P& p) -> double& { return p.altitude_max; }, {-1e4, 1e4}, "m",
                 "an optional band: highest cell centres planned through")
         .include(common::geofenceTable(), [](P& p) -> common::Geofence& { return p.geofence; })
-        .number("known_free.radius", [](P& p) -> double& { return p.known_space.radius; }, {0.0, 10.0}, "m",
-                "around the path's centre line, every voxel must be known free for the follower to fly it")
+        .number("known_free.margin", [](P& p) -> double& { return p.known_free_margin; }, {0.0, 10.0}, "m",
+                "past the vehicle's radius around the path's centre line, every voxel must be known free for the "
+                "follower to fly it (at least the follower's corridor)")
         .number("known_free.horizon", [](P& p) -> double& { return p.known_space.horizon; }, {0.0, 1e3}, "m",
                 "path length checked for known-free space; 0: fly unknown space like free space")
         .number("resolution", [](P& p) -> double& { return p.resolution; }, {0.01, 10.0}, "m",
@@ -96,6 +99,18 @@ void fitToWorld(PlanningParams& c, const Vector3& world_min, const Vector3& worl
   }
   // The vehicle's own volume is free (it is there) but partly behind its camera.
   c.known_space.own_radius = vehicle_radius + c.resolution;
+  // What the follower may fly: the vehicle's volume, anywhere within its corridor of the path.
+  // The check reads the voxels around each voxel the path passes (whose centre may lie half a
+  // voxel's diagonal off the path): within the inflation, or a path along its edge would never
+  // be known free.
+  c.known_space.radius = vehicle_radius + c.known_free_margin;
+  const double slack = 0.5 * std::sqrt(3.0) * c.resolution;
+  if (c.known_space.horizon > 0.0 && c.known_space.radius + slack > c.planner.vehicle_radius) {
+    throw common::ConfigError({common::configProblem(
+        origin, "known_free.margin", c.known_free_margin,
+        "with the vehicle's radius and half a voxel's diagonal it reaches past the safety margin (" +
+            common::formatValue(c.safety_margin) + " m): paths along obstacles would never be known free")});
+  }
   if (c.planner.connectivity != 6 && c.planner.connectivity != 18 && c.planner.connectivity != 26) {
     throw common::ConfigError({common::configProblem(origin, "connectivity", std::int64_t{c.planner.connectivity},
                                                      "expected 6, 18 or 26")});

@@ -28,6 +28,10 @@ struct PlanningParams {
   double resolution = 0.2;              ///< [m]
   PlannerConfig planner;                ///< vehicle_radius: the vehicle's plus the safety margin
   KnownSpaceCheck known_space;          ///< horizon 0: unknown space is flown like free space
+  /// [m] the known-free tube's radius past the vehicle's (known_space.radius, from fitToWorld):
+  /// the vehicle may stray from the path by the follower's corridor, and all of it must fly in
+  /// known-free space
+  double known_free_margin = 0.1;
   double replan_period_s = 0.2;         ///< [s] of sim time between replans
   double state_rate = 0.0;              ///< [Hz] of sim time, at most: the states read (the node's); 0: every one
   double republish_period_s = 0.5;      ///< [s] of sim time between repeats of an unchanged path

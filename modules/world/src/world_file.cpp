@@ -3,6 +3,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -90,23 +91,42 @@ void generate(Reader& r, YAML::Node node, const std::string& key, const Vector3&
     r.problem(key + ".max", node["max"], "must exceed min on x and y");
   }
   if (type == "forest") {
-    r.onlyKeys(node, key + ".", {"type", "seed", "min", "max", "density", "radius", "height", "clearance"});
+    r.onlyKeys(node, key + ".", {"type", "seed", "min", "max", "density", "radius", "height", "clearance", "gap"});
     const auto density = r.number(node["density"], key + ".density", std::nullopt, 1e-6, 10.0);
     const auto radius = r.range(node["radius"], key + ".radius", 1e-6, 100.0);
     const auto height = r.range(node["height"], key + ".height", 1e-6, 1e4);
+    // Without a gap (-1) trees may overlap (the shipped forests); with one, each is drawn again
+    // until it keeps at least that much from every tree before it (the benchmark's forests).
+    const double gap = node["gap"].IsDefined() ? r.number(node["gap"], key + ".gap", 0.0, 0.0, 1e3).value_or(0.0) : -1.0;
     if (!r.ok() || !seed || !lo || !hi || !density || !radius || !height || !clearance) {
       return;
     }
     std::mt19937_64 rng(static_cast<std::uint64_t>(*seed));
     const double area = ((*hi)[0] - (*lo)[0]) * ((*hi)[1] - (*lo)[1]);
     const auto count = static_cast<long>(std::lround(*density * area));
+    constexpr int kDraws = 1000;  // a tree drawn this often without room is a forest too dense for its gap
+    std::vector<Cylinder> trees;
     for (long k = 0; k < count; ++k) {
-      const double x = uniform(rng, (*lo)[0], (*hi)[0]);
-      const double y = uniform(rng, (*lo)[1], (*hi)[1]);
-      const double rad = uniform(rng, radius->first, radius->second);
-      const double h = uniform(rng, height->first, height->second);
-      if (clearOf({x, y, 0.0}, rad, start, goal, *clearance)) {
-        out.push_back(Obstacle::makeCylinder({x, y, rad, h}));
+      for (int draw = 0;; ++draw) {
+        const double x = uniform(rng, (*lo)[0], (*hi)[0]);
+        const double y = uniform(rng, (*lo)[1], (*hi)[1]);
+        const double rad = uniform(rng, radius->first, radius->second);
+        const double h = uniform(rng, height->first, height->second);
+        const bool apart = gap < 0.0 || std::none_of(trees.begin(), trees.end(), [&](const Cylinder& t) {
+          return std::hypot(t.x - x, t.y - y) < t.radius + rad + gap;
+        });
+        if (apart) {
+          trees.push_back({x, y, rad, h});
+          if (clearOf({x, y, 0.0}, rad, start, goal, *clearance)) {
+            out.push_back(Obstacle::makeCylinder(trees.back()));
+          }
+          break;
+        }
+        if (draw + 1 == kDraws) {
+          r.problem(key + ".gap", node["gap"],
+                    "no room for tree " + std::to_string(k + 1) + " of " + std::to_string(count) + " with that gap");
+          return;
+        }
       }
     }
   } else if (type == "walls") {

@@ -147,6 +147,36 @@ generators:
   }
 }
 
+TEST(WorldFile, AForestWithAGapKeepsItsTreesApartAndItsCount)
+{
+  // GIVEN the benchmark's forest: trees 0.5-0.7 m thick, one per 25 m², kept 0.5 m apart
+  const std::string text = R"(
+bounds: {min: [0, -15, 0], max: [60, 15, 6]}
+start: [10, 0, 0]
+goal: [50, 0, 2]
+generators:
+  - {type: forest, seed: 3, min: [0, -15], max: [60, 15], density: 0.04, radius: [0.25, 0.35], height: [8, 10], clearance: 0, gap: 0.5}
+)";
+  const World w = parseWorld(text, "forest.yaml");
+  // THEN it has its 72 trees, none nearer another than the gap
+  ASSERT_EQ(w.obstacles().size(), 72U);
+  for (std::size_t i = 0; i < w.obstacles().size(); ++i) {
+    for (std::size_t j = i + 1; j < w.obstacles().size(); ++j) {
+      const Cylinder& a = w.obstacles()[i].cylinder;
+      const Cylinder& b = w.obstacles()[j].cylinder;
+      EXPECT_GE(std::hypot(a.x - b.x, a.y - b.y) - a.radius - b.radius, 0.5);
+    }
+  }
+  // ... and a gap no forest of that density has room for is refused, naming the key
+  try {
+    parseWorld(std::string(text).replace(text.find("gap: 0.5"), 8, "gap: 9.0"), "forest.yaml");
+    FAIL() << "an impossible gap was taken";
+  } catch (const common::ConfigError& e) {
+    ASSERT_EQ(e.problems().size(), 1U);
+    EXPECT_EQ(e.problems().front().rfind("forest.yaml:generators[0].gap: 9", 0), 0U) << e.problems().front();
+  }
+}
+
 TEST(WorldFile, BadInputNamesFileKeyAndValue)
 {
   const auto problems = [](const std::string& text) {

@@ -49,6 +49,9 @@ CampaignRun readRun(const fs::path& summary, const std::string& world, std::uint
   r.optimum_m = optionalNumber(j, "optimum_m");
   r.flown_over_optimum = optionalNumber(j, "flown_over_optimum");
   r.min_clearance_m = j.value("min_clearance_m", 0.0);
+  r.time_to_goal_s = optionalNumber(j, "time_to_goal_s");
+  r.average_speed_mps = optionalNumber(j, "average_speed_mps");
+  r.top_speed_mps = j.value("top_speed_mps", 0.0);
   r.state = j.value("state", "");
   if (j.contains("estimate") && j["estimate"].is_object()) {
     r.estimate_rms_m = optionalNumber(j["estimate"], "position_rms_m");
@@ -99,16 +102,17 @@ std::vector<CampaignRun> runCampaign(const CampaignOptions& options,
 
 std::string table(const std::vector<CampaignRun>& runs)
 {
-  std::string out = fmt::format("{:<14} {:>4}  {:<8} {:<8} {:>10} {:>12} {:>10} {:>9} {:>7} {:>8} {:>8}  {}\n", "world",
-                                "seed", "result", "state", "collisions", "flown/opt", "closest_m", "est_rms_m", "replans",
-                                "sim_s", "wall_s", "failure");
+  std::string out = fmt::format("{:<14} {:>4}  {:<8} {:<8} {:>10} {:>12} {:>10} {:>9} {:>7} {:>7} {:>7} {:>8} {:>8}  {}\n",
+                                "world", "seed", "result", "state", "collisions", "flown/opt", "closest_m", "est_rms_m",
+                                "avg_m/s", "top_m/s", "replans", "sim_s", "wall_s", "failure");
   int ok = 0;
   for (const CampaignRun& r : runs) {
     ok += r.success ? 1 : 0;
-    out += fmt::format("{:<14} {:>4}  {:<8} {:<8} {:>10} {:>12} {:>10.2f} {:>9} {:>7} {:>8.1f} {:>8.1f}  {}\n", r.world,
-                       r.seed, r.success ? "ok" : (r.end.empty() ? "error" : r.end), r.state.empty() ? "-" : r.state,
-                       r.collisions, orDash(r.flown_over_optimum, "{:.3f}"), r.min_clearance_m,
-                       orDash(r.estimate_rms_m, "{:.3f}"), r.replans, r.sim_s, r.wall_s, r.failure);
+    out += fmt::format("{:<14} {:>4}  {:<8} {:<8} {:>10} {:>12} {:>10.2f} {:>9} {:>7} {:>7.1f} {:>7} {:>8.1f} {:>8.1f}  {}\n",
+                       r.world, r.seed, r.success ? "ok" : (r.end.empty() ? "error" : r.end),
+                       r.state.empty() ? "-" : r.state, r.collisions, orDash(r.flown_over_optimum, "{:.3f}"),
+                       r.min_clearance_m, orDash(r.estimate_rms_m, "{:.3f}"), orDash(r.average_speed_mps, "{:.1f}"),
+                       r.top_speed_mps, r.replans, r.sim_s, r.wall_s, r.failure);
   }
   out += fmt::format("{} of {} runs succeeded\n", ok, runs.size());
   return out;
@@ -134,6 +138,10 @@ std::string toJson(const std::vector<CampaignRun>& runs)
     row["flown_over_optimum"] =
         r.flown_over_optimum ? nlohmann::ordered_json(*r.flown_over_optimum) : nlohmann::ordered_json(nullptr);
     row["min_clearance_m"] = r.min_clearance_m;
+    row["time_to_goal_s"] = r.time_to_goal_s ? nlohmann::ordered_json(*r.time_to_goal_s) : nlohmann::ordered_json(nullptr);
+    row["average_speed_mps"] =
+        r.average_speed_mps ? nlohmann::ordered_json(*r.average_speed_mps) : nlohmann::ordered_json(nullptr);
+    row["top_speed_mps"] = r.top_speed_mps;
     row["state"] = r.state;
     row["estimate_rms_m"] = r.estimate_rms_m ? nlohmann::ordered_json(*r.estimate_rms_m) : nlohmann::ordered_json(nullptr);
     row["replans"] = r.replans;

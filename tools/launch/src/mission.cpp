@@ -27,14 +27,20 @@ void MissionTracker::onState(double t, const Eigen::Vector3d& p)
   t_ = std::max(t_, t);
   if (last_p_) {
     length_ += (p - *last_p_).norm();
+    if (t > last_t_) {
+      top_speed_ = std::max(top_speed_, (p - *last_p_).norm() / (t - last_t_));
+    }
   }
   last_p_ = p;
+  last_t_ = t;
   for (const auto& o : world_.obstacles()) {
     min_clearance_ = std::min(min_clearance_, o.signedDistance(p) - radius_);
   }
   const double to_goal = (p - goal_).norm();
   if (!goal_reached_ && to_goal <= mission_.tolerance_m) {
     goal_reached_ = true;
+    goal_t_ = t;
+    goal_length_ = length_;
     progress_.push_back(fmt::format("t = {:.1f} s: goal reached ({:.2f} m from it)", t, to_goal));
     if (!mission_.land) {
       finishAtGoal(t, "reached the goal");
@@ -63,6 +69,10 @@ void MissionTracker::onMode(double t, const std::string& mode, const std::string
   }
   progress_.push_back(fmt::format("t = {:.1f} s: {} -> {}", t, mode_.empty() ? "start" : mode_, mode));
   modes_.push_back(fmt::format("{:.2f} {}", t, mode));
+  if (mode == "MISSION" && !mission_t_) {
+    mission_t_ = t;
+    mission_length_ = length_;
+  }
   const bool was_landing = mode_ == "LAND" || mode_ == "FAILSAFE_LAND";
   // The controller gives up on a goal the planner calls unreachable by returning (or
   // landing); a path the planner finds again while it does so does not undo that.
@@ -159,6 +169,11 @@ MissionSummary MissionTracker::summary(double wall_s) const
   s.wall_s = wall_s;
   s.path_length_m = length_;
   s.straight_line_m = (goal_ - world_.start()).norm();
+  if (mission_t_ && goal_t_ && *goal_t_ > *mission_t_) {
+    s.time_to_goal_s = *goal_t_ - *mission_t_;
+    s.average_speed_mps = (goal_length_ - mission_length_) / *s.time_to_goal_s;
+  }
+  s.top_speed_mps = top_speed_;
   s.paths = paths_;
   s.map_overruns = map_overruns_;
   s.path_overruns = path_overruns_;
@@ -284,6 +299,7 @@ MissionSummary fleetSummary(std::vector<MissionSummary> vehicles, std::optional<
     s.sim_s = std::max(s.sim_s, v.sim_s);
     s.path_length_m += v.path_length_m;
     s.straight_line_m += v.straight_line_m;
+    s.top_speed_mps = std::max(s.top_speed_mps, v.top_speed_mps);
     optimum = optimum && v.optimum_m ? std::optional<double>(*optimum + *v.optimum_m) : std::nullopt;
     s.paths += v.paths;
     addCount(s.map_overruns, v.map_overruns);
@@ -327,6 +343,9 @@ nlohmann::ordered_json jsonOf(const MissionSummary& s)
   j["flight_wall_seconds"] = orNull(s.flight_wall_s);
   j["path_length_m"] = s.path_length_m;
   j["straight_line_m"] = s.straight_line_m;
+  j["time_to_goal_s"] = orNull(s.time_to_goal_s);
+  j["average_speed_mps"] = orNull(s.average_speed_mps);
+  j["top_speed_mps"] = s.top_speed_mps;
   j["optimum_m"] = s.optimum_m ? nlohmann::ordered_json(*s.optimum_m) : nlohmann::ordered_json(nullptr);
   j["flown_over_optimum"] = s.optimum_m && *s.optimum_m > 0.0 ? nlohmann::ordered_json(s.path_length_m / *s.optimum_m)
                                                               : nlohmann::ordered_json(nullptr);
@@ -410,6 +429,17 @@ std::string overrunText(const MissionSummary& s)
          line(s.path_overruns, "paths over the planner's budget");
 }
 
+/// How fast: the mission's time to the goal and average speed, and the top speed.
+std::string speedText(const MissionSummary& s)
+{
+  const std::string top = fmt::format("top speed {:.1f} m/s", s.top_speed_mps);
+  if (!s.time_to_goal_s || !s.average_speed_mps) {
+    return "  " + top + "\n";
+  }
+  return fmt::format("  to the goal in {:.1f} s from the mission's start, at {:.1f} m/s on average; {}\n", *s.time_to_goal_s,
+                     *s.average_speed_mps, top);
+}
+
 /// A fleet's vehicles, a line each, and the least separation; empty for one vehicle.
 std::string fleetText(const MissionSummary& s)
 {
@@ -443,8 +473,8 @@ std::string toText(const MissionSummary& s)
       s.optimum_m && *s.optimum_m > 0.0
           ? fmt::format(", a {:.1f} m known-map optimum ({:.2f}x)", *s.optimum_m, s.path_length_m / *s.optimum_m)
           : "",
-      s.paths, s.min_clearance_m, s.collisions, s.mode_changes, s.goal_distance_m) + fleetText(s) + estimateText(s) +
-         overrunText(s) + costText(s);
+      s.paths, s.min_clearance_m, s.collisions, s.mode_changes, s.goal_distance_m) + speedText(s) + fleetText(s) +
+         estimateText(s) + overrunText(s) + costText(s);
 }
 
 }  // namespace quad::launch

@@ -37,6 +37,9 @@ struct CampaignRun {
   std::optional<double> optimum_m;
   std::optional<double> flown_over_optimum;
   double min_clearance_m = 0.0;
+  std::optional<double> time_to_goal_s;     ///< from the mission's start (summary's time_to_goal_s)
+  std::optional<double> average_speed_mps;  ///< over that time
+  double top_speed_mps = 0.0;
   int replans = 0;                  ///< path versions the planner published
   double sim_s = 0.0;
   double wall_s = 0.0;

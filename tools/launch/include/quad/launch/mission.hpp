@@ -55,6 +55,12 @@ struct MissionSummary {
   std::optional<double> flight_wall_s;
   double path_length_m = 0.0;   ///< flown, from the vehicle states
   double straight_line_m = 0.0; ///< start to goal
+  /// [s] sim time from the mission's start (the controller's first MISSION) to the goal's
+  /// tolerance; nothing when the goal was not reached
+  std::optional<double> time_to_goal_s;
+  /// [m/s] the length flown over that time; nothing when the goal was not reached
+  std::optional<double> average_speed_mps;
+  double top_speed_mps = 0.0;   ///< [m/s] the most between two vehicle states scored
   std::optional<double> optimum_m; ///< the known-map optimum (quad plan), when the run has a planner
   int paths = 0;                ///< path versions received (the planner's replans that changed the path)
   /// Map updates the lockstep clock reached the due time of before the mapper had them out
@@ -130,7 +136,13 @@ private:
   Eigen::Vector3d goal_;
   double t_ = 0.0;
   std::optional<Eigen::Vector3d> last_p_;
+  double last_t_ = 0.0;           // of last_p_
   double length_ = 0.0;
+  double top_speed_ = 0.0;
+  std::optional<double> mission_t_;       // the first MISSION
+  double mission_length_ = 0.0;           // length_ then
+  std::optional<double> goal_t_;          // within the goal's tolerance
+  double goal_length_ = 0.0;              // length_ then
   double min_clearance_;
   std::string mode_;
   std::vector<std::string> modes_;

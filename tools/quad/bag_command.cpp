@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <optional>
 #include <vector>
@@ -13,7 +14,10 @@
 #include "quad/bag/compare.hpp"
 #include "quad/bag/mcap.hpp"
 #include "quad/dds/topics.hpp"
+#include "quad/introspection/cdr.hpp"
+#include "quad/introspection/idl.hpp"
 #include "quad/topic/connection.hpp"
+#include "quad/topic/text_format.hpp"
 
 namespace quad::tools {
 
@@ -102,6 +106,62 @@ int bagInfo(const std::string& file, bool json)
                 rate.c_str(), t.loss ? t.loss->c_str() : t.type.starts_with("quad::msg::") ? "(not recorded)" : "(no Header to audit)");
   }
   return c.complete ? 0 : 1;
+}
+
+int bagEcho(const BagEchoOptions& options)
+{
+  bag::McapContents c;
+  try {
+    c = bag::readMcap(options.file, true);
+  } catch (const bag::BagError& e) {
+    std::fprintf(stderr, "bag echo: %s\n", e.what());
+    return 1;
+  }
+  std::map<std::uint16_t, std::string> schema_names;
+  for (const auto& sc : c.schemas) {
+    schema_names[sc.id] = sc.name;
+  }
+  std::map<std::uint16_t, std::pair<std::string, std::string>> channels;  // id: topic, type
+  for (const auto& ch : c.channels) {
+    if (options.topics.empty() || topic::matchesAnyGlob(ch.topic, options.topics)) {
+      channels[ch.id] = {ch.topic, schema_names[ch.schema_id]};
+    }
+  }
+  std::vector<const bag::Message*> messages;
+  for (const auto& m : c.messages) {
+    if (channels.count(m.channel_id) != 0) {
+      messages.push_back(&m);
+    }
+  }
+  std::stable_sort(messages.begin(), messages.end(),
+                   [](const bag::Message* a, const bag::Message* b) { return a->log_time < b->log_time; });
+  const auto& schema = introspection::quadSchema();
+  const introspection::DecodeOptions decode{
+      .max_elements = options.max_elements > 0 ? options.max_elements : std::numeric_limits<std::size_t>::max()};
+  int bad = 0;
+  for (const bag::Message* m : messages) {
+    const auto& [name, type] = channels[m->channel_id];
+    nlohmann::ordered_json line;
+    line["topic"] = name;
+    line["log_time_ns"] = m->log_time;
+    try {
+      line["message"] = introspection::decodeCdr(schema, type, m->data, decode);
+    } catch (const std::exception& e) {
+      ++bad;
+      std::fprintf(stderr, "bag echo: %s: message %u on %s (%s): %s\n", options.file.c_str(), m->sequence,
+                   name.c_str(), type.c_str(), e.what());
+      continue;
+    }
+    if (options.json) {
+      std::printf("%s\n", line.dump().c_str());
+    } else {
+      std::printf("%s---\n", topic::toYaml(line).c_str());
+    }
+  }
+  if (!c.complete) {
+    std::fprintf(stderr, "bag echo: %s: read up to a damage (%s)\n", options.file.c_str(), c.problem.c_str());
+  }
+  return bad > 0 ? 1 : 0;
 }
 
 int bagRecover(const std::string& file, std::string output)

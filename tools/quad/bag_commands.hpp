@@ -34,6 +34,17 @@ struct BagDiffOptions {
 /// one cannot be read (docs/recording.md).
 int bagDiff(const BagDiffOptions& options);
 
+struct BagEchoOptions {
+  std::string file;
+  std::vector<std::string> topics;  ///< names or globs; empty: every topic
+  bool json = false;                ///< one JSON object a line, else YAML documents
+  std::size_t max_elements = 0;     ///< longer sequences and arrays are cut (0: whole)
+};
+
+/// Prints a recording's messages on the topics asked for, in log-time order, decoded against
+/// their IDL, each with its topic and log time; 1 when the file or a message cannot be read.
+int bagEcho(const BagEchoOptions& options);
+
 /// Rewrites a recording cut short (a killed recorder) whole, with index and summary.
 int bagRecover(const std::string& file, std::string output);
 

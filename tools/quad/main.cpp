@@ -222,6 +222,13 @@ int main(int argc, char** argv)
   auto* bag_recover = bag->add_subcommand("recover", "Rewrite a recording cut short (killed recorder) whole");
   bag_recover->add_option("file", bag_file, "MCAP file")->required();
   bag_recover->add_option("-o,--output", recover_output, "Output (default: FILE.recovered.mcap)");
+  quad::tools::BagEchoOptions bag_echo_options;
+  auto* bag_echo = bag->add_subcommand("echo", "Print a recording's messages, decoded, in log-time order");
+  bag_echo->add_option("file", bag_echo_options.file, "MCAP file")->required();
+  bag_echo->add_option("--topics", bag_echo_options.topics, "Topics or globs to print (default: every topic)");
+  bag_echo->add_flag("--json", bag_echo_options.json, "One JSON object a line instead of YAML documents");
+  bag_echo->add_option("--max-elements", bag_echo_options.max_elements,
+                       "Cut longer sequences and arrays to their first N elements (default: whole)");
   quad::tools::BagDiffOptions diff_options;
   auto* bag_diff = bag->add_subcommand(
       "diff", "Compare two recordings message by message (wall-clock and compute-time fields aside)");
@@ -441,6 +448,9 @@ int main(int argc, char** argv)
     }
     if (bag_diff->parsed()) {
       return quad::tools::bagDiff(diff_options);
+    }
+    if (bag_echo->parsed()) {
+      return quad::tools::bagEcho(bag_echo_options);
     }
     if (list->parsed()) {
       return quad::tools::topicList(list_options);

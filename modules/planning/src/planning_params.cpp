@@ -97,14 +97,17 @@ void fitToWorld(PlanningParams& c, const Vector3& world_min, const Vector3& worl
           "leaves less than a cell of the world's bounds to plan in (with the altitude band and the geofence, if any)")});
     }
   }
-  // The vehicle's own volume is free (it is there) but partly behind its camera.
-  c.known_space.own_radius = vehicle_radius + c.resolution;
   // What the follower may fly: the vehicle's volume, anywhere within its corridor of the path.
   // The check reads the voxels around each voxel the path passes (whose centre may lie half a
   // voxel's diagonal off the path): within the inflation, or a path along its edge would never
   // be known free.
   c.known_space.radius = vehicle_radius + c.known_free_margin;
   const double slack = 0.5 * std::sqrt(3.0) * c.resolution;
+  // The vehicle's own volume is free (it is there) but partly behind its camera, and so is the
+  // tube the check reads around the voxel it is in: it flew there inside such tubes, known free,
+  // but after a turn their sides may lie where the camera never looked (a vehicle stopped
+  // there would wait for them forever).
+  c.known_space.own_radius = std::max(vehicle_radius + c.resolution, c.known_space.radius + slack);
   if (c.known_space.horizon > 0.0 && c.known_space.radius + slack > c.planner.vehicle_radius) {
     throw common::ConfigError({common::configProblem(
         origin, "known_free.margin", c.known_free_margin,

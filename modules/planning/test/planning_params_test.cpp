@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "quad/common/params.hpp"
 
 namespace quad::planning {
@@ -58,6 +60,28 @@ TEST(PlanningParams, AnInvertedOrTooThinGeofenceIsRefusedNamingTheKey)
   }
   PlanningParams p = read("safety_margin: 0.3\ngeofence: {min: [0, -0.35, 0], max: [50, 0.35, 6]}\n");
   EXPECT_THROW(fitToWorld(p, kWorldMin, kWorldMax, kRadius, "planning.yaml"), common::ConfigError);
+}
+
+TEST(PlanningParams, TheKnownFreeTubeIsTheVehicleAndItsMarginAndTheVehiclesOwnVoxelsTubeCountsAsFree)
+{
+  // GIVEN a 0.1 m margin on 0.2 m voxels, for a vehicle of radius 0.35 m
+  PlanningParams p = read("safety_margin: 0.3\nresolution: 0.2\nknown_free: {margin: 0.1}\n");
+  fitToWorld(p, kWorldMin, kWorldMax, kRadius, "planning.yaml");
+  // THEN the tube is 0.45 m, and every voxel it reads around the voxel the vehicle is in (whose
+  // centre is up to half a diagonal away) counts as free: the vehicle flew there in such a tube
+  EXPECT_NEAR(p.known_space.radius, 0.45, 1e-12);
+  EXPECT_GE(p.known_space.own_radius, 0.45 + 0.5 * std::sqrt(3.0) * 0.2 - 1e-12);
+}
+
+TEST(PlanningParams, AKnownFreeMarginReachingPastTheInflationIsRefusedNamingTheKey)
+{
+  PlanningParams p = read("safety_margin: 0.3\nresolution: 0.2\nknown_free: {margin: 0.2}\n");
+  try {
+    fitToWorld(p, kWorldMin, kWorldMax, kRadius, "planning.yaml");
+    ADD_FAILURE() << "a margin of 0.2 m (0.55 m, plus 0.17 m, past the 0.65 m inflation) was accepted";
+  } catch (const common::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("planning.yaml:known_free.margin: 0.2"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -405,7 +405,7 @@ TEST_F(ManifestTest, FleetMistakesAreRefusedNamingTheVehicleAndKey)
 TEST_F(ManifestTest, TheShippedManifestsAreValid)
 {
   ProgramLookup shipped{{false, QUAD_SOURCE_DIR, QUAD_BUILD_DIR}, {}};
-  for (const char* name : {"demo.yaml", "fleet.yaml", "three_hosts.yaml"}) {
+  for (const char* name : {"demo.yaml", "fast.yaml", "fleet.yaml", "three_hosts.yaml"}) {
     EXPECT_NO_THROW(loadManifest(fs::path(QUAD_SOURCE_DIR) / "bringup" / name, {}, shipped)) << name;
   }
 }

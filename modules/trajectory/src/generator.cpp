@@ -60,6 +60,10 @@ constexpr double kLeadInAngle = 0.05;
 constexpr double kLeadInTime = 0.3;
 /// [s] between the samples of the curve a stop brakes along (its corridor).
 constexpr double kStopSampling = 0.02;
+/// A stop may pass the speed limit (or the speed it brakes from, if faster) by this factor: its
+/// spline, through points of the curve ahead at the braking's times, overshoots the time law
+/// by a few per cent where the braking ramps in, and a stop refused for that flies on instead.
+constexpr double kStopSpeedSlack = 1.05;
 
 /// The time law along the curve: a speed at each of its samples.
 struct Law {
@@ -619,7 +623,8 @@ GenerateResult Generator::stop(const Trajectory& current, double t) const
     free.front().push_back(current.at(u).p);
   }
   free.front().push_back(current.at(current.endTime()).p);
-  const Limits& limits = config_.limits;
+  Limits limits = config_.limits;
+  limits.max_speed = kStopSpeedSlack * std::max(limits.max_speed, speed);
   const Limits first = firstLimits(limits, s);
   // Along the same curve, slower: flown at σ(τ) of its own time, σ' from 1 down to 0. σ' holds
   // at 1 for a window, then falls at the rate that brakes the start's speed at a share of the

@@ -26,6 +26,21 @@ GeneratorConfig fastConfig()
   return c;
 }
 
+/// The control's braking generator for the x500 at its shipped 2 m/s: 4 m/s² and 40 m/s³.
+GeneratorConfig brakingConfig()
+{
+  GeneratorConfig c = fastConfig();
+  c.limits.max_speed = 2.0;
+  c.limits.max_acceleration = 4.0;
+  c.limits.max_jerk = 40.0;
+  c.limits.max_tilt = 0.48;
+  c.limits.max_thrust = 13.7;
+  c.limits.min_thrust = 3.27;
+  c.corridor = 0.1;
+  c.corner_deviation = 0.08;
+  return c;
+}
+
 /// The largest distance [m] of the trajectory from `free`, densely sampled.
 double largestDeviation(const Trajectory& t, const std::vector<std::vector<Vector3>>& free)
 {
@@ -230,6 +245,35 @@ TEST(Generator, AStopBrakesAlongTheCurveFlownAndComesToRestSoonerThanItsEnd)
   EXPECT_LT(stop.trajectory.endTime(), r.trajectory.endTime());
   const State end = stop.trajectory.at(stop.trajectory.endTime() + 1.0);
   EXPECT_EQ(end.v, Vector3::Zero());
+}
+
+TEST(Generator, AStopNearTheSpeedLimitIsNeverRefusedForItsSplinesOvershoot)
+{
+  // GIVEN a slow trajectory (the control's 2 m/s, braking at 4 m/s²) along a gentle zigzag,
+  // taken over from one flown and speeding up to its limit, then cruising at it
+  const GeneratorConfig c = brakingConfig();
+  const Generator generator(c);
+  std::mt19937 rng(59);
+  std::uniform_real_distribution<double> side(-0.3, 0.3);
+  std::vector<Vector3> path{Vector3(0, 0, 2)};
+  for (int k = 1; k <= 8; ++k) {
+    path.emplace_back(2.5 * k, side(rng), 2.0);
+  }
+  const State start{path.front(), Vector3(1.75, -0.18, 0.0), Vector3(1.74, -0.46, -0.09), Vector3::Zero()};
+  const GenerateResult r = generator.generate(0.0, start, path);
+  ASSERT_EQ(r.status, GenerateStatus::kOk) << r.why;
+  // WHEN it stops at any instant with room ahead to brake in (2 s of flight left)
+  int stops = 0;
+  for (double t = 0.0; t < r.trajectory.endTime() - 2.0; t += 0.013) {
+    const GenerateResult stop = generator.stop(r.trajectory, t);
+    ASSERT_EQ(stop.status, GenerateStatus::kOk) << stop.why;
+    // THEN it is at rest within a second and a half, sooner than the trajectory would be,
+    // never faster than 5 % over the limit (the stop's allowance for its spline)
+    EXPECT_LT(stop.trajectory.endTime(), t + 1.5) << "stop at " << t << ": " << stop.why;
+    EXPECT_LE(extremes(stop.trajectory, c.limits.gravity, 64).speed, 1.05 * c.limits.max_speed * 1.001);
+    ++stops;
+  }
+  EXPECT_GT(stops, 100);
 }
 
 TEST(Generator, AShortHopFromRestIsAlwaysFlownWithinTheLimits)

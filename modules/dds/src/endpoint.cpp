@@ -79,15 +79,18 @@ private:
 };
 
 WriterEndpoint::WriterEndpoint(Participant& participant, const TopicInfo& info,
-                               const fdds::TypeSupport& type, std::optional<fdds::DataWriterQos> qos)
-    : participant_(participant), info_(info), listener_(std::make_unique<Listener>(*this))
+                               const fdds::TypeSupport& type, std::optional<fdds::DataWriterQos> qos,
+                               std::optional<std::uint32_t> partition)
+    : participant_(participant),
+      info_(info),
+      listener_(std::make_unique<Listener>(*this)),
+      publisher_(participant.publisher(partition))
 {
   auto* topic = participant_.topic(info_, type);
   const fdds::DataWriterQos writer_qos = qos ? *qos : participant_.writerQos(info_);
   participant_.addLocalEndpoint(std::string(info_.name), type.get_type_name(),
                                 type->m_isGetKeyDefined, true);
-  writer_ = participant_.publisher()->create_datawriter(topic, writer_qos, listener_.get(),
-                                                        fdds::StatusMask::all());
+  writer_ = publisher_->create_datawriter(topic, writer_qos, listener_.get(), fdds::StatusMask::all());
   if (writer_ == nullptr) {
     participant_.removeLocalEndpoint(std::string(info_.name), true);
     throw std::runtime_error("cannot create writer on " + std::string(info_.name) + " (QoS profile " +
@@ -101,7 +104,7 @@ WriterEndpoint::WriterEndpoint(Participant& participant, const TopicInfo& info,
 WriterEndpoint::~WriterEndpoint()
 {
   writer_->set_listener(nullptr);
-  participant_.publisher()->delete_datawriter(writer_);
+  publisher_->delete_datawriter(writer_);
   participant_.removeLocalEndpoint(std::string(info_.name), true);
 }
 
@@ -229,8 +232,11 @@ private:
 
 ReaderEndpoint::ReaderEndpoint(Participant& participant, const TopicInfo& info,
                                const fdds::TypeSupport& type, Waker* waker,
-                               std::optional<fdds::DataReaderQos> qos)
-    : participant_(participant), info_(info), listener_(std::make_unique<Listener>(*this, waker))
+                               std::optional<fdds::DataReaderQos> qos, std::optional<std::uint32_t> partition)
+    : participant_(participant),
+      info_(info),
+      listener_(std::make_unique<Listener>(*this, waker)),
+      subscriber_(participant.subscriber(partition))
 {
   fdds::DataReaderQos reader_qos = qos ? *qos : participant_.readerQos(info_);
   // A minimum separation is kept in sim time by a content filter (sim_period_filter.hpp), not
@@ -239,8 +245,7 @@ ReaderEndpoint::ReaderEndpoint(Participant& participant, const TopicInfo& info,
   reader_qos = withMinimumSeparation(std::move(reader_qos), 0);
   participant_.addLocalEndpoint(std::string(info_.name), type.get_type_name(),
                                 type->m_isGetKeyDefined, false);
-  reader_ = participant_.subscriber()->create_datareader(topic_, reader_qos, listener_.get(),
-                                                         fdds::StatusMask::all());
+  reader_ = subscriber_->create_datareader(topic_, reader_qos, listener_.get(), fdds::StatusMask::all());
   if (reader_ == nullptr) {
     participant_.removeLocalEndpoint(std::string(info_.name), false);
     participant_.releaseReaderTopic(topic_);
@@ -255,7 +260,7 @@ ReaderEndpoint::ReaderEndpoint(Participant& participant, const TopicInfo& info,
 ReaderEndpoint::~ReaderEndpoint()
 {
   reader_->set_listener(nullptr);
-  participant_.subscriber()->delete_datareader(reader_);
+  subscriber_->delete_datareader(reader_);
   participant_.releaseReaderTopic(topic_);
   participant_.removeLocalEndpoint(std::string(info_.name), false);
 }

@@ -438,14 +438,52 @@ Participant::Participant(ParticipantOptions options)
     factory->delete_participant(participant_);
     throw std::runtime_error("cannot register the sim-time period filter on participant '" + options_.name + "'");
   }
-  publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
-  subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
-  if (publisher_ == nullptr || subscriber_ == nullptr) {
+  own_publisher_ = publisher();
+  own_subscriber_ = subscriber();
+  if (own_publisher_ == nullptr || own_subscriber_ == nullptr) {
     participant_->delete_contained_entities();
     factory->delete_participant(participant_);
     throw std::runtime_error("cannot create publisher/subscriber of participant '" +
                              options_.name + "'");
   }
+}
+
+std::vector<std::string> vehiclePartitions(std::uint32_t vehicle_id)
+{
+  if (vehicle_id == 0) {
+    return {"", "*"};
+  }
+  return {"vehicle." + std::to_string(vehicle_id)};
+}
+
+fdds::Publisher* Participant::publisher(std::optional<std::uint32_t> vehicle)
+{
+  const std::uint32_t id = vehicle.value_or(options_.vehicle_id);
+  const std::lock_guard lock(partitions_mutex_);
+  auto& made = publishers_[id];
+  if (made == nullptr) {
+    fdds::PublisherQos qos = fdds::PUBLISHER_QOS_DEFAULT;
+    for (const std::string& name : vehiclePartitions(id)) {
+      qos.partition().push_back(name.c_str());
+    }
+    made = participant_->create_publisher(qos);
+  }
+  return made;
+}
+
+fdds::Subscriber* Participant::subscriber(std::optional<std::uint32_t> vehicle)
+{
+  const std::uint32_t id = vehicle.value_or(options_.vehicle_id);
+  const std::lock_guard lock(partitions_mutex_);
+  auto& made = subscribers_[id];
+  if (made == nullptr) {
+    fdds::SubscriberQos qos = fdds::SUBSCRIBER_QOS_DEFAULT;
+    for (const std::string& name : vehiclePartitions(id)) {
+      qos.partition().push_back(name.c_str());
+    }
+    made = participant_->create_subscriber(qos);
+  }
+  return made;
 }
 
 Participant::~Participant()
@@ -546,8 +584,7 @@ Qos profileQos(Entity* entity, Getter getter, std::string_view qos_class, const 
 
 fdds::DataWriterQos Participant::writerQos(std::string_view qos_class) const
 {
-  return profileQos<fdds::DataWriterQos>(publisher_, &fdds::Publisher::get_datawriter_qos_from_profile,
-                                         qos_class, "writer", options_);
+  return profileQos<fdds::DataWriterQos>(own_publisher_, &fdds::Publisher::get_datawriter_qos_from_profile, qos_class, "writer", options_);
 }
 
 bool Participant::promisesEverySample(std::string_view qos_class) const
@@ -558,7 +595,7 @@ bool Participant::promisesEverySample(std::string_view qos_class) const
 
 fdds::DataReaderQos Participant::readerQos(std::string_view qos_class) const
 {
-  auto qos = profileQos<fdds::DataReaderQos>(subscriber_, &fdds::Subscriber::get_datareader_qos_from_profile,
+  auto qos = profileQos<fdds::DataReaderQos>(own_subscriber_, &fdds::Subscriber::get_datareader_qos_from_profile,
                                              qos_class, "reader", options_);
   // With inline keys, writers send each sample's key hash, which the validating transport
   // compares with the key in the payload (wire::checkRtpsDatagram): a damaged key is

@@ -114,7 +114,8 @@ PlanningNode::PlanningNode(PlanningNodeConfig config, dds::ParticipantOptions op
       // Every path of every vehicle, none replaced by a newer before it is taken: the one in
       // effect at a replan may be older than the newest heard (kPathEffectDelayNs).
       fleet_paths_(participant(), dds::topics::kPath, waker(),
-                   dds::withDepth(participant().readerQos(dds::topics::kPath.info.qos_profile), 64)),
+                   dds::withDepth(participant().readerQos(dds::topics::kPath.info.qos_profile), 64),
+                   dds::kEveryVehicle),
       reports_(participant(), dds::topics::kLockstep),
       path_(participant(), dds::topics::kPath),
       goal_acks_(participant(), dds::topics::kGoalAck),

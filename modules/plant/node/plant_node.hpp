@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "plant_config.hpp"
+#include "quad/dds/fleet_publisher.hpp"
 #include "quad/dds/lockstep.hpp"
 #include "quad/dds/node.hpp"
-#include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/plant/fleet.hpp"
@@ -63,15 +63,15 @@ private:
   PlantNodeConfig config_;
   std::unique_ptr<Fleet> fleet_;
   std::vector<VehicleIo> io_;  // one per vehicle, in the fleet's order
-  dds::Publisher<msg::SimClock> clock_;
-  dds::Publisher<msg::VehicleState> state_;
-  dds::Publisher<msg::Imu> imu_;
-  dds::Publisher<msg::PositionFix> position_;
-  dds::Publisher<msg::BaroAltitude> baro_;
-  dds::Publisher<msg::MagneticField> mag_;
-  dds::Publisher<msg::BatteryState> battery_;
-  dds::Publisher<msg::PointCloud> depth_;
-  dds::Publisher<msg::SimEvent> events_;
+  dds::FleetPublisher<msg::SimClock> clock_;
+  dds::FleetPublisher<msg::VehicleState> state_;
+  dds::FleetPublisher<msg::Imu> imu_;
+  dds::FleetPublisher<msg::PositionFix> position_;
+  dds::FleetPublisher<msg::BaroAltitude> baro_;
+  dds::FleetPublisher<msg::MagneticField> mag_;
+  dds::FleetPublisher<msg::BatteryState> battery_;
+  dds::FleetPublisher<msg::PointCloud> depth_;
+  dds::FleetPublisher<msg::SimEvent> events_;
   dds::Subscriber<msg::ActuatorCommand> actuators_;
   dds::Subscriber<msg::FaultCommand> faults_;
   std::unique_ptr<dds::LockstepBarrier> barrier_;

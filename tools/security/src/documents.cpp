@@ -32,7 +32,11 @@ std::string topicList(const char* element, const std::vector<std::string>& topic
   for (const auto& t : topics) {
     out += fmt::format("            <topic>{}</topic>\n", common::xmlEscaped(t));
   }
-  return out + fmt::format("          </topics>\n        </{}>\n", element);
+  // Any partition: a fleet's vehicles publish in partitions of their own, the plant and the
+  // tools in the default one and "*" (dds::vehiclePartitions); the topics are what is granted.
+  return out + fmt::format("          </topics>\n          <partitions>\n            <partition>*</partition>\n"
+                           "          </partitions>\n        </{}>\n",
+                           element);
 }
 
 }  // namespace

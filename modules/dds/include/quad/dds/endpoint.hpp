@@ -52,9 +52,12 @@ private:
 class WriterEndpoint {
 public:
   /// `qos` replaces the contract's QoS profile (for tools and tests); normally left out.
+  /// `partition`: the vehicle whose partitions the writer is in (vehiclePartitions); by default
+  /// the participant's.
   WriterEndpoint(Participant& participant, const TopicInfo& info,
                  const eprosima::fastdds::dds::TypeSupport& type,
-                 std::optional<eprosima::fastdds::dds::DataWriterQos> qos);
+                 std::optional<eprosima::fastdds::dds::DataWriterQos> qos,
+                 std::optional<std::uint32_t> partition = std::nullopt);
   ~WriterEndpoint();
   WriterEndpoint(const WriterEndpoint&) = delete;
   WriterEndpoint& operator=(const WriterEndpoint&) = delete;
@@ -84,6 +87,7 @@ private:
   Participant& participant_;
   TopicInfo info_;
   std::unique_ptr<Listener> listener_;
+  eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
   std::atomic<int> matched_{0};
   MatchedPeers peers_;
@@ -94,9 +98,11 @@ private:
 /// Owns one DataReader; wakes the node on data and reports statuses as events.
 class ReaderEndpoint {
 public:
+  /// `partition` as the writer's: vehicle 0's hears every vehicle's writers.
   ReaderEndpoint(Participant& participant, const TopicInfo& info,
                  const eprosima::fastdds::dds::TypeSupport& type, Waker* waker,
-                 std::optional<eprosima::fastdds::dds::DataReaderQos> qos);
+                 std::optional<eprosima::fastdds::dds::DataReaderQos> qos,
+                 std::optional<std::uint32_t> partition = std::nullopt);
   ~ReaderEndpoint();
   ReaderEndpoint(const ReaderEndpoint&) = delete;
   ReaderEndpoint& operator=(const ReaderEndpoint&) = delete;
@@ -141,6 +147,7 @@ private:
   TopicInfo info_;
   std::unique_ptr<Listener> listener_;
   eprosima::fastdds::dds::TopicDescription* topic_ = nullptr;  // the topic, or a filtered one of its own
+  eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
   std::atomic<int> matched_{0};
   MatchedPeers peers_;

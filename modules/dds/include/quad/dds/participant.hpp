@@ -132,7 +132,17 @@ struct RemoteEndpoint {
   std::string host;         ///< that participant's unicast addresses ("10.77.0.2, 127.0.0.1")
 };
 
-/// Owns the DomainParticipant, its Publisher and Subscriber, registered types and topics.
+/// The DDS partitions that keep a fleet's vehicles apart: a participant of vehicle N ≥ 1
+/// (QUAD_VEHICLE_ID) publishes and subscribes in "vehicle.N" alone, so that one vehicle's
+/// samples never reach another's modules; any other (vehicle 0: a lone vehicle's modules, the
+/// plant, the launcher, the tools) in "" and "*", which match the default partition and every
+/// vehicle's. An endpoint may ask for another vehicle's (the plant writes each vehicle's
+/// samples in that vehicle's) or for vehicle 0's, every vehicle (a planner reads every path).
+std::vector<std::string> vehiclePartitions(std::uint32_t vehicle_id);
+/// The partition of every vehicle (an endpoint's `partition`).
+inline constexpr std::uint32_t kEveryVehicle = 0;
+
+/// Owns the DomainParticipant, its Publishers and Subscribers, registered types and topics.
 /// Creates everything in the constructor and throws std::runtime_error naming what failed;
 /// the destructor deletes every entity it created.
 class Participant {
@@ -160,8 +170,10 @@ public:
                                                         std::int64_t period_ns);
   void releaseReaderTopic(eprosima::fastdds::dds::TopicDescription* topic);
 
-  eprosima::fastdds::dds::Publisher* publisher() { return publisher_; }
-  eprosima::fastdds::dds::Subscriber* subscriber() { return subscriber_; }
+  /// The publisher, or subscriber, in the partitions of `vehicle` (vehiclePartitions), made
+  /// on first use; without one, of the participant's own vehicle.
+  eprosima::fastdds::dds::Publisher* publisher(std::optional<std::uint32_t> vehicle = std::nullopt);
+  eprosima::fastdds::dds::Subscriber* subscriber(std::optional<std::uint32_t> vehicle = std::nullopt);
   eprosima::fastdds::dds::DomainParticipant* raw() { return participant_; }
 
   /// QoS of the named profile in the QoS file; throws naming the profile if it is missing.
@@ -211,8 +223,11 @@ private:
   std::shared_ptr<wire::DatagramFaults> datagram_faults_;
   std::unique_ptr<Listener> listener_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
-  eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
-  eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+  eprosima::fastdds::dds::Publisher* own_publisher_ = nullptr;    // in the participant's vehicle's partitions
+  eprosima::fastdds::dds::Subscriber* own_subscriber_ = nullptr;
+  std::mutex partitions_mutex_;
+  std::map<std::uint32_t, eprosima::fastdds::dds::Publisher*> publishers_;    // by vehicle partition
+  std::map<std::uint32_t, eprosima::fastdds::dds::Subscriber*> subscribers_;  // likewise
   std::map<std::string, eprosima::fastdds::dds::Topic*, std::less<>> topics_;
   std::uint64_t filtered_topics_ = 0;  // readerTopic's filtered ones made so far: their names
 

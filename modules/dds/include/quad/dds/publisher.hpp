@@ -20,12 +20,15 @@ namespace quad::dds {
 template <class Message>
 class Publisher : public WriterEndpoint {
 public:
+  /// `partition`: the vehicle whose partitions it writes in (vehiclePartitions); by default
+  /// the participant's.
   Publisher(Participant& participant, const Topic<Message>& topic,
-            std::optional<eprosima::fastdds::dds::DataWriterQos> qos = std::nullopt)
+            std::optional<eprosima::fastdds::dds::DataWriterQos> qos = std::nullopt,
+            std::optional<std::uint32_t> partition = std::nullopt)
       : WriterEndpoint(participant, topic.info,
                        eprosima::fastdds::dds::TypeSupport(
                            new typename MessageTraits<Message>::PubSubType()),
-                       std::move(qos)),
+                       std::move(qos), partition),
         vehicle_id_(participant.options().vehicle_id)
   {
   }

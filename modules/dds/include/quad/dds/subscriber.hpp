@@ -16,12 +16,15 @@ namespace quad::dds {
 template <class Message>
 class Subscriber : public ReaderEndpoint {
 public:
+  /// `partition`: whose partitions it reads in (vehiclePartitions); kEveryVehicle for a
+  /// reader of every vehicle's samples in a participant of one vehicle.
   Subscriber(Participant& participant, const Topic<Message>& topic, Waker* waker = nullptr,
-             std::optional<eprosima::fastdds::dds::DataReaderQos> qos = std::nullopt)
+             std::optional<eprosima::fastdds::dds::DataReaderQos> qos = std::nullopt,
+             std::optional<std::uint32_t> partition = std::nullopt)
       : ReaderEndpoint(participant, topic.info,
                        eprosima::fastdds::dds::TypeSupport(
                            new typename MessageTraits<Message>::PubSubType()),
-                       waker, std::move(qos))
+                       waker, std::move(qos), partition)
   {
   }
 

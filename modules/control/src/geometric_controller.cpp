@@ -27,8 +27,8 @@ GeometricController::GeometricController(double mass, const Vector3& inertia, co
 }
 
 namespace {
-/// [s] the time constant the feedback's part of Ω_d is smoothed with.
-constexpr double kFeedbackRateLag = 0.02;
+/// [s] the time constant Ω_d is smoothed with.
+constexpr double kDesiredRateLag = 0.02;
 }  // namespace
 
 Matrix3 GeometricController::desiredAttitude(const Vector3& thrust_W, double yaw)
@@ -115,21 +115,15 @@ ControlOutput GeometricController::update(const VehicleState& s, const Reference
     integral_ = (integral_ + step).cwiseMax(-bound).cwiseMin(bound);
   }
   const Matrix3 R_WD = desiredAttitude(thrust_W, ref.yaw);
-  // Ω_d from the change of the desired attitude since the last tick: the feed-forward
-  // acceleration's (its jerk, on a trajectory) and the feedback's, plus the yaw rate.
-  // The feed-forward's part is the reference's own (its jerk turns the thrust axis at
-  // ḃ3 = (I − b3 b3ᵀ) m j / ‖F‖, Mellinger and Kumar 2011); the feedback's, the rest, is
-  // smoothed over kFeedbackRateLag: differenced tick by tick it turns a state's noise (2 cm at
-  // 250 Hz) into rates at their limit, and the saturated rotors let the vehicle sink.
-  const Vector3 b3 = R_WD.col(2);
-  const double force = thrust_W.norm();
-  const Vector3 b3_dot = force > 0.0 ? Vector3((mass_ / force) * (ref.j_W - ref.j_W.dot(b3) * b3)) : Vector3::Zero();
-  const Vector3 w_ff(-b3_dot.dot(R_WD.col(1)), b3_dot.dot(R_WD.col(0)), ref.yaw_rate * b3.z());
-  Vector3 w_D = w_ff;
+  // Ω_d from the change of the desired attitude since the last tick (the feed-forward
+  // acceleration's, its jerk on a trajectory, and the feedback's), plus the yaw rate, smoothed
+  // over kDesiredRateLag: differenced tick by tick it turns a state's noise (2 cm at 250 Hz)
+  // into rates at their limit, and the saturated rotors let the vehicle sink.
+  Vector3 w_D = Vector3(0.0, 0.0, ref.yaw_rate);
   if (have_previous_ && dt > 0.0) {
-    const Vector3 w_fb = geometry::logSO3(previous_R_WD_.transpose() * R_WD) / dt - w_ff;
-    w_fb_ += (dt / (kFeedbackRateLag + dt)) * (w_fb - w_fb_);
-    w_D = (w_ff + w_fb_).cwiseMax(-gains_.max_rate).cwiseMin(gains_.max_rate);
+    const Vector3 w = geometry::logSO3(previous_R_WD_.transpose() * R_WD) / dt;
+    w_D_ += (dt / (kDesiredRateLag + dt)) * (w.cwiseMax(-gains_.max_rate).cwiseMin(gains_.max_rate) - w_D_);
+    w_D = w_D_;
   }
   previous_R_WD_ = R_WD;
   have_previous_ = true;

@@ -97,7 +97,7 @@ public:
   void reset()
   {
     have_previous_ = false;
-    w_fb_.setZero();
+    w_D_.setZero();
     integral_.setZero();
   }
   /// Whether update() integrates the position error (the integral itself is kept when not):
@@ -120,7 +120,7 @@ private:
   Matrix3 previous_R_WD_ = Matrix3::Identity();
   Vector3 previous_b2_ = Vector3::UnitY();
   bool have_previous_ = false;
-  Vector3 w_fb_ = Vector3::Zero();  ///< [rad/s] the feedback's part of Ω_d, smoothed
+  Vector3 w_D_ = Vector3::Zero();  ///< [rad/s] Ω_d, smoothed
   Vector3 integral_ = Vector3::Zero();  ///< [m s] ∫ e_x dt
   bool integrating_ = true;
 };

@@ -292,8 +292,11 @@ TEST(Launch, InFlightOnlyTheLaunchersObserverReadsTheGroundTruthAndTheEstimatorN
 {
   constexpr int kDomain = 119;
   const fs::path dir = quad::test::scratchDir("quad_launch_truth");
-  ChildProcess launch({QUAD_TOOL, "launch", std::string(QUAD_SOURCE_DIR) + "/bringup/demo.yaml", "--domain",
-                       std::to_string(kDomain), "--quiet", "--wall-timeout", "120", "--log-dir", (dir / "run").string()});
+  // The long world (a 130 m line): the run must outlast the looks below, which on a loaded
+  // machine took longer than the demo's 45 s flight.
+  ChildProcess launch({QUAD_TOOL, "launch", std::string(QUAD_SOURCE_DIR) + "/bringup/demo.yaml", "--world",
+                       std::string(QUAD_SOURCE_DIR) + "/configs/worlds/long.yaml", "--domain", std::to_string(kDomain),
+                       "--quiet", "--wall-timeout", "300", "--log-dir", (dir / "run").string()});
   // Once control, planning and mapping read the estimate, every module has made its readers.
   const std::set<std::string> flying{"control", "mapping", "planning"};
   std::set<std::string> estimate_readers;

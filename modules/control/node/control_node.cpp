@@ -121,6 +121,11 @@ void ControlNode::takeInputs()
 void ControlNode::applyPath(const msg::Path& p, double t)
 {
   path_t_ = t;
+  constexpr std::size_t kVersionsKept = 64;
+  path_depth_ns_.insert_or_assign(p.version(), p.depth_stamp_ns());
+  if (path_depth_ns_.size() > kVersionsKept) {
+    path_depth_ns_.erase(path_depth_ns_.begin());
+  }
   if (!fc_.onPath(waypointsOf(p), p.version(), pathKind(p.status()), t, p.known_free_m())) {
     counters().errors++;
     spdlog::warn("{}: version {} rejected: invalid waypoints or known-free length ({})", dds::topics::kPath.info.name,
@@ -241,6 +246,8 @@ void ControlNode::control(double t, std::int64_t stamp_ns)
   if (out.trajectories != last_.trajectories) {
     // What is flown from now on, whole: a replan taken, a stop, a hold.
     msg::Trajectory m = dds::toMessage(follower.trajectory(), out.trajectories, follower.version().value_or(0));
+    const auto depth = path_depth_ns_.find(follower.version().value_or(0));
+    m.depth_stamp_ns(follower.version() && depth != path_depth_ns_.end() ? depth->second : -1);
     m.header().stamp_ns(stamp_ns);
     trajectory_.write(m);
     counters().samples_out++;

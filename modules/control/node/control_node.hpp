@@ -6,6 +6,7 @@
 /// takes paths, goals and operator commands.
 
 #include <deque>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -93,6 +94,9 @@ private:
   std::int64_t latest_wall_ns_ = 0;        // steady time it arrived
   std::int64_t path_wall_ns_ = 0;          // steady time the newest path arrived
   double path_t_ = -1.0;                   // sim time it arrived at [s]
+  /// Path.depth_stamp_ns of the recent path versions, each as last applied (a version sent
+  /// again with more of it known free is taken again): the trajectory taken for one carries it.
+  std::map<std::uint32_t, std::int64_t> path_depth_ns_;
   double next_status_t_ = 0.0;
   FlightOutput last_;
   std::uint64_t refused_ = 0;                        // paths the follower refused so far

@@ -19,6 +19,7 @@ msg::Trajectory toMessage(const trajectory::Trajectory& t, std::uint32_t count, 
   m.count(count);
   m.path_version(path_version);
   m.start_ns(common::toNanoseconds(t.startTime()));
+  m.depth_stamp_ns(-1);  // the caller's to set when it follows a path
   for (std::size_t i = 0; i < t.pieces().size() && i < kMaxPieces; ++i) {
     const trajectory::Piece& p = t.pieces()[i];
     msg::TrajectoryPiece out;

@@ -291,6 +291,7 @@ void MappingNode::integrate(const msg::PointCloud& cloud, const std::optional<ge
     update.update_seq(++update_seq_);
     update.resolution(mapper_.resolution());
     update.depth_frames(frames_taken_);
+    update.depth_stamp_ns(last_stamp_ns_);
     const std::size_t end = std::min(result.changes.size(), begin + kMaxChangesPerMessage);
     update.changes().reserve(end - begin);
     for (std::size_t i = begin; i < end; ++i) {

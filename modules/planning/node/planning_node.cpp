@@ -126,6 +126,7 @@ PlanningNode::PlanningNode(PlanningNodeConfig config, dds::ParticipantOptions op
                      config_.planner.vehicle_radius - config_.safety_margin)
 {
   followSimClock(dds::kHeldStates);  // every sample: the depth frames due at each state's time
+  current_.depth_stamp_ns(depth_stamp_ns_);
   spdlog::info("planning: lattice {} cells at {} m, inflation {} m", planner_.lattice().size(), config_.resolution,
                config_.planner.vehicle_radius);
 }
@@ -274,6 +275,7 @@ void PlanningNode::applyUpdate(const msg::MapUpdate& update)
   }
   // Covered by a snapshot or applied now, what it accounts for is in the map.
   frames_applied_ = std::max(frames_applied_, update.depth_frames());
+  depth_stamp_ns_ = std::max(depth_stamp_ns_, update.depth_stamp_ns());
   update_lost_ = false;
 }
 
@@ -445,6 +447,7 @@ void PlanningNode::replan(std::int64_t t_ns)
   current_.status(toMessage(r.status));
   current_.cost(r.status == PlanStatus::kOk ? r.cost : -1.0);
   current_.known_free_m(known_free);
+  current_.depth_stamp_ns(depth_stamp_ns_);
   frontier_W_ = frontier_W;
   current_.expansions(r.expansions);
   current_.replan_time_s(seconds);

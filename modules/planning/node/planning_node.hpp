@@ -98,6 +98,7 @@ private:
   std::deque<msg::MapUpdate> held_updates_;      // arrived, not yet due
   std::vector<std::pair<VoxelIndex, Occupancy>> pending_;  // voxel changes not yet in the graph
   std::uint64_t frames_applied_ = 0;    // depth clouds the applied updates account for
+  std::int64_t depth_stamp_ns_ = -1;     // the newest depth cloud the applied updates hold (-1: none)
   std::uint64_t refused_updates_ = 0;   // MapUpdate payloads refused on receipt, so far
   bool update_lost_ = false;            // one was refused or never came since the last update applied
   std::int64_t mapper_done_ns_ = 0;     // the mapper's newest lockstep report

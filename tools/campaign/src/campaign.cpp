@@ -55,7 +55,9 @@ CampaignRun readRun(const fs::path& summary, const std::string& world, std::uint
   r.state = j.value("state", "");
   if (j.contains("estimate") && j["estimate"].is_object()) {
     r.estimate_rms_m = optionalNumber(j["estimate"], "position_rms_m");
+    r.estimate_nees = optionalNumber(j["estimate"], "position_nees_mean");
   }
+  r.depth_to_command_max_s = optionalNumber(j, "depth_to_command_max_s");
   r.replans = j.value("paths", 0);
   r.sim_s = j.value("sim_seconds", 0.0);
   r.wall_s = j.value("wall_seconds", 0.0);
@@ -144,6 +146,9 @@ std::string toJson(const std::vector<CampaignRun>& runs)
     row["top_speed_mps"] = r.top_speed_mps;
     row["state"] = r.state;
     row["estimate_rms_m"] = r.estimate_rms_m ? nlohmann::ordered_json(*r.estimate_rms_m) : nlohmann::ordered_json(nullptr);
+    row["estimate_nees"] = r.estimate_nees ? nlohmann::ordered_json(*r.estimate_nees) : nlohmann::ordered_json(nullptr);
+    row["depth_to_command_max_s"] =
+        r.depth_to_command_max_s ? nlohmann::ordered_json(*r.depth_to_command_max_s) : nlohmann::ordered_json(nullptr);
     row["replans"] = r.replans;
     row["sim_seconds"] = r.sim_s;
     row["wall_seconds"] = r.wall_s;

@@ -28,12 +28,14 @@ TEST(Campaign, ASummaryIsReadBackWithItsOptimumAndEnd)
   const auto file = writeSummary(dir, "a.json", R"({"success": true, "end": "success", "failure": "", "collisions": 0,
       "sim_seconds": 30.5, "wall_seconds": 41.0, "path_length_m": 45.3, "optimum_m": 43.1,
       "flown_over_optimum": 1.051, "paths": 55, "min_clearance_m": 0.54, "state": "estimate",
-      "estimate": {"samples": 7000, "position_rms_m": 0.021}})");
+      "depth_to_command_max_s": 0.31, "estimate": {"samples": 7000, "position_rms_m": 0.021, "position_nees_mean": 2.7}})");
   const CampaignRun r = readRun(file, "wall", 2, 0);
   EXPECT_TRUE(r.success);
   EXPECT_EQ(r.state, "estimate");
   ASSERT_TRUE(r.estimate_rms_m.has_value());
   EXPECT_DOUBLE_EQ(*r.estimate_rms_m, 0.021);
+  EXPECT_EQ(r.estimate_nees, std::optional<double>(2.7));
+  EXPECT_EQ(r.depth_to_command_max_s, std::optional<double>(0.31));
   EXPECT_EQ(r.seed, 2U);
   EXPECT_EQ(r.replans, 55);
   ASSERT_TRUE(r.flown_over_optimum.has_value());

@@ -35,6 +35,10 @@ def cell(out, density, speed):
         "time_to_goal_s": median(ok, "time_to_goal_s"),
         "flown_over_optimum": median(ok, "flown_over_optimum"),
         "closest_approach_m": min(clearances) if clearances else None,
+        "depth_to_command_max_s": max((r["depth_to_command_max_s"] for r in runs
+                                       if r.get("depth_to_command_max_s") is not None), default=None),
+        "estimate_rms_m": median(runs, "estimate_rms_m"),
+        "estimate_nees": median(runs, "estimate_nees"),
     }
 
 
@@ -80,15 +84,17 @@ def main():
     grid = [cell(out, d, v) for d in densities for v in speeds]
     f = lambda x: "-" if x is None else f"{x:.2f}"
     print(f"{'m2/tree':>7} {'m/s':>4} {'success':>8} {'avg m/s':>8} {'top m/s':>8} {'to goal s':>9} "
-          f"{'flown/opt':>9} {'closest m':>9}")
+          f"{'flown/opt':>9} {'closest m':>9} {'latency s':>9} {'est rms m':>9} {'NEES':>6}")
     for c in grid:
         print(f"{c['m2_per_tree']:>7g} {c['speed_mps']:>4g} {c['successes']:>4}/{c['runs']:<3} "
               f"{f(c['average_speed_mps']):>8} {f(c['top_speed_mps']):>8} {f(c['time_to_goal_s']):>9} "
-              f"{f(c['flown_over_optimum']):>9} {f(c['closest_approach_m']):>9}")
+              f"{f(c['flown_over_optimum']):>9} {f(c['closest_approach_m']):>9} "
+              f"{f(c['depth_to_command_max_s']):>9} {f(c['estimate_rms_m']):>9} {f(c['estimate_nees']):>6}")
     json.dump({"grid": grid}, open(f"{out}/grid.json", "w"), indent=2)
     open(f"{out}/grid.svg", "w").write(svg(grid, densities, speeds))
-    print(f"grid in {out}/grid.json and {out}/grid.svg (medians over the successful runs; "
-          "the closest approach over all)")
+    print(f"grid in {out}/grid.json and {out}/grid.svg (speeds, times and lengths: medians over the "
+          "successful runs; the closest approach and the latency from a depth frame to its command: the "
+          "worst of all runs; the estimate's position error (RMS) and mean NEES: medians over all)")
 
 
 if __name__ == "__main__":

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -30,12 +31,13 @@ void bound(Map& m)
 }
 }  // namespace
 
-void EstimateScore::onTruth(std::int64_t t_ns, const geometry::Vector3& p_W, const geometry::Quaternion& q_WB)
+void EstimateScore::onTruth(std::int64_t t_ns, const geometry::Vector3& p_W, const geometry::Quaternion& q_WB,
+                            const geometry::Vector3& v_W)
 {
   if (t_ns > end_ns_) {
     return;
   }
-  const Pose truth{p_W, q_WB.normalized(), geometry::Vector3::Zero()};
+  const Pose truth{p_W, q_WB.normalized(), geometry::Vector3::Zero(), v_W.norm()};
   if (const auto e = estimates_.find(t_ns); e != estimates_.end()) {
     score(t_ns, truth, e->second);
     estimates_.erase(estimates_.begin(), std::next(e));
@@ -52,7 +54,7 @@ void EstimateScore::onEstimate(std::int64_t t_ns, const geometry::Vector3& p_W, 
       !(p_std.array() > 0.0).all()) {
     return;
   }
-  const Pose estimate{p_W, q_WB.normalized(), p_std};
+  const Pose estimate{p_W, q_WB.normalized(), p_std, 0.0};
   if (const auto t = truths_.find(t_ns); t != truths_.end()) {
     score(t_ns, t->second, estimate);
     truths_.erase(truths_.begin(), std::next(t));
@@ -70,7 +72,7 @@ void EstimateScore::score(std::int64_t t_ns, const Pose& truth, const Pose& esti
   const geometry::Vector3 z = e.cwiseQuotient(estimate.std);
   held_[t_ns] = {e.norm(), 3.0 * estimate.std.norm(),
                  geometry::geodesicAngle(truth.q, estimate.q) * 180.0 / std::numbers::pi, yaw, z.squaredNorm(),
-                 (z.cwiseAbs().array() <= 3.0).all()};
+                 (z.cwiseAbs().array() <= 3.0).all(), truth.speed};
   commitBefore(held_.rbegin()->first - kHoldNs);
 }
 
@@ -87,6 +89,13 @@ void EstimateScore::commitBefore(std::int64_t t_ns)
     sum_yaw2_ += term.yaw_deg * term.yaw_deg;
     sum_nees_ += term.nees;
     within_ += term.within_3sigma ? 1U : 0U;
+    if (std::isfinite(term.speed)) {
+      const auto above = std::upper_bound(kSpeedBands.begin(), kSpeedBands.end(), term.speed);
+      BandSums& band = bands_[static_cast<std::size_t>(std::distance(kSpeedBands.begin(), above)) - 1];
+      ++band.n;
+      band.sum_p2 += term.position_m * term.position_m;
+      band.sum_nees += term.nees;
+    }
     if (t >= next_point_ns_) {
       series_.push_back({static_cast<double>(t) * 1e-9, term.position_m, term.position_3sigma_m, term.attitude_deg,
                          term.yaw_deg});
@@ -128,6 +137,15 @@ std::optional<EstimateErrors> EstimateScore::errors() const
   out.yaw_rms_deg = std::sqrt(all.sum_yaw2_ / n);
   out.position_nees_mean = all.sum_nees_ / n;
   out.within_3sigma = static_cast<double>(all.within_) / n;
+  for (std::size_t i = 0; i < kSpeedBands.size(); ++i) {
+    const BandSums& b = all.bands_[i];
+    if (b.n > 0) {
+      const double bn = static_cast<double>(b.n);
+      out.by_speed.push_back({kSpeedBands[i],
+                              i + 1 < kSpeedBands.size() ? kSpeedBands[i + 1] : std::numeric_limits<double>::infinity(),
+                              b.n, std::sqrt(b.sum_p2 / bn), b.sum_nees / bn});
+    }
+  }
   return out;
 }
 

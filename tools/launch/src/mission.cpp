@@ -111,6 +111,13 @@ void MissionTracker::onPath(std::uint32_t version, const std::string& no_path)
   }
 }
 
+void MissionTracker::onTrajectory(double t, double depth_t)
+{
+  if (mode_ == "MISSION" && !finished_ && std::isfinite(t) && std::isfinite(depth_t) && t >= depth_t) {
+    depth_latencies_.push_back(t - depth_t);
+  }
+}
+
 void MissionTracker::onCollision(double t)
 {
   ++collisions_;
@@ -129,6 +136,11 @@ void addCount(std::optional<std::uint64_t>& sum, const std::optional<std::uint64
   if (vehicle) {
     sum = sum.value_or(0) + *vehicle;
   }
+}
+/// The larger of two figures, either of which may be unknown.
+std::optional<double> mostOf(std::optional<double> a, std::optional<double> b)
+{
+  return a && b ? std::max(*a, *b) : (a ? a : b);
 }
 }  // namespace
 
@@ -174,6 +186,12 @@ MissionSummary MissionTracker::summary(double wall_s) const
     s.average_speed_mps = (goal_length_ - mission_length_) / *s.time_to_goal_s;
   }
   s.top_speed_mps = top_speed_;
+  if (!depth_latencies_.empty()) {
+    std::vector<double> sorted = depth_latencies_;
+    std::sort(sorted.begin(), sorted.end());
+    s.depth_to_command_median_s = sorted[sorted.size() / 2];
+    s.depth_to_command_max_s = sorted.back();
+  }
   s.paths = paths_;
   s.map_overruns = map_overruns_;
   s.path_overruns = path_overruns_;
@@ -300,6 +318,8 @@ MissionSummary fleetSummary(std::vector<MissionSummary> vehicles, std::optional<
     s.path_length_m += v.path_length_m;
     s.straight_line_m += v.straight_line_m;
     s.top_speed_mps = std::max(s.top_speed_mps, v.top_speed_mps);
+    s.depth_to_command_median_s = mostOf(s.depth_to_command_median_s, v.depth_to_command_median_s);
+    s.depth_to_command_max_s = mostOf(s.depth_to_command_max_s, v.depth_to_command_max_s);
     optimum = optimum && v.optimum_m ? std::optional<double>(*optimum + *v.optimum_m) : std::nullopt;
     s.paths += v.paths;
     addCount(s.map_overruns, v.map_overruns);
@@ -346,6 +366,8 @@ nlohmann::ordered_json jsonOf(const MissionSummary& s)
   j["time_to_goal_s"] = orNull(s.time_to_goal_s);
   j["average_speed_mps"] = orNull(s.average_speed_mps);
   j["top_speed_mps"] = s.top_speed_mps;
+  j["depth_to_command_median_s"] = orNull(s.depth_to_command_median_s);
+  j["depth_to_command_max_s"] = orNull(s.depth_to_command_max_s);
   j["optimum_m"] = s.optimum_m ? nlohmann::ordered_json(*s.optimum_m) : nlohmann::ordered_json(nullptr);
   j["flown_over_optimum"] = s.optimum_m && *s.optimum_m > 0.0 ? nlohmann::ordered_json(s.path_length_m / *s.optimum_m)
                                                               : nlohmann::ordered_json(nullptr);
@@ -374,6 +396,15 @@ nlohmann::ordered_json jsonOf(const MissionSummary& s)
                      {"yaw_rms_deg", e.yaw_rms_deg},
                      {"position_nees_mean", e.position_nees_mean},
                      {"within_3sigma", e.within_3sigma}};
+    nlohmann::ordered_json bands = nlohmann::ordered_json::array();
+    for (const EstimateBand& b : e.by_speed) {
+      bands.push_back({{"from_mps", b.from_mps},
+                       {"to_mps", std::isfinite(b.to_mps) ? nlohmann::ordered_json(b.to_mps) : nlohmann::ordered_json(nullptr)},
+                       {"samples", b.samples},
+                       {"position_rms_m", b.position_rms_m},
+                       {"position_nees_mean", b.position_nees_mean}});
+    }
+    j["estimate"]["by_speed"] = bands;
   } else {
     j["estimate"] = nullptr;
   }
@@ -412,10 +443,18 @@ std::string estimateText(const MissionSummary& s)
     return "";
   }
   const EstimateErrors& e = *s.estimate;
+  std::string bands;
+  for (const EstimateBand& b : e.by_speed) {
+    bands += fmt::format("{}{}: {:.1f} cm, NEES {:.2f}", bands.empty() ? "" : "; ",
+                         std::isfinite(b.to_mps) ? fmt::format("{:g}-{:g} m/s", b.from_mps, b.to_mps)
+                                                 : fmt::format("{:g} m/s and over", b.from_mps),
+                         100.0 * b.position_rms_m, b.position_nees_mean);
+  }
   return fmt::format("  estimate against the truth: position {:.1f} cm RMS (max {:.1f}), attitude {:.2f} deg RMS (max "
                      "{:.2f}), yaw {:.2f} deg RMS; position NEES {:.2f} (3 if consistent), {:.1f} % within 3 sigma\n",
                      100.0 * e.position_rms_m, 100.0 * e.position_max_m, e.attitude_rms_deg, e.attitude_max_deg,
-                     e.yaw_rms_deg, e.position_nees_mean, 100.0 * e.within_3sigma);
+                     e.yaw_rms_deg, e.position_nees_mean, 100.0 * e.within_3sigma) +
+         (bands.empty() ? "" : "  by the true speed: " + bands + "\n");
 }
 /// "  map updates over the mapper's budget: 3 (the lockstep clock waited for them)", and the
 /// planner's paths alike; a line for each count heard.
@@ -433,11 +472,16 @@ std::string overrunText(const MissionSummary& s)
 std::string speedText(const MissionSummary& s)
 {
   const std::string top = fmt::format("top speed {:.1f} m/s", s.top_speed_mps);
+  const std::string latency =
+      s.depth_to_command_median_s && s.depth_to_command_max_s
+          ? fmt::format("  from a depth frame to the command reacting to it: {:.2f} s (median), {:.2f} s at most\n",
+                        *s.depth_to_command_median_s, *s.depth_to_command_max_s)
+          : std::string();
   if (!s.time_to_goal_s || !s.average_speed_mps) {
-    return "  " + top + "\n";
+    return "  " + top + "\n" + latency;
   }
   return fmt::format("  to the goal in {:.1f} s from the mission's start, at {:.1f} m/s on average; {}\n", *s.time_to_goal_s,
-                     *s.average_speed_mps, top);
+                     *s.average_speed_mps, top) + latency;
 }
 
 /// A fleet's vehicles, a line each, and the least separation; empty for one vehicle.

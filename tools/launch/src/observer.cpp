@@ -54,6 +54,7 @@ struct Observer::Endpoints {
       : goal(p, topics::kGoal),
         status(p, topics::kControlStatus, nullptr, Sim::deep(p, topics::kControlStatus.info)),
         path(p, topics::kPath),
+        trajectory(p, topics::kTrajectory, nullptr, Sim::deep(p, topics::kTrajectory.info)),
         events(p, topics::kSimEvents),
         map_stats(p, topics::kMapStats),
         operator_beat(p, topics::kOperatorHeartbeat)
@@ -62,6 +63,7 @@ struct Observer::Endpoints {
   dds::Publisher<msg::Goal> goal;
   dds::Subscriber<msg::ControlStatus> status;  // every one (Sim::deep)
   dds::Subscriber<msg::Path> path;
+  dds::Subscriber<msg::Trajectory> trajectory;  // every one (Sim::deep): each its latency
   dds::Subscriber<msg::SimEvent> events;
   dds::Subscriber<msg::MapStats> map_stats;
   dds::Publisher<msg::Heartbeat> operator_beat;
@@ -290,7 +292,8 @@ std::vector<ModuleBeat> Observer::takeHeartbeats()
 
 std::int64_t Observer::simTimeNs() const { return sim_->clock.ns(); }
 
-void Observer::onState(Track& v, std::int64_t stamp_ns, const Eigen::Vector3d& p, const geometry::Quaternion& q)
+void Observer::onState(Track& v, std::int64_t stamp_ns, const Eigen::Vector3d& p, const geometry::Quaternion& q,
+                       const Eigen::Vector3d& v_W)
 {
   v.state_ns = stamp_ns;
   v.position = p;
@@ -298,7 +301,7 @@ void Observer::onState(Track& v, std::int64_t stamp_ns, const Eigen::Vector3d& p
   if (first_state_ns_ == 0) {
     first_state_ns_ = last_state_ns_;
   }
-  v.score.onTruth(stamp_ns, p, q);
+  v.score.onTruth(stamp_ns, p, q, v_W);
   if (!v.tracker) {
     return;
   }
@@ -324,7 +327,7 @@ void Observer::update()
     if (!sim_->clock.vouchesFor(s.header().stamp_ns()) || s.header().stamp_ns() < v.state_ns || !p.allFinite()) {
       continue;
     }
-    onState(v, s.header().stamp_ns(), p, dds::toQuaternion(s.q_WB()));
+    onState(v, s.header().stamp_ns(), p, dds::toQuaternion(s.q_WB()), dds::toVector(s.v_W()));
   }
   for (const auto& e : sim_->estimate.takeAll(ids_)) {
     Track& v = *track(e.header().vehicle_id());
@@ -346,6 +349,11 @@ void Observer::update()
     if (auto* m = missionOf(p)) {
       m->onPath(p.version(), noPathReason(p.status()));
       m->onPathOverruns(p.overruns());
+    }
+  }
+  for (const auto& t : endpoints_->trajectory.takeAll(ids_)) {
+    if (auto* m = missionOf(t); m != nullptr && t.path_version() != 0 && t.depth_stamp_ns() >= 0) {
+      m->onTrajectory(common::toSeconds(t.header().stamp_ns()), common::toSeconds(t.depth_stamp_ns()));
     }
   }
   for (const auto& e : endpoints_->events.takeAll(ids_)) {

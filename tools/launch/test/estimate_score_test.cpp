@@ -28,11 +28,11 @@ TEST(EstimateScore, AConstantErrorIsItsOwnRmsAndMaxAndTheNeesFollowsTheSigma)
     const Vector3 p(0.1 * static_cast<double>(k), 1.0, 2.0);
     // Either side may come first.
     if (k % 2 == 0) {
-      s.onTruth(t, p, yawed(30.0));
+      s.onTruth(t, p, yawed(30.0), Vector3(25.0, 0.0, 0.0));
       s.onEstimate(t, p + Vector3(0.03, 0.0, 0.04), yawed(32.0), Vector3(0.015, 0.01, 0.02), true);
     } else {
       s.onEstimate(t, p + Vector3(0.03, 0.0, 0.04), yawed(32.0), Vector3(0.015, 0.01, 0.02), true);
-      s.onTruth(t, p, yawed(30.0));
+      s.onTruth(t, p, yawed(30.0), Vector3(25.0, 0.0, 0.0));
     }
   }
   const auto e = s.errors();
@@ -58,14 +58,56 @@ TEST(EstimateScore, AConstantErrorIsItsOwnRmsAndMaxAndTheNeesFollowsTheSigma)
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 21);
 }
 
+TEST(EstimateScore, EachSpeedBandHoldsThePairsFlownThatFastAndTheirOwnFigures)
+{
+  // GIVEN 100 pairs hovering 1 cm off at 1σ = 1 cm, 100 at 3 m/s 2 cm off, and 200 at 8 m/s
+  // 6 cm off at 1σ = 2 cm (overconfident at speed)
+  EstimateScore s;
+  std::int64_t t = 0;
+  const auto feed = [&](int n, double speed, double error, double sigma) {
+    for (int k = 0; k < n; ++k, t += 4'000'000) {
+      const Vector3 p(speed * 0.004 * static_cast<double>(k), 0.0, 2.0);
+      s.onTruth(t, p, Quaternion::identity(), Vector3(0.0, speed, 0.0));
+      s.onEstimate(t, p + Vector3(error, 0.0, 0.0), Quaternion::identity(), Vector3::Constant(sigma), true);
+    }
+  };
+  feed(100, 0.0, 0.01, 0.01);
+  feed(100, 3.0, 0.02, 0.01);
+  feed(200, 8.0, 0.06, 0.02);
+  const auto e = s.errors();
+  ASSERT_TRUE(e);
+  // THEN each band says its own error and NEES, and the whole run's mixes them
+  ASSERT_EQ(e->by_speed.size(), 3U);
+  EXPECT_EQ(e->by_speed[0].from_mps, 0.0);
+  EXPECT_EQ(e->by_speed[0].to_mps, 2.0);
+  EXPECT_EQ(e->by_speed[0].samples, 100U);
+  EXPECT_NEAR(e->by_speed[0].position_rms_m, 0.01, 1e-12);
+  EXPECT_NEAR(e->by_speed[0].position_nees_mean, 1.0, 1e-9);
+  EXPECT_EQ(e->by_speed[1].samples, 100U);
+  EXPECT_NEAR(e->by_speed[1].position_nees_mean, 4.0, 1e-9);
+  EXPECT_EQ(e->by_speed[2].from_mps, 5.0);
+  EXPECT_TRUE(std::isinf(e->by_speed[2].to_mps));
+  EXPECT_EQ(e->by_speed[2].samples, 200U);
+  EXPECT_NEAR(e->by_speed[2].position_rms_m, 0.06, 1e-12);
+  EXPECT_NEAR(e->by_speed[2].position_nees_mean, 9.0, 1e-9);
+  EXPECT_NEAR(e->position_nees_mean, (100 * 1.0 + 100 * 4.0 + 200 * 9.0) / 400.0, 1e-9);
+  // AND a run that never flew fast has no band above its speed
+  EstimateScore slow;
+  slow.onTruth(0, Vector3::Zero(), Quaternion::identity(), Vector3(0.5, 0.0, 0.0));
+  slow.onEstimate(0, Vector3::Zero(), Quaternion::identity(), Vector3::Constant(0.1), true);
+  ASSERT_TRUE(slow.errors());
+  ASSERT_EQ(slow.errors()->by_speed.size(), 1U);
+  EXPECT_EQ(slow.errors()->by_speed[0].to_mps, 2.0);
+}
+
 TEST(EstimateScore, OnlyAlignedEstimatesWithATruthOfTheirStampCount)
 {
   EstimateScore s;
-  s.onTruth(0, Vector3::Zero(), Quaternion::identity());
+  s.onTruth(0, Vector3::Zero(), Quaternion::identity(), Vector3::Zero());
   s.onEstimate(0, Vector3(5, 0, 0), Quaternion::identity(), Vector3::Constant(0.1), false);  // still aligning
   s.onEstimate(4'000'000, Vector3(5, 0, 0), Quaternion::identity(), Vector3::Constant(0.1), true);  // no truth
   EXPECT_FALSE(s.errors());
-  s.onTruth(8'000'000, Vector3::Zero(), Quaternion::identity());
+  s.onTruth(8'000'000, Vector3::Zero(), Quaternion::identity(), Vector3::Zero());
   s.onEstimate(8'000'000, Vector3(0, 0.5, 0), Quaternion::identity(), Vector3::Constant(0.1), true);
   const auto e = s.errors();
   ASSERT_TRUE(e);
@@ -85,7 +127,7 @@ TEST(EstimateScore, ARunEndedLateScoresWhatAnEndHeardAtOnceScoresAndNothingAfter
   const auto feed = [&](EstimateScore& s, std::int64_t k) {
     const std::int64_t t = k * kStep;
     const Vector3 p(0.01 * static_cast<double>(k), 0.0, 2.0);
-    s.onTruth(t, p, yawed(10.0));
+    s.onTruth(t, p, yawed(10.0), Vector3(2.5, 0.0, 0.0));
     s.onEstimate(t, p + Vector3(1e-5 * static_cast<double>(k), 0.0, 0.0), yawed(10.0 + 0.001 * static_cast<double>(k)),
                  Vector3::Constant(0.02), true);
   };
@@ -125,7 +167,7 @@ TEST(EstimateScore, PairsOlderThanTheHoldAreKeptWhateverEndComesAfter)
   constexpr std::int64_t kStep = 4'000'000;
   const std::int64_t steps = 2 * EstimateScore::kHoldNs / kStep;
   for (std::int64_t k = 0; k <= steps; ++k) {
-    s.onTruth(k * kStep, Vector3::Zero(), Quaternion::identity());
+    s.onTruth(k * kStep, Vector3::Zero(), Quaternion::identity(), Vector3::Zero());
     s.onEstimate(k * kStep, Vector3(0.01, 0, 0), Quaternion::identity(), Vector3::Constant(0.1), true);
   }
   s.endAt(0);

@@ -94,6 +94,41 @@ TEST(MissionTracker, TheMappersAndThePlannersOverrunsAreTheirNewestCountsInTheSu
   EXPECT_NE(toText(s).find("paths over the planner's budget: 4"), std::string::npos) << toText(s);
 }
 
+TEST(MissionTracker, TheDepthToCommandLatencyIsTheMissionsTrajectoriesMedianAndMost)
+{
+  const auto w = world();
+  MissionTracker t(mission(false), w, 0.25);
+  // GIVEN a trajectory taken while taking off: not the mission's
+  t.onMode(0.0, "TAKEOFF");
+  t.onTrajectory(1.0, 0.2);
+  EXPECT_FALSE(t.summary(1.0).depth_to_command_median_s.has_value());
+  EXPECT_NE(toJson(t.summary(1.0)).find("\"depth_to_command_max_s\": null"), std::string::npos);
+  // WHEN the mission's trajectories come 0.3, 0.5, 0.2 and 0.9 s after their frames, and one
+  // stamped before its frame (a bad input) and one after the goal
+  t.onMode(2.0, "MISSION");
+  t.onTrajectory(2.3, 2.0);
+  t.onTrajectory(3.5, 3.0);
+  t.onTrajectory(4.2, 4.0);
+  t.onTrajectory(5.9, 5.0);
+  t.onTrajectory(6.0, 6.5);
+  fly(t, 2.0, {0, 0, 2}, {10, 0, 2});
+  ASSERT_TRUE(t.finished());
+  t.onTrajectory(13.0, 10.0);
+  // THEN the median is the upper middle of the four and the most is 0.9 s, in JSON and text
+  const MissionSummary s = t.summary(1.0);
+  ASSERT_TRUE(s.depth_to_command_median_s && s.depth_to_command_max_s);
+  EXPECT_NEAR(*s.depth_to_command_median_s, 0.5, 1e-9);
+  EXPECT_NEAR(*s.depth_to_command_max_s, 0.9, 1e-9);
+  EXPECT_NE(toText(s).find("0.50 s (median), 0.90 s at most"), std::string::npos) << toText(s);
+  // AND a fleet's is its slowest vehicle's
+  MissionSummary other = s;
+  other.depth_to_command_median_s = 0.7;
+  other.depth_to_command_max_s.reset();
+  const MissionSummary fleet = fleetSummary({s, other}, std::nullopt, 1.0);
+  EXPECT_NEAR(*fleet.depth_to_command_median_s, 0.7, 1e-9);
+  EXPECT_NEAR(*fleet.depth_to_command_max_s, 0.9, 1e-9);
+}
+
 TEST(MissionTracker, ACollisionFailsTheMissionEvenAtTheGoal)
 {
   const auto w = world();

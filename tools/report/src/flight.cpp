@@ -170,8 +170,9 @@ FlightData readFlight(const bag::McapContents& recording, const Progress& progre
     if (topic == "quad/sim/state") {
       const double t = header_t;
       const Vector3 p = vector(field(msg, "p_W", topic), topic);
-      score.onTruth(static_cast<std::int64_t>(std::llround(t * 1e9)), p, quaternion(field(msg, "q_WB", topic), topic));
-      keep(f.truth, {t, p, vector(field(msg, "v_W", topic), topic)});
+      const Vector3 v = vector(field(msg, "v_W", topic), topic);
+      score.onTruth(static_cast<std::int64_t>(std::llround(t * 1e9)), p, quaternion(field(msg, "q_WB", topic), topic), v);
+      keep(f.truth, {t, p, v});
       if (!any_state) {
         f.t_first_s = t;
       }

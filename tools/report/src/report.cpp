@@ -57,13 +57,18 @@ std::string cell(const Json& v)
   return v.dump();
 }
 
-/// summary.json as table rows: nested objects' members under dotted names.
+/// summary.json as table rows: nested objects' members under dotted names, a list of objects'
+/// under its name and index (estimate.by_speed[0].samples).
 void rows(const Json& j, const std::string& prefix, std::string& out)
 {
   for (const auto& [key, value] : j.items()) {
     const std::string name = prefix.empty() ? key : prefix + "." + key;
     if (value.is_object()) {
       rows(value, name, out);
+    } else if (value.is_array() && !value.empty() && value.front().is_object()) {
+      for (std::size_t i = 0; i < value.size(); ++i) {
+        rows(value[i], fmt::format("{}[{}]", name, i), out);
+      }
     } else {
       out += fmt::format("<tr><th>{}</th><td>{}</td></tr>\n", esc(name), esc(cell(value)));
     }

@@ -211,7 +211,8 @@ TEST(WriteReport, ARunFolderGetsAPageThatShowsEveryFigureItWrote)
 {
   const fs::path dir = test::scratchDir("report_run");
   writeFlight(dir / kRecordingFile);
-  std::ofstream(dir / "summary.json") << R"({"success": true, "path_length_m": 12.5, "estimate": {"position_rms_m": 0.1}})";
+  std::ofstream(dir / "summary.json") << R"({"success": true, "path_length_m": 12.5, "estimate": {"position_rms_m": 0.1,
+      "by_speed": [{"from_mps": 0, "samples": 7}, {"from_mps": 2, "samples": 9}]}})";
   std::vector<std::string> progress;
   const ReportResult r = writeReport({dir, {}, {}}, [&](const std::string& line) { progress.push_back(line); });
   EXPECT_EQ(r.html, dir / "report.html");
@@ -225,6 +226,8 @@ TEST(WriteReport, ARunFolderGetsAPageThatShowsEveryFigureItWrote)
   }
   EXPECT_EQ(r.figures, 8);
   EXPECT_NE(html.find("<th>estimate.position_rms_m</th><td>0.1</td>"), std::string::npos);
+  // a list of objects, a row a member of each (not one cell too wide for the page)
+  EXPECT_NE(html.find("<th>estimate.by_speed[1].samples</th><td>9</td>"), std::string::npos) << html;
   EXPECT_NE(html.find("<th>path_length_m</th><td>12.5</td>"), std::string::npos);
   EXPECT_EQ(html.find("http"), std::string::npos);  // nothing fetched from elsewhere
   EXPECT_GE(progress.size(), 3U);

@@ -45,6 +45,8 @@ struct CampaignRun {
   double wall_s = 0.0;
   std::string state;                ///< what the run flew on (the summary's `state`)
   std::optional<double> estimate_rms_m;  ///< the estimate's position error, RMS (summary's estimate)
+  std::optional<double> estimate_nees;   ///< its mean position NEES (3 for a consistent filter)
+  std::optional<double> depth_to_command_max_s;  ///< the summary's: the slowest reaction to a depth frame
 };
 
 /// The runs' summaries read back: a summary.json as `quad launch --summary` writes it.

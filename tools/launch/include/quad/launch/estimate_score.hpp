@@ -5,6 +5,7 @@
 /// so: each estimate is paired with the true state of the same stamp (both follow the plant's
 /// steps) and scored while the filter is aligned, up to the run's end (endAt).
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <map>
@@ -15,6 +16,15 @@
 #include "quad/geometry/quaternion.hpp"
 
 namespace quad::launch {
+
+/// The position's figures over the pairs whose true speed lies in [from_mps, to_mps).
+struct EstimateBand {
+  double from_mps = 0.0;
+  double to_mps = 0.0;                ///< infinity for the last band
+  std::uint64_t samples = 0;
+  double position_rms_m = 0.0;
+  double position_nees_mean = 0.0;
+};
 
 struct EstimateErrors {
   std::uint64_t samples = 0;          ///< estimates paired with a true state
@@ -28,6 +38,9 @@ struct EstimateErrors {
   double position_nees_mean = 0.0;
   /// Share of samples whose position error is within 3σ on every axis.
   double within_3sigma = 0.0;
+  /// The same by the vehicle's true speed (EstimateScore::kSpeedBands), the bands that hold
+  /// pairs only: whether the filter stays consistent when it flies fast.
+  std::vector<EstimateBand> by_speed;
 };
 
 /// One point of the error against time: the first pair scored in each `kSeriesPeriodNs` of
@@ -43,8 +56,12 @@ struct EstimateErrorPoint {
 class EstimateScore {
 public:
   static constexpr std::int64_t kSeriesPeriodNs = 100'000'000;  ///< 10 points a second
-  /// The true body position [m] and attitude at `t_ns`.
-  void onTruth(std::int64_t t_ns, const geometry::Vector3& p_W, const geometry::Quaternion& q_WB);
+  /// [m/s] The lower edges of the speed bands: below 2, 2 to 5, 5 and more (a flight at the
+  /// shipped speed, a fast one, the benchmark's cruise).
+  static constexpr std::array<double, 3> kSpeedBands{0.0, 2.0, 5.0};
+  /// The true body position [m], attitude and velocity [m/s] at `t_ns`.
+  void onTruth(std::int64_t t_ns, const geometry::Vector3& p_W, const geometry::Quaternion& q_WB,
+               const geometry::Vector3& v_W);
   /// An estimate at `t_ns` with its per-axis position 1σ [m]; not aligned: not scored.
   void onEstimate(std::int64_t t_ns, const geometry::Vector3& p_W, const geometry::Quaternion& q_WB,
                   const geometry::Vector3& p_std, bool aligned);
@@ -63,7 +80,14 @@ private:
   struct Pose {
     geometry::Vector3 p;
     geometry::Quaternion q;
-    geometry::Vector3 std;
+    geometry::Vector3 std;    ///< an estimate's per-axis 1σ
+    double speed = 0.0;       ///< the truth's [m/s]
+  };
+  /// A band's sums.
+  struct BandSums {
+    std::uint64_t n = 0;
+    double sum_p2 = 0.0;
+    double sum_nees = 0.0;
   };
   /// One pair's errors.
   struct Term {
@@ -73,6 +97,7 @@ private:
     double yaw_deg;
     double nees;
     bool within_3sigma;
+    double speed;
   };
   void score(std::int64_t t_ns, const Pose& truth, const Pose& estimate);
   /// Adds the held pairs stamped before `t_ns` to the totals, in stamp order.
@@ -92,6 +117,7 @@ private:
   double sum_yaw2_ = 0.0;
   double sum_nees_ = 0.0;
   std::uint64_t within_ = 0;
+  std::array<BandSums, kSpeedBands.size()> bands_{};
   std::vector<EstimateErrorPoint> series_;
   std::int64_t next_point_ns_ = 0;
 };

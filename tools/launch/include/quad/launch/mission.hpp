@@ -61,6 +61,12 @@ struct MissionSummary {
   /// [m/s] the length flown over that time; nothing when the goal was not reached
   std::optional<double> average_speed_mps;
   double top_speed_mps = 0.0;   ///< [m/s] the most between two vehicle states scored
+  /// [s] Sim time from a depth frame to the command that reacts to it: for each trajectory the
+  /// controller took for a path during the mission, from the newest depth frame in the map the
+  /// path was planned on to the trajectory's first command (Trajectory.depth_stamp_ns). The
+  /// median and the most; nothing when no such trajectory came. A fleet's: its slowest vehicle's.
+  std::optional<double> depth_to_command_median_s;
+  std::optional<double> depth_to_command_max_s;
   std::optional<double> optimum_m; ///< the known-map optimum (quad plan), when the run has a planner
   int paths = 0;                ///< path versions received (the planner's replans that changed the path)
   /// Map updates the lockstep clock reached the due time of before the mapper had them out
@@ -108,6 +114,9 @@ public:
   /// A path of this version was published. `no_path`: the planner said the goal cannot be
   /// reached, and why (in words); empty when it has a path or is merely waiting.
   void onPath(std::uint32_t version, const std::string& no_path = {});
+  /// The controller took a trajectory at sim time t [s] for a path planned on a map whose
+  /// newest depth frame is from `depth_t` [s].
+  void onTrajectory(double t, double depth_t);
   /// The plant reported a collision.
   void onCollision(double t);
   /// The mapper's count of updates over its budget (MapStats.overruns).
@@ -148,6 +157,7 @@ private:
   std::vector<std::string> modes_;
   std::uint32_t last_version_ = 0;
   int paths_ = 0;
+  std::vector<double> depth_latencies_;   // [s] onTrajectory's, during the mission
   std::optional<std::uint64_t> map_overruns_;
   std::optional<std::uint64_t> path_overruns_;
   int collisions_ = 0;

@@ -107,7 +107,8 @@ private:
   void releaseStart();
   /// The followed vehicle of that id; null for another.
   Track* track(std::uint32_t id);
-  void onState(Track& v, std::int64_t stamp_ns, const Eigen::Vector3d& p, const geometry::Quaternion& q);
+  void onState(Track& v, std::int64_t stamp_ns, const Eigen::Vector3d& p, const geometry::Quaternion& q,
+               const Eigen::Vector3d& v_W);
 
   dds::Participant participant_;
   std::vector<std::uint32_t> ids_;

@@ -10,6 +10,7 @@
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
 
+#include "quad/common/digest.hpp"
 #include "quad/common/time.hpp"
 #include "quad/dds/sim_period_filter.hpp"
 
@@ -32,14 +33,11 @@ std::optional<std::int64_t> leaseNs(const eprosima::fastrtps::Duration_t& lease)
   return lease.to_ns();
 }
 
-/// A writer's instance handle is its 16-byte GUID; fold it into 64 bits (FNV-1a).
+/// A writer's instance handle is its 16-byte GUID; fold it into 64 bits.
 std::uint64_t writerId(const fdds::InstanceHandle_t& handle)
 {
-  std::uint64_t h = 1469598103934665603ULL;
-  for (std::size_t i = 0; i < 16; ++i) {
-    h = (h ^ handle.value[i]) * 1099511628211ULL;
-  }
-  return h;
+  const unsigned char* guid = handle.value;  // its 16 octets
+  return common::digest(std::as_bytes(std::span(guid, 16)));
 }
 }  // namespace
 

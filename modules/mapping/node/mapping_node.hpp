@@ -106,6 +106,7 @@ private:
   std::int64_t match_until_ns_ = -1;
   std::uint64_t rejected_ = 0;
   std::uint64_t skipped_ = 0;
+  std::uint64_t last_digest_ = 0;      // digestOf the points of the cloud before
   // The tree's memory as of the last snapshot: OctoMap counts it by walking the whole tree,
   // which per cloud took a fifth of the mapper's time in the demo.
   std::size_t map_bytes_ = 0;

@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include "quad/common/params.hpp"
+#include "quad/dds/module_main.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"

@@ -28,8 +28,8 @@ bool sameState(const dds::StateSample& a, const dds::StateSample& b)
 }
 }
 
-ControlNode::ControlNode(ControlNodeConfig config, dds::ParticipantOptions options)
-    : Node("control", std::move(options)),
+ControlNode::ControlNode(ControlNodeConfig config, dds::Participant handle)
+    : Node("control", std::move(handle)),
       config_(std::move(config)),
       fc_(vehicle::loadVehicle(config_.vehicle_file), config_.flight),
       state_(participant(), config_.state_source, waker()),
@@ -432,5 +432,7 @@ void ControlNode::onEvent(const dds::EndpointEvent& event)
     fc_.onPathLate();
   }
 }
+
+dds::ModuleEntry controlModule() { return dds::moduleEntry<ControlNode>("control", controlSchema(), controlConfigFrom); }
 
 }  // namespace quad::control

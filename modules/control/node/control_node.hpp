@@ -11,6 +11,7 @@
 #include <string>
 
 #include "control_config.hpp"
+#include "quad/dds/module_main.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/state_input.hpp"
@@ -21,7 +22,7 @@ namespace quad::control {
 
 class ControlNode : public dds::Node {
 public:
-  ControlNode(ControlNodeConfig config, dds::ParticipantOptions options);
+  ControlNode(ControlNodeConfig config, dds::Participant handle);
 
 protected:
   void onWake() override;
@@ -104,5 +105,8 @@ private:
   int autostart_stage_ = 0;
   std::string autostart_refused_;     // why it was refused the last time, as logged
 };
+
+/// The control module as a process hosts it: its name, parameters and node.
+dds::ModuleEntry controlModule();
 
 }  // namespace quad::control

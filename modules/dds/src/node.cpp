@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "quad/dds/node.hpp"
 
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -79,8 +80,13 @@ void SignalWatcher::watch()
 }
 
 Node::Node(std::string module_name, ParticipantOptions options)
+    : Node(std::move(module_name), Participant(std::move(options)))
+{
+}
+
+Node::Node(std::string module_name, Participant participant)
     : module_name_(std::move(module_name)),
-      participant_(std::move(options)),
+      participant_(std::move(participant)),
       heartbeat_(participant_, topics::kHeartbeat)
 {
   lockstep_ = participant_.options().lockstep;
@@ -109,6 +115,9 @@ void Node::countLoss(const EndpointEvent& event)
 
 void Node::countRejectedPayloads()
 {
+  if (!participant_.reportsProcessInputs()) {
+    return;  // the process's node that made the participant reports them
+  }
   if (rejectedPayloadCount() > rejected_payloads_) {
     const RejectedPayloads r = rejectedPayloads();
     counters_.errors += r.count - rejected_payloads_;
@@ -203,20 +212,20 @@ bool Node::overran(std::int64_t due_ns, std::string_view what)
 }
 
 namespace {
-/// The node whose work this thread is doing (its lock held), if any: a notification from
-/// within that work (a sample the node writes to a reader of its own) must not take the lock
-/// again.
-thread_local const Node* t_working = nullptr;
+/// The nodes whose work this thread is doing (their locks held), innermost last: a sample one
+/// of them writes reaches a reader of another node in the process on this thread, which may
+/// do that node's work there and then, but a notification of a node already at work here
+/// must not take its lock again.
+thread_local std::vector<const Node*> t_working;
 
 class Working {
 public:
-  explicit Working(const Node* node) : before_(t_working) { t_working = node; }
-  ~Working() { t_working = before_; }
+  explicit Working(const Node* node) { t_working.push_back(node); }
+  ~Working() { t_working.pop_back(); }
   Working(const Working&) = delete;
   Working& operator=(const Working&) = delete;
 
-private:
-  const Node* before_;
+  static bool here(const Node* node) { return std::find(t_working.begin(), t_working.end(), node) != t_working.end(); }
 };
 }  // namespace
 
@@ -242,7 +251,7 @@ void Node::handleWake()
 
 bool Node::wakeOnReceipt()
 {
-  if (!wake_on_receipt_ || !running_.load() || t_working == this) {
+  if (!wake_on_receipt_ || !running_.load() || Working::here(this)) {
     return false;
   }
   std::unique_lock lock(work_mutex_, std::try_to_lock);
@@ -300,112 +309,6 @@ void Node::run()
     fault_layer_->logActive();
   }
   onStop();
-}
-
-int runNode(std::string_view module_name, const std::function<std::unique_ptr<Node>()>& make)
-{
-  SignalWatcher signals;
-  std::unique_ptr<Node> node;
-  int status = 0;
-  try {
-    node = make();
-    Node* running = node.get();
-    signals.onSignal([running](int signal) {
-      spdlog::info("signal {} received, stopping", signal);
-      running->stop();
-    });
-    if (signals.received() != 0) {
-      node->stop();  // a signal that came while the node was being built
-    }
-    spdlog::info("{} running on domain {}", module_name, node->participant().options().domain_id);
-    node->run();
-    spdlog::info("{} stopped", module_name);
-  } catch (const std::exception& e) {
-    spdlog::critical("{}: {}", module_name, e.what());
-    status = 1;
-  }
-  signals.onSignal({});  // before the node goes away
-  node.reset();
-  return status;
-}
-
-namespace {
-
-/// `--help`: how to run a module's program, and every parameter its config takes.
-std::string nodeHelp(const std::string& program, std::string_view module_name, const common::ParamSchema& schema)
-{
-  std::string out = fmt::format(
-      "usage: {} [--config FILE] [--set KEY=VALUE]... | --help | --version\n\n"
-      "quad's {} module, a DDS participant. Its parameters come from FILE (YAML) and --set\n"
-      "(YAML values under dotted keys), checked against the list below; the participant's\n"
-      "domain and transport come from the environment (QUAD_DOMAIN_ID, ...).\n\nparameters:\n",
-      program, module_name);
-  for (const common::ParamSpec& p : schema.specs()) {
-    std::string line = fmt::format("  {}: {}", p.key, common::toString(p.type));
-    if (p.default_value) {
-      line += " = " + common::formatValue(*p.default_value);
-    } else {
-      line += " (required)";
-    }
-    if (!p.unit.empty()) {
-      line += " [" + p.unit + "]";
-    }
-    out += fmt::format("{:<48} {}\n", line, p.description);
-  }
-  return out;
-}
-
-}  // namespace
-
-int runNodeMain(int argc, char** argv, std::string_view module_name, common::ParamSchema schema,
-                const std::function<std::unique_ptr<Node>(const common::Params&)>& make)
-{
-  common::addLoggingParams(schema);
-  const std::string program = std::filesystem::path(argv[0]).filename().string();
-  std::optional<std::string> config;
-  std::vector<std::string> sets;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--config" && i + 1 < argc) {
-      config = argv[++i];
-    } else if (arg == "--set" && i + 1 < argc) {
-      sets.emplace_back(argv[++i]);
-    } else if (arg == "--help" || arg == "-h") {
-      std::fputs(nodeHelp(program, module_name, schema).c_str(), stdout);
-      return 0;
-    } else if (arg == "--version") {
-      std::printf("%s %s\n", program.c_str(), QUAD_VERSION);
-      return 0;
-    } else {
-      // A usage error, like a bad argument to any quad program: exit status 2.
-      common::setupLogging(module_name);
-      spdlog::critical("{}: unexpected argument '{}'; usage: {} [--config FILE] [--set KEY=VALUE]... (--help)",
-                       module_name, arg, program);
-      return 2;
-    }
-  }
-  common::Params params;
-  try {
-    std::vector<common::ParamOverride> overrides;
-    for (const auto& s : sets) {
-      overrides.push_back(common::parseOverride(s));
-    }
-    params = config ? common::parseParams(common::readTextFile(*config), *config, schema, overrides)
-                    : common::parseParams("", "<defaults>", schema, overrides);
-    common::setupLogging(module_name, common::logOptionsFrom(params));
-  } catch (const common::ConfigError& e) {
-    common::setupLogging(module_name);
-    for (const auto& problem : e.problems()) {
-      spdlog::critical("{}", problem);
-    }
-    spdlog::critical("{}: refusing to start with an invalid config", module_name);
-    return 1;
-  } catch (const std::exception& e) {
-    common::setupLogging(module_name);
-    spdlog::critical("{}: {}", module_name, e.what());
-    return 1;
-  }
-  return runNode(module_name, [&] { return make(params); });
 }
 
 }  // namespace quad::dds

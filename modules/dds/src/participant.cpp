@@ -132,7 +132,7 @@ std::string prefixText(const frtps::GuidPrefix_t& prefix)
 
 }  // namespace
 
-void Participant::enableSecurity(fdds::DomainParticipantQos& qos) const
+void SharedParticipant::enableSecurity(fdds::DomainParticipantQos& qos) const
 {
   const std::string identity =
       options_.security_identity.empty() ? securityIdentity(options_.name) : options_.security_identity;
@@ -277,9 +277,9 @@ std::int64_t ParticipantOptions::mapBudgetNs() const { return map_budget_ns.valu
 std::int64_t ParticipantOptions::pathBudgetNs() const { return path_budget_ns.value_or(topics::kPathBudgetNs); }
 
 /// Discovery callbacks: copy what was seen and hand it to the participant.
-class Participant::Listener : public fdds::DomainParticipantListener {
+class SharedParticipant::Listener : public fdds::DomainParticipantListener {
 public:
-  explicit Listener(Participant& owner) : owner_(owner) {}
+  explicit Listener(SharedParticipant& owner) : owner_(owner) {}
 
   void on_publisher_discovery(fdds::DomainParticipant*, frtps::WriterDiscoveryInfo&& info) override
   {
@@ -330,10 +330,10 @@ public:
   }
 
 private:
-  Participant& owner_;
+  SharedParticipant& owner_;
 };
 
-Participant::Participant(ParticipantOptions options)
+SharedParticipant::SharedParticipant(ParticipantOptions options)
     : options_(std::move(options)), listener_(std::make_unique<Listener>(*this))
 {
   if (options_.domain_id < 0 || options_.domain_id > kMaxDomainId) {
@@ -456,7 +456,7 @@ std::vector<std::string> vehiclePartitions(std::uint32_t vehicle_id)
   return {"vehicle." + std::to_string(vehicle_id)};
 }
 
-fdds::Publisher* Participant::publisher(std::optional<std::uint32_t> vehicle)
+fdds::Publisher* SharedParticipant::publisher(std::optional<std::uint32_t> vehicle)
 {
   const std::uint32_t id = vehicle.value_or(options_.vehicle_id);
   const std::lock_guard lock(partitions_mutex_);
@@ -471,7 +471,7 @@ fdds::Publisher* Participant::publisher(std::optional<std::uint32_t> vehicle)
   return made;
 }
 
-fdds::Subscriber* Participant::subscriber(std::optional<std::uint32_t> vehicle)
+fdds::Subscriber* SharedParticipant::subscriber(std::optional<std::uint32_t> vehicle)
 {
   const std::uint32_t id = vehicle.value_or(options_.vehicle_id);
   const std::lock_guard lock(partitions_mutex_);
@@ -486,7 +486,7 @@ fdds::Subscriber* Participant::subscriber(std::optional<std::uint32_t> vehicle)
   return made;
 }
 
-Participant::~Participant()
+SharedParticipant::~SharedParticipant()
 {
   // Readers and writers are deleted by their owners first; this removes the rest.
   participant_->set_listener(nullptr);
@@ -494,7 +494,7 @@ Participant::~Participant()
   fdds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
 }
 
-fdds::Topic* Participant::topic(const TopicInfo& info, const fdds::TypeSupport& type)
+fdds::Topic* SharedParticipant::topic(const TopicInfo& info, const fdds::TypeSupport& type)
 {
   std::lock_guard lock(endpoints_mutex_);
   const fdds::TypeSupport known = participant_->find_type(type.get_type_name());
@@ -527,7 +527,7 @@ fdds::Topic* Participant::topic(const TopicInfo& info, const fdds::TypeSupport& 
   return topic;
 }
 
-fdds::TopicDescription* Participant::readerTopic(const TopicInfo& info, const fdds::TypeSupport& type,
+fdds::TopicDescription* SharedParticipant::readerTopic(const TopicInfo& info, const fdds::TypeSupport& type,
                                                  std::int64_t period_ns)
 {
   fdds::Topic* plain = topic(info, type);
@@ -546,7 +546,7 @@ fdds::TopicDescription* Participant::readerTopic(const TopicInfo& info, const fd
   return filtered;
 }
 
-void Participant::releaseReaderTopic(fdds::TopicDescription* topic)
+void SharedParticipant::releaseReaderTopic(fdds::TopicDescription* topic)
 {
   if (auto* filtered = dynamic_cast<fdds::ContentFilteredTopic*>(topic)) {
     std::lock_guard lock(endpoints_mutex_);
@@ -582,18 +582,18 @@ Qos profileQos(Entity* entity, Getter getter, std::string_view qos_class, const 
 }
 }  // namespace
 
-fdds::DataWriterQos Participant::writerQos(std::string_view qos_class) const
+fdds::DataWriterQos SharedParticipant::writerQos(std::string_view qos_class) const
 {
   return profileQos<fdds::DataWriterQos>(own_publisher_, &fdds::Publisher::get_datawriter_qos_from_profile, qos_class, "writer", options_);
 }
 
-bool Participant::promisesEverySample(std::string_view qos_class) const
+bool SharedParticipant::promisesEverySample(std::string_view qos_class) const
 {
   const auto qos = writerQos(qos_class);
   return qos.reliability().kind == fdds::RELIABLE_RELIABILITY_QOS && qos.history().kind == fdds::KEEP_ALL_HISTORY_QOS;
 }
 
-fdds::DataReaderQos Participant::readerQos(std::string_view qos_class) const
+fdds::DataReaderQos SharedParticipant::readerQos(std::string_view qos_class) const
 {
   auto qos = profileQos<fdds::DataReaderQos>(own_subscriber_, &fdds::Subscriber::get_datareader_qos_from_profile,
                                              qos_class, "reader", options_);
@@ -619,12 +619,12 @@ Qos withContractDeadline(Qos qos, const TopicInfo& info)
 }
 }  // namespace
 
-fdds::DataWriterQos Participant::writerQos(const TopicInfo& info) const
+fdds::DataWriterQos SharedParticipant::writerQos(const TopicInfo& info) const
 {
   return withContractDeadline(writerQos(info.qos_profile), info);
 }
 
-fdds::DataReaderQos Participant::readerQos(const TopicInfo& info) const
+fdds::DataReaderQos SharedParticipant::readerQos(const TopicInfo& info) const
 {
   // A reader asks for what the contract says: a class's tighter deadline (the state's two
   // periods) is the writers' to offer, not a staleness a reader should act on.
@@ -662,14 +662,14 @@ fdds::DataReaderQos withDepth(fdds::DataReaderQos qos, std::int32_t depth)
   return qos;
 }
 
-void Participant::addLocalEndpoint(const std::string& topic, const std::string& type_name,
-                                   bool keyed, bool writer)
+void SharedParticipant::addLocalEndpoint(const std::string& topic, const std::string& type_name, bool keyed,
+                                         bool writer, std::shared_ptr<EventQueue> events)
 {
   std::vector<RemoteEndpoint> remotes;
   {
     std::lock_guard lock(endpoints_mutex_);
     auto& local = local_.try_emplace(topic, LocalEndpoint{type_name, keyed}).first->second;
-    (writer ? local.writers : local.readers) += 1;
+    local.users.push_back({std::move(events), writer});
     for (const auto& [guid, remote] : remote_) {
       if (remote.topic == topic) {
         remotes.push_back(remote);
@@ -681,20 +681,26 @@ void Participant::addLocalEndpoint(const std::string& topic, const std::string& 
   }
 }
 
-void Participant::removeLocalEndpoint(const std::string& topic, bool writer)
+void SharedParticipant::removeLocalEndpoint(const std::string& topic, bool writer, const EventQueue* events)
 {
   std::lock_guard lock(endpoints_mutex_);
   auto it = local_.find(topic);
   if (it == local_.end()) {
     return;
   }
-  (writer ? it->second.writers : it->second.readers) -= 1;
-  if (it->second.writers <= 0 && it->second.readers <= 0) {
+  auto& users = it->second.users;
+  const auto user = std::find_if(users.begin(), users.end(), [&](const LocalEndpoint::User& u) {
+    return u.events.get() == events && u.writer == writer;
+  });
+  if (user != users.end()) {
+    users.erase(user);
+  }
+  if (users.empty()) {
     local_.erase(it);
   }
 }
 
-std::vector<RemoteEndpoint> Participant::remoteEndpoints() const
+std::vector<RemoteEndpoint> SharedParticipant::remoteEndpoints() const
 {
   std::lock_guard lock(endpoints_mutex_);
   std::vector<RemoteEndpoint> out;
@@ -710,7 +716,7 @@ std::vector<RemoteEndpoint> Participant::remoteEndpoints() const
   return out;
 }
 
-void Participant::onRemoteParticipant(const std::string& prefix, RemoteParticipant participant, bool alive)
+void SharedParticipant::onRemoteParticipant(const std::string& prefix, RemoteParticipant participant, bool alive)
 {
   std::lock_guard lock(endpoints_mutex_);
   if (alive) {
@@ -720,7 +726,7 @@ void Participant::onRemoteParticipant(const std::string& prefix, RemoteParticipa
   }
 }
 
-void Participant::onRemoteEndpoint(RemoteEndpoint endpoint, bool alive)
+void SharedParticipant::onRemoteEndpoint(RemoteEndpoint endpoint, bool alive)
 {
   {
     std::lock_guard lock(endpoints_mutex_);
@@ -733,9 +739,10 @@ void Participant::onRemoteEndpoint(RemoteEndpoint endpoint, bool alive)
   checkTypes(endpoint);
 }
 
-void Participant::checkTypes(const RemoteEndpoint& remote)
+void SharedParticipant::checkTypes(const RemoteEndpoint& remote)
 {
   std::string problem;
+  std::vector<std::shared_ptr<EventQueue>> told;  // the queues of the nodes whose endpoints it concerns, once each
   {
     std::lock_guard lock(endpoints_mutex_);
     const auto it = local_.find(remote.topic);
@@ -744,7 +751,12 @@ void Participant::checkTypes(const RemoteEndpoint& remote)
     }
     const LocalEndpoint& local = it->second;
     // A remote writer concerns our readers, a remote reader our writers.
-    if ((remote.writer ? local.readers : local.writers) == 0) {
+    for (const auto& user : local.users) {
+      if (user.writer != remote.writer && std::find(told.begin(), told.end(), user.events) == told.end()) {
+        told.push_back(user.events);
+      }
+    }
+    if (told.empty()) {
       return;
     }
     const auto kind = [](bool keyed) { return keyed ? "keyed" : "unkeyed"; };
@@ -756,7 +768,24 @@ void Participant::checkTypes(const RemoteEndpoint& remote)
     }
   }
   if (!problem.empty()) {
-    events_.push({EventKind::kTypeMismatch, remote.topic, problem});
+    for (const auto& events : told) {
+      events->push({EventKind::kTypeMismatch, remote.topic, problem});
+    }
+  }
+}
+
+Participant::Participant(ParticipantOptions options)
+    : shared_(std::make_shared<SharedParticipant>(std::move(options))),
+      events_(std::make_shared<EventQueue>()),
+      reports_process_inputs_(true)
+{
+}
+
+Participant::Participant(std::shared_ptr<SharedParticipant> shared)
+    : shared_(std::move(shared)), events_(std::make_shared<EventQueue>())
+{
+  if (!shared_) {
+    throw std::invalid_argument("a node's participant needs a DDS participant to share; got none");
   }
 }
 

@@ -174,8 +174,8 @@ DisplayNodeConfig displayConfigFrom(const common::Params& params)
   return displayNodeTable().read(params, common::configDir());
 }
 
-DisplayNode::DisplayNode(DisplayNodeConfig config, dds::ParticipantOptions options)
-    : Node("display", std::move(options)),
+DisplayNode::DisplayNode(DisplayNodeConfig config, dds::Participant handle)
+    : Node("display", std::move(handle)),
       config_(std::move(config)),
       trace_(config_.trace),
       true_trace_(config_.trace),
@@ -546,5 +546,7 @@ void DisplayNode::log(const LogLine& line)
   log_.write(m);
   counters().samples_out++;
 }
+
+dds::ModuleEntry displayModule() { return dds::moduleEntry<DisplayNode>("display", displayNodeSchema(), displayConfigFrom); }
 
 }  // namespace quad::display

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "quad/dds/module_main.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/state_input.hpp"
 #include "quad/mapping/map_follower.hpp"
@@ -36,7 +37,7 @@ DisplayNodeConfig displayConfigFrom(const common::Params& params);
 
 class DisplayNode : public dds::Node {
 public:
-  DisplayNode(DisplayNodeConfig config, dds::ParticipantOptions options);
+  DisplayNode(DisplayNodeConfig config, dds::Participant handle);
 
 protected:
   void onTick(std::int64_t steady_ns) override;
@@ -96,5 +97,8 @@ private:
   std::int64_t next_map_ns_ = 0;
   bool scene_sent_ = false;
 };
+
+/// The display module as a process hosts it: its name, parameters and node.
+dds::ModuleEntry displayModule();
 
 }  // namespace quad::display

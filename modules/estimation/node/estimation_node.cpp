@@ -12,8 +12,8 @@
 
 namespace quad::estimation {
 
-EstimationNode::EstimationNode(EstimatorParams params, dds::ParticipantOptions options)
-    : Node("estimation", std::move(options)),
+EstimationNode::EstimationNode(EstimatorParams params, dds::Participant handle)
+    : Node("estimation", std::move(handle)),
       filter_(params),
       imu_(participant(), dds::topics::kSimImu, waker()),
       position_(participant(), dds::topics::kSimPosition, waker()),
@@ -228,5 +228,7 @@ void EstimationNode::publish()
   last_ = m;
   counters().samples_out++;
 }
+
+dds::ModuleEntry estimationModule() { return dds::moduleEntry<EstimationNode>("estimation", estimatorSchema(), estimatorParamsOf); }
 
 }  // namespace quad::estimation

@@ -12,6 +12,7 @@
 #include <variant>
 #include <vector>
 
+#include "quad/dds/module_main.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
@@ -22,7 +23,7 @@ namespace quad::estimation {
 
 class EstimationNode : public dds::Node {
 public:
-  EstimationNode(EstimatorParams params, dds::ParticipantOptions options);
+  EstimationNode(EstimatorParams params, dds::Participant handle);
 
   /// The IMU first: its index orders samples of equal stamps; an aid's kind is its index - 1.
   using Sample = std::variant<msg::Imu, msg::PositionFix, msg::BaroAltitude, msg::MagneticField>;
@@ -60,5 +61,8 @@ private:
   bool answered_any_ = false;
   std::int64_t aid_wait_since_ns_ = 0;  // steady time the front IMU sample began waiting (0: not)
 };
+
+/// The estimation module as a process hosts it: its name, parameters and node.
+dds::ModuleEntry estimationModule();
 
 }  // namespace quad::estimation

@@ -102,8 +102,8 @@ MappingNodeConfig mappingConfigFrom(const common::Params& p)
   return c;
 }
 
-MappingNode::MappingNode(MappingNodeConfig config, dds::ParticipantOptions options)
-    : Node("mapping", std::move(options)),
+MappingNode::MappingNode(MappingNodeConfig config, dds::Participant handle)
+    : Node("mapping", std::move(handle)),
       config_(std::move(config)),
       mapper_(config_.map),
       // In lockstep the clock runs on while a cloud is integrated, up to the map update's
@@ -451,5 +451,7 @@ void MappingNode::onStop()
                "clamping bound",
                update_seq_, rejected_, skipped_, mapper_.nodes(), mapper_.tree().updatesSkippedAtBounds());
 }
+
+dds::ModuleEntry mappingModule() { return dds::moduleEntry<MappingNode>("mapping", mappingSchema(), mappingConfigFrom); }
 
 }  // namespace quad::mapping

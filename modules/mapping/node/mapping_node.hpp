@@ -11,6 +11,7 @@
 #include <string>
 
 #include "quad/dds/lockstep.hpp"
+#include "quad/dds/module_main.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/state_input.hpp"
@@ -54,7 +55,7 @@ MappingNodeConfig mappingConfigFrom(const common::Params& params);
 
 class MappingNode : public dds::Node {
 public:
-  MappingNode(MappingNodeConfig config, dds::ParticipantOptions options);
+  MappingNode(MappingNodeConfig config, dds::Participant handle);
 
 protected:
   void onWake() override;
@@ -111,5 +112,8 @@ private:
   // which per cloud took a fifth of the mapper's time in the demo.
   std::size_t map_bytes_ = 0;
 };
+
+/// The mapping module as a process hosts it: its name, parameters and node.
+dds::ModuleEntry mappingModule();
 
 }  // namespace quad::mapping

@@ -99,8 +99,8 @@ PlanningNodeConfig planningConfigFrom(const common::Params& p)
   return c;
 }
 
-PlanningNode::PlanningNode(PlanningNodeConfig config, dds::ParticipantOptions options)
-    : Node("planning", std::move(options)),
+PlanningNode::PlanningNode(PlanningNodeConfig config, dds::Participant handle)
+    : Node("planning", std::move(handle)),
       config_(std::move(config)),
       planner_(Lattice(geometry::VoxelGrid(config_.resolution), config_.bounds_min, config_.bounds_max), config_.planner),
       follower_(config_.resolution),
@@ -655,5 +655,7 @@ void PlanningNode::onWake()
   }
   reportLockstep();
 }
+
+dds::ModuleEntry planningModule() { return dds::moduleEntry<PlanningNode>("planning", planningNodeSchema(), planningConfigFrom); }
 
 }  // namespace quad::planning

@@ -14,6 +14,7 @@
 
 #include "quad/dds/lockstep.hpp"
 #include "quad/dds/module_watch.hpp"
+#include "quad/dds/module_main.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/state_input.hpp"
@@ -42,7 +43,7 @@ PlanningNodeConfig planningConfigFrom(const common::Params& params);
 
 class PlanningNode : public dds::Node {
 public:
-  PlanningNode(PlanningNodeConfig config, dds::ParticipantOptions options);
+  PlanningNode(PlanningNodeConfig config, dds::Participant handle);
 
 protected:
   void onWake() override;
@@ -127,5 +128,8 @@ private:
   Deconfliction deconfliction_;
   std::vector<std::uint32_t> giving_way_to_;  // last said in the log
 };
+
+/// The planning module as a process hosts it: its name, parameters and node.
+dds::ModuleEntry planningModule();
 
 }  // namespace quad::planning

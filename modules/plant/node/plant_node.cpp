@@ -66,8 +66,8 @@ std::unique_ptr<Fleet> makeFleet(const PlantNodeConfig& config, std::uint32_t ow
 
 }  // namespace
 
-PlantNode::PlantNode(PlantNodeConfig config, dds::ParticipantOptions options)
-    : Node("plant", std::move(options)),
+PlantNode::PlantNode(PlantNodeConfig config, dds::Participant handle)
+    : Node("plant", std::move(handle)),
       config_(std::move(config)),
       fleet_(makeFleet(config_, participant().options().vehicle_id)),
       clock_(participant(), dds::topics::kSimClock, fleet_->ids()),
@@ -463,5 +463,7 @@ void PlantNode::onStop()
                  dds::topics::kSimEvents.info.name, kFinalEventWait.count());
   }
 }
+
+dds::ModuleEntry plantModule() { return dds::moduleEntry<PlantNode>("plant", plantSchema(), plantConfigFrom); }
 
 }  // namespace quad::plant

@@ -13,6 +13,7 @@
 #include "plant_config.hpp"
 #include "quad/dds/fleet_publisher.hpp"
 #include "quad/dds/lockstep.hpp"
+#include "quad/dds/module_main.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
@@ -23,7 +24,7 @@ namespace quad::plant {
 class PlantNode : public dds::Node {
 public:
   /// Loads vehicle(s), world and fault schedule(s); throws common::ConfigError naming the file.
-  PlantNode(PlantNodeConfig config, dds::ParticipantOptions options);
+  PlantNode(PlantNodeConfig config, dds::Participant handle);
 
   /// The first vehicle (the only one without a fleet file).
   const Simulation& simulation() const { return fleet_->vehicle(0); }
@@ -85,5 +86,8 @@ private:
   std::int64_t last_state_publish_ns_ = 0; // steady time the states were last published
   std::int64_t republish_after_ns_ = 0;    // lockstep: the wait before the round's next resend
 };
+
+/// The plant module as a process hosts it: its name, parameters and node.
+dds::ModuleEntry plantModule();
 
 }  // namespace quad::plant

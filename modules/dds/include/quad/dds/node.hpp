@@ -65,7 +65,11 @@ msg::Heartbeat processHeartbeat(const std::string& module_name, msg::ModuleState
 
 class Node {
 public:
-  /// `module_name` names the node in heartbeats and logs ("plant", "control").
+  /// `module_name` names the node in heartbeats and logs ("plant", "control"); `participant`
+  /// is its handle on the process's participant, its own or one it shares with the other
+  /// nodes of a container.
+  Node(std::string module_name, Participant participant);
+  /// A node on a participant of its own.
   Node(std::string module_name, ParticipantOptions options);
   virtual ~Node();
   Node(const Node&) = delete;
@@ -160,28 +164,5 @@ private:
   std::uint64_t rejected_payloads_ = 0;
   std::uint64_t malformed_datagrams_ = 0;
 };
-
-/// The body of every node's main(): installs signal handling, builds the node with `make`,
-/// runs it, and turns an exception into one logged line and exit status 1.
-int runNode(std::string_view module_name, const std::function<std::unique_ptr<Node>()>& make);
-
-/// runNode() for a node with parameters: reads `--config FILE` from the command line (the
-/// schema's defaults without it), validates it against `schema` (plus the logging keys, which
-/// set up logging), and hands the params to `make`. A bad command line or config is refused
-/// before any DDS entity exists: each problem is logged as `file:key: value: reason` and the
-/// exit status is 1.
-int runNodeMain(int argc, char** argv, std::string_view module_name, common::ParamSchema schema,
-                const std::function<std::unique_ptr<Node>(const common::Params&)>& make);
-
-/// runNodeMain for the usual node: built from its config, which `config_from` makes of the
-/// params (`Config config_from(const common::Params&)`), and the participant options of the
-/// environment. A module's main is this one call.
-template <typename NodeType, typename ConfigFrom>
-int runNode(int argc, char** argv, std::string_view module_name, common::ParamSchema schema, ConfigFrom config_from)
-{
-  return runNodeMain(argc, argv, module_name, std::move(schema), [&](const common::Params& params) {
-    return std::make_unique<NodeType>(config_from(params), optionsFromEnvironment(std::string(module_name)));
-  });
-}
 
 }  // namespace quad::dds

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
-/// One DDS participant per process, with quad's QoS profiles, transports and discovery.
+/// One DDS participant per process, with quad's QoS profiles, transports and discovery, and
+/// each node's handle on it: a process that hosts several nodes (a container) shares one
+/// participant among them (two in one process can deadlock, intraprocessDeliveryOff()).
 
 #include <cstdint>
 #include <filesystem>
@@ -10,6 +12,8 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
@@ -142,18 +146,18 @@ std::vector<std::string> vehiclePartitions(std::uint32_t vehicle_id);
 /// The partition of every vehicle (an endpoint's `partition`).
 inline constexpr std::uint32_t kEveryVehicle = 0;
 
-/// Owns the DomainParticipant, its Publishers and Subscribers, registered types and topics.
-/// Creates everything in the constructor and throws std::runtime_error naming what failed;
-/// the destructor deletes every entity it created.
-class Participant {
+/// A process's DDS participant: owns the DomainParticipant, its Publishers and Subscribers,
+/// registered types and topics, and what discovery saw. Creates everything in the
+/// constructor and throws std::runtime_error naming what failed; the destructor deletes every
+/// entity it created. The nodes of a process share it, each through a Participant.
+class SharedParticipant {
 public:
-  explicit Participant(ParticipantOptions options);
-  ~Participant();
-  Participant(const Participant&) = delete;
-  Participant& operator=(const Participant&) = delete;
+  explicit SharedParticipant(ParticipantOptions options);
+  ~SharedParticipant();
+  SharedParticipant(const SharedParticipant&) = delete;
+  SharedParticipant& operator=(const SharedParticipant&) = delete;
 
   const ParticipantOptions& options() const { return options_; }
-  EventQueue& events() { return events_; }
   /// The faults on received datagrams; null without ParticipantOptions::fault_layer.
   wire::DatagramFaults* datagramFaults() { return datagram_faults_.get(); }
   const wire::DatagramFaults* datagramFaults() const { return datagram_faults_.get(); }
@@ -190,10 +194,11 @@ public:
   eprosima::fastdds::dds::DataWriterQos writerQos(const TopicInfo& info) const;
   eprosima::fastdds::dds::DataReaderQos readerQos(const TopicInfo& info) const;
 
-  /// Records a local endpoint so discovery can check remote ones against it.
-  void addLocalEndpoint(const std::string& topic, const std::string& type_name, bool keyed,
-                        bool writer);
-  void removeLocalEndpoint(const std::string& topic, bool writer);
+  /// Records a local endpoint so discovery can check remote ones against it; a remote one
+  /// of another type is told to `events`, the queue of the node that owns the endpoint.
+  void addLocalEndpoint(const std::string& topic, const std::string& type_name, bool keyed, bool writer,
+                        std::shared_ptr<EventQueue> events);
+  void removeLocalEndpoint(const std::string& topic, bool writer, const EventQueue* events);
 
   /// Remote endpoints discovered so far (alive ones only).
   std::vector<RemoteEndpoint> remoteEndpoints() const;
@@ -214,12 +219,14 @@ private:
   struct LocalEndpoint {
     std::string type_name;
     bool keyed;
-    int writers = 0;
-    int readers = 0;
+    struct User {  // one per endpoint: the queue of its node (kept while told), and which side it is
+      std::shared_ptr<EventQueue> events;
+      bool writer;
+    };
+    std::vector<User> users;
   };
 
   ParticipantOptions options_;
-  EventQueue events_;
   std::shared_ptr<wire::DatagramFaults> datagram_faults_;
   std::unique_ptr<Listener> listener_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
@@ -235,6 +242,81 @@ private:
   std::map<std::string, LocalEndpoint, std::less<>> local_;
   std::map<std::string, RemoteEndpoint> remote_;  // by GUID
   std::map<std::string, RemoteParticipant> participants_;  // by GUID prefix
+};
+
+/// A node's handle on its process's participant: the DDS entities are shared, the endpoint
+/// events are the node's own (each endpoint made through the handle tells its node). A
+/// process of one node makes the participant with its handle; a container's other nodes join
+/// it with theirs. Movable until an endpoint is made through it.
+class Participant {
+public:
+  /// A participant of its own (made here, shared with handles made of shared()), whose
+  /// node reports the process's refused inputs.
+  explicit Participant(ParticipantOptions options);
+  /// One more node on `shared`; throws std::invalid_argument without one.
+  explicit Participant(std::shared_ptr<SharedParticipant> shared);
+  Participant(Participant&&) noexcept = default;
+  Participant& operator=(Participant&&) = delete;
+  Participant(const Participant&) = delete;
+  Participant& operator=(const Participant&) = delete;
+  ~Participant() = default;
+
+  /// The DDS participant, to give another node of the process.
+  const std::shared_ptr<SharedParticipant>& shared() const { return shared_; }
+  /// This node's endpoint events.
+  EventQueue& events() { return *events_; }
+  /// Payloads refused and datagrams dropped are counted for the whole process (message_types.hpp,
+  /// validating_transport.hpp): the node that made the participant reports them, no other.
+  bool reportsProcessInputs() const { return reports_process_inputs_; }
+
+  const ParticipantOptions& options() const { return shared_->options(); }
+  wire::DatagramFaults* datagramFaults() { return shared_->datagramFaults(); }
+  const wire::DatagramFaults* datagramFaults() const { return std::as_const(*shared_).datagramFaults(); }
+  eprosima::fastdds::dds::Topic* topic(const TopicInfo& info, const eprosima::fastdds::dds::TypeSupport& type)
+  {
+    return shared_->topic(info, type);
+  }
+  eprosima::fastdds::dds::TopicDescription* readerTopic(const TopicInfo& info,
+                                                        const eprosima::fastdds::dds::TypeSupport& type,
+                                                        std::int64_t period_ns)
+  {
+    return shared_->readerTopic(info, type, period_ns);
+  }
+  void releaseReaderTopic(eprosima::fastdds::dds::TopicDescription* topic) { shared_->releaseReaderTopic(topic); }
+  eprosima::fastdds::dds::Publisher* publisher(std::optional<std::uint32_t> vehicle = std::nullopt)
+  {
+    return shared_->publisher(vehicle);
+  }
+  eprosima::fastdds::dds::Subscriber* subscriber(std::optional<std::uint32_t> vehicle = std::nullopt)
+  {
+    return shared_->subscriber(vehicle);
+  }
+  eprosima::fastdds::dds::DomainParticipant* raw() { return shared_->raw(); }
+  eprosima::fastdds::dds::DataWriterQos writerQos(std::string_view qos_class) const
+  {
+    return shared_->writerQos(qos_class);
+  }
+  eprosima::fastdds::dds::DataReaderQos readerQos(std::string_view qos_class) const
+  {
+    return shared_->readerQos(qos_class);
+  }
+  bool promisesEverySample(std::string_view qos_class) const { return shared_->promisesEverySample(qos_class); }
+  eprosima::fastdds::dds::DataWriterQos writerQos(const TopicInfo& info) const { return shared_->writerQos(info); }
+  eprosima::fastdds::dds::DataReaderQos readerQos(const TopicInfo& info) const { return shared_->readerQos(info); }
+  void addLocalEndpoint(const std::string& topic, const std::string& type_name, bool keyed, bool writer)
+  {
+    shared_->addLocalEndpoint(topic, type_name, keyed, writer, events_);
+  }
+  void removeLocalEndpoint(const std::string& topic, bool writer)
+  {
+    shared_->removeLocalEndpoint(topic, writer, events_.get());
+  }
+  std::vector<RemoteEndpoint> remoteEndpoints() const { return shared_->remoteEndpoints(); }
+
+private:
+  std::shared_ptr<SharedParticipant> shared_;
+  std::shared_ptr<EventQueue> events_;
+  bool reports_process_inputs_ = false;
 };
 
 /// `qos` keeping at least `depth` samples per instance: a KEEP_LAST history deepened and its

@@ -1,0 +1,295 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "quad/dds/module_main.hpp"
+
+#include <atomic>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <set>
+#include <thread>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "quad/common/logging.hpp"
+#include "quad/common/yaml_input.hpp"
+
+namespace quad::dds {
+
+namespace {
+
+/// Runs the nodes `make` builds, the first on this thread and each other on one of its own,
+/// until all have stopped: a node that stops on its own, or fails, stops the others; a
+/// signal stops them all. 1 when building or running any failed, else 0.
+int runHosted(std::string_view process_name, const std::function<std::vector<std::unique_ptr<Node>>()>& make)
+{
+  SignalWatcher signals;
+  std::vector<std::unique_ptr<Node>> nodes;
+  std::atomic<int> status{0};
+  const auto stopAll = [&nodes] {
+    for (const auto& node : nodes) {
+      node->stop();
+    }
+  };
+  const auto runOne = [&](Node& node) {
+    try {
+      node.run();
+    } catch (const std::exception& e) {
+      spdlog::critical("{}: {}", node.moduleName(), e.what());
+      status = 1;
+    }
+    stopAll();
+  };
+  try {
+    nodes = make();
+    signals.onSignal([&stopAll](int signal) {
+      spdlog::info("signal {} received, stopping", signal);
+      stopAll();
+    });
+    if (signals.received() != 0) {
+      stopAll();  // a signal that came while the nodes were being built
+    }
+    spdlog::info("{} running on domain {}", process_name, nodes.front()->participant().options().domain_id);
+    std::vector<std::thread> others;
+    for (std::size_t i = 1; i < nodes.size(); ++i) {
+      others.emplace_back([&runOne, &node = *nodes[i]] { runOne(node); });
+    }
+    runOne(*nodes.front());
+    for (auto& thread : others) {
+      thread.join();
+    }
+    spdlog::info("{} stopped", process_name);
+  } catch (const std::exception& e) {
+    spdlog::critical("{}: {}", process_name, e.what());
+    status = 1;
+  }
+  signals.onSignal({});  // before the nodes go away
+  while (!nodes.empty()) {
+    nodes.pop_back();  // the last built first: the participant goes with the node that made it
+  }
+  return status;
+}
+
+/// One module's part of a command line: `--config FILE` and `--set KEY=VALUE`s.
+struct ModuleArgs {
+  std::optional<std::string> config;
+  std::vector<std::string> sets;
+};
+
+/// `module`'s params of `args` (its schema plus the logging keys); throws common::ConfigError
+/// listing every problem, or std::exception for a file it cannot read.
+common::Params moduleParams(const ModuleArgs& args, const common::ParamSchema& schema)
+{
+  std::vector<common::ParamOverride> overrides;
+  for (const auto& s : args.sets) {
+    overrides.push_back(common::parseOverride(s));
+  }
+  return args.config ? common::parseParams(common::readTextFile(*args.config), *args.config, schema, overrides)
+                     : common::parseParams("", "<defaults>", schema, overrides);
+}
+
+/// The lines of a schema's parameters, for --help.
+std::string parameterHelp(const common::ParamSchema& schema)
+{
+  std::string out;
+  for (const common::ParamSpec& p : schema.specs()) {
+    std::string line = fmt::format("  {}: {}", p.key, common::toString(p.type));
+    if (p.default_value) {
+      line += " = " + common::formatValue(*p.default_value);
+    } else {
+      line += " (required)";
+    }
+    if (!p.unit.empty()) {
+      line += " [" + p.unit + "]";
+    }
+    out += fmt::format("{:<48} {}\n", line, p.description);
+  }
+  return out;
+}
+
+std::string programName(char** argv) { return std::filesystem::path(argv[0]).filename().string(); }
+
+/// Logs a usage error as every quad program does (exit status 2).
+int usageError(std::string_view name, const std::string& what, const std::string& usage)
+{
+  common::setupLogging(name);
+  spdlog::critical("{}: {}; usage: {} (--help)", name, what, usage);
+  return 2;
+}
+
+}  // namespace
+
+int runNode(std::string_view module_name, const std::function<std::unique_ptr<Node>()>& make)
+{
+  return runHosted(module_name, [&] {
+    std::vector<std::unique_ptr<Node>> nodes;
+    nodes.push_back(make());
+    return nodes;
+  });
+}
+
+int runNodeMain(int argc, char** argv, std::string_view module_name, common::ParamSchema schema,
+                const std::function<std::unique_ptr<Node>(const common::Params&)>& make)
+{
+  common::addLoggingParams(schema);
+  const std::string program = programName(argv);
+  const std::string usage = program + " [--config FILE] [--set KEY=VALUE]...";
+  ModuleArgs args;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--config" && i + 1 < argc) {
+      args.config = argv[++i];
+    } else if (arg == "--set" && i + 1 < argc) {
+      args.sets.emplace_back(argv[++i]);
+    } else if (arg == "--help" || arg == "-h") {
+      const std::string help = fmt::format(
+          "usage: {} | --help | --version\n\n"
+          "quad's {} module, a DDS participant. Its parameters come from FILE (YAML) and --set\n"
+          "(YAML values under dotted keys), checked against the list below; the participant's\n"
+          "domain and transport come from the environment (QUAD_DOMAIN_ID, ...).\n\nparameters:\n",
+          usage, module_name);
+      std::fputs((help + parameterHelp(schema)).c_str(), stdout);
+      return 0;
+    } else if (arg == "--version") {
+      std::printf("%s %s\n", program.c_str(), QUAD_VERSION);
+      return 0;
+    } else {
+      return usageError(module_name, "unexpected argument '" + arg + "'", usage);
+    }
+  }
+  common::Params params;
+  try {
+    params = moduleParams(args, schema);
+    common::setupLogging(module_name, common::logOptionsFrom(params));
+  } catch (const common::ConfigError& e) {
+    common::setupLogging(module_name);
+    for (const auto& problem : e.problems()) {
+      spdlog::critical("{}", problem);
+    }
+    spdlog::critical("{}: refusing to start with an invalid config", module_name);
+    return 1;
+  } catch (const std::exception& e) {
+    common::setupLogging(module_name);
+    spdlog::critical("{}: {}", module_name, e.what());
+    return 1;
+  }
+  return runNode(module_name, [&] { return make(params); });
+}
+
+int runModule(int argc, char** argv, const ModuleEntry& module)
+{
+  return runNodeMain(argc, argv, module.name, module.schema, [&](const common::Params& params) {
+    return module.make(params, Participant(optionsFromEnvironment(module.name)));
+  });
+}
+
+std::string containerName(const std::vector<std::string>& modules)
+{
+  std::string name;
+  for (const auto& m : modules) {
+    name += (name.empty() ? "" : "+") + m;
+  }
+  return name;
+}
+
+int runContainer(int argc, char** argv, const std::vector<ModuleEntry>& known)
+{
+  const std::string program = programName(argv);
+  const std::string usage = program + " --module NAME [--config FILE] [--set KEY=VALUE]... [--module NAME ...]";
+  std::string known_names;
+  for (const auto& m : known) {
+    known_names += (known_names.empty() ? "" : ", ") + m.name;
+  }
+  std::vector<const ModuleEntry*> hosted;
+  std::vector<ModuleArgs> args;
+  std::vector<std::string> names;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") {
+      std::string help = fmt::format(
+          "usage: {} | --help | --version\n\n"
+          "Hosts several of quad's modules in one process, on one DDS participant: each is a node\n"
+          "with its own readers, writers and thread, on the same topics as when it runs alone.\n"
+          "Each --module takes its own --config and --set, as that module's program does; the\n"
+          "participant's domain and transport come from the environment (QUAD_DOMAIN_ID, ...).\n"
+          "A module that stops or fails stops the container. Modules: {}.\n",
+          usage, known_names);
+      for (const auto& m : known) {
+        help += "\n" + m.name + " parameters:\n" + parameterHelp(m.schema);
+      }
+      std::fputs(help.c_str(), stdout);
+      return 0;
+    }
+    if (arg == "--version") {
+      std::printf("%s %s\n", program.c_str(), QUAD_VERSION);
+      return 0;
+    }
+    if (arg == "--module" && i + 1 < argc) {
+      const std::string name = argv[++i];
+      const auto it = std::find_if(known.begin(), known.end(), [&](const ModuleEntry& m) { return m.name == name; });
+      if (it == known.end()) {
+        return usageError(program, "no module '" + name + "' (modules: " + known_names + ")", usage);
+      }
+      if (std::find(names.begin(), names.end(), name) != names.end()) {
+        return usageError(program, "module '" + name + "' named twice: a process hosts a module once", usage);
+      }
+      hosted.push_back(&*it);
+      names.push_back(name);
+      args.emplace_back();
+    } else if ((arg == "--config" || arg == "--set") && i + 1 < argc && !args.empty()) {
+      if (arg == "--config") {
+        args.back().config = argv[++i];
+      } else {
+        args.back().sets.emplace_back(argv[++i]);
+      }
+    } else {
+      return usageError(program,
+                        args.empty() ? "'" + arg + "' before the first --module" : "unexpected argument '" + arg + "'",
+                        usage);
+    }
+  }
+  if (hosted.empty()) {
+    return usageError(program, "no module to host", usage);
+  }
+  const std::string name = containerName(names);
+  std::vector<common::Params> params(hosted.size());
+  std::vector<std::string> problems;
+  for (std::size_t i = 0; i < hosted.size(); ++i) {
+    common::ParamSchema schema = hosted[i]->schema;
+    common::addLoggingParams(schema);
+    try {
+      params[i] = moduleParams(args[i], schema);
+    } catch (const common::ConfigError& e) {
+      for (const auto& problem : e.problems()) {
+        problems.push_back(names[i] + ": " + problem);
+      }
+    } catch (const std::exception& e) {
+      problems.push_back(names[i] + ": " + e.what());
+    }
+  }
+  try {
+    // One process, one log: the first module's logging keys set it up.
+    common::setupLogging(name, problems.empty() ? common::logOptionsFrom(params.front()) : common::LogOptions{});
+  } catch (const std::exception& e) {
+    problems.emplace_back(e.what());
+    common::setupLogging(name);
+  }
+  if (!problems.empty()) {
+    for (const auto& problem : problems) {
+      spdlog::critical("{}", problem);
+    }
+    spdlog::critical("{}: refusing to start with an invalid config", name);
+    return 1;
+  }
+  return runHosted(name, [&] {
+    std::vector<std::unique_ptr<Node>> nodes;
+    Participant first(optionsFromEnvironment(name));
+    const std::shared_ptr<SharedParticipant> shared = first.shared();
+    for (std::size_t i = 0; i < hosted.size(); ++i) {
+      nodes.push_back(hosted[i]->make(params[i], i == 0 ? std::move(first) : Participant(shared)));
+    }
+    return nodes;
+  });
+}
+
+}  // namespace quad::dds

@@ -93,9 +93,16 @@ void flyMission(const std::string& manifest, int domain, std::vector<std::string
   EXPECT_EQ(summary["outcome"], "landed at the goal") << summary;
   EXPECT_EQ(summary["collisions"], 0) << summary;
   EXPECT_EQ(summary["state"], "estimate") << summary;  // the shipped manifests fly on the estimate
-  for (const char* log : {"launch.log", "plant.log", "control.log", "mapping.log", "planning.log", "estimation.log",
-                          "summary.json"}) {
-    EXPECT_TRUE(fs::exists(dir / "run" / log)) << log;
+  // A process per module, or in the composed layout, per container of the manifest's.
+  const bool composed = std::find(extra.begin(), extra.end(), "composed") != extra.end();
+  const std::vector<std::string> processes = composed ? std::vector<std::string>{"fast", "slow"}
+                                                      : std::vector<std::string>{"plant", "control", "mapping",
+                                                                                 "planning", "estimation"};
+  for (const auto& process : processes) {
+    EXPECT_TRUE(fs::exists(dir / "run" / (process + ".log"))) << process;
+  }
+  for (const char* file : {"launch.log", "summary.json"}) {
+    EXPECT_TRUE(fs::exists(dir / "run" / file)) << file;
   }
   // What the run cost: sim over wall time, and each process's CPU time over the wall time.
   // Together they cannot have kept more cores busy than the machine has.
@@ -109,7 +116,9 @@ void flyMission(const std::string& manifest, int domain, std::vector<std::string
   EXPECT_GT(flight, 0.0) << summary;
   EXPECT_LE(startup + flight, wall) << summary;
   double busy = 0.0;
-  for (const char* process : {"plant", "control", "mapping", "planning", "estimation", "launch"}) {
+  std::vector<std::string> costed = processes;
+  costed.emplace_back("launch");
+  for (const auto& process : costed) {
     const auto& cost = summary["processes"][process];
     ASSERT_TRUE(cost["cpu_seconds"].is_number()) << process << " " << summary;
     EXPECT_GT(cost["cpu_seconds"].get<double>(), 0.0) << process;
@@ -124,8 +133,8 @@ void flyMission(const std::string& manifest, int domain, std::vector<std::string
   EXPECT_LE(busy, static_cast<double>(std::thread::hardware_concurrency()) + 0.05) << summary;
   const auto record = runRecord(dir / "run");
   EXPECT_EQ(record["exit_code"], 0) << record;
-  for (const char* module : {"plant", "control", "mapping", "planning", "estimation"}) {
-    EXPECT_EQ(record["modules"][module]["starts"], 1) << record;  // nothing died on the way
+  for (const auto& process : processes) {
+    EXPECT_EQ(record["modules"][process]["starts"], 1) << record;  // nothing died on the way
   }
   // The controller flew the planner's paths: it took off, followed a mission, landed.
   EXPECT_GT(summary["paths"].get<int>(), 0) << summary;
@@ -191,14 +200,15 @@ void flyMission(const std::string& manifest, int domain, std::vector<std::string
   }
 }
 
-TEST(Launch, DemoMissionReachesTheGoalInLockstepWithoutCollisionAndTwoRunsRecordTheSameMessages)
+TEST(Launch, DemoMissionReachesTheGoalInLockstepWithoutCollisionAndTwoRunsRecordTheSameMessagesComposedOrNot)
 {
-  // GIVEN the demo flown twice in lockstep with one seed, each run recorded
+  // GIVEN the demo flown twice in lockstep with one seed, each run recorded: once with a
+  // process per module, once with the manifest's containers a process each
   const fs::path dir = quad::test::scratchDir("quad_launch_determinism");
   nlohmann::json first;
   nlohmann::json second;
   flyMission("demo.yaml", 180, {"--seed", "7"}, dir / "first.mcap", &first);
-  flyMission("demo.yaml", 63, {"--seed", "7"}, dir / "second.mcap", &second);
+  flyMission("demo.yaml", 63, {"--seed", "7", "--layout", "composed"}, dir / "second.mcap", &second);
   // WHEN the recordings are compared message by message THEN every topic paced by sim time
   // holds the same payloads in the same order, but for the members that hold wall-clock and
   // compute times
@@ -231,16 +241,18 @@ std::pair<int, nlohmann::json> replayCompare(const fs::path& recording, const st
 
 TEST(Launch, EachModuleReplayedAloneWithItsRecordedInputsWritesWhatItWroteInTheRun)
 {
-  // GIVEN the demo flown in lockstep, recorded into its run folder
+  // GIVEN the demo flown in lockstep, its modules composed into the manifest's containers,
+  // recorded into its run folder
   const fs::path dir = quad::test::scratchDir("quad_launch_replay");
   ChildProcess launch({QUAD_TOOL, "launch", std::string(QUAD_SOURCE_DIR) + "/bringup/demo.yaml", "--domain", "64",
-                       "--quiet", "--no-report", "--wall-timeout", "300", "--log-dir", (dir / "run").string()});
+                       "--layout", "composed", "--quiet", "--no-report", "--wall-timeout", "300", "--log-dir",
+                       (dir / "run").string()});
   const auto status = launch.wait(330s);
   ASSERT_TRUE(status) << launch.output();
   ASSERT_EQ(*status, 0) << launch.output();
   const fs::path recording = dir / "run" / "recording.mcap";
-  // WHEN each module is started alone and driven in lockstep by the recorded clock with its
-  // recorded inputs
+  // WHEN each module is started alone, its own program as the run's record gives it, and
+  // driven in lockstep by the recorded clock with its recorded inputs
   // THEN it writes what it wrote in the run, message for message
   for (const auto& [module, at_least] : std::vector<std::pair<std::string, int>>{
            {"planning", 20}, {"mapping", 100}, {"control", 1000}}) {
@@ -474,6 +486,41 @@ modules:
   EXPECT_EQ(record["exit_code"], 1) << record;
   EXPECT_EQ(record["failure"], "mapping failed (killed by SIGKILL) after 1 restarts") << record;
   EXPECT_EQ(record["modules"]["mapping"]["phase"], "failed") << record;
+  fs::remove_all(dir);
+}
+
+TEST(Launch, AKilledContainerTakesAllItsModulesWithItAndIsRespawnedAsOne)
+{
+  // GIVEN the mapper and the planner composed into one process, which may restart once
+  const fs::path dir = quad::test::scratchDir("quad_launch_container");
+  const auto manifest = writeManifest(dir, R"(
+layout: composed
+modules:
+  mapping: {respawn: 1, backoff: 0.2}
+  planning: {needs: [quad/mapping/update]}
+containers:
+  slow: [mapping, planning]
+)");
+  const fs::path run = dir / "run";
+  ChildProcess launch({QUAD_TOOL, "launch", manifest.string(), "--domain", "112", "--log-dir", run.string()});
+  // WHEN it runs (both its modules' heartbeats came from its one process) and is killed
+  const int first = waitForRunning(run, "slow", 1);
+  ASSERT_NE(first, 0) << runRecord(run) << launch.output();
+  EXPECT_FALSE(runRecord(run)["modules"].contains("mapping")) << runRecord(run);
+  ASSERT_EQ(::kill(first, SIGKILL), 0);
+  // THEN it starts again whole, both modules in a new process
+  const int second = waitForRunning(run, "slow", 2);
+  ASSERT_NE(second, 0) << runRecord(run) << launch.output();
+  EXPECT_NE(second, first);
+  EXPECT_EQ(runRecord(run)["modules"]["slow"]["last_exit"], "killed by SIGKILL");
+  // AND killed past its limit, the run fails naming it
+  ASSERT_EQ(::kill(second, SIGKILL), 0);
+  const auto status = launch.wait(20s);
+  ASSERT_TRUE(status) << launch.output();
+  EXPECT_EQ(*status, 1) << launch.output();
+  const auto record = runRecord(run);
+  EXPECT_EQ(record["failure"], "slow failed (killed by SIGKILL) after 1 restarts") << record;
+  EXPECT_EQ(record["modules"]["slow"]["phase"], "failed") << record;
   fs::remove_all(dir);
 }
 

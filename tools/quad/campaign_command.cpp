@@ -36,6 +36,7 @@ int campaign(const CampaignCommandOptions& options)
   c.dir = fs::absolute(options.dir ? fs::path(*options.dir) : fs::path("log") / launch::runFolderName("campaign"));
   c.wall_timeout_s = options.wall_timeout_s;
   c.state = options.state;
+  c.layout = options.layout;
   fs::create_directories(c.dir);
   std::printf("campaign: %zu worlds x %d seeds, runs in %s\n", c.worlds.size(), c.seeds, c.dir.string().c_str());
   std::fflush(stdout);

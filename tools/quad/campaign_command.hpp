@@ -19,6 +19,7 @@ struct CampaignCommandOptions {
   std::optional<std::string> dir;      ///< default: log/campaign-<time>-<pid>
   double wall_timeout_s = 600.0;
   std::string state;                   ///< estimate | truth; empty: the manifest's
+  std::string layout;                  ///< distributed | composed; empty: the manifest's
 };
 
 /// 0 when every run succeeded, 1 when any failed, 2 for bad input.

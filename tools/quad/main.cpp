@@ -91,6 +91,9 @@ int main(int argc, char** argv)
   launch->add_option("--seed", launch_options.seed, "${seed} of the manifest (the plant's random draws)");
   launch->add_option("--vehicle", launch_options.vehicle, "A fleet manifest: fly this vehicle alone (its id)")
       ->check(CLI::Range(0, 1'000'000));
+  launch->add_option("--layout", launch_options.layout,
+                     "distributed: a process per module; composed: the manifest's containers, a process each")
+      ->check(CLI::IsMember({"distributed", "composed"}));
   launch->add_option("--domain", launch_options.domain, "DDS domain id (default: the manifest's, else $QUAD_DOMAIN_ID, else 0)")
       ->check(CLI::Range(0, 232));
   launch->add_option("--subnet", launch_options.subnet, "First three numbers of the /24 for network-namespace hosts");
@@ -132,6 +135,9 @@ int main(int argc, char** argv)
       ->check(CLI::Range(0, 232));
   campaign->add_option("--state", campaign_options.state, "What every run flies on: estimate or truth (default: the manifest's)")
       ->check(CLI::IsMember({"estimate", "truth"}));
+  campaign->add_option("--layout", campaign_options.layout,
+                       "Every run's layout: distributed or composed (default: the manifest's)")
+      ->check(CLI::IsMember({"distributed", "composed"}));
   campaign->add_option("--json", campaign_options.json, "Write the runs as JSON here (default: in the campaign's folder)");
   campaign->add_option("--log-dir", campaign_options.dir, "The campaign's folder (default: log/campaign-<time>-<pid>)");
   campaign->add_option("--wall-timeout", campaign_options.wall_timeout_s, "A run still going after this many seconds fails")

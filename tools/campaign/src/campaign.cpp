@@ -82,6 +82,9 @@ std::vector<CampaignRun> runCampaign(const CampaignOptions& options,
       if (!options.state.empty()) {
         argv.insert(argv.end(), {"--state", options.state});
       }
+      if (!options.layout.empty()) {
+        argv.insert(argv.end(), {"--layout", options.layout});
+      }
       const process::RunResult result = process::run(argv);
       std::ofstream(dir / "launch.out") << result.output;
       CampaignRun r;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "quad/launch/manifest.hpp"
 
+#include "containers.hpp"
+
 #include <arpa/inet.h>
 
 #include <algorithm>
@@ -35,6 +37,20 @@ const Host& Manifest::host(const std::string& host_name) const
     }
   }
   throw std::out_of_range("no host '" + host_name + "' in " + file.string());
+}
+
+std::vector<const Module*> Manifest::hostedModules() const
+{
+  std::vector<const Module*> out;
+  for (const Module& mod : modules) {
+    if (mod.hosted.empty()) {
+      out.push_back(&mod);
+    }
+    for (const Module& hosted : mod.hosted) {
+      out.push_back(&hosted);
+    }
+  }
+  return out;
 }
 
 const Module* Manifest::findModule(const std::string& module_name) const
@@ -96,6 +112,9 @@ const std::map<std::string, std::string> kBuiltModules{
     {"display", "modules/display/node/quad_display_node"},
     {"quad", "tools/quad/quad"},
 };
+
+/// The program that hosts several modules (the composed layout).
+constexpr const char* kContainerProgram = "tools/container/quad_container";
 
 class Reader : public common::YamlReader {
 public:
@@ -347,7 +366,7 @@ void readModule(const std::string& name, YAML::Node spec, Reader& r, const Progr
   }
   mod.needs = r.strings(spec["needs"], key + ".needs");
   for (std::size_t i = 0; i < mod.needs.size(); ++i) {
-    if (lookup.known_topic && !lookup.known_topic(mod.needs[i])) {
+    if (lookup.topic_owner && !lookup.topic_owner(mod.needs[i])) {
       r.problem(key + ".needs[" + std::to_string(i) + "]", spec["needs"][i], "no such topic (see quad topic list --contracts)");
     }
   }
@@ -489,6 +508,91 @@ void expandFleet(const YAML::Node& root, Reader& r, Manifest& m,
   m.modules = std::move(expanded);
 }
 
+/// `containers:` which modules share a process in the composed layout (a map of names to
+/// lists of module names), checked against the modules; in that layout, each becomes one
+/// Module in its first module's place.
+void readContainers(const YAML::Node& node, Reader& r, const ProgramLookup& lookup, Manifest& m)
+{
+  if (!node) {
+    if (m.layout == "composed") {
+      r.problem("layout", YAML::Node(m.layout), "the composed layout hosts the modules of 'containers', and there are none");
+    }
+    return;
+  }
+  if (!node.IsMap() || node.size() == 0) {
+    r.problem("containers", node, "expected a map of container names to lists of modules");
+    return;
+  }
+  std::map<std::string, std::string> container_of;
+  for (auto kv : node) {
+    ContainerSpec spec{kv.first.as<std::string>(), {}};
+    const std::string key = "containers." + spec.name;
+    if (!validName(spec.name)) {
+      r.problem(key, kv.first, "a container name is lower case letters, digits and _, at most 15");
+    } else if (m.findModule(spec.name) != nullptr) {
+      r.problem(key, kv.first, "already a module's name: a container's process needs one of its own");
+    }
+    spec.modules = r.strings(kv.second, key);
+    if (kv.second.IsSequence() && spec.modules.empty()) {
+      r.problem(key, kv.second, "expected at least one module");
+    }
+    for (std::size_t i = 0; i < spec.modules.size(); ++i) {
+      const std::string& name = spec.modules[i];
+      const std::string item = key + "[" + std::to_string(i) + "]";
+      const Module* mod = m.findModule(name);
+      if (mod == nullptr) {
+        r.problem(item, kv.second[i], "no module '" + name + "' in modules");
+      } else if (mod->kind.empty() || mod->kind == "quad") {
+        r.problem(item, kv.second[i], "'" + name + "' is a program, not one of quad's modules: only those can share a process");
+      } else if (const auto [it, fresh] = container_of.emplace(name, spec.name); !fresh) {
+        r.problem(item, kv.second[i], "'" + name + "' is already in container " + it->second);
+      }
+    }
+    m.containers.push_back(std::move(spec));
+  }
+  if (!m.vehicles.empty() && m.layout == "composed") {
+    r.problem("layout", YAML::Node(m.layout), "a fleet's modules run a process each: give the distributed layout");
+  }
+  if (!m.security_dir.empty() && m.layout == "composed") {
+    r.problem("layout", YAML::Node(m.layout),
+              "with DDS Security each participant has an identity of its own, and quad security init makes one per "
+              "module, none for a container: give the distributed layout");
+  }
+  if (m.layout != "composed" || !r.ok()) {
+    return;
+  }
+  const fs::path program = common::programPath(lookup.layout, kContainerProgram);
+  if (!fs::exists(program)) {
+    r.problem("layout", YAML::Node(m.layout), "the container program is not built: no " + program.string());
+    return;
+  }
+  std::vector<Module> composed;
+  for (const Module& mod : m.modules) {
+    const auto in = container_of.find(mod.name);
+    if (in == container_of.end()) {
+      composed.push_back(mod);
+      continue;
+    }
+    const auto spec = std::find_if(m.containers.begin(), m.containers.end(),
+                                   [&](const ContainerSpec& c) { return c.name == in->second; });
+    if (std::any_of(composed.begin(), composed.end(), [&](const Module& c) { return c.name == spec->name; })) {
+      continue;  // placed with its first module
+    }
+    std::vector<const Module*> members;
+    for (const Module& other : m.modules) {
+      if (container_of.contains(other.name) && container_of.at(other.name) == spec->name) {
+        members.push_back(&other);
+      }
+    }
+    std::vector<std::string> problems;
+    composed.push_back(composeContainer(*spec, members, program, lookup, problems));
+    for (const auto& problem : problems) {
+      r.problem("containers." + spec->name, node[spec->name], problem);
+    }
+  }
+  m.modules = std::move(composed);
+}
+
 }  // namespace
 
 Manifest parseManifest(const std::string& text, const fs::path& origin, const ManifestOverrides& overrides,
@@ -503,7 +607,8 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
     r.throwIfAny();
   }
   r.onlyKeys(root, "", {"name", "domain", "transport", "discovery", "subnet", "world", "mode", "state", "seed", "grace", "env",
-                        "security", "network", "hosts", "modules", "mission", "geofence", "vehicles"});
+                        "security", "network", "hosts", "modules", "mission", "geofence", "vehicles", "layout",
+                        "containers"});
   m.name = r.text(root["name"], "name", origin.stem().string()).value_or("run");
   if (overrides.domain) {
     m.domain = overrides.domain;
@@ -609,6 +714,9 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
       r.problem("mission", mission, "a mission flies to the world's goal: give 'world'");
     }
   }
+  m.layout = overrides.layout ? *overrides.layout
+                              : r.choice(root["layout"], "layout", "distributed", {"distributed", "composed"})
+                                    .value_or("distributed");
   if (root["vehicles"]) {
     const auto hosts_of = readVehicles(root["vehicles"], r, m);
     if (overrides.vehicle && r.ok()) {
@@ -628,6 +736,9 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
   } else if (overrides.vehicle) {
     r.problem("vehicles", YAML::Node(std::to_string(*overrides.vehicle)),
               "--vehicle picks a vehicle of a fleet manifest; this one lists none");
+  }
+  if (r.ok()) {
+    readContainers(root["containers"], r, lookup, m);
   }
   r.throwIfAny();
   return m;

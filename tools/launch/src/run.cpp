@@ -120,6 +120,9 @@ LaunchRun::LaunchRun(const Manifest& m, const LaunchOptions& o, fs::path dir, in
     record_.order.push_back(mod.name);
     record_.modules[mod.name] = {mod.kind, mod.host};
     record_.modules[mod.name].command = commandLine(mod, kRunStateVariable);
+    for (const auto& hosted : mod.hosted) {
+      record_.modules[mod.name].hosted[hosted.kind] = commandLine(hosted, kRunStateVariable);
+    }
   }
 }
 
@@ -169,6 +172,7 @@ void LaunchRun::startModule(const Module& mod)
     started_order_.push_back(mod.name);
   }
   st.started = true;
+  st.beating.clear();
   st.restart_at_ns = 0;
   st.exit_expected = false;
   const pid_t pid = *supervisor_.pid(mod.name);
@@ -186,18 +190,27 @@ void LaunchRun::onHeartbeat(const launch::ModuleBeat& beat)
 {
   for (const auto& mod : m_.modules) {
     ModuleRecord& rec = record_.modules[mod.name];
-    if (mod.kind != beat.module || rec.phase != ModulePhase::kStarting || !beat.running) {
+    const bool hosted = std::any_of(mod.hosted.begin(), mod.hosted.end(),
+                                    [&](const Module& h) { return h.kind == beat.module; });
+    if ((mod.kind != beat.module && !hosted) || rec.phase != ModulePhase::kStarting || !beat.running) {
       continue;
     }
     // The process the launcher started is the module itself on this machine and in a network
     // namespace (ip netns exec execs it); over ssh the pid is the remote one, so a heartbeat
     // stamped after the start stands for it.
     const bool remote = m_.host(mod.host).kind == launch::HostKind::kSsh;
-    if (beat.pid == rec.pid || (remote && beat.stamp_ns >= rec.started_ns)) {
-      rec.phase = ModulePhase::kRunning;
-      say(fmt::format("{} is running (heartbeat from pid {})", mod.name, beat.pid));
-      saveRecord();
+    if (beat.pid != rec.pid && !(remote && beat.stamp_ns >= rec.started_ns)) {
+      continue;
     }
+    // A container runs once each module it hosts does.
+    State& st = states_[mod.name];
+    st.beating.insert(beat.module);
+    if (hosted && st.beating.size() < mod.hosted.size()) {
+      continue;
+    }
+    rec.phase = ModulePhase::kRunning;
+    say(fmt::format("{} is running (heartbeat from pid {})", mod.name, beat.pid));
+    saveRecord();
   }
 }
 
@@ -427,10 +440,12 @@ std::vector<launch::ProcessCost> LaunchRun::processCosts() const
 
 std::optional<double> LaunchRun::knownMapOptimum(const world::World& world)
 {
-  const auto planning = std::find_if(m_.modules.begin(), m_.modules.end(), [](const Module& x) { return x.kind == "planning"; });
-  if (planning == m_.modules.end()) {
+  const auto modules = m_.hostedModules();
+  const auto found = std::find_if(modules.begin(), modules.end(), [](const Module* x) { return x->kind == "planning"; });
+  if (found == modules.end()) {
     return std::nullopt;
   }
+  const Module* planning = *found;
   try {
     // The planner's parameters only: the node's own (state.source) do not shape a path.
     const common::ParamSchema planner_schema = planning::planningSchema();
@@ -592,8 +607,9 @@ int LaunchRun::execute(RunExtension* extension)
       po, m_.vehicles.empty() ? std::vector<std::uint32_t>{} : m_.vehicleIds(),
       dds::statePeriodNs(m_.mission.score_rate_hz));
   if (po.lockstep_observer) {
-    observer_->holdStart(static_cast<std::size_t>(std::count_if(
-        m_.modules.begin(), m_.modules.end(), [](const launch::Module& mod) { return mod.kind == "estimation"; })));
+    const auto modules = m_.hostedModules();
+    observer_->holdStart(static_cast<std::size_t>(
+        std::count_if(modules.begin(), modules.end(), [](const launch::Module* mod) { return mod->kind == "estimation"; })));
   }
 
   if (m_.mission.enabled) {
@@ -754,11 +770,15 @@ std::optional<launch::Manifest> loadRunManifest(const LaunchOptions& options)
   overrides.state = options.state;
   overrides.seed = options.seed;
   overrides.vehicle = options.vehicle;
+  overrides.layout = options.layout;
   overrides.domain = options.domain;
   overrides.subnet = options.subnet;
   overrides.geofence = options.geofence;
-  launch::ProgramLookup lookup{common::layout(),
-                               [](const std::string& t) { return dds::topics::find(t).has_value(); }};
+  launch::ProgramLookup lookup{common::layout(), [](const std::string& t) -> std::optional<std::string> {
+                                 const auto contract = dds::topics::find(t);
+                                 return contract ? std::optional<std::string>(dds::toString(contract->owner))
+                                                 : std::nullopt;
+                               }};
   try {
     return launch::loadManifest(launch::findManifest(options.manifest, common::layout()), overrides, lookup);
   } catch (const common::ConfigError& e) {

@@ -45,6 +45,9 @@ std::string toJson(const RunRecord& r)
     modules[name] = {{"kind", m.kind},         {"host", m.host},         {"phase", toString(m.phase)},
                      {"pid", m.pid},           {"starts", m.starts},     {"restarts", m.restarts},
                      {"last_exit", m.last_exit}, {"started_ns", m.started_ns}, {"command", m.command}};
+    if (!m.hosted.empty()) {
+      modules[name]["hosted"] = m.hosted;
+    }
   }
   j["modules"] = modules;
   j["stopped_order"] = r.stopped_order;

@@ -2,6 +2,7 @@
 // Launch manifests: what a valid one gives, and how each kind of mistake is refused.
 #include "quad/launch/manifest.hpp"
 
+#include <algorithm>
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -27,9 +28,18 @@ protected:
       fs::create_directories(p.parent_path());
       std::ofstream(p) << "#!/bin/sh\n";
     }
+    fs::create_directories(root_ / "build/tools/container");
+    std::ofstream(root_ / "build/tools/container/quad_container") << "#!/bin/sh\n";
     std::ofstream(root_ / "configs/plant.yaml") << "sim: {mode: realtime}\n";
     std::ofstream(root_ / "configs/worlds/w.yaml") << "bounds: {min: [0, 0, 0], max: [1, 1, 1]}\n";
-    lookup_ = {{false, root_, root_ / "build"}, [](const std::string& t) { return t.starts_with("quad/"); }};
+    // A topic's owner, as its contract says: the function in its name (quad/sim/...: the plant).
+    lookup_ = {{false, root_, root_ / "build"}, [](const std::string& t) -> std::optional<std::string> {
+                 if (!t.starts_with("quad/") || t.find('/', 5) == std::string::npos) {
+                   return std::nullopt;
+                 }
+                 const std::string function = t.substr(5, t.find('/', 5) - 5);
+                 return function == "sim" ? "plant" : function;
+               }};
   }
   void TearDown() override { fs::remove_all(root_); }
 
@@ -408,6 +418,104 @@ TEST_F(ManifestTest, TheShippedManifestsAreValid)
   for (const char* name : {"demo.yaml", "fast.yaml", "fleet.yaml", "three_hosts.yaml"}) {
     EXPECT_NO_THROW(loadManifest(fs::path(QUAD_SOURCE_DIR) / "bringup" / name, {}, shipped)) << name;
   }
+}
+
+/// The demo's shape: modules in start order, two containers.
+constexpr const char* kComposable = R"(
+world: ../configs/worlds/w.yaml
+hosts: {a: {type: local}, b: {type: netns}}
+modules:
+  mapping: {set: {world: "${world}"}}
+  planning: {needs: [quad/mapping/update]}
+  control: {needs: [quad/planning/path], respawn: 1}
+  plant:
+    config: ../configs/plant.yaml
+    set: {sim.mode: "${mode}"}
+    needs: [quad/control/actuators, quad/mapping/update]
+    ends_run: true
+containers:
+  slow: [mapping, planning]
+  fast: [plant, control]
+)";
+
+TEST_F(ManifestTest, TheDistributedLayoutRunsAProcessPerModuleAndKeepsTheContainersForTheOther)
+{
+  const Manifest m = parse(kComposable);
+  EXPECT_EQ(m.layout, "distributed");
+  ASSERT_EQ(m.modules.size(), 4U);
+  ASSERT_EQ(m.containers.size(), 2U);
+  EXPECT_EQ(m.containers[1].name, "fast");
+  EXPECT_EQ(m.containers[1].modules, (std::vector<std::string>{"plant", "control"}));
+  EXPECT_TRUE(m.modules[0].hosted.empty());
+}
+
+TEST_F(ManifestTest, TheComposedLayoutRunsEachContainerAsOneProcessInItsFirstModulesPlace)
+{
+  ManifestOverrides o;
+  o.layout = "composed";
+  const Manifest m = parse(kComposable, o);
+  EXPECT_EQ(m.layout, "composed");
+  ASSERT_EQ(m.modules.size(), 2U);
+  const Module& slow = m.modules[0];
+  const Module& fast = m.modules[1];
+  EXPECT_EQ(slow.name, "slow");
+  EXPECT_EQ(slow.kind, kContainerKind);
+  EXPECT_EQ(slow.program, root_ / "build/tools/container/quad_container");
+  EXPECT_EQ(slow.args, (std::vector<std::string>{"--module", "mapping", "--set",
+                                                 "world=" + (root_ / "configs/worlds/w.yaml").string(), "--module",
+                                                 "planning"}));
+  EXPECT_TRUE(slow.needs.empty());  // the map update is its own mapper's
+  EXPECT_FALSE(slow.ends_run);
+  // In start order (control before the plant), each with its config and sets.
+  ASSERT_EQ(fast.hosted.size(), 2U);
+  EXPECT_EQ(fast.hosted[0].name, "control");
+  EXPECT_EQ(fast.hosted[1].kind, "plant");
+  EXPECT_EQ(fast.args, (std::vector<std::string>{"--module", "control", "--module", "plant", "--config",
+                                                 (root_ / "configs/plant.yaml").string(), "--set", "sim.mode=lockstep"}));
+  // What others write, once each; not the actuators its own controller writes.
+  EXPECT_EQ(fast.needs, (std::vector<std::string>{"quad/planning/path", "quad/mapping/update"}));
+  EXPECT_TRUE(fast.ends_run);
+  EXPECT_EQ(fast.respawn, 1);
+  EXPECT_TRUE(fast.config.empty());
+  EXPECT_TRUE(fast.sets.empty());
+  // The modules themselves, as the manifest gives them, for what reads their settings.
+  std::vector<std::string> hosted;
+  for (const Module* mod : m.hostedModules()) {
+    hosted.push_back(mod->name);
+  }
+  EXPECT_EQ(hosted, (std::vector<std::string>{"mapping", "planning", "control", "plant"}));
+  EXPECT_EQ(fast.hosted[1].config, root_ / "configs/plant.yaml");
+  EXPECT_EQ(m.findModule("plant"), nullptr);
+  // The manifest still says which layout could run it the other way.
+  EXPECT_EQ(parse("layout: composed\n" + std::string(kComposable)).modules.size(), 2U);
+}
+
+TEST_F(ManifestTest, ContainerMistakesAreRefusedNamingTheContainerAndModule)
+{
+  const std::string modules = "hosts: {a: {type: local}, b: {type: netns}}\n"
+                              "modules: {plant: {}, control: {host: b}, mapping: {}}\n";
+  const auto has = [](const std::vector<std::string>& problems, const std::string& text) {
+    return std::any_of(problems.begin(), problems.end(), [&](const std::string& p) { return p.find(text) != std::string::npos; });
+  };
+  auto p = problems(modules + "containers: {fast: [plant, nothing]}\n");
+  EXPECT_TRUE(has(p, "containers.fast[1]: nothing: no module 'nothing' in modules")) << p.front();
+  p = problems(modules + "containers: {fast: [plant], other: [plant]}\n");
+  EXPECT_TRUE(has(p, "containers.other[0]: plant: 'plant' is already in container fast")) << p.front();
+  p = problems(modules + "containers: {plant: [control]}\n");
+  EXPECT_TRUE(has(p, "containers.plant: plant: already a module's name")) << p.front();
+  p = problems(modules + "layout: composed\n");
+  EXPECT_TRUE(has(p, "layout: composed: the composed layout hosts the modules of 'containers', and there are none"))
+      << p.front();
+  p = problems(modules + "layout: composed\ncontainers: {fast: [plant, control]}\n");
+  EXPECT_TRUE(has(p, "containers.fast: ") && has(p, "control runs on b and plant on a: a container's modules share one host"))
+      << p.front();
+  fs::create_directories(root_ / "sec");
+  std::ofstream(root_ / "sec/ca.pem") << "";
+  std::ofstream(root_ / "sec/governance.p7s") << "";
+  p = problems("security: ../sec\nlayout: composed\nmodules: {plant: {}, mapping: {}}\ncontainers: {all: [plant, mapping]}\n");
+  EXPECT_TRUE(has(p, "layout: composed: with DDS Security each participant has an identity of its own")) << p.front();
+  p = problems(modules + "layout: apart\ncontainers: {fast: [plant]}\n");
+  EXPECT_TRUE(has(p, "layout: apart: expected one of: composed, distributed")) << p.front();
 }
 
 }  // namespace

@@ -62,15 +62,19 @@ std::vector<std::string> moduleCommand(const fs::path& run_json, const std::stri
     throw ReplayError(fmt::format("{}: not a run record: no 'modules' object", run_json.string()));
   }
   for (const auto& [name, m] : record["modules"].items()) {
-    if (m.value("kind", "") != module) {
+    // A module of its own, or one a container hosted (the command its own program takes).
+    const bool hosted = m.contains("hosted") && m["hosted"].is_object() && m["hosted"].contains(module);
+    if (m.value("kind", "") != module && !hosted) {
       continue;
     }
-    if (!m.contains("command") || !m["command"].is_array() || m["command"].empty()) {
-      throw ReplayError(fmt::format("{}: modules.{}.command: missing: the run did not record how it started {}",
-                                    run_json.string(), name, module));
+    const auto& command = hosted ? m["hosted"][module] : m["command"];
+    const std::string key = hosted ? "modules." + name + ".hosted." + module : "modules." + name + ".command";
+    if (!command.is_array() || command.empty()) {
+      throw ReplayError(fmt::format("{}: {}: missing: the run did not record how it started {}", run_json.string(), key,
+                                    module));
     }
     std::vector<std::string> argv;
-    for (const auto& a : m["command"]) {
+    for (const auto& a : command) {
       argv.push_back(launch::withRunState(a.get<std::string>(), state_dir));
     }
     for (const auto& s : sets) {

@@ -22,6 +22,7 @@ struct CampaignOptions {
   std::filesystem::path dir;        ///< a folder per run (logs, summary.json)
   double wall_timeout_s = 600.0;    ///< a run still going after this fails
   std::string state;                ///< `quad launch --state`: estimate or truth; empty: the manifest's
+  std::string layout;               ///< `quad launch --layout`: distributed or composed; empty: the manifest's
 };
 
 /// One run, from its summary and exit status.

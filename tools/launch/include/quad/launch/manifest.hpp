@@ -54,6 +54,18 @@ struct Module {
   /// In a fleet manifest: the vehicle this instance of the module serves (its
   /// QUAD_VEHICLE_ID); nothing for a module that serves the whole run (the plant).
   std::optional<std::uint32_t> vehicle;
+  /// A container of the composed layout (kind kContainerKind): the modules it hosts, as the
+  /// manifest gives them, in start order; empty for a process of one module.
+  std::vector<Module> hosted;
+};
+
+/// The kind of a Module that hosts several (`containers:` in the composed layout).
+inline constexpr const char* kContainerKind = "container";
+
+/// `containers:` one process hosting several modules in the composed layout.
+struct ContainerSpec {
+  std::string name;                  ///< its process's name in the run, as a module's
+  std::vector<std::string> modules;  ///< the manifest names of the modules it hosts
 };
 
 /// One vehicle of a fleet manifest (`vehicles:`), as the plant's fleet file has it.
@@ -108,6 +120,11 @@ struct Manifest {
   /// fleetInstanceName(module, id), and the plant simulates them all (kFleetFile).
   std::vector<FleetMember> vehicles;
   std::vector<Module> modules;      ///< start order (a fleet's: each module's instances together)
+  /// `layout`: "distributed", every module a process of its own (the default), or "composed",
+  /// each of the `containers` one process on its modules' one host (`modules` then holds it
+  /// in the place of its first module).
+  std::string layout = "distributed";
+  std::vector<ContainerSpec> containers;
   Mission mission;
   /// `geofence: {min: [x, y, z], max: [x, y, z]}`: the keep-in volume [m], handed to every
   /// planning and control module as its geofence.min and geofence.max (common::geofenceSets).
@@ -115,7 +132,10 @@ struct Manifest {
 
   const Host& host(const std::string& host_name) const;
   /// The module of that name; nullptr when there is none (the launcher's own processes).
+  /// In the composed layout, a container is one and the modules it hosts are not.
   const Module* findModule(const std::string& module_name) const;
+  /// Every module the run hosts, alone or in a container, in start order.
+  std::vector<const Module*> hostedModules() const;
   bool usesNamespaces() const;
   /// The ids of the vehicles the run flies: the fleet's, or {0} for one vehicle.
   std::vector<std::uint32_t> vehicleIds() const;
@@ -153,6 +173,7 @@ struct ManifestOverrides {
   std::optional<common::Geofence> geofence;
   /// A fleet manifest: keep this vehicle of its list alone (`quad launch --vehicle`).
   std::optional<std::uint32_t> vehicle;
+  std::optional<std::string> layout;  ///< `quad launch --layout`
 };
 
 /// What a manifest is checked against: where modules' programs are (common::programPath of
@@ -160,7 +181,10 @@ struct ManifestOverrides {
 /// and which topic names exist.
 struct ProgramLookup {
   common::Layout layout;
-  std::function<bool(const std::string&)> known_topic;  ///< unset: any name
+  /// The module that writes a topic ("plant", "every module"), nothing for no such topic:
+  /// `needs` are checked with it, and a container does not wait for what its own modules
+  /// write. Unset: any name, owners unknown.
+  std::function<std::optional<std::string>(const std::string&)> topic_owner;
 };
 
 /// The manifest `name_or_path` names: an existing file as it is; a bare name ("demo") the

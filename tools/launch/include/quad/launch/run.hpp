@@ -14,6 +14,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,7 @@ struct LaunchOptions {
   std::optional<std::string> state;    ///< ${state} (estimate | truth) instead of the manifest's
   std::optional<std::uint64_t> seed;   ///< ${seed} instead of the manifest's
   std::optional<std::uint32_t> vehicle;  ///< a fleet manifest: this vehicle alone
+  std::optional<std::string> layout;   ///< distributed | composed instead of the manifest's
   std::optional<int> domain;           ///< replaces the manifest's and the environment's
   std::optional<std::string> subnet;   ///< replaces the manifest's netns subnet
   std::optional<common::Geofence> geofence;  ///< replaces the manifest's keep-in volume
@@ -125,6 +127,7 @@ private:
     bool started = false;
     bool exit_expected = false;      // a fault stops it: its exit is not a failure
     std::optional<int> last_status;
+    std::set<std::string> beating;   // the modules whose heartbeat came since its start
   };
 
   void startModule(const launch::Module& mod);

@@ -44,6 +44,9 @@ struct ModuleRecord {
   /// Its command line (program, --config, --set, arguments), ${run_state} standing for the
   /// run's state folder: what `quad replay --inputs-of MODULE --compare` starts again.
   std::vector<std::string> command;
+  /// A container's modules, by kind, each with the command line its own program would have
+  /// had in the distributed layout: what a replay of one of them starts alone.
+  std::map<std::string, std::vector<std::string>> hosted;
 };
 
 /// A host of the run as the launcher set it up.

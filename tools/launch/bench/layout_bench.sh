@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
+# The demo mission (bringup/demo.yaml, lockstep, recorded as `quad launch` records it) with a
+# process per module against its containers composed (--layout composed: plant, estimation
+# and control in one process, mapping and planning in another), side by side: each pair flies
+# the demo once each way, the two taking turns, with one seed. For each run, from its
+# summary.json:
+#   end        the mission's end (success, failed, ...)
+#   sim_s      sim time flown
+#   wall_s     the run's wall time, start-up included
+#   flight_s   the flight's wall time (first vehicle state to the last)
+#   rtf        sim_s / wall_s, as the summary gives it
+#   cpu_s      every process's CPU time, the launcher's included
+# then each process's (or container's) CPU seconds per sim second, the median of each column
+# per layout, and the median wall time's ratio.
+#   tools/launch/bench/layout_bench.sh BUILD_DIR [-n PAIRS] [-s SEED] [-d DOMAIN]
+#   (default: 5 pairs, seed 1, domain 85)
+set -euo pipefail
+build=${1:?usage: layout_bench.sh BUILD_DIR [-n PAIRS] [-s SEED] [-d DOMAIN]}
+shift
+pairs=5
+seed=1
+domain=85
+while [[ ${1:-} == -* ]]; do
+  case "$1" in
+    -n) pairs=${2:?-n needs a number of pairs} ;;
+    -s) seed=${2:?-s needs a seed} ;;
+    -d) domain=${2:?-d needs a domain id} ;;
+    *)
+      echo "layout_bench.sh: unknown option $1" >&2
+      exit 2
+      ;;
+  esac
+  shift 2
+done
+source "$(dirname "${BASH_SOURCE[0]}")/../../bench_common.sh"
+benchSetup layout_bench.sh "$build" quad_layout
+for ((i = 1; i <= pairs; ++i)); do
+  for layout in distributed composed; do
+    dir="$out/run${i}_$layout"
+    "$quad" launch "$root/bringup/demo.yaml" --layout "$layout" --seed "$seed" --quiet --domain "$domain" \
+      --log-dir "$dir" --summary "$dir.json" > "$dir.out" 2>&1 || true
+    [[ -f $dir.json ]] || { echo "run $i, $layout, wrote no summary: see $dir.out" >&2; exit 1; }
+  done
+done
+python3 - "$out" <<'EOF_PY'
+import glob, json, os, statistics, sys
+out = sys.argv[1]
+cols = ["sim_s", "wall_s", "flight_s", "rtf", "cpu_s"]
+print(f"{'run':<18} {'end':<8} " + " ".join(f"{c:>8}" for c in cols) + "   CPU s per sim s")
+rows = {"distributed": [], "composed": []}
+per_process = {"distributed": {}, "composed": {}}
+for path in sorted(glob.glob(os.path.join(out, "run*_*.json"))):
+    s = json.load(open(path))
+    layout = path.rsplit("_", 1)[1][:-5]
+    cpu = sum(p.get("cpu_seconds") or 0.0 for p in s["processes"].values())
+    row = [s["sim_seconds"], s["wall_seconds"], s["flight_wall_seconds"] or s["wall_seconds"], s["real_time_factor"], cpu]
+    rows[layout].append(row)
+    shares = {name: (p.get("cpu_seconds") or 0.0) / s["sim_seconds"] for name, p in s["processes"].items()}
+    for name, v in shares.items():
+        per_process[layout].setdefault(name, []).append(v)
+    print(f"{os.path.basename(path)[:-5]:<18} {s['end']:<8} " + " ".join(f"{v:8.2f}" for v in row) + "   " +
+          ", ".join(f"{n} {v:.3f}" for n, v in shares.items()))
+for layout, r in rows.items():
+    if r:
+        med = [statistics.median(c) for c in zip(*r)]
+        print(f"{'median, ' + layout:<18} {'':<8} " + " ".join(f"{v:8.2f}" for v in med) + "   " +
+              ", ".join(f"{n} {statistics.median(v):.3f}" for n, v in per_process[layout].items()))
+if rows["distributed"] and rows["composed"]:
+    d = statistics.median(r[1] for r in rows["distributed"])
+    c = statistics.median(r[1] for r in rows["composed"])
+    print(f"wall time, composed over distributed: {c / d:.2f}")
+EOF_PY

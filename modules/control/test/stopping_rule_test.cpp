@@ -20,7 +20,7 @@
 #include "quad/mapping/mapper.hpp"
 #include "quad/planning/known_space.hpp"
 #include "quad/planning/planning_params.hpp"
-#include "quad/planning/shortcut.hpp"
+#include "quad/planning/replan.hpp"
 #include "quad/plant/sensors.hpp"
 #include "quad/world/world_file.hpp"
 
@@ -213,23 +213,13 @@ TEST(StoppingRule, NoCommittedStateOfAForestFlownAt8MetresASecondCanOnlyStopOuts
         ++reached;
         break;
       }
-      std::optional<planning::Cell> cell = planner.lattice().nearestCell(r.p_W);
-      if (cell && !planner.traversable(*cell)) {
-        cell = planner.nearestTraversable(*cell, 2.0 * params.planner.vehicle_radius + params.resolution);
-      }
-      if (!cell) {
+      // The planning module's replan (replan.hpp), from where the vehicle is.
+      const planning::Replan plan = planning::replanFrom(planner, r.p_W, params);
+      if (plan.result.status != planning::PlanStatus::kOk) {
         continue;
       }
-      planner.setStart(*cell);
-      const planning::PlanResult plan = planner.plan(params.max_expansions);
-      if (plan.status != planning::PlanStatus::kOk) {
-        continue;
-      }
-      path = planning::shortcut(planner, plan.cells);
-      path.front() = r.p_W;
-      const double length = geometry::polylineLength(path);
-      const double known_free = planning::knownFreeLength(planner, path, r.p_W, params.known_space)
-                                    .value_or(std::min(params.known_space.horizon, length));
+      path = plan.waypoints;
+      const double known_free = plan.known_free;
       if (!follower.setPath(geometry::truncated(path, known_free), ++version, t)) {
         continue;  // the trajectory flown goes on: it was checked when it was taken
       }

@@ -11,8 +11,7 @@
 #include "quad/dds/geometry_messages.hpp"
 #include "quad/dds/sim_period_filter.hpp"
 #include "quad/world/world_file.hpp"
-#include "quad/geometry/polyline.hpp"
-#include "quad/planning/shortcut.hpp"
+#include "quad/planning/replan.hpp"
 #include "quad/vehicle/vehicle.hpp"
 
 namespace quad::planning {
@@ -376,88 +375,31 @@ void PlanningNode::replan(std::int64_t t_ns)
   const Vector3 from = *position_ + velocity_ * common::toSeconds(participant().options().pathBudgetNs());
   applyPending();
   applyKeepOut(t_ns);
-  // Outside the lattice (below the ground clearance taking off, or between the geofence and
-  // its margin), plan from its nearest cell: the controller, not the planner, answers for a
-  // vehicle outside the geofence.
-  std::optional<Cell> start;
-  if (from.allFinite()) {
-    start = planner_.lattice().nearestCell(from);
-  }
-  if (start && !planner_.traversable(*start)) {
-    // Drifted into an inflated margin (or a cell just became blocked): leave it by the
-    // nearest free cell rather than report the start blocked.
-    start = planner_.nearestTraversable(*start, 2.0 * config_.planner.vehicle_radius + config_.resolution)
-                .value_or(*start);
-  }
-  if (start && !planner_.traversable(*start) && !planner_.keepOut().empty()) {
-    // Inside another vehicle's tube: out of it by the nearest way.
-    start = planner_.nearestTraversable(*start, deconfliction_.clearance() + config_.resolution).value_or(*start);
-  }
   const std::int64_t begin = common::steadyTimeNs();
-  PlanResult r;
-  if (!start) {
-    r.status = PlanStatus::kOutOfBounds;
-  } else {
-    planner_.setStart(*start);
-    r = planner_.plan(config_.max_expansions);
-  }
+  // Outside the lattice, the controller, not the planner, answers for the vehicle (replan.hpp).
+  const Replan r = replanFrom(planner_, from, config_, deconfliction_.clearance());
   const double seconds = common::toSeconds(common::steadyTimeNs() - begin);
-  std::vector<Vector3> waypoints;
-  std::optional<double> frontier;  // arc length where the path leaves known-free space
-  if (r.status == PlanStatus::kOk) {
-    waypoints = shortcut(planner_, r.cells);
-    // From where the vehicle will be, not its cell's centre; when that is not its own cell (below
-    // the lattice, taking off, or pushed out of an inflated margin), by way of the cell the
-    // search started from: a straight line from the ground to the goal would skim the ground.
-    if ((waypoints.front() - from).norm() > config_.resolution) {
-      waypoints.insert(waypoints.begin(), from);
-    } else {
-      waypoints.front() = from;
-    }
-    if (config_.known_space.horizon > 0.0) {
-      frontier = knownFreeLength(planner_, waypoints, from, config_.known_space);
-    }
-  }
-  // What the follower may fly: up to the frontier, or up to the horizon when everything checked
-  // is known free (what lies beyond was not looked at: FASTER's rule commits to none of it).
-  const double length = geometry::polylineLength(waypoints);
-  const double known_free = frontier                                ? *frontier
-                            : config_.known_space.horizon > 0.0 ? std::min(config_.known_space.horizon, length)
-                                                                    : length;
-  if (!frontier && known_free < length) {
-    frontier = known_free;
-  }
-  // Publish a new version only when the path changed meaningfully.
-  bool changed = static_cast<msg::PlanStatus>(toMessage(r.status)) != current_.status() ||
-                 waypoints.size() != current_.waypoints_W().size();
-  for (std::size_t i = 1; !changed && i < waypoints.size(); ++i) {  // the first point moves with the vehicle
-    const auto& w = current_.waypoints_W()[i];
-    changed = (waypoints[i] - Vector3(w.x(), w.y(), w.z())).norm() > config_.resolution;
-  }
-  // So does the point where it leaves known-free space (or the horizon), which the follower
-  // stops before.
-  const std::optional<Vector3> frontier_W =
-      frontier ? std::optional<Vector3>(geometry::pointAlong(waypoints, *frontier)) : std::nullopt;
-  changed = changed || frontier_W.has_value() != frontier_W_.has_value() ||
-            (frontier_W && (*frontier_W - *frontier_W_).norm() > config_.resolution);
-  if (r.status == PlanStatus::kBudgetExceeded) {
+  if (r.result.status == PlanStatus::kBudgetExceeded) {
     return;  // keep the previous path; the search continues next cycle
   }
+  // Publish a new version only when the path changed meaningfully.
+  const bool changed = changedPath(r, previous_, config_.resolution);
+  previous_ = r;
   current_.goal_id(*goal_id_);
-  current_.status(toMessage(r.status));
-  current_.cost(r.status == PlanStatus::kOk ? r.cost : -1.0);
-  current_.known_free_m(known_free);
+  current_.status(toMessage(r.result.status));
+  current_.cost(r.result.status == PlanStatus::kOk ? r.result.cost : -1.0);
+  current_.known_free_m(r.known_free);
   current_.depth_stamp_ns(depth_stamp_ns_);
-  frontier_W_ = frontier_W;
-  current_.expansions(r.expansions);
+  current_.expansions(r.result.expansions);
   current_.replan_time_s(seconds);
   current_.waypoints_W().clear();
-  for (const auto& w : waypoints) {
+  for (const auto& w : r.waypoints) {
     current_.waypoints_W().push_back(dds::toMessage(w));
   }
   if (changed) {
     spdlog::info("planning: path {} {}: {} waypoints, cost {:.2f} m, known free {:.1f} m, {} expansions, {:.1f} ms",
-                 version_ + 1, toString(r.status), waypoints.size(), r.cost, known_free, r.expansions, seconds * 1e3);
+                 version_ + 1, toString(r.result.status), r.waypoints.size(), r.result.cost, r.known_free,
+                 r.result.expansions, seconds * 1e3);
   }
   if (changed || t_ns >= next_publish_ns_) {
     publish(t_ns, changed);

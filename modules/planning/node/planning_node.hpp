@@ -24,6 +24,7 @@
 #include "quad/planning/deconfliction.hpp"
 #include "quad/planning/mapper_lapse.hpp"
 #include "quad/planning/planning_params.hpp"
+#include "quad/planning/replan.hpp"
 
 namespace quad::planning {
 
@@ -124,7 +125,9 @@ private:
   std::uint32_t version_ = 0;
   std::uint64_t overruns_ = 0;  // paths the lockstep clock reached the due time of first
   msg::Path current_;
-  std::optional<Vector3> frontier_W_;  // where the published path leaves known-free space, if it does
+  /// The newest replan, which current_ holds: a new one is a new version when it differs
+  /// (changedPath). Before any, an empty path's: no waypoints, PLAN_OK as the message's default.
+  Replan previous_{.result = {.status = PlanStatus::kOk}};
   Deconfliction deconfliction_;
   std::vector<std::uint32_t> giving_way_to_;  // last said in the log
 };

@@ -9,9 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <span>
 
-#include "quad/common/digest.hpp"
 #include "quad/common/time.hpp"
 #include "quad/dds/geometry_messages.hpp"
 #include "quad/mapping/checkpoint.hpp"
@@ -22,16 +20,6 @@ namespace quad::mapping {
 namespace {
 constexpr std::size_t kMaxChangesPerMessage = 262144;  // MapUpdate's bound
 constexpr std::uint64_t kSeqReserve = 1'000'000;  // update numbers a checkpoint reserves ahead
-/// The digest of a cloud's points, as their bytes.
-std::uint64_t digestOf(const std::vector<msg::Point3f>& points)
-{
-  std::uint64_t d = common::kDigestStart;
-  for (const msg::Point3f& p : points) {
-    const std::array<float, 3> xyz{p.x(), p.y(), p.z()};
-    d = common::digest(std::as_bytes(std::span(xyz)), d);
-  }
-  return d;
-}
 constexpr std::int32_t kHeldClouds = 32;   // 3.2 s of the camera's 10 Hz: beyond the largest budget
 // A cloud between two states read is placed on the pose interpolated between them, which
 // PoseHistory does over at most 100 ms: two periods (the first state of a period can come late
@@ -263,27 +251,22 @@ void MappingNode::integrate(const msg::PointCloud& cloud, const std::optional<ge
   } else if (!body_W) {
     problem = why;
   }
-  // A live camera's range noise never gives the same hits twice: a cloud with hits equal to the
-  // one before, bit for bit, is a stuck sensor's frame, and integrated from where the vehicle
-  // is now it would clear space through what the camera saw from where it was (or, with the
-  // vehicle still, teach nothing). Misses carry no noise: a view of the open sky repeats.
-  const std::uint64_t digest = digestOf(cloud.points());
-  const float range = static_cast<float>(cloud.max_range());
-  const bool hits = std::any_of(cloud.points().begin(), cloud.points().end(), [&](const msg::Point3f& p) {
-    return p.x() * p.x() + p.y() * p.y() + p.z() * p.z() <= range * range;
-  });
-  if (problem.empty() && hits && digest == last_digest_) {
+  std::vector<std::array<float, 3>> points_S;
+  points_S.reserve(cloud.points().size());
+  for (const msg::Point3f& p : cloud.points()) {
+    points_S.push_back({p.x(), p.y(), p.z()});
+  }
+  if (stuck_.repeats(points_S, static_cast<float>(cloud.max_range())) && problem.empty()) {
     problem = "its points repeat the cloud before it's, bit for bit (a stuck camera)";
   }
-  last_digest_ = digest;
   Scan scan;
   if (problem.empty()) {
     const geometry::Pose3 sensor = *body_W * geometry::Pose3{dds::toVector(cloud.sensor_p_B()), q_BS.normalized()};
     scan.origin_W = sensor.p;
     scan.max_range = cloud.max_range();
     scan.points_W.reserve(cloud.points().size());
-    for (const auto& p : cloud.points()) {
-      scan.points_W.push_back(sensor.transform(Vector3(p.x(), p.y(), p.z())));
+    for (const auto& p : points_S) {
+      scan.points_W.push_back(sensor.transform(Vector3(p[0], p[1], p[2])));
     }
   }
   const std::int64_t start = common::steadyTimeNs();

@@ -19,6 +19,7 @@
 #include "quad/dds/topics.hpp"
 #include "quad/mapping/mapper.hpp"
 #include "quad/mapping/pose_history.hpp"
+#include "quad/mapping/stuck_sensor.hpp"
 
 namespace quad::mapping {
 
@@ -107,7 +108,7 @@ private:
   std::int64_t match_until_ns_ = -1;
   std::uint64_t rejected_ = 0;
   std::uint64_t skipped_ = 0;
-  std::uint64_t last_digest_ = 0;      // digestOf the points of the cloud before
+  StuckSensorCheck stuck_;             // a cloud that repeats the one before is refused
   // The tree's memory as of the last snapshot: OctoMap counts it by walking the whole tree,
   // which per cloud took a fifth of the mapper's time in the demo.
   std::size_t map_bytes_ = 0;

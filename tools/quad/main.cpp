@@ -149,6 +149,9 @@ int main(int argc, char** argv)
   fault->add_option("--domain", fault_options.domain, "DDS domain id (default: the manifest's, else $QUAD_DOMAIN_ID, else 0)")
       ->check(CLI::Range(0, 232));
   fault->add_option("--log-dir", fault_options.log_dir, "The run's folder (default: log/fault-<name>-<time>-<pid>)");
+  fault->add_option("--layout", fault_options.layout,
+                    "distributed: a process per module; composed: the manifest's containers, a process each")
+      ->check(CLI::IsMember({"distributed", "composed"}));
   fault->add_option("--wall-timeout", fault_options.wall_timeout_s, "Stop and fail after this many seconds")
       ->check(CLI::NonNegativeNumber);
   fault->add_flag("-q,--quiet", fault_options.quiet, "Modules' output to their log files only");

@@ -2,8 +2,10 @@
 #include "quad/dds/module_main.hpp"
 
 #include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <thread>
@@ -18,30 +20,46 @@ namespace quad::dds {
 
 namespace {
 
+/// How long a container waits for one of its nodes to stop before it tells the next.
+constexpr auto kNodeStopWait = std::chrono::seconds(3);
+
 /// Runs the nodes `make` builds, the first on this thread and each other on one of its own,
 /// until all have stopped: a node that stops on its own, or fails, stops the others; a
-/// signal stops them all. 1 when building or running any failed, else 0.
+/// signal stops them all. They stop in the reverse of the order they were built in, each
+/// done before the next is told, as a launcher stops a process per module (the plant's
+/// clock ends before the controller that answers it). 1 when building or running any
+/// failed, else 0.
 int runHosted(std::string_view process_name, const std::function<std::vector<std::unique_ptr<Node>>()>& make)
 {
   SignalWatcher signals;
   std::vector<std::unique_ptr<Node>> nodes;
+  std::unique_ptr<std::atomic<bool>[]> ended;
+  std::once_flag stopping;
   std::atomic<int> status{0};
-  const auto stopAll = [&nodes] {
-    for (const auto& node : nodes) {
-      node->stop();
-    }
+  const auto stopAll = [&] {
+    std::call_once(stopping, [&] {
+      for (std::size_t i = nodes.size(); i-- > 0;) {
+        nodes[i]->stop();
+        const auto until = std::chrono::steady_clock::now() + kNodeStopWait;
+        while (!ended[i].load() && std::chrono::steady_clock::now() < until) {
+          std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+      }
+    });
   };
-  const auto runOne = [&](Node& node) {
+  const auto runOne = [&](std::size_t i) {
     try {
-      node.run();
+      nodes[i]->run();
     } catch (const std::exception& e) {
-      spdlog::critical("{}: {}", node.moduleName(), e.what());
+      spdlog::critical("{}: {}", nodes[i]->moduleName(), e.what());
       status = 1;
     }
+    ended[i] = true;
     stopAll();
   };
   try {
     nodes = make();
+    ended = std::make_unique<std::atomic<bool>[]>(nodes.size());
     signals.onSignal([&stopAll](int signal) {
       spdlog::info("signal {} received, stopping", signal);
       stopAll();
@@ -52,9 +70,9 @@ int runHosted(std::string_view process_name, const std::function<std::vector<std
     spdlog::info("{} running on domain {}", process_name, nodes.front()->participant().options().domain_id);
     std::vector<std::thread> others;
     for (std::size_t i = 1; i < nodes.size(); ++i) {
-      others.emplace_back([&runOne, &node = *nodes[i]] { runOne(node); });
+      others.emplace_back([&runOne, i] { runOne(i); });
     }
-    runOne(*nodes.front());
+    runOne(0);
     for (auto& thread : others) {
       thread.join();
     }

@@ -115,18 +115,27 @@ void Node::countLoss(const EndpointEvent& event)
 
 void Node::countRejectedPayloads()
 {
-  if (!participant_.reportsProcessInputs()) {
-    return;  // the process's node that made the participant reports them
+  // Of the types this node reads: in a container, each node its own. The process's count,
+  // read without a lock, says whether there is anything new to look at.
+  const std::uint64_t in_process = rejectedPayloadCount();
+  std::uint64_t refused = rejected_payloads_;
+  if (in_process != process_rejected_payloads_) {
+    process_rejected_payloads_ = in_process;
+    refused = 0;
+    for (const auto& type : participant_.readerTypes()) {
+      refused += rejectedPayloadCount(type);
+    }
   }
-  if (rejectedPayloadCount() > rejected_payloads_) {
-    const RejectedPayloads r = rejectedPayloads();
-    counters_.errors += r.count - rejected_payloads_;
-    spdlog::warn("{} received payload(s) refused; the last: {}", r.count - rejected_payloads_, r.last);
-    rejected_payloads_ = r.count;
+  if (refused > rejected_payloads_) {
+    counters_.errors += refused - rejected_payloads_;
+    spdlog::warn("{}: {} received payload(s) refused; the process's last: {}", module_name_, refused - rejected_payloads_,
+                 rejectedPayloads().last);
+    rejected_payloads_ = refused;
   }
-  // The validating transport logs each itself (at most once a second).
+  // The validating transport logs each itself (at most once a second); the process's node
+  // that made the participant counts them.
   const std::uint64_t malformed = wire::malformedDatagramCount();
-  if (malformed > malformed_datagrams_) {
+  if (participant_.reportsProcessInputs() && malformed > malformed_datagrams_) {
     counters_.errors += malformed - malformed_datagrams_;
     malformed_datagrams_ = malformed;
   }

@@ -156,7 +156,7 @@ private:
           heartbeat(p, topics::kHeartbeat, nullptr, deepReader(p, topics::kHeartbeat.info.qos_profile)),
           sim_events(p, topics::kSimEvents, nullptr, deepReader(p, topics::kSimEvents.info.qos_profile)),
           fault_events(p, topics::kFaultEvents, nullptr, deepReader(p, topics::kFaultEvents.info.qos_profile)),
-          estimate(p, topics::kEstimatedState)
+          estimate(p, topics::kEstimatedState, nullptr, deepReader(p, topics::kEstimatedState.info.qos_profile))
     {
     }
     dds::Publisher<msg::FaultCommand> command;
@@ -167,7 +167,8 @@ private:
     dds::Subscriber<msg::Heartbeat> heartbeat;
     dds::Subscriber<msg::SimEvent> sim_events;
     dds::Subscriber<msg::SimEvent> fault_events;  // our own, and the modules' fault layers'
-    dds::Subscriber<msg::EstimatedState> estimate;  // its counts of outliers: the newest sample says them all
+    // Its counts of outliers: the newest sample says them all, but the first to grow says when.
+    dds::Subscriber<msg::EstimatedState> estimate;
   };
   struct PublishJob {
     dds::TopicInfo info;
@@ -205,9 +206,9 @@ private:
       job.writer = std::make_unique<dds::RawPublisher>(*injector_, job.info);
       jobs_.emplace(i, std::move(job));
     }
-    for (const auto& m : run.manifest().modules) {
-      kinds_.emplace(m.name, m.kind);
-      vehicle_of_.emplace(m.name, m.vehicle.value_or(0));
+    for (const auto* m : run.manifest().hostedModules()) {
+      kinds_.emplace(m->name, m->kind);
+      vehicle_of_.emplace(m->name, m->vehicle.value_or(0));
     }
     // The vehicle the expectations watch: the scenario's, else the run's first.
     watched_ = scenario_.vehicle.value_or(run.observer().vehicleId(0));

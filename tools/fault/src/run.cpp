@@ -53,6 +53,7 @@ int runScenario(const FaultOptions& options)
   lo.realtime = scenario.mode == "realtime";
   lo.lockstep = scenario.mode == "lockstep";
   lo.state = scenario.state;
+  lo.layout = options.layout;
   lo.domain = options.domain;
   lo.wall_timeout_s = options.wall_timeout_s;
   lo.quiet = options.quiet;
@@ -62,11 +63,12 @@ int runScenario(const FaultOptions& options)
     std::fprintf(stderr, "fault: %s: refusing to run with an invalid manifest\n", scenario.file.string().c_str());
     return 2;
   }
+  // The scenario speaks of modules, alone or hosted in a container (the composed layout).
   std::vector<std::string> names;
   std::vector<std::string> kinds;
-  for (const auto& m : manifest->modules) {
-    names.push_back(m.name);
-    kinds.push_back(m.kind);
+  for (const auto* m : manifest->hostedModules()) {
+    names.push_back(m->name);
+    kinds.push_back(m->kind);
   }
   std::map<std::string, bool> hosts;
   for (const auto& h : manifest->hosts) {
@@ -76,15 +78,18 @@ int runScenario(const FaultOptions& options)
   for (auto& p : checkAgainstVehicles(scenario, manifest->vehicleIds(), !manifest->vehicles.empty())) {
     problems.push_back(std::move(p));
   }
-  for (auto& m : manifest->modules) {
-    const auto it = scenario.sets.find(m.name);
-    if (it == scenario.sets.end()) {
+  for (auto& p : checkAgainstContainers(scenario, *manifest)) {
+    problems.push_back(std::move(p));
+  }
+  for (const auto& [name, values] : scenario.sets) {
+    launch::Module* m = manifest->findHostedModule(name);
+    if (m == nullptr) {
       continue;
     }
     // Over the manifest's: a key it sets too is replaced, the others added.
-    for (const auto& [key, value] : it->second) {
-      std::erase_if(m.sets, [&](const auto& kv) { return kv.first == key; });
-      m.sets.emplace_back(key, value);
+    for (const auto& [key, value] : values) {
+      std::erase_if(m->sets, [&](const auto& kv) { return kv.first == key; });
+      m->sets.emplace_back(key, value);
     }
   }
   // A module whose links a step breaks gets the datagram fault layer (UDP only).

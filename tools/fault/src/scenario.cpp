@@ -787,4 +787,34 @@ std::vector<std::string> checkAgainstModules(const Scenario& s, const std::vecto
   return problems;
 }
 
+std::vector<std::string> checkAgainstContainers(const Scenario& s, const launch::Manifest& manifest)
+{
+  std::vector<std::string> problems;
+  const auto hostedIn = [&](const std::string& module) -> const launch::Module* {
+    const launch::Module* process = manifest.processOf(module);
+    return process != nullptr && !process->hosted.empty() ? process : nullptr;
+  };
+  for (std::size_t i = 0; i < s.steps.size(); ++i) {
+    const Action& a = s.steps[i].action;
+    const std::string key = "steps[" + std::to_string(i) + "]";
+    const bool on_process = a.kind == Action::Kind::kDds ||
+                            std::any_of(kProcessActions.begin(), kProcessActions.end(),
+                                        [&](const auto& action) { return action.second == a.kind; });
+    if (const launch::Module* container = on_process ? hostedIn(a.module) : nullptr) {
+      std::vector<std::string> others;
+      for (const auto& hosted : container->hosted) {
+        if (hosted.name != a.module) {
+          others.push_back(hosted.name);
+        }
+      }
+      problems.push_back(common::configProblem(
+          s.file.string(), key + (a.kind == Action::Kind::kDds ? ".dds.module" : "." + nameOf(kProcessActions, a.kind)),
+          a.module,
+          "shares process " + container->name + " with " + joined(others) +
+              " in the composed layout: a fault on it alone needs the distributed layout"));
+    }
+  }
+  return problems;
+}
+
 }  // namespace quad::fault

@@ -314,6 +314,40 @@ steps:
   EXPECT_EQ(q.size(), 1U);
 }
 
+TEST_F(ScenarioFiles, AStepOnAModuleThatSharesItsProcessIsRefusedInTheComposedLayout)
+{
+  const Scenario s = parse(R"(
+manifest: manifest.yaml
+steps:
+  - {at: 1, kill: planning}
+  - {at: 2, dds: {module: control, loss: 0.1}}
+  - {at: 3, pause: display}
+  - {at: 4, plant: {kind: wind_gust, wind: [3, 0, 0], duration: 1}, expect: [{rejected: control, within: 2}]}
+)");
+  // The composed layout of a manifest: {mapping, planning} and {plant, control} a process
+  // each, the display alone.
+  launch::Manifest m;
+  launch::Module slow{.name = "slow", .kind = launch::kContainerKind};
+  slow.hosted = {launch::Module{.name = "mapping", .kind = "mapping"}, launch::Module{.name = "planning", .kind = "planning"}};
+  launch::Module fast{.name = "fast", .kind = launch::kContainerKind};
+  fast.hosted = {launch::Module{.name = "plant", .kind = "plant"}, launch::Module{.name = "control", .kind = "control"}};
+  m.modules = {slow, launch::Module{.name = "display", .kind = "display"}, fast};
+  const auto p = checkAgainstContainers(s, m);
+  EXPECT_TRUE(mentions(p, "steps[0].kill: planning: shares process slow with mapping in the composed layout: a fault "
+                          "on it alone needs the distributed layout"))
+      << ::testing::PrintToString(p);
+  EXPECT_TRUE(mentions(p, "steps[1].dds.module: control: shares process fast with plant"));
+  EXPECT_FALSE(mentions(p, "steps[2]")) << "the display is a process of its own";
+  EXPECT_FALSE(mentions(p, "steps[3]")) << "a plant fault, and each node counts what it refuses";
+  EXPECT_EQ(p.size(), 2U) << ::testing::PrintToString(p);
+  // Distributed, nothing to refuse.
+  launch::Manifest apart;
+  for (const char* name : {"mapping", "planning", "plant", "control", "display"}) {
+    apart.modules.push_back(launch::Module{.name = name, .kind = name});
+  }
+  EXPECT_TRUE(checkAgainstContainers(s, apart).empty());
+}
+
 TEST_F(ScenarioFiles, AFleetsWatchedVehicleAndEachVehiclesOutcomeAreReadAndChecked)
 {
   const Scenario s = parse(R"(

@@ -17,13 +17,6 @@ Module composeContainer(const ContainerSpec& spec, const std::vector<const Modul
   c.ready_timeout_s = 0.0;
   for (const Module* mod : members) {
     c.hosted.push_back(*mod);
-    c.args.insert(c.args.end(), {"--module", mod->kind});
-    if (!mod->config.empty()) {
-      c.args.insert(c.args.end(), {"--config", mod->config.string()});
-    }
-    for (const auto& [k, v] : mod->sets) {
-      c.args.insert(c.args.end(), {"--set", k + "=" + v});
-    }
     if (!mod->args.empty()) {
       problems.push_back(mod->name + " has args (" + mod->args.front() + ", ...): a hosted module takes only config and set");
     }

@@ -12,7 +12,8 @@
 namespace quad::launch {
 
 /// The process that hosts `members` (the container's modules, in start order): quad_container
-/// at `program`, each member's config and sets after its --module, on the members' one host,
+/// at `program` (each member's config and sets after its --module: processCommand), on the
+/// members' one host,
 /// with their environments, waiting for what they need that none of them writes
 /// (`topic_owner`), ending the run if one does, restarted as often as the most any allows,
 /// given as long to be ready as the longest. What cannot be composed (members on two hosts,

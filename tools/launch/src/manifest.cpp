@@ -53,6 +53,33 @@ std::vector<const Module*> Manifest::hostedModules() const
   return out;
 }
 
+Module* Manifest::findHostedModule(const std::string& module_name)
+{
+  for (Module& mod : modules) {
+    if (mod.hosted.empty() && mod.name == module_name) {
+      return &mod;
+    }
+    for (Module& hosted : mod.hosted) {
+      if (hosted.name == module_name) {
+        return &hosted;
+      }
+    }
+  }
+  return nullptr;
+}
+
+const Module* Manifest::processOf(const std::string& module_name) const
+{
+  for (const Module& mod : modules) {
+    const bool hosting = std::any_of(mod.hosted.begin(), mod.hosted.end(),
+                                     [&](const Module& h) { return h.name == module_name; });
+    if ((mod.hosted.empty() && mod.name == module_name) || hosting) {
+      return &mod;
+    }
+  }
+  return nullptr;
+}
+
 const Module* Manifest::findModule(const std::string& module_name) const
 {
   const auto it = std::find_if(modules.begin(), modules.end(), [&](const Module& m) { return m.name == module_name; });
@@ -759,6 +786,28 @@ Manifest loadManifest(const fs::path& file, const ManifestOverrides& overrides, 
 {
   const fs::path absolute = fs::absolute(file).lexically_normal();
   return parseManifest(common::readTextFile(absolute), absolute, overrides, lookup);
+}
+
+std::vector<std::string> processCommand(const Module& mod, const fs::path& state_dir)
+{
+  std::vector<std::string> argv{mod.program.string()};
+  const auto options = [&](const Module& m) {
+    if (!m.config.empty()) {
+      argv.insert(argv.end(), {"--config", m.config.string()});
+    }
+    for (const auto& [k, v] : m.sets) {
+      argv.insert(argv.end(), {"--set", k + "=" + withRunState(v, state_dir)});
+    }
+  };
+  options(mod);
+  for (const Module& hosted : mod.hosted) {
+    argv.insert(argv.end(), {"--module", hosted.kind});
+    options(hosted);
+  }
+  for (const auto& a : mod.args) {
+    argv.push_back(withRunState(a, state_dir));
+  }
+  return argv;
 }
 
 std::string withRunState(std::string text, const std::filesystem::path& state_dir)

@@ -81,22 +81,6 @@ std::map<std::string, std::string> runEnvironment(const Manifest& m, int domain,
   return env;
 }
 
-/// The module's command line: program, --config, --set, then its own arguments.
-std::vector<std::string> commandLine(const Module& mod, const fs::path& state_dir)
-{
-  std::vector<std::string> argv{mod.program.string()};
-  if (!mod.config.empty()) {
-    argv.insert(argv.end(), {"--config", mod.config.string()});
-  }
-  for (const auto& [k, v] : mod.sets) {
-    argv.insert(argv.end(), {"--set", k + "=" + withRunState(v, state_dir)});
-  }
-  for (const auto& a : mod.args) {
-    argv.push_back(withRunState(a, state_dir));
-  }
-  return argv;
-}
-
 }  // namespace
 
 LaunchRun::LaunchRun(const Manifest& m, const LaunchOptions& o, fs::path dir, int domain)
@@ -119,9 +103,9 @@ LaunchRun::LaunchRun(const Manifest& m, const LaunchOptions& o, fs::path dir, in
   for (const auto& mod : m.modules) {
     record_.order.push_back(mod.name);
     record_.modules[mod.name] = {mod.kind, mod.host};
-    record_.modules[mod.name].command = commandLine(mod, kRunStateVariable);
+    record_.modules[mod.name].command = processCommand(mod, kRunStateVariable);
     for (const auto& hosted : mod.hosted) {
-      record_.modules[mod.name].hosted[hosted.kind] = commandLine(hosted, kRunStateVariable);
+      record_.modules[mod.name].hosted[hosted.kind] = processCommand(hosted, kRunStateVariable);
     }
   }
 }
@@ -166,7 +150,7 @@ void LaunchRun::startModule(const Module& mod)
     env[dds::environment::kVehicleId] = std::to_string(*mod.vehicle);
   }
   const auto& host = m_.host(mod.host);
-  supervisor_.start(mod.name, net_->command(host, commandLine(mod, state_dir_), env), env);
+  supervisor_.start(mod.name, net_->command(host, processCommand(mod, state_dir_), env), env);
   State& st = states_[mod.name];
   if (!st.started) {
     started_order_.push_back(mod.name);

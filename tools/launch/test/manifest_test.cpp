@@ -461,17 +461,19 @@ TEST_F(ManifestTest, TheComposedLayoutRunsEachContainerAsOneProcessInItsFirstMod
   EXPECT_EQ(slow.name, "slow");
   EXPECT_EQ(slow.kind, kContainerKind);
   EXPECT_EQ(slow.program, root_ / "build/tools/container/quad_container");
-  EXPECT_EQ(slow.args, (std::vector<std::string>{"--module", "mapping", "--set",
-                                                 "world=" + (root_ / "configs/worlds/w.yaml").string(), "--module",
-                                                 "planning"}));
+  const std::string program = (root_ / "build/tools/container/quad_container").string();
+  EXPECT_EQ(processCommand(slow, "/state"),
+            (std::vector<std::string>{program, "--module", "mapping", "--set",
+                                      "world=" + (root_ / "configs/worlds/w.yaml").string(), "--module", "planning"}));
   EXPECT_TRUE(slow.needs.empty());  // the map update is its own mapper's
   EXPECT_FALSE(slow.ends_run);
   // In start order (control before the plant), each with its config and sets.
   ASSERT_EQ(fast.hosted.size(), 2U);
   EXPECT_EQ(fast.hosted[0].name, "control");
   EXPECT_EQ(fast.hosted[1].kind, "plant");
-  EXPECT_EQ(fast.args, (std::vector<std::string>{"--module", "control", "--module", "plant", "--config",
-                                                 (root_ / "configs/plant.yaml").string(), "--set", "sim.mode=lockstep"}));
+  EXPECT_EQ(processCommand(fast, "/state"),
+            (std::vector<std::string>{program, "--module", "control", "--module", "plant", "--config",
+                                      (root_ / "configs/plant.yaml").string(), "--set", "sim.mode=lockstep"}));
   // What others write, once each; not the actuators its own controller writes.
   EXPECT_EQ(fast.needs, (std::vector<std::string>{"quad/planning/path", "quad/mapping/update"}));
   EXPECT_TRUE(fast.ends_run);
@@ -486,6 +488,13 @@ TEST_F(ManifestTest, TheComposedLayoutRunsEachContainerAsOneProcessInItsFirstMod
   EXPECT_EQ(hosted, (std::vector<std::string>{"mapping", "planning", "control", "plant"}));
   EXPECT_EQ(fast.hosted[1].config, root_ / "configs/plant.yaml");
   EXPECT_EQ(m.findModule("plant"), nullptr);
+  EXPECT_EQ(m.processOf("plant"), &fast);
+  EXPECT_EQ(m.processOf("slow"), nullptr);  // a process, not a module
+  // A hosted module changed (a fault scenario's sets) is started so.
+  Manifest changed = m;
+  changed.findHostedModule("control")->sets.emplace_back("follower.max_speed", "3");
+  EXPECT_EQ(processCommand(changed.modules[1], "/state")[3], "--set");
+  EXPECT_EQ(processCommand(changed.modules[1], "/state")[4], "follower.max_speed=3");
   // The manifest still says which layout could run it the other way.
   EXPECT_EQ(parse("layout: composed\n" + std::string(kComposable)).modules.size(), 2U);
 }

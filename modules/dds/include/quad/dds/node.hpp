@@ -141,8 +141,9 @@ private:
   void publishHeartbeat(msg::ModuleState state);
   /// Adds a reader's lost samples to the heartbeat's count, on topics that promise every one.
   void countLoss(const EndpointEvent& event);
-  /// Payloads refused for breaking their IDL (message_types.hpp) and datagrams the validating
-  /// transport dropped count as rejected inputs.
+  /// Payloads of the types its readers take refused for breaking their IDL (message_types.hpp),
+  /// and, in the node that made the participant, datagrams the validating transport dropped,
+  /// count as rejected inputs.
   void countRejectedPayloads();
 
   std::string module_name_;
@@ -161,7 +162,8 @@ private:
   std::int64_t tick_period_ns_ = 0;
   bool lockstep_ = false;
   std::int64_t last_deadline_log_ns_ = 0;
-  std::uint64_t rejected_payloads_ = 0;
+  std::uint64_t rejected_payloads_ = 0;          // of its readers' types
+  std::uint64_t process_rejected_payloads_ = 0;  // the process's count when it last looked
   std::uint64_t malformed_datagrams_ = 0;
 };
 

@@ -11,6 +11,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -265,9 +266,12 @@ public:
   const std::shared_ptr<SharedParticipant>& shared() const { return shared_; }
   /// This node's endpoint events.
   EventQueue& events() { return *events_; }
-  /// Payloads refused and datagrams dropped are counted for the whole process (message_types.hpp,
-  /// validating_transport.hpp): the node that made the participant reports them, no other.
+  /// Datagrams dropped are counted for the whole process (validating_transport.hpp): the node
+  /// that made the participant reports them, no other.
   bool reportsProcessInputs() const { return reports_process_inputs_; }
+  /// The types this node's readers take: a payload refused for breaking its IDL is counted
+  /// by type for the process (message_types.hpp), and a node reports those of its own types.
+  const std::set<std::string, std::less<>>& readerTypes() const { return reader_types_; }
 
   const ParticipantOptions& options() const { return shared_->options(); }
   wire::DatagramFaults* datagramFaults() { return shared_->datagramFaults(); }
@@ -305,6 +309,9 @@ public:
   eprosima::fastdds::dds::DataReaderQos readerQos(const TopicInfo& info) const { return shared_->readerQos(info); }
   void addLocalEndpoint(const std::string& topic, const std::string& type_name, bool keyed, bool writer)
   {
+    if (!writer) {
+      reader_types_.insert(type_name);
+    }
     shared_->addLocalEndpoint(topic, type_name, keyed, writer, events_);
   }
   void removeLocalEndpoint(const std::string& topic, bool writer)
@@ -317,6 +324,7 @@ private:
   std::shared_ptr<SharedParticipant> shared_;
   std::shared_ptr<EventQueue> events_;
   bool reports_process_inputs_ = false;
+  std::set<std::string, std::less<>> reader_types_;
 };
 
 /// `qos` keeping at least `depth` samples per instance: a KEEP_LAST history deepened and its

@@ -15,6 +15,7 @@ namespace quad::fault {
 struct FaultOptions {
   std::string scenario;
   std::optional<int> domain;          ///< replaces the manifest's and the environment's
+  std::optional<std::string> layout;  ///< distributed | composed; replaces the manifest's
   std::optional<std::string> log_dir; ///< the run's folder; default log/fault-<name>-<time>
   double wall_timeout_s = 0.0;        ///< stop and fail after this long; 0 = never
   bool quiet = false;                 ///< modules' output to their logs only

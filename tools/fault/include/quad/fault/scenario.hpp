@@ -17,6 +17,7 @@
 #include "quad/common/geofence.hpp"
 #include "quad/wire/datagram_faults.hpp"
 #include "quad/launch/link_faults.hpp"
+#include "quad/launch/manifest.hpp"
 #include "quad/plant/faults.hpp"
 
 namespace quad::fault {
@@ -159,5 +160,10 @@ std::vector<std::string> checkAgainstModules(const Scenario& scenario, const std
 /// (`vehicle_ids`; `fleet`: the manifest lists vehicles), as `file:key: value: reason`.
 std::vector<std::string> checkAgainstVehicles(const Scenario& scenario, const std::vector<std::uint32_t>& vehicle_ids,
                                               bool fleet);
+
+/// Problems of a scenario against the manifest's containers in the composed layout: a step
+/// that kills, pauses, resumes, restarts or breaks the datagrams of a module that shares its
+/// process with others (it would break them all).
+std::vector<std::string> checkAgainstContainers(const Scenario& scenario, const launch::Manifest& manifest);
 
 }  // namespace quad::fault

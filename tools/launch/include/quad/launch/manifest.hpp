@@ -136,6 +136,12 @@ struct Manifest {
   const Module* findModule(const std::string& module_name) const;
   /// Every module the run hosts, alone or in a container, in start order.
   std::vector<const Module*> hostedModules() const;
+  /// The module of that name, alone or in a container; nullptr when there is none. Changes to
+  /// a hosted one (its sets) reach its container's command line (processCommand).
+  Module* findHostedModule(const std::string& module_name);
+  /// The process that runs the module of that name: itself, or its container; nullptr when
+  /// there is none.
+  const Module* processOf(const std::string& module_name) const;
   bool usesNamespaces() const;
   /// The ids of the vehicles the run flies: the fleet's, or {0} for one vehicle.
   std::vector<std::uint32_t> vehicleIds() const;
@@ -162,6 +168,11 @@ inline constexpr const char* kRunStateVariable = "${run_state}";
 /// `text` with every ${run_state} replaced by `state_dir`: a module's command line and
 /// environment for its run (the launcher), or for a replay of it (quad replay --compare).
 std::string withRunState(std::string text, const std::filesystem::path& state_dir);
+
+/// The command line `mod`'s process starts with, ${run_state} replaced by `state_dir`: its
+/// program, --config, --set KEY=VALUE and args; a container's, quad_container with each
+/// hosted module's --module KIND, --config and --set, as the hosted modules are now.
+std::vector<std::string> processCommand(const Module& mod, const std::filesystem::path& state_dir);
 
 struct ManifestOverrides {
   std::optional<std::filesystem::path> world;

@@ -150,6 +150,33 @@ TEST(NodeAndTools, NodeRefusesToStartOnABadConfigNamingFileKeyAndValue)
   EXPECT_EQ(out.find("running on domain"), std::string::npos) << out;
 }
 
+TEST(NodeAndTools, CheckValidatesTheParametersAndExitsWithoutJoiningTheDomain)
+{
+  const std::string file = QUAD_FIXTURES "/test_node_ok.yaml";
+  ChildProcess good({QUAD_TEST_NODE, "--config", file, "--set", "greeting=hi", "--check"}, env(141));
+  EXPECT_EQ(good.wait(10s), 0) << good.output();
+  EXPECT_NE(good.output().find("test_node: parameters ok"), std::string::npos) << good.output();
+  EXPECT_EQ(good.output().find("running on domain"), std::string::npos) << good.output();
+  ChildProcess bad({QUAD_TEST_NODE, "--config", file, "--set", "greting=hi", "--check"}, env(141));
+  EXPECT_EQ(bad.wait(10s), 1) << bad.output();
+  EXPECT_NE(bad.output().find("greting: hi: unknown key (did you mean 'greeting'?)"), std::string::npos) << bad.output();
+}
+
+TEST(NodeAndTools, LaunchCheckRunsEveryModulesOwnCheckWithTheCommandLinesSets)
+{
+  const std::string demo = std::string(QUAD_SOURCE_DIR) + "/bringup/demo.yaml";
+  ChildProcess ok({QUAD_TOOL, "launch", demo, "--set", "control:follower.max_speed=3", "--check"});
+  EXPECT_EQ(ok.wait(30s), 0) << ok.output();
+  for (const char* layout : {"distributed", "composed"}) {
+    ChildProcess bad({QUAD_TOOL, "launch", demo, "--layout", layout, "--set", "control:follower.max_speed=-3", "--check"});
+    EXPECT_EQ(bad.wait(30s), 2) << bad.output();
+    EXPECT_NE(bad.output().find("follower.max_speed: -3: out of range"), std::string::npos) << layout << bad.output();
+  }
+  ChildProcess unknown({QUAD_TOOL, "launch", demo, "--set", "controller:follower.max_speed=3", "--check"});
+  EXPECT_EQ(unknown.wait(30s), 2) << unknown.output();
+  EXPECT_NE(unknown.output().find("no module 'controller' in the manifest"), std::string::npos) << unknown.output();
+}
+
 TEST(NodeAndTools, NodeAnswersHelpAndVersionAndRefusesAnUnknownArgumentWithExitCodeTwo)
 {
   // --help lists every parameter the config takes, the logging keys included

@@ -3,6 +3,7 @@
 
 #include <cstdio>
 
+#include "quad/launch/module_check.hpp"
 #include "quad/launch/run.hpp"
 #include "quad/common/params.hpp"
 #include "quad/dds/node.hpp"
@@ -23,6 +24,14 @@ int launch(const launch::LaunchOptions& options)
     return launch::kExitInvalid;
   }
   if (options.check) {
+    const auto problems = launch::checkModuleParameters(*manifest);
+    for (const auto& p : problems) {
+      std::fprintf(stderr, "%s\n", p.c_str());
+    }
+    if (!problems.empty()) {
+      std::fprintf(stderr, "launch: %s: invalid module parameters\n", manifest->file.string().c_str());
+      return launch::kExitInvalid;
+    }
     std::printf("%s: ok (%zu hosts, %zu modules)\n", manifest->file.string().c_str(), manifest->hosts.size(),
                 manifest->modules.size());
     return 0;

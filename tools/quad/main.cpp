@@ -97,6 +97,8 @@ int main(int argc, char** argv)
   launch->add_option("--domain", launch_options.domain, "DDS domain id (default: the manifest's, else $QUAD_DOMAIN_ID, else 0)")
       ->check(CLI::Range(0, 232));
   launch->add_option("--subnet", launch_options.subnet, "First three numbers of the /24 for network-namespace hosts");
+  launch->add_option("--set", launch_options.sets,
+                     "MODULE:KEY=VALUE: one module's parameter, over its config and the manifest's set (repeatable)");
   launch->add_option("--summary", launch_options.summary, "Write the mission's summary as JSON to this file");
   auto* launch_record = launch->add_option("--record", launch_options.record,
                                            "Record every topic to this MCAP file (default: the run folder's recording.mcap)");

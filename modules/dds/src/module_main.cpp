@@ -151,11 +151,14 @@ int runNodeMain(int argc, char** argv, std::string_view module_name, common::Par
 {
   common::addLoggingParams(schema);
   const std::string program = programName(argv);
-  const std::string usage = program + " [--config FILE] [--set KEY=VALUE]...";
+  const std::string usage = program + " [--config FILE] [--set KEY=VALUE]... [--check]";
   ModuleArgs args;
+  bool check = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--config" && i + 1 < argc) {
+    if (arg == "--check") {
+      check = true;
+    } else if (arg == "--config" && i + 1 < argc) {
       args.config = argv[++i];
     } else if (arg == "--set" && i + 1 < argc) {
       args.sets.emplace_back(argv[++i]);
@@ -163,8 +166,9 @@ int runNodeMain(int argc, char** argv, std::string_view module_name, common::Par
       const std::string help = fmt::format(
           "usage: {} | --help | --version\n\n"
           "quad's {} module, a DDS participant. Its parameters come from FILE (YAML) and --set\n"
-          "(YAML values under dotted keys), checked against the list below; the participant's\n"
-          "domain and transport come from the environment (QUAD_DOMAIN_ID, ...).\n\nparameters:\n",
+          "(YAML values under dotted keys), checked against the list below (--check: only that,\n"
+          "then exit); the participant's domain and transport come from the environment\n"
+          "(QUAD_DOMAIN_ID, ...).\n\nparameters:\n",
           usage, module_name);
       std::fputs((help + parameterHelp(schema)).c_str(), stdout);
       return 0;
@@ -191,6 +195,10 @@ int runNodeMain(int argc, char** argv, std::string_view module_name, common::Par
     spdlog::critical("{}: {}", module_name, e.what());
     return 1;
   }
+  if (check) {
+    std::printf("%s: parameters ok\n", std::string(module_name).c_str());
+    return 0;
+  }
   return runNode(module_name, [&] { return make(params); });
 }
 
@@ -213,7 +221,7 @@ std::string containerName(const std::vector<std::string>& modules)
 int runContainer(int argc, char** argv, const std::vector<ModuleEntry>& known)
 {
   const std::string program = programName(argv);
-  const std::string usage = program + " --module NAME [--config FILE] [--set KEY=VALUE]... [--module NAME ...]";
+  const std::string usage = program + " --module NAME [--config FILE] [--set KEY=VALUE]... [--module NAME ...] [--check]";
   std::string known_names;
   for (const auto& m : known) {
     known_names += (known_names.empty() ? "" : ", ") + m.name;
@@ -221,8 +229,13 @@ int runContainer(int argc, char** argv, const std::vector<ModuleEntry>& known)
   std::vector<const ModuleEntry*> hosted;
   std::vector<ModuleArgs> args;
   std::vector<std::string> names;
+  bool check = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
+    if (arg == "--check") {
+      check = true;
+      continue;
+    }
     if (arg == "--help" || arg == "-h") {
       std::string help = fmt::format(
           "usage: {} | --help | --version\n\n"
@@ -230,7 +243,8 @@ int runContainer(int argc, char** argv, const std::vector<ModuleEntry>& known)
           "with its own readers, writers and thread, on the same topics as when it runs alone.\n"
           "Each --module takes its own --config and --set, as that module's program does; the\n"
           "participant's domain and transport come from the environment (QUAD_DOMAIN_ID, ...).\n"
-          "A module that stops or fails stops the container. Modules: {}.\n",
+          "A module that stops or fails stops the container; --check only checks every module's\n"
+          "parameters and exits. Modules: {}.\n",
           usage, known_names);
       for (const auto& m : known) {
         help += "\n" + m.name + " parameters:\n" + parameterHelp(m.schema);
@@ -298,6 +312,10 @@ int runContainer(int argc, char** argv, const std::vector<ModuleEntry>& known)
     }
     spdlog::critical("{}: refusing to start with an invalid config", name);
     return 1;
+  }
+  if (check) {
+    std::printf("%s: parameters ok\n", name.c_str());
+    return 0;
   }
   return runHosted(name, [&] {
     std::vector<std::unique_ptr<Node>> nodes;

@@ -415,6 +415,30 @@ void readModule(const std::string& name, YAML::Node spec, Reader& r, const Progr
   m.modules.push_back(std::move(mod));
 }
 
+/// The command line's `--set MODULE:KEY=VALUE`, each replacing the module's `set` of that key
+/// or added to them; a module the manifest does not have is a problem naming it.
+void applyModuleSets(const std::vector<ModuleSet>& sets, Reader& r, Manifest& m)
+{
+  for (const ModuleSet& s : sets) {
+    const auto mod = std::find_if(m.modules.begin(), m.modules.end(), [&](const Module& x) { return x.name == s.module; });
+    if (mod == m.modules.end()) {
+      std::vector<std::string> names;
+      for (const Module& x : m.modules) {
+        names.push_back(x.name);
+      }
+      r.problem("--set " + s.module + ":" + s.key, YAML::Node(s.value),
+                fmt::format("no module '{}' in the manifest (modules: {})", s.module, fmt::join(names, ", ")));
+      continue;
+    }
+    const auto set = std::find_if(mod->sets.begin(), mod->sets.end(), [&](const auto& kv) { return kv.first == s.key; });
+    if (set != mod->sets.end()) {
+      set->second = s.value;
+    } else {
+      mod->sets.emplace_back(s.key, s.value);
+    }
+  }
+}
+
 /// `vehicles:` a fleet, each vehicle with its id, start, goal, vehicle file and the hosts of
 /// its modules (module name to host; the module's own host for the others).
 std::map<std::uint32_t, std::map<std::string, std::string>> readVehicles(YAML::Node node, Reader& r, Manifest& m)
@@ -723,6 +747,8 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
     }
   }
 
+  applyModuleSets(overrides.sets, r, m);
+
   if (YAML::Node mission = root["mission"]; mission) {
     r.onlyKeys(mission, "mission.", {"tolerance", "land", "timeout", "vehicle", "score_rate"});
     m.mission.enabled = true;
@@ -769,6 +795,16 @@ Manifest parseManifest(const std::string& text, const fs::path& origin, const Ma
   }
   r.throwIfAny();
   return m;
+}
+
+ModuleSet parseModuleSet(const std::string& text, const std::string& origin)
+{
+  const auto colon = text.find(':');
+  const auto equals = text.find('=');
+  if (colon == std::string::npos || colon == 0 || equals == std::string::npos || equals < colon + 2) {
+    throw common::ConfigError({origin + ": " + text + ": expected MODULE:KEY=VALUE (control:follower.max_speed=7)"});
+  }
+  return {text.substr(0, colon), text.substr(colon + 1, equals - colon - 1), text.substr(equals + 1)};
 }
 
 fs::path findManifest(const std::string& name_or_path, const common::Layout& layout)

@@ -764,6 +764,9 @@ std::optional<launch::Manifest> loadRunManifest(const LaunchOptions& options)
                                                  : std::nullopt;
                                }};
   try {
+    for (const auto& text : options.sets) {
+      overrides.sets.push_back(launch::parseModuleSet(text, "--set"));
+    }
     return launch::loadManifest(launch::findManifest(options.manifest, common::layout()), overrides, lookup);
   } catch (const common::ConfigError& e) {
     for (const auto& p : e.problems()) {

@@ -109,6 +109,43 @@ TEST_F(ManifestTest, CommandLineOverridesWin)
   EXPECT_EQ(m.subnet, "10.99.1");
 }
 
+TEST_F(ManifestTest, AModulesParameterFromTheCommandLineReplacesTheManifestsOrIsAdded)
+{
+  ManifestOverrides o;
+  o.sets = {parseModuleSet("control:follower.max_speed=7", "--set"), parseModuleSet("control:a.b=x=y", "--set"),
+            parseModuleSet("plant:sim.seed=4", "--set")};
+  o.layout = "composed";
+  const Manifest m = parse(R"(
+modules:
+  control: {set: {follower.max_speed: 2.0, other: 1}}
+  plant: {}
+containers: {fast: [plant, control]}
+)", o);
+  const auto sets = [&](const std::string& name) {
+    const Module* mod = const_cast<Manifest&>(m).findHostedModule(name);
+    return mod ? mod->sets : std::vector<std::pair<std::string, std::string>>{};
+  };
+  // in the composed layout, the hosted modules' copies have them
+  EXPECT_EQ(sets("control"), (std::vector<std::pair<std::string, std::string>>{
+                                 {"follower.max_speed", "7"}, {"other", "1"}, {"a.b", "x=y"}}));
+  EXPECT_EQ(sets("plant"), (std::vector<std::pair<std::string, std::string>>{{"sim.seed", "4"}}));
+
+  ManifestOverrides unknown;
+  unknown.sets = {parseModuleSet("planer:x=1", "--set")};
+  try {
+    parse("modules: {control: {}, plant: {}}\n", unknown);
+    FAIL() << "accepted";
+  } catch (const common::ConfigError& e) {
+    ASSERT_EQ(e.problems().size(), 1U);
+    EXPECT_NE(e.problems()[0].find("--set planer:x: 1: no module 'planer' in the manifest (modules: control, plant)"),
+              std::string::npos)
+        << e.problems()[0];
+  }
+  for (const std::string bad : {"control", "control:x", ":x=1", "control:=1", "x=1"}) {
+    EXPECT_THROW(parseModuleSet(bad, "--set"), common::ConfigError) << bad;
+  }
+}
+
 TEST_F(ManifestTest, TheStateFlownOnIsTheEstimateUnlessTheManifestOrTheCommandLineSaysTruth)
 {
   const std::string text = "modules:\n  control: {set: {state.source: \"${state}\"}}\n";

@@ -174,6 +174,19 @@ std::string withRunState(std::string text, const std::filesystem::path& state_di
 /// hosted module's --module KIND, --config and --set, as the hosted modules are now.
 std::vector<std::string> processCommand(const Module& mod, const std::filesystem::path& state_dir);
 
+/// `--set MODULE:KEY=VALUE`: one parameter of one module of the manifest, given on the
+/// command line (quad launch, a campaign's sweep); it replaces the manifest's `set` of that
+/// key, or adds one. In a fleet it reaches every vehicle's instance of the module.
+struct ModuleSet {
+  std::string module;
+  std::string key;
+  std::string value;
+};
+
+/// "control:follower.max_speed=7" read as a ModuleSet; throws common::ConfigError naming
+/// `origin` (the option or file key it came from) and the text when it is not one.
+ModuleSet parseModuleSet(const std::string& text, const std::string& origin);
+
 struct ManifestOverrides {
   std::optional<std::filesystem::path> world;
   std::optional<std::string> mode;
@@ -185,6 +198,7 @@ struct ManifestOverrides {
   /// A fleet manifest: keep this vehicle of its list alone (`quad launch --vehicle`).
   std::optional<std::uint32_t> vehicle;
   std::optional<std::string> layout;  ///< `quad launch --layout`
+  std::vector<ModuleSet> sets;        ///< `quad launch --set`, applied in order
 };
 
 /// What a manifest is checked against: where modules' programs are (common::programPath of

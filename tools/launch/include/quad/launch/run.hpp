@@ -41,6 +41,7 @@ struct LaunchOptions {
   std::optional<int> domain;           ///< replaces the manifest's and the environment's
   std::optional<std::string> subnet;   ///< replaces the manifest's netns subnet
   std::optional<common::Geofence> geofence;  ///< replaces the manifest's keep-in volume
+  std::vector<std::string> sets;       ///< MODULE:KEY=VALUE, each a module's parameter (ModuleSet)
   std::optional<std::string> summary;  ///< JSON summary of the mission to this file
   std::optional<std::string> log_dir;  ///< the run's folder; default log/<name>-<time>
   std::optional<std::string> record;   ///< record every topic to this MCAP file; default <run folder>/recording.mcap

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
-/// `quad campaign WORLDS... [--seeds N]`: flies each world with each seed, prints a table,
-/// writes JSON; exits non-zero when any run failed.
+/// `quad campaign [WORLDS...] [--file FILE] [--set AXIS=V1,V2...] [--seeds N] [-j N]`: flies the
+/// product of worlds, axes and seeds, N runs at a time, prints a table, writes JSON; exits
+/// non-zero when any run failed.
 
 #include <optional>
 #include <string>
@@ -12,17 +13,21 @@ namespace quad::tools {
 
 struct CampaignCommandOptions {
   std::vector<std::string> worlds;
-  int seeds = 1;
-  std::string manifest;                ///< bringup/demo.yaml
+  std::optional<std::string> file;     ///< a campaign file (campaign_file.hpp); the options below add to it or replace its values
+  std::vector<std::string> axes;       ///< MODULE:KEY=V1,V2,... or world:TYPE.KEY=...
+  std::optional<int> seeds;            ///< default: the file's, else 1
+  std::optional<int> jobs;             ///< default: the file's, else 1
+  std::optional<std::string> manifest; ///< default: the file's, else bringup/demo.yaml
   std::optional<int> domain;           ///< default: $QUAD_DOMAIN_ID, else 0
   std::optional<std::string> json;     ///< default: <dir>/campaign.json
   std::optional<std::string> dir;      ///< default: log/campaign-<time>-<pid>
-  double wall_timeout_s = 600.0;
-  std::string state;                   ///< estimate | truth; empty: the manifest's
-  std::string layout;                  ///< distributed | composed; empty: the manifest's
+  std::optional<double> wall_timeout_s;  ///< default: the file's, else 600 s
+  std::optional<std::string> state;    ///< estimate | truth; default: the file's, else the manifest's
+  std::optional<std::string> layout;   ///< distributed | composed; default: the file's, else the manifest's
+  bool check = false;                  ///< check everything and exit
 };
 
-/// 0 when every run succeeded, 1 when any failed, 2 for bad input.
+/// 0 when every run succeeded, 1 when any failed, 2 for bad input, 130 when stopped by a signal.
 int campaign(const CampaignCommandOptions& options);
 
 }  // namespace quad::tools

@@ -128,12 +128,21 @@ int main(int argc, char** argv)
   report->add_flag("-q,--quiet", report_quiet, "No progress lines");
 
   quad::tools::CampaignCommandOptions campaign_options;
-  campaign_options.manifest = (quad::common::layout().data / "bringup" / "demo.yaml").string();
-  auto* campaign = app.add_subcommand("campaign", "Fly worlds (and seeds) one after another; a table and JSON of the runs");
-  campaign->add_option("worlds", campaign_options.worlds, "World files")->required();
-  campaign->add_option("--seeds", campaign_options.seeds, "Fly each world with seeds 1 ... N")->check(CLI::Range(1, 1000));
-  campaign->add_option("--manifest", campaign_options.manifest, "Manifest flown in every world")->capture_default_str();
-  campaign->add_option("--domain", campaign_options.domain, "DDS domain id (default: $QUAD_DOMAIN_ID, else 0)")
+  auto* campaign = app.add_subcommand(
+      "campaign", "Fly the product of worlds, swept parameters and seeds, N runs at a time; a table and JSON of the runs");
+  campaign->add_option("worlds", campaign_options.worlds, "World files");
+  campaign->add_option("--file", campaign_options.file,
+                       "A campaign file: manifest, worlds, seeds, axes, jobs (the options here add to it or replace)");
+  campaign->add_option("--set", campaign_options.axes,
+                       "An axis: MODULE:KEY=V1,V2,... (a module's parameter) or world:TYPE.KEY=V1,V2,... (the world's "
+                       "generators'); FROM..TO for whole numbers (repeatable)");
+  campaign->add_option("--seeds", campaign_options.seeds, "Fly each cell with seeds 1 ... N (the plant's ${seed})")
+      ->check(CLI::Range(1, 1000));
+  campaign->add_option("-j,--jobs", campaign_options.jobs, "Runs flown at once, each on its own DDS domain")
+      ->check(CLI::Range(1, 64));
+  campaign->add_option("--manifest", campaign_options.manifest, "Manifest flown in every run (default: bringup/demo.yaml)");
+  campaign->add_option("--domain", campaign_options.domain,
+                       "DDS domain of the first run flying at once; the others take the next ones (default: $QUAD_DOMAIN_ID, else 0)")
       ->check(CLI::Range(0, 232));
   campaign->add_option("--state", campaign_options.state, "What every run flies on: estimate or truth (default: the manifest's)")
       ->check(CLI::IsMember({"estimate", "truth"}));
@@ -144,6 +153,8 @@ int main(int argc, char** argv)
   campaign->add_option("--log-dir", campaign_options.dir, "The campaign's folder (default: log/campaign-<time>-<pid>)");
   campaign->add_option("--wall-timeout", campaign_options.wall_timeout_s, "A run still going after this many seconds fails")
       ->check(CLI::PositiveNumber);
+  campaign->add_flag("--check", campaign_options.check,
+                     "Check the manifest, every combination of parameters and every world, and exit");
 
   quad::fault::FaultOptions fault_options;
   auto* fault = app.add_subcommand("fault", "Run a fault-injection scenario: launch, break the stack on its timeline, check the reactions");

@@ -4,10 +4,21 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <poll.h>
+
+#include <algorithm>
+#include <chrono>
+#include <csignal>
 #include <fstream>
+#include <memory>
+#include <set>
+#include <sstream>
 #include <stdexcept>
 
+#include "quad/common/params.hpp"
 #include "quad/process/run.hpp"
+#include "quad/process/spawn.hpp"
+#include "quad/world/world_file.hpp"
 
 namespace quad::campaign {
 
@@ -23,6 +34,92 @@ std::optional<double> optionalNumber(const nlohmann::json& j, const char* key)
 std::string orDash(const std::optional<double>& v, const char* format)
 {
   return v ? fmt::format(fmt::runtime(format), *v) : "-";
+}
+
+/// A run's `quad launch` command, without its folders.
+std::vector<std::string> launchCommand(const CampaignOptions& options, const fs::path& world, std::uint64_t seed)
+{
+  std::vector<std::string> argv{options.quad.string(), "launch", options.manifest.string(), "--world", world.string(),
+                                "--lockstep", "--seed", std::to_string(seed)};
+  if (!options.state.empty()) {
+    argv.insert(argv.end(), {"--state", options.state});
+  }
+  if (!options.layout.empty()) {
+    argv.insert(argv.end(), {"--layout", options.layout});
+  }
+  return argv;
+}
+
+/// "forest.yaml with world:forest.density=0.04": a world variant in messages.
+std::string describeVariant(const fs::path& world, const std::vector<std::pair<std::string, std::string>>& params)
+{
+  std::string text = world.string() + " with";
+  for (const auto& [k, v] : params) {
+    text += " " + k + "=" + v;
+  }
+  return text;
+}
+
+using Clock = std::chrono::steady_clock;
+/// How long an interrupted run has to stop its modules before it is killed.
+constexpr auto kInterruptGrace = std::chrono::seconds(20);
+
+/// A run flying: its place in the product, its slot (and so its domain), its launcher.
+struct Flying {
+  std::size_t index = 0;
+  std::size_t slot = 0;
+  std::unique_ptr<process::Spawned> child;
+  std::string output;
+  std::optional<Clock::time_point> interrupted_at;
+};
+
+fs::path runFolder(const CampaignOptions& options, const PlannedRun& run)
+{
+  return options.dir / run.name;
+}
+
+Flying startRun(const CampaignOptions& options, const PlannedRun& run, std::size_t index, std::size_t slot)
+{
+  const fs::path dir = runFolder(options, run);
+  fs::create_directories(dir);
+  fs::remove(dir / "summary.json");
+  fs::path world = run.world;
+  if (const auto params = run.worldParams(); !params.empty()) {
+    world = dir / "world.yaml";
+    std::ofstream(world) << "# " << describeVariant(run.world, params) << "\n" << worldVariant(run.world, params);
+  }
+  std::vector<std::string> argv = launchCommand(options, world, run.seed);
+  argv.insert(argv.end(), {"--domain", std::to_string(options.domain + static_cast<int>(slot)), "--quiet",
+                           "--wall-timeout", fmt::format("{}", options.wall_timeout_s), "--summary",
+                           (dir / "summary.json").string(), "--log-dir", (dir / "run").string()});
+  for (const std::string& set : run.moduleSets()) {
+    argv.insert(argv.end(), {"--set", set});
+  }
+  return Flying{index, slot, std::make_unique<process::Spawned>(argv), {}, std::nullopt};
+}
+
+CampaignRun finishRun(const CampaignOptions& options, const PlannedRun& run, int status, const std::string& output,
+                      bool interrupted)
+{
+  const fs::path dir = runFolder(options, run);
+  std::ofstream(dir / "launch.out") << output;
+  CampaignRun r;
+  try {
+    r = readRun(dir / "summary.json", run.world.stem().string(), run.seed, status);
+  } catch (const std::exception& e) {
+    r.world = run.world.stem().string();
+    r.seed = run.seed;
+    r.exit_status = status;
+    r.failure = e.what();
+  }
+  r.name = run.name;
+  r.params = run.params;
+  if (interrupted) {
+    r.success = false;
+    r.end = "interrupted";
+    r.failure = "the campaign was stopped";
+  }
+  return r;
 }
 
 }  // namespace
@@ -64,57 +161,123 @@ CampaignRun readRun(const fs::path& summary, const std::string& world, std::uint
   return r;
 }
 
+std::vector<std::string> checkCampaign(const CampaignOptions& options)
+{
+  std::vector<std::string> problems;
+  std::vector<PlannedRun> plan;
+  try {
+    plan = planRuns(options.worlds, options.axes, options.seeds);
+  } catch (const common::ConfigError& e) {
+    return e.problems();
+  }
+  std::set<std::vector<std::string>> module_sets;
+  std::set<std::pair<fs::path, std::vector<std::pair<std::string, std::string>>>> worlds;
+  for (const PlannedRun& r : plan) {
+    if (module_sets.insert(r.moduleSets()).second && !options.worlds.empty()) {
+      std::vector<std::string> argv = launchCommand(options, r.world, r.seed);
+      argv.emplace_back("--check");
+      for (const std::string& set : r.moduleSets()) {
+        argv.insert(argv.end(), {"--set", set});
+      }
+      const process::RunResult result = process::run(argv);
+      if (result.status != 0) {
+        std::istringstream lines(result.output);
+        for (std::string line; std::getline(lines, line);) {
+          if (!line.empty()) {
+            problems.push_back(line);
+          }
+        }
+      }
+    }
+    if (const auto params = r.worldParams(); !params.empty() && worlds.emplace(r.world, params).second) {
+      try {
+        (void)world::parseWorld(worldVariant(r.world, params), describeVariant(r.world, params));
+      } catch (const common::ConfigError& e) {
+        problems.insert(problems.end(), e.problems().begin(), e.problems().end());
+      }
+    }
+  }
+  return problems;
+}
+
 std::vector<CampaignRun> runCampaign(const CampaignOptions& options,
                                      const std::function<void(const CampaignRun&)>& progress)
 {
-  std::vector<CampaignRun> runs;
-  for (const fs::path& world : options.worlds) {
-    for (int seed = 1; seed <= options.seeds; ++seed) {
-      const fs::path dir = options.dir / fmt::format("{}-seed{}", world.stem().string(), seed);
-      fs::create_directories(dir);
-      const fs::path summary = dir / "summary.json";
-      fs::remove(summary);
-      std::vector<std::string> argv{options.quad.string(), "launch", options.manifest.string(), "--world",
-                                    world.string(), "--lockstep", "--seed", std::to_string(seed), "--domain",
-                                    std::to_string(options.domain), "--quiet", "--wall-timeout",
-                                    fmt::format("{}", options.wall_timeout_s), "--summary", summary.string(),
-                                    "--log-dir", (dir / "run").string()};
-      if (!options.state.empty()) {
-        argv.insert(argv.end(), {"--state", options.state});
+  const std::vector<PlannedRun> plan = planRuns(options.worlds, options.axes, options.seeds);
+  const std::size_t jobs = static_cast<std::size_t>(std::max(1, options.jobs));
+  std::vector<std::optional<CampaignRun>> results(plan.size());
+  std::vector<Flying> flying;
+  std::vector<bool> slot_busy(jobs, false);
+  std::size_t next = 0;
+  bool stopping = false;
+  while ((!stopping && next < plan.size()) || !flying.empty()) {
+    if (!stopping && options.stop && options.stop()) {
+      stopping = true;
+      for (Flying& f : flying) {
+        f.child->signal(SIGINT);
+        f.interrupted_at = Clock::now();
       }
-      if (!options.layout.empty()) {
-        argv.insert(argv.end(), {"--layout", options.layout});
+    }
+    while (!stopping && next < plan.size() && flying.size() < jobs) {
+      const std::size_t slot = static_cast<std::size_t>(std::find(slot_busy.begin(), slot_busy.end(), false) -
+                                                        slot_busy.begin());
+      flying.push_back(startRun(options, plan[next], next, slot));
+      slot_busy[slot] = true;
+      ++next;
+    }
+    std::vector<pollfd> fds;
+    for (const Flying& f : flying) {
+      fds.push_back({f.child->outputFd(), POLLIN, 0});
+    }
+    ::poll(fds.data(), fds.size(), 100);
+    for (auto f = flying.begin(); f != flying.end();) {
+      f->child->readOutput(f->output);
+      if (f->interrupted_at && Clock::now() - *f->interrupted_at > kInterruptGrace) {
+        f->child->signal(SIGKILL);
       }
-      const process::RunResult result = process::run(argv);
-      std::ofstream(dir / "launch.out") << result.output;
-      CampaignRun r;
-      try {
-        r = readRun(summary, world.stem().string(), static_cast<std::uint64_t>(seed), result.status);
-      } catch (const std::exception& e) {
-        r.world = world.stem().string();
-        r.seed = static_cast<std::uint64_t>(seed);
-        r.exit_status = result.status;
-        r.failure = e.what();
+      const std::optional<int> status = f->child->poll();
+      if (!status) {
+        ++f;
+        continue;
       }
-      runs.push_back(r);
+      f->child->readOutput(f->output);
+      CampaignRun r = finishRun(options, plan[f->index], *status, f->output, f->interrupted_at.has_value());
       if (progress) {
         progress(r);
       }
+      results[f->index] = std::move(r);
+      slot_busy[f->slot] = false;
+      f = flying.erase(f);
+    }
+  }
+  std::vector<CampaignRun> runs;
+  for (auto& r : results) {
+    if (r) {
+      runs.push_back(std::move(*r));
     }
   }
   return runs;
 }
 
-std::string table(const std::vector<CampaignRun>& runs)
+std::string table(const std::vector<CampaignRun>& runs, const std::vector<Axis>& axes)
 {
-  std::string out = fmt::format("{:<14} {:>4}  {:<8} {:<8} {:>10} {:>12} {:>10} {:>9} {:>7} {:>7} {:>7} {:>8} {:>8}  {}\n",
-                                "world", "seed", "result", "state", "collisions", "flown/opt", "closest_m", "est_rms_m",
-                                "avg_m/s", "top_m/s", "replans", "sim_s", "wall_s", "failure");
+  std::string axis_header;
+  for (const std::string& label : axisLabels(axes)) {
+    axis_header += fmt::format(" {:>10}", label);
+  }
+  std::string out = fmt::format("{:<14}{} {:>4}  {:<8} {:<8} {:>10} {:>12} {:>10} {:>9} {:>7} {:>7} {:>7} {:>8} {:>8}  {}\n",
+                                "world", axis_header, "seed", "result", "state", "collisions", "flown/opt", "closest_m",
+                                "est_rms_m", "avg_m/s", "top_m/s", "replans", "sim_s", "wall_s", "failure");
   int ok = 0;
   for (const CampaignRun& r : runs) {
     ok += r.success ? 1 : 0;
-    out += fmt::format("{:<14} {:>4}  {:<8} {:<8} {:>10} {:>12} {:>10.2f} {:>9} {:>7} {:>7.1f} {:>7} {:>8.1f} {:>8.1f}  {}\n",
-                       r.world, r.seed, r.success ? "ok" : (r.end.empty() ? "error" : r.end),
+    std::string axis_cells;
+    for (const Axis& a : axes) {
+      const auto it = std::find_if(r.params.begin(), r.params.end(), [&](const auto& kv) { return kv.first == a.key; });
+      axis_cells += fmt::format(" {:>10}", it == r.params.end() ? "-" : it->second);
+    }
+    out += fmt::format("{:<14}{} {:>4}  {:<8} {:<8} {:>10} {:>12} {:>10.2f} {:>9} {:>7} {:>7.1f} {:>7} {:>8.1f} {:>8.1f}  {}\n",
+                       r.world, axis_cells, r.seed, r.success ? "ok" : (r.end.empty() ? "error" : r.end),
                        r.state.empty() ? "-" : r.state, r.collisions, orDash(r.flown_over_optimum, "{:.3f}"),
                        r.min_clearance_m, orDash(r.estimate_rms_m, "{:.3f}"), orDash(r.average_speed_mps, "{:.1f}"),
                        r.top_speed_mps, r.replans, r.sim_s, r.wall_s, r.failure);
@@ -123,15 +286,27 @@ std::string table(const std::vector<CampaignRun>& runs)
   return out;
 }
 
-std::string toJson(const std::vector<CampaignRun>& runs)
+std::string toJson(const std::vector<CampaignRun>& runs, const std::vector<Axis>& axes)
 {
+  const auto number = [](const std::optional<double>& v) {
+    return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
+  };
   nlohmann::ordered_json j;
+  j["axes"] = nlohmann::ordered_json::object();
+  for (const Axis& a : axes) {
+    j["axes"][a.key] = a.values;
+  }
   j["runs"] = nlohmann::ordered_json::array();
   int ok = 0;
   for (const CampaignRun& r : runs) {
     ok += r.success ? 1 : 0;
     nlohmann::ordered_json row;
     row["world"] = r.world;
+    row["name"] = r.name;
+    row["params"] = nlohmann::ordered_json::object();
+    for (const auto& [k, v] : r.params) {
+      row["params"][k] = v;
+    }
     row["seed"] = r.seed;
     row["exit_status"] = r.exit_status;
     row["success"] = r.success;
@@ -139,19 +314,16 @@ std::string toJson(const std::vector<CampaignRun>& runs)
     row["failure"] = r.failure;
     row["collisions"] = r.collisions;
     row["path_length_m"] = r.path_length_m;
-    row["optimum_m"] = r.optimum_m ? nlohmann::ordered_json(*r.optimum_m) : nlohmann::ordered_json(nullptr);
-    row["flown_over_optimum"] =
-        r.flown_over_optimum ? nlohmann::ordered_json(*r.flown_over_optimum) : nlohmann::ordered_json(nullptr);
+    row["optimum_m"] = number(r.optimum_m);
+    row["flown_over_optimum"] = number(r.flown_over_optimum);
     row["min_clearance_m"] = r.min_clearance_m;
-    row["time_to_goal_s"] = r.time_to_goal_s ? nlohmann::ordered_json(*r.time_to_goal_s) : nlohmann::ordered_json(nullptr);
-    row["average_speed_mps"] =
-        r.average_speed_mps ? nlohmann::ordered_json(*r.average_speed_mps) : nlohmann::ordered_json(nullptr);
+    row["time_to_goal_s"] = number(r.time_to_goal_s);
+    row["average_speed_mps"] = number(r.average_speed_mps);
     row["top_speed_mps"] = r.top_speed_mps;
     row["state"] = r.state;
-    row["estimate_rms_m"] = r.estimate_rms_m ? nlohmann::ordered_json(*r.estimate_rms_m) : nlohmann::ordered_json(nullptr);
-    row["estimate_nees"] = r.estimate_nees ? nlohmann::ordered_json(*r.estimate_nees) : nlohmann::ordered_json(nullptr);
-    row["depth_to_command_max_s"] =
-        r.depth_to_command_max_s ? nlohmann::ordered_json(*r.depth_to_command_max_s) : nlohmann::ordered_json(nullptr);
+    row["estimate_rms_m"] = number(r.estimate_rms_m);
+    row["estimate_nees"] = number(r.estimate_nees);
+    row["depth_to_command_max_s"] = number(r.depth_to_command_max_s);
     row["replans"] = r.replans;
     row["sim_seconds"] = r.sim_s;
     row["wall_seconds"] = r.wall_s;

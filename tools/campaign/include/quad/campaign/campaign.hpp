@@ -1,15 +1,19 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
-/// `quad campaign`: flies a set of worlds (and seeds) one after another, each a `quad launch`
-/// of one manifest in lockstep, and gathers their summaries into one table and one JSON.
+/// `quad campaign`: flies the product of worlds, sweep axes (sweep.hpp) and seeds, each run a
+/// `quad launch` of one manifest in lockstep, N at a time, and gathers their summaries into
+/// one table and one JSON.
 
 #include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "quad/campaign/sweep.hpp"
 
 namespace quad::campaign {
 
@@ -18,20 +22,31 @@ struct CampaignOptions {
   std::filesystem::path manifest;   ///< flown in every world
   std::vector<std::filesystem::path> worlds;
   int seeds = 1;                    ///< seeds 1 ... seeds for each world
-  int domain = 0;                   ///< the DDS domain of every run (they run one at a time)
+  std::vector<Axis> axes;           ///< swept beyond worlds and seeds
+  int jobs = 1;                     ///< runs flown at once
+  /// The DDS domain of the first of the runs flown at once; the one in slot k of `jobs` flies
+  /// on domain + k, so no two runs flying together share a domain (or its ports).
+  int domain = 0;
   std::filesystem::path dir;        ///< a folder per run (logs, summary.json)
   double wall_timeout_s = 600.0;    ///< a run still going after this fails
   std::string state;                ///< `quad launch --state`: estimate or truth; empty: the manifest's
   std::string layout;               ///< `quad launch --layout`: distributed or composed; empty: the manifest's
+  /// Polled while runs fly: once true, no run starts and the flying ones are interrupted
+  /// (SIGINT, as Ctrl-C would; after a grace, killed).
+  std::function<bool()> stop;
 };
 
 /// One run, from its summary and exit status.
 struct CampaignRun {
   std::string world;                ///< the file's stem
+  std::vector<std::pair<std::string, std::string>> params;  ///< its sweep axes' values
+  std::string name;                 ///< its folder in the campaign's
   std::uint64_t seed = 1;
   int exit_status = -1;
   bool success = false;
-  std::string end;                  ///< the summary's: success, failed, no_path, unfinished ("" without one)
+  /// The summary's: success, failed, no_path, unfinished ("" without one); "interrupted" for
+  /// a run the campaign stopped.
+  std::string end;
   std::string failure;              ///< why, in words
   int collisions = 0;
   double path_length_m = 0.0;
@@ -55,13 +70,21 @@ struct CampaignRun {
 CampaignRun readRun(const std::filesystem::path& summary, const std::string& world, std::uint64_t seed,
                     int exit_status);
 
-/// Flies every world with every seed, in order; `progress` hears each run as it ends.
+/// What would stop the campaign's runs at their start, found before any flies: each combination
+/// of module axes' values checked by `quad launch --check` (the manifest, and every module's
+/// parameters by its own schema), each world variant by the world loader. Empty: none.
+std::vector<std::string> checkCampaign(const CampaignOptions& options);
+
+/// Flies the product (planRuns), `jobs` at a time, writing each world variant into
+/// <dir>/worlds/ first; `progress` hears each run as it ends. The runs come back in the
+/// product's order, whatever order they ended in; after a stop, only those that ended, and
+/// the interrupted ones marked so.
 std::vector<CampaignRun> runCampaign(const CampaignOptions& options,
                                      const std::function<void(const CampaignRun&)>& progress = {});
 
-/// A table for people: a row a run and a last row of totals.
-std::string table(const std::vector<CampaignRun>& runs);
-/// The same as JSON: {"runs": [...], "succeeded": n, "runs_total": n}.
-std::string toJson(const std::vector<CampaignRun>& runs);
+/// A table for people: a row a run (a column per axis) and a last row of totals.
+std::string table(const std::vector<CampaignRun>& runs, const std::vector<Axis>& axes = {});
+/// The same as JSON: {"axes": {key: [values]}, "runs": [...], "succeeded": n, "runs_total": n}.
+std::string toJson(const std::vector<CampaignRun>& runs, const std::vector<Axis>& axes = {});
 
 }  // namespace quad::campaign

@@ -5,60 +5,38 @@
 # 30 x 60 m area, a 40 m line from start to goal, one tree per 49, 36 or 25 m^2, each forest
 # flown at each commanded speed, in lockstep, on the estimate.
 #
-#   tools/launch/bench/forest_bench.sh BUILD_DIR [-d "49 36 25"] [-v "3 5 7 10"] [-n 10] [-t 600]
+#   tools/launch/bench/forest_bench.sh BUILD_DIR [-d "49 36 25"] [-v "3 5 7 10"] [-n 10] [-t 600] [-j 1] [-l LAYOUT]
 #
 # -d: square metres per tree; -v: follower.max_speed [m/s]; -n: forests (the forest generator's
-# seeds 1..N) a density; -t: the wall timeout of one run [s]. The forests are
-# configs/worlds/benchmark_forest.yaml with its seed and density changed; the manifest is
-# bringup/fast.yaml with its speed changed (below 5 m/s, with control.yaml's acceleration and jerk). Each
-# cell of density x speed is one `quad campaign` of the N forests; forest_grid.py prints the
-# grid (success rate, average and top speed, time to goal, flown length over the known-map
-# optimum, closest approach) and writes grid.json and grid.svg in the runs' folder.
+# seeds 1..N) a density; -t: the wall timeout of one run [s]; -j: runs flown at once; -l:
+# distributed (default) or composed (the same flights, in less time: docs/launch.md). The grid
+# is one `quad campaign --file forest_grid.yaml` (its axes narrowed by the options);
+# forest_grid.py prints it (success rate, average and top speed, time to goal, flown length
+# over the known-map optimum, closest approach) and writes grid.json and grid.svg in the runs'
+# folder.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/../../bench_common.sh"
 
-build=${1:?usage: forest_bench.sh BUILD_DIR [-d DENSITIES] [-v SPEEDS] [-n FORESTS] [-t SECONDS]}
+build=${1:?usage: forest_bench.sh BUILD_DIR [-d DENSITIES] [-v SPEEDS] [-n FORESTS] [-t SECONDS] [-j JOBS] [-l LAYOUT]}
 shift
-densities="49 36 25" speeds="3 5 7 10" forests=10 timeout=600
-while getopts "d:v:n:t:" opt; do
+densities="49 36 25" speeds="3 5 7 10" forests=10 timeout=600 jobs=1 layout=distributed
+while getopts "d:v:n:t:j:l:" opt; do
   case $opt in
     d) densities=$OPTARG ;;
     v) speeds=$OPTARG ;;
     n) forests=$OPTARG ;;
     t) timeout=$OPTARG ;;
+    j) jobs=$OPTARG ;;
+    l) layout=$OPTARG ;;
     *) exit 2 ;;
   esac
 done
 benchSetup forest_bench.sh "$build" quad_forest
 
-world="$root/configs/worlds/benchmark_forest.yaml"
-grep -q "type: forest, seed: 1, .* density: 0.04," "$world" || { echo "forest_bench.sh: $world: no forest of seed 1 and density 0.04 to draw the others from" >&2; exit 1; }
-for d in $densities; do
-  for s in $(seq 1 "$forests"); do
-    sed -e "s/type: forest, seed: 1,/type: forest, seed: $s,/" -e "s/density: 0.04,/density: $(python3 -c "print(1/$d)"),/" \
-      "$world" >"$out/forest${d}_s$s.yaml"
-  done
-done
-
-manifest="$root/bringup/fast.yaml"
-for v in $speeds; do
-  slow=()
-  if python3 -c "import sys; sys.exit(0 if $v < 5 else 1)"; then
-    # below 5 m/s, control.yaml's own acceleration and jerk
-    slow=(-e "s/, follower.max_acceleration: [0-9.]+, follower.max_jerk: [0-9.]+//")
-  fi
-  sed -E -e "s|\.\./|$root/|g" -e "s/follower.max_speed: [0-9.]+/follower.max_speed: $v/" "${slow[@]}" \
-    "$manifest" >"$out/speed$v.yaml"
-  grep -qE "follower.max_speed: $v[,}]" "$out/speed$v.yaml" || { echo "forest_bench.sh: $manifest: no follower.max_speed to change" >&2; exit 1; }
-done
-
-for d in $densities; do
-  for v in $speeds; do
-    worlds=()
-    for s in $(seq 1 "$forests"); do worlds+=("$out/forest${d}_s$s.yaml"); done
-    echo "== one tree per $d m^2, $v m/s"
-    "$quad" campaign "${worlds[@]}" --manifest "$out/speed$v.yaml" --wall-timeout "$timeout" \
-      --json "$out/cell_${d}_$v.json" --log-dir "$out/cell_${d}_$v" || true
-  done
-done
-python3 "$root/tools/launch/bench/forest_grid.py" "$out" "$densities" "$speeds"
+# trees per m^2 to six places: the axis's values, which forest_grid.py turns back into m^2 per tree
+per_m2=$(python3 -c "import sys; print(','.join(f'{1/float(d):.6f}' for d in sys.argv[1:]))" $densities)
+"$quad" campaign --file "$root/tools/launch/bench/forest_grid.yaml" \
+  --set "world:forest.density=$per_m2" --set "control:follower.max_speed=${speeds// /,}" \
+  --set "world:forest.seed=1..$forests" --wall-timeout "$timeout" -j "$jobs" --layout "$layout" \
+  --log-dir "$out/runs" --json "$out/campaign.json" || true
+python3 "$root/tools/launch/bench/forest_grid.py" "$out/campaign.json"

@@ -1,14 +1,19 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: BSD-3-Clause
-"""The forest benchmark's grid (forest_bench.sh): reads each cell's campaign JSON
-(cell_<m2 per tree>_<speed>.json in the runs' folder), prints the grid, and writes grid.json and
-grid.svg (success rate and average speed reached against the commanded speed, a line a density).
+"""The forest benchmark's grid (forest_bench.sh): reads the campaign's JSON (runs swept over
+world:forest.density, control:follower.max_speed and world:forest.seed), prints the grid, and
+writes grid.json and grid.svg next to it (success rate and average speed reached against the
+commanded speed, a line a density).
 
-    forest_grid.py RUNS_DIR "49 36 25" "3 5 7 10"
+    forest_grid.py CAMPAIGN_JSON
 """
 import json
+import os
 import statistics
 import sys
+
+DENSITY = "world:forest.density"
+SPEED = "control:follower.max_speed"
 
 
 def median(runs, key):
@@ -16,16 +21,16 @@ def median(runs, key):
     return statistics.median(values) if values else None
 
 
-def cell(out, density, speed):
-    path = f"{out}/cell_{density}_{speed}.json"
-    try:
-        runs = json.load(open(path))["runs"]
-    except (OSError, ValueError, KeyError) as e:
-        sys.exit(f"forest_grid.py: {path}: {e}")
+def m2_per_tree(density):
+    """Trees per m^2 (the axis's value) as square metres per tree, as the paper gives it."""
+    return round(1.0 / float(density))
+
+
+def cell(runs, density, speed):
     ok = [r for r in runs if r.get("success")]
     clearances = [r["min_clearance_m"] for r in runs if r.get("min_clearance_m") is not None]
     return {
-        "m2_per_tree": float(density),
+        "m2_per_tree": m2_per_tree(density),
         "speed_mps": float(speed),
         "runs": len(runs),
         "successes": len(ok),
@@ -66,22 +71,35 @@ def svg(grid, densities, speeds):
         for k, d in enumerate(densities):
             colour = colours[k % len(colours)]
             points = [(x(c["speed_mps"]), y(value(c))) for c in grid
-                      if c["m2_per_tree"] == float(d) and value(c) is not None]
+                      if c["m2_per_tree"] == m2_per_tree(d) and value(c) is not None]
             if points:
                 parts.append('<polyline fill="none" stroke="{}" stroke-width="2" points="{}"/>'.format(
                     colour, " ".join(f"{px:.1f},{py:.1f}" for px, py in points)))
                 parts.extend(f'<circle cx="{px:.1f}" cy="{py:.1f}" r="3" fill="{colour}"/>' for px, py in points)
             if i == 0:
-                parts.append(f'<text x="{x0 + 8}" y="{pad + h - 10 - 14 * k}" fill="{colour}">one tree per {d} m²</text>')
+                parts.append(f'<text x="{x0 + 8}" y="{pad + h - 10 - 14 * k}" fill="{colour}">'
+                             f'one tree per {m2_per_tree(d)} m²</text>')
     parts.append("</svg>")
     return "\n".join(parts)
 
 
 def main():
-    if len(sys.argv) != 4:
+    if len(sys.argv) != 2:
         sys.exit(__doc__)
-    out, densities, speeds = sys.argv[1], sys.argv[2].split(), sys.argv[3].split()
-    grid = [cell(out, d, v) for d in densities for v in speeds]
+    path = sys.argv[1]
+    try:
+        campaign = json.load(open(path))
+        axes, runs = campaign["axes"], campaign["runs"]
+        densities, speeds = axes[DENSITY], axes[SPEED]
+    except (OSError, ValueError, KeyError) as e:
+        sys.exit(f"forest_grid.py: {path}: not a campaign swept over {DENSITY} and {SPEED} ({e})")
+    out = os.path.dirname(os.path.abspath(path))
+    grid = []
+    for d in densities:
+        for v in speeds:
+            cell_runs = [r for r in runs if r["params"].get(DENSITY) == d and r["params"].get(SPEED) == v]
+            if cell_runs:
+                grid.append(cell(cell_runs, d, v))
     f = lambda x: "-" if x is None else f"{x:.2f}"
     print(f"{'m2/tree':>7} {'m/s':>4} {'success':>8} {'avg m/s':>8} {'top m/s':>8} {'to goal s':>9} "
           f"{'flown/opt':>9} {'closest m':>9} {'latency s':>9} {'est rms m':>9} {'NEES':>6}")

@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
+# Runs per hour of `quad campaign` flying the same runs one at a time (-j 1) and two at a time
+# (-j 2), in both layouts (a process per module; the demo's containers composed), side by
+# side: N of the benchmark's densest forests (generator seeds 1..N) at a commanded 5 m/s with
+# bringup/fast.yaml, each campaign in turn, the whole set R times with the order alternating.
+# For each campaign: its wall time (start-up and every run), runs per hour, and the runs'
+# outcomes; then the median runs per hour of each setting.
+#   tools/campaign/bench/jobs_bench.sh BUILD_DIR [-n RUNS] [-r ROUNDS] [-d DOMAIN]
+#   (default: 4 runs, 2 rounds, domains 106 and 107)
+set -euo pipefail
+build=${1:?usage: jobs_bench.sh BUILD_DIR [-n RUNS] [-r ROUNDS] [-d DOMAIN]}
+shift
+runs=4 rounds=2 domain=106
+while getopts "n:r:d:" opt; do
+  case $opt in
+    n) runs=$OPTARG ;;
+    r) rounds=$OPTARG ;;
+    d) domain=$OPTARG ;;
+    *) exit 2 ;;
+  esac
+done
+source "$(dirname "${BASH_SOURCE[0]}")/../../bench_common.sh"
+benchSetup jobs_bench.sh "$build" quad_jobs
+settings=("1 distributed" "2 distributed" "1 composed" "2 composed")
+for ((r = 1; r <= rounds; ++r)); do
+  order=("${settings[@]}")
+  if ((r % 2 == 0)); then order=("${settings[3]}" "${settings[2]}" "${settings[1]}" "${settings[0]}"); fi
+  for s in "${order[@]}"; do
+    read -r jobs layout <<<"$s"
+    dir="$out/round${r}_j${jobs}_$layout"
+    start=$(date +%s.%N)
+    "$quad" campaign "$root/configs/worlds/benchmark_forest.yaml" --manifest "$root/bringup/fast.yaml" \
+      --set "world:forest.seed=1..$runs" --set control:follower.max_speed=5 --layout "$layout" -j "$jobs" \
+      --domain "$domain" --log-dir "$dir" > "$dir.out" 2>&1 || true
+    end=$(date +%s.%N)
+    python3 -c "print($end - $start)" > "$dir.wall"
+    [[ -f $dir/campaign.json ]] || { echo "round $r, -j $jobs $layout, wrote no campaign.json: see $dir.out" >&2; exit 1; }
+  done
+done
+python3 - "$out" <<'EOF_PY'
+import glob, json, os, statistics, sys
+out = sys.argv[1]
+per = {}
+print(f"{'campaign':<28} {'runs':>4} {'ok':>3} {'wall_s':>8} {'runs/h':>7}")
+for wall in sorted(glob.glob(f"{out}/round*.wall")):
+    name = os.path.basename(wall)[:-5]
+    j = json.load(open(f"{out}/{name}/campaign.json"))
+    w = float(open(wall).read())
+    rate = 3600 * len(j["runs"]) / w
+    setting = name.split("_", 1)[1]
+    per.setdefault(setting, []).append(rate)
+    print(f"{name:<28} {len(j['runs']):>4} {j['succeeded']:>3} {w:>8.1f} {rate:>7.0f}")
+print("median runs per hour:")
+for setting, rates in per.items():
+    print(f"  {setting:<16} {statistics.median(rates):>6.0f}")
+EOF_PY

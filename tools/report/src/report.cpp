@@ -2,6 +2,7 @@
 #include "quad/report/report.hpp"
 
 #include <fstream>
+#include <optional>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -73,6 +74,51 @@ void rows(const Json& j, const std::string& prefix, std::string& out)
       out += fmt::format("<tr><th>{}</th><td>{}</td></tr>\n", esc(name), esc(cell(value)));
     }
   }
+}
+
+/// The headline: what a reader asks of a run first, from the summary's keys that it has.
+std::string headline(const Json& summary)
+{
+  const auto number = [&](const char* key) -> std::optional<double> {
+    return summary.contains(key) && summary[key].is_number() ? std::optional<double>(summary[key].get<double>())
+                                                             : std::nullopt;
+  };
+  std::string rows_html;
+  const auto row = [&](const std::string& name, const std::string& value) {
+    rows_html += fmt::format("<tr><th>{}</th><td>{}</td></tr>\n", esc(name), value);
+  };
+  if (summary.contains("success") && summary["success"].is_boolean()) {
+    const bool ok = summary["success"].get<bool>();
+    std::string text = summary.value("outcome", std::string(ok ? "success" : "failed"));
+    if (!ok && !summary.value("failure", std::string()).empty()) {
+      text += ": " + summary["failure"].get<std::string>();
+    }
+    row("outcome", fmt::format("<b style=\"color:{}\">{}</b> {}", ok ? "#27864a" : "#c0392b", ok ? "SUCCESS" : "FAILED",
+                               esc(text)));
+  }
+  if (const auto t = number("time_to_goal_s")) {
+    row("time to the goal", fmt::format("{:.1f} s (sim), from the mission's start", *t));
+  }
+  if (const auto sim = number("sim_seconds"); sim && number("wall_seconds")) {
+    row("run", fmt::format("{:.1f} s of sim time in {:.1f} s of wall time", *sim, *number("wall_seconds")));
+  }
+  if (const auto avg = number("average_speed_mps"); avg || number("top_speed_mps")) {
+    row("speed", fmt::format("{} average, {} top", avg ? fmt::format("{:.1f} m/s", *avg) : std::string("-"),
+                             number("top_speed_mps") ? fmt::format("{:.1f} m/s", *number("top_speed_mps")) : "-"));
+  }
+  if (const auto r = number("flown_over_optimum")) {
+    row("flown / optimum", fmt::format("{:.3f} ({:.1f} m flown, {:.1f} m the known-map optimum)", *r,
+                                       number("path_length_m").value_or(0.0), number("optimum_m").value_or(0.0)));
+  } else if (const auto len = number("path_length_m")) {
+    row("flown", fmt::format("{:.1f} m", *len));
+  }
+  if (const auto c = number("min_clearance_m")) {
+    row("closest approach", fmt::format("{:.2f} m", *c));
+  }
+  if (const auto n = number("collisions")) {
+    row("collisions", fmt::format("{}{:.0f}{}", *n > 0 ? "<b style=\"color:#c0392b\">" : "", *n, *n > 0 ? "</b>" : ""));
+  }
+  return rows_html.empty() ? std::string() : "<h2>Outcome</h2>\n<table>\n" + rows_html + "</table>\n";
 }
 
 /// A fault run's verdict as reactions to draw, checked: a malformed file names its key.
@@ -195,9 +241,7 @@ figcaption {{ font-size: 14px; color: #444; }}
                                  esc(in.name), esc(in.recording.filename().string()), flight.messages, flight.t_first_s,
                                  flight.t_last_s, in.world ? " World <code>" + esc(in.world->filename().string()) + "</code>." : "");
   if (in.summary) {
-    html += "<h2>Summary</h2>\n<table>\n";
-    rows(*in.summary, "", html);
-    html += "</table>\n";
+    html += headline(*in.summary);
   }
   if (in.faults) {
     html += verdictTable(*in.faults);
@@ -205,6 +249,12 @@ figcaption {{ font-size: 14px; color: #444; }}
   html += "<h2>Figures</h2>\n";
   for (const Figure& f : figures) {
     html += fmt::format("<figure><img src=\"{0}\" alt=\"{1}\"><figcaption>{1}</figcaption></figure>\n", esc(f.file), esc(f.caption));
+  }
+  if (in.summary) {
+    // every key, the processes' internals among them, below what a reader looks at first
+    html += "<h2>Every figure of the summary</h2>\n<table>\n";
+    rows(*in.summary, "", html);
+    html += "</table>\n";
   }
   html += "</body>\n</html>\n";
   return html;

@@ -211,8 +211,11 @@ TEST(WriteReport, ARunFolderGetsAPageThatShowsEveryFigureItWrote)
 {
   const fs::path dir = test::scratchDir("report_run");
   writeFlight(dir / kRecordingFile);
-  std::ofstream(dir / "summary.json") << R"({"success": true, "path_length_m": 12.5, "estimate": {"position_rms_m": 0.1,
-      "by_speed": [{"from_mps": 0, "samples": 7}, {"from_mps": 2, "samples": 9}]}})";
+  std::ofstream(dir / "summary.json") << R"({"success": true, "outcome": "landed at the goal", "collisions": 0,
+      "path_length_m": 12.5, "optimum_m": 12.0, "flown_over_optimum": 1.0417, "time_to_goal_s": 5.31,
+      "average_speed_mps": 2.38, "top_speed_mps": 3.04, "min_clearance_m": 0.412, "sim_seconds": 9.5, "wall_seconds": 4.0,
+      "processes": {"plant": {"cpu_s": 1.5}},
+      "estimate": {"position_rms_m": 0.1, "by_speed": [{"from_mps": 0, "samples": 7}, {"from_mps": 2, "samples": 9}]}})";
   std::vector<std::string> progress;
   const ReportResult r = writeReport({dir, {}, {}}, [&](const std::string& line) { progress.push_back(line); });
   EXPECT_EQ(r.html, dir / "report.html");
@@ -229,6 +232,16 @@ TEST(WriteReport, ARunFolderGetsAPageThatShowsEveryFigureItWrote)
   // a list of objects, a row a member of each (not one cell too wide for the page)
   EXPECT_NE(html.find("<th>estimate.by_speed[1].samples</th><td>9</td>"), std::string::npos) << html;
   EXPECT_NE(html.find("<th>path_length_m</th><td>12.5</td>"), std::string::npos);
+  // The page opens with the outcome and the flight's figures, the processes' internals below the figures.
+  const auto outcome = html.find("<h2>Outcome</h2>");
+  ASSERT_NE(outcome, std::string::npos) << html;
+  EXPECT_LT(outcome, html.find("<h2>Figures</h2>"));
+  EXPECT_LT(html.find("<h2>Figures</h2>"), html.find("<th>processes.plant.cpu_s</th>"));
+  for (const char* expected : {"SUCCESS</b> landed at the goal", "5.3 s (sim)", "2.4 m/s average, 3.0 m/s top",
+                               "1.042 (12.5 m flown, 12.0 m the known-map optimum)", "<th>closest approach</th><td>0.41 m",
+                               "<th>collisions</th><td>0</td>", "9.5 s of sim time in 4.0 s of wall time"}) {
+    EXPECT_LT(html.find(expected), html.find("<h2>Figures</h2>")) << expected << "\n" << html;
+  }
   EXPECT_EQ(html.find("http"), std::string::npos);  // nothing fetched from elsewhere
   EXPECT_GE(progress.size(), 3U);
   // The views mark the collision and draw the map's wall.

@@ -2,6 +2,7 @@
 #include "quad/launch/mission.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <limits>
 
@@ -21,7 +22,9 @@ MissionTracker::MissionTracker(Mission mission, const world::World& world, doubl
 
 void MissionTracker::onState(double t, const Eigen::Vector3d& p)
 {
-  if (finished_ || !p.allFinite()) {
+  // States stamped up to the mission's end count however late they come beside the mode that
+  // ended it; later ones not.
+  if (!p.allFinite() || (finished_ && t > end_t_)) {
     return;
   }
   t_ = std::max(t_, t);
@@ -33,8 +36,21 @@ void MissionTracker::onState(double t, const Eigen::Vector3d& p)
   }
   last_p_ = p;
   last_t_ = t;
+  // the length at the mission's start, from the states stamped up to it, however late they
+  // come beside its mode
+  constexpr std::size_t kRecentStates = 4096;
+  recent_lengths_.emplace_back(t, length_);
+  if (recent_lengths_.size() > kRecentStates) {
+    recent_lengths_.pop_front();
+  }
+  if (mission_t_ && t <= *mission_t_) {
+    mission_length_ = length_;
+  }
   for (const auto& o : world_.obstacles()) {
     min_clearance_ = std::min(min_clearance_, o.signedDistance(p) - radius_);
+  }
+  if (finished_) {
+    return;
   }
   const double to_goal = (p - goal_).norm();
   if (!goal_reached_ && to_goal <= mission_.tolerance_m) {
@@ -48,7 +64,7 @@ void MissionTracker::onState(double t, const Eigen::Vector3d& p)
   }
   if (t >= next_progress_t_) {
     progress_.push_back(fmt::format("t = {:.0f} s: at ({:.1f}, {:.1f}, {:.1f}), {:.1f} m to the goal, {} paths, mode {}",
-                                    t, p.x(), p.y(), p.z(), to_goal, paths_, mode_.empty() ? "?" : mode_));
+                                    t, p.x(), p.y(), p.z(), to_goal, path_times_.size(), mode_.empty() ? "?" : mode_));
     next_progress_t_ += 10.0;
   }
   if (!finished_ && t >= mission_.timeout_s) {
@@ -69,9 +85,16 @@ void MissionTracker::onMode(double t, const std::string& mode, const std::string
   }
   progress_.push_back(fmt::format("t = {:.1f} s: {} -> {}", t, mode_.empty() ? "start" : mode_, mode));
   modes_.push_back(fmt::format("{:.2f} {}", t, mode));
+  mode_times_.emplace_back(t, mode);
   if (mode == "MISSION" && !mission_t_) {
     mission_t_ = t;
-    mission_length_ = length_;
+    mission_length_ = 0.0;
+    for (auto it = recent_lengths_.rbegin(); it != recent_lengths_.rend(); ++it) {
+      if (it->first <= t) {
+        mission_length_ = it->second;
+        break;
+      }
+    }
   }
   const bool was_landing = mode_ == "LAND" || mode_ == "FAILSAFE_LAND";
   // The controller gives up on a goal the planner calls unreachable by returning (or
@@ -95,26 +118,26 @@ void MissionTracker::onMode(double t, const std::string& mode, const std::string
   }
 }
 
-void MissionTracker::onPath(std::uint32_t version, const std::string& no_path)
+void MissionTracker::onPath(double t, std::uint32_t version, const std::string& no_path)
 {
+  if (version != last_version_) {
+    last_version_ = version;
+    path_times_.push_back(t);  // counted up to the mission's end, however late the stack is stopped
+  }
   if (finished_) {
-    return;  // the paths of a mission counted up to its end, however late the stack is stopped
+    return;
   }
   if (no_path != no_path_) {
     progress_.push_back(no_path.empty() ? fmt::format("t = {:.1f} s: the planner has a path again", t_)
                                         : fmt::format("t = {:.1f} s: {}", t_, no_path));
   }
   no_path_ = no_path;
-  if (version != last_version_) {
-    last_version_ = version;
-    ++paths_;
-  }
 }
 
 void MissionTracker::onTrajectory(double t, double depth_t)
 {
-  if (mode_ == "MISSION" && !finished_ && std::isfinite(t) && std::isfinite(depth_t) && t >= depth_t) {
-    depth_latencies_.push_back(t - depth_t);
+  if (std::isfinite(t) && std::isfinite(depth_t) && t >= depth_t) {
+    depth_latencies_.emplace_back(t, t - depth_t);  // judged by the mode at t (summary)
   }
 }
 
@@ -177,7 +200,8 @@ MissionSummary MissionTracker::summary(double wall_s) const
   s.outcome = finished_ ? outcome_ : "not finished";
   s.failure = s.success ? "" : (finished_ ? failure_ : "not finished");
   s.collisions = collisions_;
-  s.sim_s = t_;
+  // the run's sim time up to the mission's end, not up to the last state heard before it
+  s.sim_s = finished_ ? end_t_ : t_;
   s.wall_s = wall_s;
   s.path_length_m = length_;
   s.straight_line_m = (goal_ - world_.start()).norm();
@@ -186,13 +210,27 @@ MissionSummary MissionTracker::summary(double wall_s) const
     s.average_speed_mps = (goal_length_ - mission_length_) / *s.time_to_goal_s;
   }
   s.top_speed_mps = top_speed_;
-  if (!depth_latencies_.empty()) {
-    std::vector<double> sorted = depth_latencies_;
+  const auto in_mission = [&](double t) {
+    if (finished_ && t > end_t_) {
+      return false;
+    }
+    const auto after = std::upper_bound(mode_times_.begin(), mode_times_.end(), t,
+                                        [](double v, const auto& m) { return v < m.first; });
+    return after != mode_times_.begin() && std::prev(after)->second == "MISSION";
+  };
+  std::vector<double> sorted;
+  for (const auto& [t, latency] : depth_latencies_) {
+    if (in_mission(t)) {
+      sorted.push_back(latency);
+    }
+  }
+  if (!sorted.empty()) {
     std::sort(sorted.begin(), sorted.end());
     s.depth_to_command_median_s = sorted[sorted.size() / 2];
     s.depth_to_command_max_s = sorted.back();
   }
-  s.paths = paths_;
+  s.paths = static_cast<int>(std::count_if(path_times_.begin(), path_times_.end(),
+                                           [&](double t) { return !finished_ || t <= end_t_; }));
   s.map_overruns = map_overruns_;
   s.path_overruns = path_overruns_;
   s.min_clearance_m = std::isfinite(min_clearance_) ? min_clearance_ : 0.0;

@@ -53,7 +53,7 @@ struct Observer::Endpoints {
   explicit Endpoints(dds::Participant& p)
       : goal(p, topics::kGoal),
         status(p, topics::kControlStatus, nullptr, Sim::deep(p, topics::kControlStatus.info)),
-        path(p, topics::kPath),
+        path(p, topics::kPath, nullptr, Sim::deep(p, topics::kPath.info)),
         trajectory(p, topics::kTrajectory, nullptr, Sim::deep(p, topics::kTrajectory.info)),
         events(p, topics::kSimEvents),
         map_stats(p, topics::kMapStats),
@@ -62,7 +62,7 @@ struct Observer::Endpoints {
   }
   dds::Publisher<msg::Goal> goal;
   dds::Subscriber<msg::ControlStatus> status;  // every one (Sim::deep)
-  dds::Subscriber<msg::Path> path;
+  dds::Subscriber<msg::Path> path;  // every one (Sim::deep): each version counts
   dds::Subscriber<msg::Trajectory> trajectory;  // every one (Sim::deep): each its latency
   dds::Subscriber<msg::SimEvent> events;
   dds::Subscriber<msg::MapStats> map_stats;
@@ -347,7 +347,7 @@ void Observer::update()
   }
   for (const auto& p : endpoints_->path.takeAll(ids_)) {
     if (auto* m = missionOf(p)) {
-      m->onPath(p.version(), noPathReason(p.status()));
+      m->onPath(common::toSeconds(p.header().stamp_ns()), p.version(), noPathReason(p.status()));
       m->onPathOverruns(p.overruns());
     }
   }

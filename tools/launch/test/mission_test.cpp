@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 namespace quad::launch {
 namespace {
 
@@ -43,9 +45,9 @@ TEST(MissionTracker, LandingAtTheGoalWithoutCollisionIsASuccess)
   t.onMode(0.0, "TAKEOFF");
   fly(t, 0.0, {0, 0, 0}, {0, 0, 2});
   t.onMode(2.0, "MISSION");
-  t.onPath(1);
-  t.onPath(1);  // a repeat is not a new path
-  t.onPath(2);
+  t.onPath(2.0, 1);
+  t.onPath(2.2, 1);  // a repeat is not a new path
+  t.onPath(2.4, 2);
   fly(t, 2.0, {0, 0, 2}, {10, 0, 2});
   EXPECT_FALSE(t.finished());
   t.onMode(12.0, "LAND");
@@ -193,10 +195,10 @@ TEST(MissionTracker, AGoalGivenUpForNoPathStaysNoPathWhenThePlannerFindsOneOnThe
   MissionTracker t(mission(true), w, 0.0);
   t.onMode(0.0, "MISSION");
   fly(t, 0.0, {0, 0, 2}, {4, 0, 2});
-  t.onPath(3, "no path: known-occupied space seals the goal off");
+  t.onPath(4.0, 3, "no path: known-occupied space seals the goal off");
   t.onMode(4.0, "HOVER");
   t.onMode(6.0, "RETURN");
-  t.onPath(4);  // a cell of the map flickers free while the vehicle returns
+  t.onPath(7.0, 4);  // a cell of the map flickers free while the vehicle returns
   fly(t, 6.0, {4, 0, 2}, {0, 0, 2});
   t.onMode(10.0, "LAND");
   fly(t, 10.0, {0, 0, 2}, {0, 0, 0});
@@ -212,9 +214,9 @@ TEST(MissionTracker, LandingShortWithoutAReasonFailsAsSuch)
   const auto w = world();
   MissionTracker t(mission(true), w, 0.0);
   t.onMode(0.0, "MISSION");
-  t.onPath(3, "no path: known-occupied space seals the goal off");
+  t.onPath(0.0, 3, "no path: known-occupied space seals the goal off");
   fly(t, 0.0, {0, 0, 2}, {4, 0, 2});
-  t.onPath(4);  // the planner found a way again and the mission went on
+  t.onPath(4.0, 4);  // the planner found a way again and the mission went on
   t.onMode(4.0, "LAND");
   fly(t, 4.0, {4, 0, 2}, {4, 0, 0});
   t.onMode(6.0, "IDLE");
@@ -327,6 +329,81 @@ TEST(FleetSummary, TheFleetSucceedsWhenEveryVehicleDoesAndSumsOrBoundsTheirFigur
                     vehicleSummary(2, MissionEnd::kSuccess, 20.0, 18.0)},
                    std::nullopt, 5.0);
   EXPECT_EQ(s.end, MissionEnd::kNoPath);
+}
+
+/// A flight's samples, each kind in order of its stamps: states at 100 Hz (climb, cruise to the
+/// goal, landing), the controller's modes, a path every 0.2 s, a trajectory 0.15 s after each.
+struct Samples {
+  std::vector<std::pair<double, Eigen::Vector3d>> states;
+  std::vector<std::pair<double, std::string>> modes;
+  std::vector<std::pair<double, std::uint32_t>> paths;
+  std::vector<std::pair<double, double>> trajectories;  // (t, depth frame's t)
+};
+
+Samples flight()
+{
+  Samples f;
+  const auto leg = [&](double t0, double t1, Eigen::Vector3d a, Eigen::Vector3d b) {
+    for (double t = t0; t < t1 - 1e-9; t += 0.01) {
+      f.states.emplace_back(t, a + (b - a) * ((t - t0) / (t1 - t0)));
+    }
+  };
+  leg(0.0, 2.0, {0, 0, 0}, {0, 0, 2});
+  leg(2.0, 12.0, {0, 0, 2}, {10, 0, 2});
+  leg(12.0, 14.0, {10, 0, 2}, {10, 0, 0});
+  f.states.emplace_back(14.0, Eigen::Vector3d(10, 0, 0));
+  f.modes = {{0.0, "TAKEOFF"}, {2.0, "MISSION"}, {12.0, "LAND"}, {14.0, "IDLE"}};
+  for (int k = 0; k < 80; ++k) {
+    f.paths.emplace_back(1.0 + 0.2 * k, static_cast<std::uint32_t>(1 + k / 2));  // each version twice
+    f.trajectories.emplace_back(1.15 + 0.2 * k + 0.001 * (k % 7), 1.0 + 0.2 * k);
+  }
+  return f;
+}
+
+/// The samples fed as the launcher's observer takes them: every so often, each kind's samples
+/// up to a lag of its own (drawn from `seed`), the states first, then the modes, paths and
+/// trajectories. Seed 0: all of a kind at once, in stamp order, the kinds merged by stamp.
+MissionSummary summaryOf(const Samples& f, unsigned seed)
+{
+  const auto w = world();
+  MissionTracker t(mission(true), w, 0.25);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> lag(0.0, 0.5);
+  std::size_t s = 0, m = 0, p = 0, j = 0;
+  for (double now = 0.0; s < f.states.size() || m < f.modes.size() || p < f.paths.size() || j < f.trajectories.size();
+       now += 0.05) {
+    const auto upTo = [&](double stamp) { return seed == 0 ? stamp <= now : stamp <= now - lag(rng) || now > 30.0; };
+    for (; s < f.states.size() && upTo(f.states[s].first); ++s) {
+      t.onState(f.states[s].first, f.states[s].second);
+    }
+    for (; m < f.modes.size() && upTo(f.modes[m].first); ++m) {
+      t.onMode(f.modes[m].first, f.modes[m].second);
+    }
+    for (; p < f.paths.size() && upTo(f.paths[p].first); ++p) {
+      t.onPath(f.paths[p].first, f.paths[p].second);
+    }
+    for (; j < f.trajectories.size() && upTo(f.trajectories[j].first); ++j) {
+      t.onTrajectory(f.trajectories[j].first, f.trajectories[j].second);
+    }
+  }
+  return t.summary(1.0);
+}
+
+TEST(MissionTracker, TheSameSamplesGiveTheSameSummaryHoweverTheirKindsInterleave)
+{
+  const Samples f = flight();
+  const MissionSummary merged = summaryOf(f, 0);
+  ASSERT_TRUE(merged.success) << merged.outcome;
+  ASSERT_TRUE(merged.time_to_goal_s && merged.average_speed_mps && merged.depth_to_command_max_s);
+  // the mission from its mode at 2 s to the goal's tolerance (0.3 m) before (10, 0, 2)
+  EXPECT_NEAR(*merged.time_to_goal_s, 9.7, 0.011);
+  EXPECT_NEAR(*merged.average_speed_mps, 1.0, 0.01);
+  EXPECT_EQ(merged.paths, 33);  // every version first published up to the landing's end, once
+  EXPECT_NEAR(merged.sim_s, 14.0, 1e-9);
+  for (unsigned seed = 1; seed <= 20; ++seed) {
+    const MissionSummary s = summaryOf(f, seed);
+    EXPECT_EQ(toJson(s), toJson(merged)) << "seed " << seed;
+  }
 }
 
 }  // namespace

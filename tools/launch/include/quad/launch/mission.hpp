@@ -5,6 +5,7 @@
 /// collisions) and says when it is over and how it went. No DDS: the launcher feeds it.
 
 #include <cstdint>
+#include <deque>
 #include <optional>
 #include <string_view>
 #include <string>
@@ -103,6 +104,9 @@ class MissionTracker {
 public:
   /// `radius`: the vehicle's bounding sphere [m]; 0 measures clearance from its centre.
   MissionTracker(Mission mission, const world::World& world, double radius);
+  // Each kind of sample comes in order of its stamps, but the kinds may come interleaved in
+  // any way (readers taken one after another): every figure of the summary is judged by the
+  // samples' stamps, so the same samples give the same summary however they were interleaved.
 
   /// A vehicle state at sim time t [s].
   void onState(double t, const Eigen::Vector3d& p);
@@ -111,9 +115,9 @@ public:
   /// vehicle left the geofence", "the battery ran low"), empty for none; the first one heard is
   /// the failure a landing short of the goal reports.
   void onMode(double t, const std::string& mode, const std::string& ended_by = {});
-  /// A path of this version was published. `no_path`: the planner said the goal cannot be
-  /// reached, and why (in words); empty when it has a path or is merely waiting.
-  void onPath(std::uint32_t version, const std::string& no_path = {});
+  /// A path of this version was published at sim time t [s]. `no_path`: the planner said the
+  /// goal cannot be reached, and why (in words); empty when it has a path or is merely waiting.
+  void onPath(double t, std::uint32_t version, const std::string& no_path = {});
   /// The controller took a trajectory at sim time t [s] for a path planned on a map whose
   /// newest depth frame is from `depth_t` [s].
   void onTrajectory(double t, double depth_t);
@@ -149,15 +153,17 @@ private:
   double length_ = 0.0;
   double top_speed_ = 0.0;
   std::optional<double> mission_t_;       // the first MISSION
-  double mission_length_ = 0.0;           // length_ then
+  double mission_length_ = 0.0;           // length_ at the last state stamped at or before it
+  std::deque<std::pair<double, double>> recent_lengths_;  // (t, length_) of the latest states
   std::optional<double> goal_t_;          // within the goal's tolerance
   double goal_length_ = 0.0;              // length_ then
   double min_clearance_;
   std::string mode_;
   std::vector<std::string> modes_;
+  std::vector<std::pair<double, std::string>> mode_times_;  // each mode change, in order
   std::uint32_t last_version_ = 0;
-  int paths_ = 0;
-  std::vector<double> depth_latencies_;   // [s] onTrajectory's, during the mission
+  std::vector<double> path_times_;        // the stamp of each new path version
+  std::vector<std::pair<double, double>> depth_latencies_;  // (t, [s]) onTrajectory's
   std::optional<std::uint64_t> map_overruns_;
   std::optional<std::uint64_t> path_overruns_;
   int collisions_ = 0;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Opens a run's report.html in headless Chromium and checks that the browser draws it:
-//   node check.mjs RUN_DIR SCREENSHOT.png
+// Opens a run's report.html (or another page of the folder: a campaign's campaign.html) in
+// headless Chromium and checks that the browser draws it:
+//   node check.mjs DIR SCREENSHOT.png [PAGE]
 // The run folder is served over HTTP on 127.0.0.1 (so the page's images are same-origin and
 // can be read back from a canvas). Every <img> must load, have the size its SVG declares and
 // hold ink (not a blank page); the page must log no console error, raise no script error and
@@ -11,9 +12,9 @@ import http from 'node:http';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
 
-const [dir, screenshot] = process.argv.slice(2);
+const [dir, screenshot, pageName = 'report.html'] = process.argv.slice(2);
 if (!dir || !screenshot) {
-  console.error('usage: node check.mjs RUN_DIR SCREENSHOT.png');
+  console.error('usage: node check.mjs DIR SCREENSHOT.png [PAGE]');
   process.exit(2);
 }
 const root = path.resolve(dir);
@@ -48,7 +49,7 @@ try {
   page.on('pageerror', (e) => problems.push(`script error: ${e.message}`));
   page.on('requestfailed', (r) => problems.push(`request failed: ${r.url()}`));
   page.on('response', (r) => r.status() >= 400 && problems.push(`HTTP ${r.status()}: ${r.url()}`));
-  await page.goto(`http://127.0.0.1:${port}/report.html`, { waitUntil: 'load' });
+  await page.goto(`http://127.0.0.1:${port}/${pageName}`, { waitUntil: 'load' });
   const figures = await page.evaluate(async (minInk) => {
     const out = [];
     for (const img of document.images) {

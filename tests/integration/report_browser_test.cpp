@@ -2,7 +2,8 @@
 // The report as a browser shows it: the demo is flown (DDS domain 129), its run folder's
 // report.html is opened in Debian's Chromium, headless, through playwright-core (npm, installed
 // here with npm ci), and every figure must be drawn: loaded, at the size its SVG declares, not
-// blank, with no console or script error and no failed request.
+// blank, with no console or script error and no failed request. The same for a campaign's
+// campaign.html (domains 126 and 127).
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -39,6 +40,19 @@ std::pair<int, int> pngSize(const fs::path& file)
   return {be(16), be(20)};
 }
 
+/// check.mjs's answer for `page` of `dir`: its JSON, or a failure.
+nlohmann::json checkPage(const fs::path& tools, const fs::path& dir, const std::string& page, const fs::path& png)
+{
+  ChildProcess check({QUAD_NODE, (tools / "check.mjs").string(), dir.string(), png.string(), page},
+                     {{"QUAD_CHROMIUM", QUAD_CHROMIUM}});
+  const auto status = check.wait(120s);
+  EXPECT_TRUE(status) << check.output();
+  EXPECT_EQ(status.value_or(-1), 0) << check.output();
+  const std::string out = check.output();
+  const auto at = out.rfind("{\"figures\"");
+  return nlohmann::json::parse(at == std::string::npos ? std::string() : out.substr(at), nullptr, false);
+}
+
 TEST(Report, TheDemosReportIsDrawnByAHeadlessBrowser)
 {
   const fs::path tools = browserTools();
@@ -52,15 +66,8 @@ TEST(Report, TheDemosReportIsDrawnByAHeadlessBrowser)
   ASSERT_EQ(*flown, 0) << launch.output();
   ASSERT_TRUE(fs::exists(run / "report.html")) << launch.output();
 
-  ChildProcess check({QUAD_NODE, (tools / "check.mjs").string(), run.string(), (dir / "report.png").string()},
-                     {{"QUAD_CHROMIUM", QUAD_CHROMIUM}});
-  const auto status = check.wait(120s);
-  ASSERT_TRUE(status) << check.output();
-  EXPECT_EQ(*status, 0) << check.output();
-  const std::string out = check.output();
-  const auto json = nlohmann::json::parse(out.substr(out.rfind("{\"figures\"") == std::string::npos ? 0 : out.rfind("{\"figures\"")),
-                                          nullptr, false);
-  ASSERT_TRUE(json.is_object()) << out;
+  const auto json = checkPage(tools, run, "report.html", dir / "report.png");
+  ASSERT_TRUE(json.is_object());
   EXPECT_TRUE(json["problems"].empty()) << json.dump(2);
   std::set<std::string> drawn;
   for (const auto& f : json["figures"]) {
@@ -76,6 +83,38 @@ TEST(Report, TheDemosReportIsDrawnByAHeadlessBrowser)
   const auto [width, height] = pngSize(dir / "report.png");
   EXPECT_EQ(width, 1000);
   EXPECT_GT(height, 3000);
+  if (!::testing::Test::HasFailure()) {
+    fs::remove_all(dir);
+  }
+}
+
+TEST(Report, ACampaignsPageIsDrawnByAHeadlessBrowserAndLinksItsFailedRunsReport)
+{
+  const fs::path tools = browserTools();
+  ASSERT_TRUE(fs::exists(tools / "node_modules/playwright-core"));
+  const fs::path dir = quad::test::scratchDir("quad_campaign_browser");
+  const std::string worlds = std::string(QUAD_SOURCE_DIR) + "/configs/worlds/";
+  ChildProcess campaign({QUAD_TOOL, "campaign", worlds + "wall.yaml", worlds + "sealed.yaml", "-j", "2", "--domain", "126",
+                         "--log-dir", dir.string()});
+  const auto flown = campaign.wait(600s);
+  ASSERT_TRUE(flown) << campaign.output();
+  ASSERT_EQ(*flown, 1) << campaign.output();  // the sealed goal fails
+  const std::string html = quad::test::readFile(dir / "campaign.html");
+  // the failed run, linked to its own report, which is there
+  EXPECT_NE(html.find("<a href=\"sealed-seed1/run/report.html\">sealed-seed1</a>"), std::string::npos) << html;
+  EXPECT_TRUE(fs::exists(dir / "sealed-seed1/run/report.html"));
+  const auto json = checkPage(tools, dir, "campaign.html", dir / "campaign.png");
+  ASSERT_TRUE(json.is_object());
+  EXPECT_TRUE(json["problems"].empty()) << json.dump(2);
+  std::set<std::string> drawn;
+  for (const auto& f : json["figures"]) {
+    EXPECT_TRUE(f["loaded"].get<bool>()) << f;
+    EXPECT_GE(f["width"].get<int>(), 300) << f;
+    EXPECT_GT(f["ink"].get<double>(), 0.003) << f;
+    drawn.insert(f["src"].get<std::string>());
+  }
+  EXPECT_EQ(drawn, (std::set<std::string>{"campaign_success_0.svg", "campaign_flown_over_optimum.svg",
+                                          "campaign_closest_approach.svg", "campaign_time_to_goal.svg"}));
   if (!::testing::Test::HasFailure()) {
     fs::remove_all(dir);
   }

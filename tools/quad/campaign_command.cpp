@@ -9,6 +9,7 @@
 
 #include "quad/campaign/campaign.hpp"
 #include "quad/campaign/campaign_file.hpp"
+#include "quad/campaign/campaign_report.hpp"
 #include "quad/common/params.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/participant.hpp"
@@ -126,6 +127,11 @@ int campaign(const CampaignCommandOptions& options)
     return launch::kExitFailed;
   }
   std::printf("campaign: %s\n", json.string().c_str());
+  try {
+    std::printf("campaign: report in %s\n", campaign::writeCampaignReport(runs, c.axes, c.dir).string().c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "campaign: no report: %s\n", e.what());
+  }
   if (signals.received() != 0) {
     const auto interrupted = std::count_if(runs.begin(), runs.end(), [](const campaign::CampaignRun& r) {
       return r.end == "interrupted";

@@ -60,6 +60,9 @@ std::string describeVariant(const fs::path& world, const std::vector<std::pair<s
   return text;
 }
 
+/// With several runs at once, slot k's network-namespace hosts live on <this>.k.0/24.
+constexpr const char* kSlotSubnets = "10.78";
+
 using Clock = std::chrono::steady_clock;
 /// How long an interrupted run has to stop its modules before it is killed.
 constexpr auto kInterruptGrace = std::chrono::seconds(20);
@@ -92,6 +95,10 @@ Flying startRun(const CampaignOptions& options, const PlannedRun& run, std::size
   argv.insert(argv.end(), {"--domain", std::to_string(options.domain + static_cast<int>(slot)), "--quiet",
                            "--wall-timeout", fmt::format("{}", options.wall_timeout_s), "--summary",
                            (dir / "summary.json").string(), "--log-dir", (dir / "run").string()});
+  if (options.jobs > 1) {
+    // two runs' network-namespace hosts on one /24 would share its addresses
+    argv.insert(argv.end(), {"--subnet", fmt::format("{}.{}", kSlotSubnets, slot)});
+  }
   for (const std::string& set : run.moduleSets()) {
     argv.insert(argv.end(), {"--set", set});
   }

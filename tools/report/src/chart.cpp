@@ -482,4 +482,59 @@ std::string barChartSvg(const std::string& title, const std::string& unit, const
   return svg;
 }
 
+namespace {
+/// Red (0) through amber (0.5) to green (1).
+std::string rateColour(double v)
+{
+  const double t = std::clamp(v, 0.0, 1.0);
+  const auto mix = [](double a, double b, double f) { return static_cast<int>(std::lround(a + (b - a) * f)); };
+  if (t < 0.5) {
+    return fmt::format("#{:02x}{:02x}{:02x}", mix(0xc0, 0xf0, 2 * t), mix(0x39, 0xb4, 2 * t), mix(0x2b, 0x29, 2 * t));
+  }
+  return fmt::format("#{:02x}{:02x}{:02x}", mix(0xf0, 0x27, 2 * t - 1), mix(0xb4, 0x86, 2 * t - 1),
+                     mix(0x29, 0x4a, 2 * t - 1));
+}
+}  // namespace
+
+std::string heatmapSvg(const Heatmap& map)
+{
+  constexpr double kCellW = 80.0;
+  constexpr double kCellH = 34.0;
+  constexpr double kNames = 140.0;
+  const double width = std::max(kNames + kCellW * static_cast<double>(map.column_labels.size()) + kRight, 360.0);
+  const double height = kTop + 30.0 + kCellH * static_cast<double>(map.row_labels.size()) + 30.0;
+  std::string svg = header(width, height, map.title);
+  const double top = kTop + 30.0;
+  svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" font-size="12" text-anchor="middle">{}</text>)"
+                     "\n",
+                     kNames + kCellW * static_cast<double>(map.column_labels.size()) / 2.0, kTop + 4.0,
+                     esc(map.column_name));
+  svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" font-size="12" text-anchor="end">{}</text>)"
+                     "\n",
+                     kNames - 8.0, kTop + 24.0, esc(map.row_name));
+  for (std::size_t c = 0; c < map.column_labels.size(); ++c) {
+    svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" font-size="11" text-anchor="middle">{}</text>)"
+                       "\n",
+                       kNames + kCellW * (static_cast<double>(c) + 0.5), top - 6.0, esc(map.column_labels[c]));
+  }
+  for (std::size_t r = 0; r < map.row_labels.size(); ++r) {
+    const double y = top + kCellH * static_cast<double>(r);
+    svg += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" font-size="11" text-anchor="end">{}</text>)"
+                       "\n",
+                       kNames - 8.0, y + kCellH / 2.0 + 4.0, esc(map.row_labels[r]));
+    for (std::size_t c = 0; c < map.column_labels.size(); ++c) {
+      const bool known = r < map.values.size() && c < map.values[r].size() && map.values[r][c].has_value();
+      const double v = known ? map.values[r][c].value() : std::numeric_limits<double>::quiet_NaN();
+      const std::string text = r < map.texts.size() && c < map.texts[r].size() ? map.texts[r][c] : "";
+      const double x = kNames + kCellW * static_cast<double>(c);
+      svg += fmt::format(R"(<rect x="{:.1f}" y="{:.1f}" width="{:.1f}" height="{:.1f}" fill="{}" stroke="white"/>)"
+                         R"(<text x="{:.1f}" y="{:.1f}" font-size="12" text-anchor="middle">{}</text>)"
+                         "\n",
+                         x, y, kCellW, kCellH, std::isfinite(v) ? rateColour(v) : "#dddddd", x + kCellW / 2.0,
+                         y + kCellH / 2.0 + 4.0, esc(text));
+    }
+  }
+  return svg + "</svg>\n";
+}
+
 }  // namespace quad::report

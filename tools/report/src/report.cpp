@@ -10,6 +10,7 @@
 #include "quad/bag/mcap.hpp"
 #include "quad/common/xml_text.hpp"
 #include "quad/report/figures.hpp"
+#include "quad/report/page.hpp"
 #include "quad/world/world_file.hpp"
 
 namespace quad::report {
@@ -218,28 +219,10 @@ Inputs resolve(const ReportOptions& options)
 
 std::string page(const Inputs& in, const FlightData& flight, const std::vector<Figure>& figures)
 {
-  std::string html = fmt::format(R"(<!DOCTYPE html>
-<html lang="en">
-<head>
-<meta charset="utf-8">
-<title>quad report: {0}</title>
-<link rel="icon" href="data:,">
-<style>
-body {{ font-family: sans-serif; margin: 2em auto; max-width: 960px; color: #222; }}
-table {{ border-collapse: collapse; margin: 1em 0; }}
-th, td {{ text-align: left; padding: 2px 12px 2px 0; border-bottom: 1px solid #eee; font-size: 14px; }}
-th {{ font-weight: normal; color: #555; }}
-figure {{ margin: 2em 0; }}
-figure img {{ max-width: 100%; border: 1px solid #ddd; }}
-figcaption {{ font-size: 14px; color: #444; }}
-</style>
-</head>
-<body>
-<h1>quad report: {0}</h1>
-<p>Recording <code>{1}</code>: {2} messages, sim time {3:.2f} s to {4:.2f} s.{5}</p>
-)",
-                                 esc(in.name), esc(in.recording.filename().string()), flight.messages, flight.t_first_s,
-                                 flight.t_last_s, in.world ? " World <code>" + esc(in.world->filename().string()) + "</code>." : "");
+  std::string html = pageHead("quad report: " + in.name);
+  html += fmt::format("<p>Recording <code>{}</code>: {} messages, sim time {:.2f} s to {:.2f} s.{}</p>\n",
+                      esc(in.recording.filename().string()), flight.messages, flight.t_first_s, flight.t_last_s,
+                      in.world ? " World <code>" + esc(in.world->filename().string()) + "</code>." : "");
   if (in.summary) {
     html += headline(*in.summary);
   }
@@ -248,7 +231,7 @@ figcaption {{ font-size: 14px; color: #444; }}
   }
   html += "<h2>Figures</h2>\n";
   for (const Figure& f : figures) {
-    html += fmt::format("<figure><img src=\"{0}\" alt=\"{1}\"><figcaption>{1}</figcaption></figure>\n", esc(f.file), esc(f.caption));
+    html += figureElement(f.file, f.caption);
   }
   if (in.summary) {
     // every key, the processes' internals among them, below what a reader looks at first

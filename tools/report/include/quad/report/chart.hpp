@@ -107,4 +107,19 @@ struct Bar {
 std::string barChartSvg(const std::string& title, const std::string& unit, const std::vector<Bar>& bars,
                         const std::string& value_label = "measured", const std::string& reference_label = "contract");
 
+/// A grid of cells over two sets of labels, each cell coloured by a value in [0, 1] (red at 0,
+/// amber half way, green at 1) and carrying its text ("7/10"); a cell without a value is grey.
+/// `values[row][column]`: rows along `row_labels` (top to bottom), columns along
+/// `column_labels`; the texts likewise.
+struct Heatmap {
+  std::string title;
+  std::string row_name;
+  std::string column_name;
+  std::vector<std::string> row_labels;
+  std::vector<std::string> column_labels;
+  std::vector<std::vector<std::optional<double>>> values;
+  std::vector<std::vector<std::string>> texts;
+};
+std::string heatmapSvg(const Heatmap& map);
+
 }  // namespace quad::report

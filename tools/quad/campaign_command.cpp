@@ -66,6 +66,7 @@ campaign::CampaignOptions campaignOptions(const CampaignCommandOptions& options)
   c.wall_timeout_s = options.wall_timeout_s.value_or(file.wall_timeout_s.value_or(600.0));
   c.state = options.state.value_or(file.state.value_or(""));
   c.layout = options.layout.value_or(file.layout.value_or(""));
+  c.record = !options.no_record && file.record.value_or(true);
   c.domain = options.domain ? *options.domain : dds::optionsFromEnvironment("quad_campaign").domain_id;
   if (c.domain + c.jobs - 1 > 232) {
     problems.push_back(fmt::format("-j {} from domain {}: the runs flying together take domains {} to {}; DDS has 0 to 232",

@@ -24,6 +24,7 @@ struct CampaignCommandOptions {
   std::optional<double> wall_timeout_s;  ///< default: the file's, else 600 s
   std::optional<std::string> state;    ///< estimate | truth; default: the file's, else the manifest's
   std::optional<std::string> layout;   ///< distributed | composed; default: the file's, else the manifest's
+  bool no_record = false;              ///< no recording (nor run report) per run; default: the file's, else record
   bool check = false;                  ///< check everything and exit
 };
 

@@ -95,6 +95,9 @@ Flying startRun(const CampaignOptions& options, const PlannedRun& run, std::size
   argv.insert(argv.end(), {"--domain", std::to_string(options.domain + static_cast<int>(slot)), "--quiet",
                            "--wall-timeout", fmt::format("{}", options.wall_timeout_s), "--summary",
                            (dir / "summary.json").string(), "--log-dir", (dir / "run").string()});
+  if (!options.record) {
+    argv.emplace_back("--no-record");
+  }
   if (options.jobs > 1) {
     // two runs' network-namespace hosts on one /24 would share its addresses
     argv.insert(argv.end(), {"--subnet", fmt::format("{}.{}", kSlotSubnets, slot)});

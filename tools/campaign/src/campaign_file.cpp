@@ -20,7 +20,7 @@ CampaignFile readCampaignFile(const fs::path& file)
     r.problem("", root, "expected a map with worlds, axes, ... (docs/campaign.md)");
     r.throwIfAny();
   }
-  r.onlyKeys(root, "", {"manifest", "worlds", "seeds", "jobs", "wall_timeout", "state", "layout", "axes"});
+  r.onlyKeys(root, "", {"manifest", "worlds", "seeds", "jobs", "wall_timeout", "state", "layout", "record", "axes"});
   const auto path = [&](const YAML::Node& node, const std::string& key) -> std::optional<fs::path> {
     const auto text = r.text(node, key, std::nullopt);
     if (!text) {
@@ -59,6 +59,14 @@ CampaignFile readCampaignFile(const fs::path& file)
   };
   c.seeds = whole("seeds", 1, 1000);
   c.jobs = whole("jobs", 1, 64);
+  if (YAML::Node record = root["record"]; record) {
+    const std::string t = record.IsScalar() ? record.as<std::string>() : "";
+    if (t == "true" || t == "false") {
+      c.record = t == "true";
+    } else {
+      r.problem("record", record, "expected bool (true or false)");
+    }
+  }
   if (root["wall_timeout"]) {
     c.wall_timeout_s = r.number(root["wall_timeout"], "wall_timeout", std::nullopt, 1.0, 86400.0);
   }

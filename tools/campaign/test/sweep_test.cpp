@@ -130,7 +130,7 @@ TEST(Sweep, ACampaignFileIsReadWithPathsFromItsFolderAndCheckedWhole)
   std::ofstream(dir / "m.yaml") << "name: m\n";
   std::ofstream(dir / "w.yaml") << "bounds: {min: [0, 0, 0], max: [1, 1, 1]}\n";
   std::ofstream(dir / "c.yaml") << "manifest: m.yaml\nworlds: [w.yaml]\nseeds: 2\njobs: 2\nwall_timeout: 300\n"
-                                   "layout: composed\naxes:\n  world:forest.seed: 1..3\n"
+                                   "layout: composed\nrecord: false\naxes:\n  world:forest.seed: 1..3\n"
                                    "  control:follower.max_speed: [3, 7]\n";
   const CampaignFile c = readCampaignFile(dir / "c.yaml");
   EXPECT_EQ(c.manifest, dir / "m.yaml");
@@ -140,16 +140,17 @@ TEST(Sweep, ACampaignFileIsReadWithPathsFromItsFolderAndCheckedWhole)
   EXPECT_EQ(c.wall_timeout_s, 300.0);
   EXPECT_EQ(c.layout, "composed");
   EXPECT_FALSE(c.state.has_value());
+  EXPECT_EQ(c.record, false);
   ASSERT_EQ(c.axes.size(), 2U);
   EXPECT_EQ(c.axes[0].key, "world:forest.seed");  // in the order written
   EXPECT_EQ(c.axes[0].values, (std::vector<std::string>{"1", "2", "3"}));
   EXPECT_EQ(c.axes[1].values, (std::vector<std::string>{"3", "7"}));
 
   std::ofstream(dir / "bad.yaml") << "manifest: none.yaml\nworlds: [w.yaml]\nseeds: 1.5\njobs: 0\nlayout: flat\n"
-                                     "speed: 3\naxes:\n  max_speed: [3]\n  control:x: [[1]]\n";
+                                     "speed: 3\nrecord: no\naxes:\n  max_speed: [3]\n  control:x: [[1]]\n";
   const std::string problems = problemsOf([&] { readCampaignFile(dir / "bad.yaml"); });
   for (const std::string expected : {"bad.yaml:manifest: none.yaml: no such file", "bad.yaml:seeds: 1.5",
-                                     "bad.yaml:jobs: 0", "bad.yaml:layout: flat", "bad.yaml:speed", "axes.max_speed",
+                                     "bad.yaml:jobs: 0", "bad.yaml:layout: flat", "bad.yaml:speed", "bad.yaml:record: no", "axes.max_speed",
                                      "axes.control:x"}) {
     EXPECT_NE(problems.find(expected), std::string::npos) << expected << " not in:\n" << problems;
   }

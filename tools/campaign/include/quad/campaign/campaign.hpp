@@ -31,6 +31,7 @@ struct CampaignOptions {
   double wall_timeout_s = 600.0;    ///< a run still going after this fails
   std::string state;                ///< `quad launch --state`: estimate or truth; empty: the manifest's
   std::string layout;               ///< `quad launch --layout`: distributed or composed; empty: the manifest's
+  bool record = true;               ///< false: `quad launch --no-record` (no recording, no run report)
   /// Polled while runs fly: once true, no run starts and the flying ones are interrupted
   /// (SIGINT, as Ctrl-C would; after a grace, killed).
   std::function<bool()> stop;

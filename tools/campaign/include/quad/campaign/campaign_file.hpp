@@ -11,6 +11,7 @@
 ///   wall_timeout: 600
 ///   state: estimate                       # or truth; absent: the manifest's
 ///   layout: distributed                   # or composed; absent: the manifest's
+///   record: true                          # false: no recording (nor run report) per run
 ///   axes:                                 # in this order, the last varying fastest
 ///     world:forest.density: [0.0204, 0.0278, 0.04]
 ///     world:forest.seed: 1..10
@@ -33,6 +34,7 @@ struct CampaignFile {
   std::optional<double> wall_timeout_s;
   std::optional<std::string> state;
   std::optional<std::string> layout;
+  std::optional<bool> record;
   std::vector<Axis> axes;
 };
 

@@ -10,22 +10,9 @@
 #include <stdexcept>
 
 #include "quad/process/run.hpp"
+#include "quad/process/shell_quote.hpp"
 
 namespace quad::launch {
-
-namespace {
-
-/// One word for a POSIX shell, whatever it contains.
-std::string shellQuote(const std::string& word)
-{
-  std::string out = "'";
-  for (const char c : word) {
-    out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  }
-  return out + "'";
-}
-
-}  // namespace
 
 namespace {
 
@@ -274,10 +261,10 @@ std::vector<std::string> HostNetwork::command(const Host& host, std::vector<std:
       out.insert(out.end(), host.ssh_options.begin(), host.ssh_options.end());
       out.insert(out.end(), {host.address, "--", "env"});
       for (const auto& [k, v] : env) {
-        out.push_back(shellQuote(k + "=" + remote(v)));
+        out.push_back(process::shellQuote(k + "=" + remote(v)));
       }
       for (auto& a : argv) {
-        out.push_back(shellQuote(remote(a)));
+        out.push_back(process::shellQuote(remote(a)));
       }
       return out;
     }

@@ -32,6 +32,7 @@ packages=(
   libspdlog-dev libfmt-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev liblz4-dev libzstd-dev libssl-dev openssl libboost-dev
   nodejs chromium
+  slurmctld slurmd slurm-client munge   # the single-node cluster the campaign's Slurm test starts
 )
 # npm for the test that reads recordings with Foxglove's own MCAP reader; a Node.js from
 # elsewhere (NodeSource) brings its own npm and conflicts with Debian's.

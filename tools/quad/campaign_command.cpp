@@ -10,6 +10,7 @@
 #include "quad/campaign/campaign.hpp"
 #include "quad/campaign/campaign_file.hpp"
 #include "quad/campaign/campaign_report.hpp"
+#include "quad/campaign/slurm.hpp"
 #include "quad/common/params.hpp"
 #include "quad/dds/node.hpp"
 #include "quad/dds/participant.hpp"
@@ -79,6 +80,21 @@ campaign::CampaignOptions campaignOptions(const CampaignCommandOptions& options)
   return c;
 }
 
+/// `--task N`: run N of the product alone, as a cluster's task flies it; the submitter checked
+/// the campaign. Exits with the launcher's status.
+int flyTask(const campaign::CampaignOptions& c, int task)
+{
+  const auto plan = campaign::planRuns(c.worlds, c.axes, c.seeds);
+  if (task < 0 || static_cast<std::size_t>(task) >= plan.size()) {
+    std::fprintf(stderr, "campaign: --task %d: the campaign has runs 0 to %zu\n", task, plan.size() - 1);
+    return launch::kExitInvalid;
+  }
+  const campaign::CampaignRun r = campaign::flyRun(c, plan[static_cast<std::size_t>(task)], static_cast<std::size_t>(task));
+  std::printf("campaign: task %d, %s: %s in %.0f s wall%s\n", task, r.name.c_str(), r.success ? "ok" : "FAILED", r.wall_s,
+              r.failure.empty() ? "" : (" (" + r.failure + ")").c_str());
+  return r.exit_status;
+}
+
 }  // namespace
 
 int campaign(const CampaignCommandOptions& options)
@@ -87,6 +103,10 @@ int campaign(const CampaignCommandOptions& options)
   campaign::CampaignOptions c;
   try {
     c = campaignOptions(options);
+    if (options.task) {
+      c.stop = [&signals] { return signals.received() != 0; };
+      return flyTask(c, *options.task);
+    }
     const auto problems = campaign::checkCampaign(c);
     if (!problems.empty()) {
       throw common::ConfigError(problems);
@@ -108,17 +128,38 @@ int campaign(const CampaignCommandOptions& options)
   }
   c.stop = [&signals] { return signals.received() != 0; };
   fs::create_directories(c.dir);
-  std::printf("campaign: %zu worlds x %zu axes x %d seeds = %zu runs, %d at a time, in %s\n", c.worlds.size(),
-              c.axes.size(), c.seeds, total, c.jobs, c.dir.string().c_str());
+  if (options.slurm) {
+    std::printf("campaign: %zu worlds x %zu axes x %d seeds = %zu runs, on Slurm, in %s (a folder every node shares)\n",
+                c.worlds.size(), c.axes.size(), c.seeds, total, c.dir.string().c_str());
+  } else {
+    std::printf("campaign: %zu worlds x %zu axes x %d seeds = %zu runs, %d at a time, in %s\n", c.worlds.size(),
+                c.axes.size(), c.seeds, total, c.jobs, c.dir.string().c_str());
+  }
   std::fflush(stdout);
   std::size_t ended = 0;
-  const auto runs = campaign::runCampaign(c, [&](const campaign::CampaignRun& r) {
-    ++ended;
-    std::printf("campaign: [%zu/%zu] %s: %s in %.0f s wall%s\n", ended, total, r.name.c_str(),
-                r.success ? "ok" : (r.end == "interrupted" ? "interrupted" : "FAILED"), r.wall_s,
-                r.failure.empty() ? "" : (" (" + r.failure + ")").c_str());
-    std::fflush(stdout);
-  });
+  std::vector<campaign::CampaignRun> runs;
+  if (options.slurm) {
+    try {
+      runs = campaign::runOnSlurm(c, {options.sbatch_args}, [](const std::string& line) {
+        std::printf("campaign: %s\n", line.c_str());
+        std::fflush(stdout);
+      });
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "campaign: %s\n", e.what());
+      return launch::kExitFailed;
+    }
+    ended = static_cast<std::size_t>(std::count_if(runs.begin(), runs.end(), [](const campaign::CampaignRun& r) {
+      return r.end != "not flown";
+    }));
+  } else {
+    runs = campaign::runCampaign(c, [&](const campaign::CampaignRun& r) {
+      ++ended;
+      std::printf("campaign: [%zu/%zu] %s: %s in %.0f s wall%s\n", ended, total, r.name.c_str(),
+                  r.success ? "ok" : (r.end == "interrupted" ? "interrupted" : "FAILED"), r.wall_s,
+                  r.failure.empty() ? "" : (" (" + r.failure + ")").c_str());
+      std::fflush(stdout);
+    });
+  }
   std::printf("%s", campaign::table(runs, c.axes).c_str());
   const fs::path json = options.json ? fs::path(*options.json) : c.dir / "campaign.json";
   std::ofstream out(json);

@@ -26,6 +26,9 @@ struct CampaignCommandOptions {
   std::optional<std::string> layout;   ///< distributed | composed; default: the file's, else the manifest's
   bool no_record = false;              ///< no recording (nor run report) per run; default: the file's, else record
   bool check = false;                  ///< check everything and exit
+  bool slurm = false;                  ///< submit the runs to a Slurm cluster as one job array
+  std::vector<std::string> sbatch_args;  ///< more sbatch options, with --slurm
+  std::optional<int> task;             ///< fly run N of the product alone (what each Slurm task runs)
 };
 
 /// 0 when every run succeeded, 1 when any failed, 2 for bad input, 130 when stopped by a signal.

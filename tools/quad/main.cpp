@@ -155,6 +155,15 @@ int main(int argc, char** argv)
       ->check(CLI::PositiveNumber);
   campaign->add_flag("--no-record", campaign_options.no_record,
                      "Record nothing in any run (no recording, no run report): a forest run keeps 2 MB instead of 15");
+  auto* slurm = campaign->add_flag("--slurm", campaign_options.slurm,
+                                   "Submit the runs without a result to a Slurm cluster as one job array (sbatch), wait, "
+                                   "gather; the campaign's folder must be shared by every node");
+  campaign->add_option("--sbatch", campaign_options.sbatch_args,
+                       "With --slurm, one more sbatch option, as --sbatch=--partition=quad (repeatable)")
+      ->needs(slurm);
+  campaign->add_option("--task", campaign_options.task, "Fly run N of the campaign alone: what each Slurm task runs")
+      ->check(CLI::NonNegativeNumber)
+      ->excludes(slurm);
   campaign->add_flag("--check", campaign_options.check,
                      "Check the manifest, every combination of parameters and every world, and exit");
 

@@ -81,38 +81,51 @@ fs::path runFolder(const CampaignOptions& options, const PlannedRun& run)
   return options.dir / run.name;
 }
 
-Flying startRun(const CampaignOptions& options, const PlannedRun& run, std::size_t index, std::size_t slot)
+/// In a run's folder once it ended: the launcher's exit status.
+constexpr const char* kExitStatusFile = "exit_status";
+
+/// A run's folder made ready (its world variant written, an old result removed) and its
+/// `quad launch` command on `domain`, its netns hosts on `subnet` when given.
+std::vector<std::string> prepareRun(const CampaignOptions& options, const PlannedRun& run, int domain,
+                                    const std::optional<std::string>& subnet)
 {
   const fs::path dir = runFolder(options, run);
   fs::create_directories(dir);
   fs::remove(dir / "summary.json");
+  fs::remove(dir / kExitStatusFile);
   fs::path world = run.world;
   if (const auto params = run.worldParams(); !params.empty()) {
     world = dir / "world.yaml";
     std::ofstream(world) << "# " << describeVariant(run.world, params) << "\n" << worldVariant(run.world, params);
   }
   std::vector<std::string> argv = launchCommand(options, world, run.seed);
-  argv.insert(argv.end(), {"--domain", std::to_string(options.domain + static_cast<int>(slot)), "--quiet",
-                           "--wall-timeout", fmt::format("{}", options.wall_timeout_s), "--summary",
-                           (dir / "summary.json").string(), "--log-dir", (dir / "run").string()});
+  argv.insert(argv.end(), {"--domain", std::to_string(domain), "--quiet", "--wall-timeout",
+                           fmt::format("{}", options.wall_timeout_s), "--summary", (dir / "summary.json").string(),
+                           "--log-dir", (dir / "run").string()});
   if (!options.record) {
     argv.emplace_back("--no-record");
   }
-  if (options.jobs > 1) {
-    // two runs' network-namespace hosts on one /24 would share its addresses
-    argv.insert(argv.end(), {"--subnet", fmt::format("{}.{}", kSlotSubnets, slot)});
+  if (subnet) {
+    argv.insert(argv.end(), {"--subnet", *subnet});
   }
   for (const std::string& set : run.moduleSets()) {
     argv.insert(argv.end(), {"--set", set});
   }
+  return argv;
+}
+
+Flying startRun(const CampaignOptions& options, const PlannedRun& run, std::size_t index, std::size_t slot)
+{
+  // two runs' network-namespace hosts on one /24 would share its addresses
+  const auto subnet = options.jobs > 1 ? std::optional<std::string>(fmt::format("{}.{}", kSlotSubnets, slot)) : std::nullopt;
+  const auto argv = prepareRun(options, run, options.domain + static_cast<int>(slot), subnet);
   return Flying{index, slot, std::make_unique<process::Spawned>(argv), {}, std::nullopt};
 }
 
-CampaignRun finishRun(const CampaignOptions& options, const PlannedRun& run, int status, const std::string& output,
-                      bool interrupted)
+/// The run's result from its folder: its summary and the launcher's exit status.
+CampaignRun resultOf(const CampaignOptions& options, const PlannedRun& run, int status)
 {
   const fs::path dir = runFolder(options, run);
-  std::ofstream(dir / "launch.out") << output;
   CampaignRun r;
   try {
     r = readRun(dir / "summary.json", run.world.stem().string(), run.seed, status);
@@ -124,6 +137,18 @@ CampaignRun finishRun(const CampaignOptions& options, const PlannedRun& run, int
   }
   r.name = run.name;
   r.params = run.params;
+  return r;
+}
+
+CampaignRun finishRun(const CampaignOptions& options, const PlannedRun& run, int status, const std::string& output,
+                      bool interrupted)
+{
+  const fs::path dir = runFolder(options, run);
+  std::ofstream(dir / "launch.out") << output;
+  if (!interrupted) {
+    std::ofstream(dir / kExitStatusFile) << status << "\n";
+  }
+  CampaignRun r = resultOf(options, run, status);
   if (interrupted) {
     r.success = false;
     r.end = "interrupted";
@@ -169,6 +194,28 @@ CampaignRun readRun(const fs::path& summary, const std::string& world, std::uint
   r.sim_s = j.value("sim_seconds", 0.0);
   r.wall_s = j.value("wall_seconds", 0.0);
   return r;
+}
+
+CampaignRun flyRun(const CampaignOptions& options, const PlannedRun& run, std::size_t index)
+{
+  // Tasks of a cluster fly at once in any number: each its own domain (from options.domain,
+  // wrapping before 233) and netns subnet.
+  const int domain = options.domain + static_cast<int>(index % static_cast<std::size_t>(233 - options.domain));
+  const auto argv = prepareRun(options, run, domain, fmt::format("{}.{}", kSlotSubnets, index % 256));
+  const process::RunResult result = process::run(argv);
+  // a task cancelled mid-flight (its launcher stopped by the same signal) leaves no result
+  return finishRun(options, run, result.status, result.output, options.stop && options.stop());
+}
+
+std::optional<CampaignRun> storedResult(const CampaignOptions& options, const PlannedRun& run)
+{
+  const fs::path dir = runFolder(options, run);
+  std::ifstream status_file(dir / kExitStatusFile);
+  int status = -1;
+  if (!fs::exists(dir / "summary.json") || !(status_file >> status)) {
+    return std::nullopt;
+  }
+  return resultOf(options, run, status);
 }
 
 std::vector<std::string> checkCampaign(const CampaignOptions& options)

@@ -124,4 +124,31 @@ CampaignFile readCampaignFile(const fs::path& file)
   return c;
 }
 
+std::string campaignFileText(const CampaignOptions& options)
+{
+  YAML::Emitter out;
+  out << YAML::BeginMap;
+  out << YAML::Key << "manifest" << YAML::Value << options.manifest.string();
+  out << YAML::Key << "worlds" << YAML::Value << YAML::BeginSeq;
+  for (const fs::path& w : options.worlds) {
+    out << w.string();
+  }
+  out << YAML::EndSeq;
+  out << YAML::Key << "seeds" << YAML::Value << options.seeds;
+  out << YAML::Key << "wall_timeout" << YAML::Value << options.wall_timeout_s;
+  if (!options.state.empty()) {
+    out << YAML::Key << "state" << YAML::Value << options.state;
+  }
+  if (!options.layout.empty()) {
+    out << YAML::Key << "layout" << YAML::Value << options.layout;
+  }
+  out << YAML::Key << "record" << YAML::Value << options.record;
+  out << YAML::Key << "axes" << YAML::Value << YAML::BeginMap;
+  for (const Axis& a : options.axes) {
+    out << YAML::Key << a.key << YAML::Value << YAML::Flow << a.values;
+  }
+  out << YAML::EndMap << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
 }  // namespace quad::campaign

@@ -83,6 +83,16 @@ std::vector<std::string> checkCampaign(const CampaignOptions& options);
 std::vector<CampaignRun> runCampaign(const CampaignOptions& options,
                                      const std::function<void(const CampaignRun&)>& progress = {});
 
+/// Flies run `index` of the product alone, to its end (what a cluster's task does): in its
+/// folder, on domain options.domain + index (wrapping before 233), its netns hosts on
+/// 10.78.<index % 256>.0/24. Its result is also kept in its folder (storedResult), unless
+/// options.stop said to stop while it flew: then it is "interrupted" and keeps none.
+CampaignRun flyRun(const CampaignOptions& options, const PlannedRun& run, std::size_t index);
+
+/// A run's result as its folder keeps it once it ended (its summary and the launcher's exit
+/// status); nothing when it has none (never flown, or its flight cut short).
+std::optional<CampaignRun> storedResult(const CampaignOptions& options, const PlannedRun& run);
+
 /// A table for people: a row a run (a column per axis) and a last row of totals.
 std::string table(const std::vector<CampaignRun>& runs, const std::vector<Axis>& axes = {});
 /// The same as JSON: {"axes": {key: [values]}, "runs": [...], "succeeded": n, "runs_total": n}.

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "quad/campaign/campaign.hpp"
 #include "quad/campaign/sweep.hpp"
 
 namespace quad::campaign {
@@ -41,5 +42,9 @@ struct CampaignFile {
 /// Reads and checks a campaign file; throws common::ConfigError listing every problem as
 /// `file:key: value: reason`.
 CampaignFile readCampaignFile(const std::filesystem::path& file);
+
+/// The campaign file that gives `options` (absolute paths): manifest, worlds, seeds,
+/// wall_timeout, state, layout, record and axes; what a cluster's tasks read.
+std::string campaignFileText(const CampaignOptions& options);
 
 }  // namespace quad::campaign

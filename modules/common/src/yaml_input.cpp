@@ -97,6 +97,22 @@ std::optional<double> YamlReader::number(const YAML::Node& node, const std::stri
   return v;
 }
 
+std::optional<bool> YamlReader::flag(const YAML::Node& node, const std::string& key, std::optional<bool> fallback)
+{
+  if (!node.IsDefined()) {
+    if (!fallback) {
+      problem(key, node, "required");
+    }
+    return fallback;
+  }
+  const std::string v = node.IsScalar() ? node.Scalar() : "";
+  if (v != "true" && v != "false") {
+    problem(key, node, "expected bool (true or false)");
+    return std::nullopt;
+  }
+  return v == "true";
+}
+
 std::optional<std::vector<double>> YamlReader::numbers(const YAML::Node& node, const std::string& key,
                                                        std::size_t count, double lo, double hi)
 {

@@ -125,18 +125,15 @@ Flying startRun(const CampaignOptions& options, const PlannedRun& run, std::size
 /// The run's result from its folder: its summary and the launcher's exit status.
 CampaignRun resultOf(const CampaignOptions& options, const PlannedRun& run, int status)
 {
-  const fs::path dir = runFolder(options, run);
-  CampaignRun r;
+  CampaignRun r = unflownRun(run);
   try {
-    r = readRun(dir / "summary.json", run.world.stem().string(), run.seed, status);
+    r = readRun(runFolder(options, run) / "summary.json", r.world, run.seed, status);
+    r.name = run.name;
+    r.params = run.params;
   } catch (const std::exception& e) {
-    r.world = run.world.stem().string();
-    r.seed = run.seed;
     r.exit_status = status;
     r.failure = e.what();
   }
-  r.name = run.name;
-  r.params = run.params;
   return r;
 }
 
@@ -158,6 +155,22 @@ CampaignRun finishRun(const CampaignOptions& options, const PlannedRun& run, int
 }
 
 }  // namespace
+
+std::string CampaignRun::param(const std::string& axis_key) const
+{
+  const auto it = std::find_if(params.begin(), params.end(), [&](const auto& kv) { return kv.first == axis_key; });
+  return it == params.end() ? std::string() : it->second;
+}
+
+CampaignRun unflownRun(const PlannedRun& run)
+{
+  CampaignRun r;
+  r.world = run.world.stem().string();
+  r.seed = run.seed;
+  r.name = run.name;
+  r.params = run.params;
+  return r;
+}
 
 CampaignRun readRun(const fs::path& summary, const std::string& world, std::uint64_t seed, int exit_status)
 {
@@ -230,7 +243,7 @@ std::vector<std::string> checkCampaign(const CampaignOptions& options)
   std::set<std::vector<std::string>> module_sets;
   std::set<std::pair<fs::path, std::vector<std::pair<std::string, std::string>>>> worlds;
   for (const PlannedRun& r : plan) {
-    if (module_sets.insert(r.moduleSets()).second && !options.worlds.empty()) {
+    if (module_sets.insert(r.moduleSets()).second) {
       std::vector<std::string> argv = launchCommand(options, r.world, r.seed);
       argv.emplace_back("--check");
       for (const std::string& set : r.moduleSets()) {
@@ -330,8 +343,8 @@ std::string table(const std::vector<CampaignRun>& runs, const std::vector<Axis>&
     ok += r.success ? 1 : 0;
     std::string axis_cells;
     for (const Axis& a : axes) {
-      const auto it = std::find_if(r.params.begin(), r.params.end(), [&](const auto& kv) { return kv.first == a.key; });
-      axis_cells += fmt::format(" {:>10}", it == r.params.end() ? "-" : it->second);
+      const std::string value = r.param(a.key);
+      axis_cells += fmt::format(" {:>10}", value.empty() ? "-" : value);
     }
     out += fmt::format("{:<14}{} {:>4}  {:<8} {:<8} {:>10} {:>12} {:>10.2f} {:>9} {:>7} {:>7.1f} {:>7} {:>8.1f} {:>8.1f}  {}\n",
                        r.world, axis_cells, r.seed, r.success ? "ok" : (r.end.empty() ? "error" : r.end),

@@ -59,13 +59,8 @@ CampaignFile readCampaignFile(const fs::path& file)
   };
   c.seeds = whole("seeds", 1, 1000);
   c.jobs = whole("jobs", 1, 64);
-  if (YAML::Node record = root["record"]; record) {
-    const std::string t = record.IsScalar() ? record.as<std::string>() : "";
-    if (t == "true" || t == "false") {
-      c.record = t == "true";
-    } else {
-      r.problem("record", record, "expected bool (true or false)");
-    }
+  if (root["record"]) {
+    c.record = r.flag(root["record"], "record", std::nullopt);
   }
   if (root["wall_timeout"]) {
     c.wall_timeout_s = r.number(root["wall_timeout"], "wall_timeout", std::nullopt, 1.0, 86400.0);

@@ -46,11 +46,7 @@ std::vector<Dimension> dimensions(const std::vector<CampaignRun>& runs, const st
   const std::vector<std::string> labels = axisLabels(axes);
   for (std::size_t i = 0; i < axes.size(); ++i) {
     const std::string key = axes[i].key;
-    out.push_back({labels[i], axes[i].values, [key](const CampaignRun& r) {
-                     const auto it = std::find_if(r.params.begin(), r.params.end(),
-                                                  [&](const auto& kv) { return kv.first == key; });
-                     return it == r.params.end() ? std::string() : it->second;
-                   }});
+    out.push_back({labels[i], axes[i].values, [key](const CampaignRun& r) { return r.param(key); }});
   }
   const auto seed = [](const CampaignRun& r) { return std::to_string(r.seed); };
   out.push_back({"seed", distinct(seed), seed});
@@ -145,8 +141,8 @@ std::string table(const std::vector<CampaignRun>& runs, const std::vector<Axis>&
                                  : esc(r.name);
     html += fmt::format("<tr{}><td>{}</td><td>{}</td>", r.success ? "" : " class=\"failed\"", name, esc(r.world));
     for (const Axis& a : axes) {
-      const auto it = std::find_if(r.params.begin(), r.params.end(), [&](const auto& kv) { return kv.first == a.key; });
-      html += "<td>" + esc(it == r.params.end() ? "-" : it->second) + "</td>";
+      const std::string value = r.param(a.key);
+      html += "<td>" + esc(value.empty() ? "-" : value) + "</td>";
     }
     html += fmt::format("<td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.2f}</td><td>{}</td><td>{}</td><td>{:.1f}</td>"
                         "<td>{:.1f}</td><td>{}</td></tr>\n",

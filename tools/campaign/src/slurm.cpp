@@ -98,11 +98,7 @@ std::vector<CampaignRun> runOnSlurm(const CampaignOptions& options, const SlurmO
       runs.push_back(std::move(*r));
       continue;
     }
-    CampaignRun r;
-    r.world = plan[i].world.stem().string();
-    r.seed = plan[i].seed;
-    r.name = plan[i].name;
-    r.params = plan[i].params;
+    CampaignRun r = unflownRun(plan[i]);
     r.end = "not flown";
     r.failure = fmt::format("no result: its task {}_{} failed or was cancelled (slurm/{}_{}.out)", job, i, job, i);
     runs.push_back(std::move(r));

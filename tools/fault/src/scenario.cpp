@@ -625,18 +625,7 @@ private:
     return id ? std::optional<std::uint32_t>(static_cast<std::uint32_t>(*id)) : std::nullopt;
   }
 
-  bool flag(YAML::Node node, const std::string& key, bool fallback)
-  {
-    if (!node.IsDefined()) {
-      return fallback;
-    }
-    const std::string v = node.IsScalar() ? node.Scalar() : "";
-    if (v != "true" && v != "false") {
-      r_.problem(key, node, "expected true or false");
-      return fallback;
-    }
-    return v == "true";
-  }
+  bool flag(YAML::Node node, const std::string& key, bool fallback) { return r_.flag(node, key, fallback).value_or(fallback); }
 
   common::YamlReader r_;
   fs::path file_;

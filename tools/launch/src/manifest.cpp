@@ -147,22 +147,6 @@ class Reader : public common::YamlReader {
 public:
   Reader(std::string_view origin, fs::path dir) : YamlReader(origin), dir_(std::move(dir)) {}
 
-  std::optional<bool> flag(const YAML::Node& node, const std::string& key, bool fallback)
-  {
-    if (!node) {
-      return fallback;
-    }
-    const std::string t = node.IsScalar() ? node.as<std::string>() : "";
-    if (t == "true") {
-      return true;
-    }
-    if (t == "false") {
-      return false;
-    }
-    problem(key, node, "expected bool (true or false)");
-    return std::nullopt;
-  }
-
   std::optional<std::string> choice(const YAML::Node& node, const std::string& key, const std::string& fallback,
                                     const std::set<std::string>& allowed)
   {

@@ -43,6 +43,8 @@ public:
   /// A finite number in [lo, hi]; `fallback` when absent (absent without one is a problem).
   std::optional<double> number(const YAML::Node& node, const std::string& key,
                                std::optional<double> fallback, double lo, double hi);
+  /// true or false; `fallback` when absent (absent without one is a problem).
+  std::optional<bool> flag(const YAML::Node& node, const std::string& key, std::optional<bool> fallback);
   /// A list of exactly `count` finite numbers in [lo, hi].
   std::optional<std::vector<double>> numbers(const YAML::Node& node, const std::string& key,
                                              std::size_t count, double lo, double hi);

@@ -64,7 +64,14 @@ struct CampaignRun {
   std::optional<double> estimate_rms_m;  ///< the estimate's position error, RMS (summary's estimate)
   std::optional<double> estimate_nees;   ///< its mean position NEES (3 for a consistent filter)
   std::optional<double> depth_to_command_max_s;  ///< the summary's: the slowest reaction to a depth frame
+
+  /// Its value of the axis of that key; "" when it has none.
+  std::string param(const std::string& axis_key) const;
 };
+
+/// A run of the product as it is before it flies: its world, seed, name and axes' values, no
+/// result.
+CampaignRun unflownRun(const PlannedRun& run);
 
 /// The runs' summaries read back: a summary.json as `quad launch --summary` writes it.
 /// Throws std::runtime_error naming the file when it is missing or not such a summary.

@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "quad/world/world.hpp"
 
+#include "quad/world/ray_box.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <stdexcept>
 
@@ -24,32 +27,6 @@ double boxDistance(const Vector3& local, const Vector3& half)
 {
   const Vector3 d = local.cwiseAbs() - half;
   return d.cwiseMax(0.0).norm() + std::min(d.maxCoeff(), 0.0);
-}
-
-/// Slab test against an axis-aligned box centred at the origin; t in [0, t_max].
-std::optional<double> rayAabb(const Vector3& o, const Vector3& d, const Vector3& half, double t_max)
-{
-  double t0 = 0.0;
-  double t1 = t_max;
-  for (int a = 0; a < 3; ++a) {
-    if (std::abs(d[a]) < 1e-300) {
-      if (std::abs(o[a]) > half[a]) {
-        return std::nullopt;  // parallel to the slab and outside it
-      }
-      continue;
-    }
-    double near = (-half[a] - o[a]) / d[a];
-    double far = (half[a] - o[a]) / d[a];
-    if (near > far) {
-      std::swap(near, far);
-    }
-    t0 = std::max(t0, near);
-    t1 = std::min(t1, far);
-    if (t0 > t1) {
-      return std::nullopt;
-    }
-  }
-  return t0;
 }
 
 }  // namespace
@@ -98,8 +75,10 @@ double Obstacle::signedDistance(const Vector3& p) const
 std::optional<double> Obstacle::raycast(const Vector3& o, const Vector3& d, double t_max) const
 {
   switch (kind) {
-    case Kind::kBox:
-      return rayAabb(toBoxFrame(box, o - box.center), toBoxFrame(box, d), box.size / 2.0, t_max);
+    case Kind::kBox: {
+      const auto span = rayBoxSpan(toBoxFrame(box, o - box.center), toBoxFrame(box, d), -box.size / 2.0, box.size / 2.0, t_max);
+      return span ? std::optional<double>(span->first) : std::nullopt;
+    }
     case Kind::kCylinder: {
       if (signedDistance(o) <= 0.0) {
         return 0.0;
@@ -186,11 +165,12 @@ bool Bounds::contains(const Vector3& p) const
 }
 
 World::World(Bounds bounds, Vector3 start, Vector3 goal, std::vector<Obstacle> obstacles,
-             double cell_size)
+             double cell_size, std::vector<VoxelMap> maps)
     : bounds_(std::move(bounds)),
       start_(std::move(start)),
       goal_(std::move(goal)),
       obstacles_(std::move(obstacles)),
+      maps_(std::move(maps)),
       cell_size_(cell_size > 0.0 ? cell_size : 2.0)
 {
   if (!((bounds_.max - bounds_.min).array() > 0.0).all()) {
@@ -233,27 +213,99 @@ const std::vector<int>& World::cell(int cx, int cy) const
   return cells_[static_cast<std::size_t>(cy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(cx)];
 }
 
-std::vector<int> World::contacts(const Vector3& p, double radius) const
+namespace {
+
+constexpr double kTouch = 1e-6;  // [m] a surface this close below the vehicle is under it
+
+/// The top [m] of an obstacle: flat for boxes (yaw turns them about z) and cylinders.
+double topOf(const Obstacle& o)
 {
-  std::vector<int> out;
+  Vector3 lo, hi;
+  o.bounds(lo, hi);
+  return hi.z();
+}
+
+/// The height of the obstacle's top surface within `reach` of p horizontally, if any.
+std::optional<double> surfaceUnder(const Obstacle& o, const Vector3& p, double reach)
+{
+  switch (o.kind) {
+    case Obstacle::Kind::kBox: {
+      const Vector3 local = toBoxFrame(o.box, p - o.box.center);
+      const double dx = std::max(std::abs(local.x()) - 0.5 * o.box.size.x(), 0.0);
+      const double dy = std::max(std::abs(local.y()) - 0.5 * o.box.size.y(), 0.0);
+      return std::hypot(dx, dy) <= reach ? std::optional<double>(topOf(o)) : std::nullopt;
+    }
+    case Obstacle::Kind::kCylinder:
+      return std::hypot(p.x() - o.cylinder.x, p.y() - o.cylinder.y) <= o.cylinder.radius + reach
+                 ? std::optional<double>(o.cylinder.height)
+                 : std::nullopt;
+    case Obstacle::Kind::kSphere: {
+      // its highest point within the footprint: nearest p horizontally
+      const double s = std::max(0.0, std::hypot(p.x() - o.sphere.center.x(), p.y() - o.sphere.center.y()) - reach);
+      if (s > o.sphere.radius) {
+        return std::nullopt;
+      }
+      return o.sphere.center.z() + std::sqrt(o.sphere.radius * o.sphere.radius - s * s);
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+template <typename Visit>
+void World::forObstaclesNear(const Vector3& p, double reach, Visit&& visit) const
+{
   ++stamp_;
   const auto test = [&](int i) {
     auto& seen = visited_[static_cast<std::size_t>(i)];
     if (seen != stamp_) {
       seen = stamp_;
-      if (obstacles_[static_cast<std::size_t>(i)].signedDistance(p) <= radius) {
-        out.push_back(i);
-      }
+      visit(i, obstacles_[static_cast<std::size_t>(i)]);
     }
   };
   for (const int i : unindexed_) {
     test(i);
   }
-  for (int cy = cellY(p.y() - radius); cy <= cellY(p.y() + radius); ++cy) {
-    for (int cx = cellX(p.x() - radius); cx <= cellX(p.x() + radius); ++cx) {
+  for (int cy = cellY(p.y() - reach); cy <= cellY(p.y() + reach); ++cy) {
+    for (int cx = cellX(p.x() - reach); cx <= cellX(p.x() + reach); ++cx) {
       for (const int i : cell(cx, cy)) {
         test(i);
       }
+    }
+  }
+}
+
+double World::supportHeight(const Vector3& p, double radius) const
+{
+  const double reach = 0.5 * radius;
+  const double z_max = p.z() + kTouch;
+  double best = p.z() >= -kTouch ? 0.0 : bounds_.min.z();  // below the ground: the world's bottom
+  forObstaclesNear(p, reach, [&](int, const Obstacle& o) {
+    if (const auto top = surfaceUnder(o, p, reach); top && *top <= z_max) {
+      best = std::max(best, *top);
+    }
+  });
+  for (const VoxelMap& m : maps_) {
+    if (const auto top = m.topBelow(p, reach, z_max, best)) {
+      best = std::max(best, *top);
+    }
+  }
+  return best;
+}
+
+std::vector<int> World::contacts(const Vector3& p, double radius) const
+{
+  std::vector<int> out;
+  const double support = supportHeight(p, radius);
+  forObstaclesNear(p, radius, [&](int i, const Obstacle& o) {
+    if (topOf(o) > support + kTouch && o.signedDistance(p) <= radius) {
+      out.push_back(i);
+    }
+  });
+  for (std::size_t k = 0; k < maps_.size(); ++k) {
+    if (maps_[k].distance(p, radius, support)) {
+      out.push_back(mapId(k));
     }
   }
   const bool outside = p.x() - radius < bounds_.min.x() || p.x() + radius > bounds_.max.x() ||
@@ -264,6 +316,28 @@ std::vector<int> World::contacts(const Vector3& p, double radius) const
   }
   std::sort(out.begin(), out.end());
   return out;
+}
+
+std::optional<World::Nearest> World::nearest(const Vector3& p, double radius, double cap) const
+{
+  const double support = supportHeight(p, radius);
+  std::optional<Nearest> best;
+  // every obstacle: a cap may reach past the index's cells
+  for (std::size_t i = 0; i < obstacles_.size(); ++i) {
+    const Obstacle& o = obstacles_[i];
+    if (topOf(o) <= support + kTouch) {
+      continue;
+    }
+    if (const double d = o.signedDistance(p); d <= cap && (!best || d < best->distance)) {
+      best = Nearest{d, static_cast<int>(i)};
+    }
+  }
+  for (std::size_t k = 0; k < maps_.size(); ++k) {
+    if (const auto d = maps_[k].distance(p, best ? best->distance : cap, support); d && (!best || *d < best->distance)) {
+      best = Nearest{*d, mapId(k)};
+    }
+  }
+  return best;
 }
 
 namespace {
@@ -286,12 +360,39 @@ void keepNearest(std::optional<RayHit>& best, const std::optional<double>& t, in
 }
 }  // namespace
 
+std::string World::describe(int id) const
+{
+  if (id == kGround) {
+    return "the ground";
+  }
+  if (id == kBounds) {
+    return "the bounds";
+  }
+  const auto i = static_cast<std::size_t>(id);
+  if (id >= 0 && i < obstacles_.size()) {
+    return "obstacle " + std::to_string(id);
+  }
+  if (id >= 0 && i - obstacles_.size() < maps_.size()) {
+    const std::size_t k = i - obstacles_.size();
+    return "map " + std::to_string(k) + " (" + std::filesystem::path(maps_[k].name()).filename().string() + ")";
+  }
+  return "solid " + std::to_string(id);
+}
+
+void World::raycastMaps(const Vector3& o, const Vector3& d, double max_range, std::optional<RayHit>& best) const
+{
+  for (std::size_t k = 0; k < maps_.size(); ++k) {
+    keepNearest(best, maps_[k].raycast(o, d, best ? std::min(best->distance, max_range) : max_range), mapId(k));
+  }
+}
+
 std::optional<RayHit> World::raycastBruteForce(const Vector3& o, const Vector3& d, double max_range) const
 {
   std::optional<RayHit> best = groundHit(o, d, max_range);
   for (std::size_t i = 0; i < obstacles_.size(); ++i) {
     keepNearest(best, obstacles_[i].raycast(o, d, max_range), static_cast<int>(i));
   }
+  raycastMaps(o, d, max_range, best);
   return best;
 }
 
@@ -346,6 +447,7 @@ std::optional<RayHit> World::raycast(const Vector3& o, const Vector3& d, double 
       break;  // left the grid: every indexed obstacle lies inside it
     }
   }
+  raycastMaps(o, d, max_range, best);
   return best;
 }
 

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "quad/common/yaml_input.hpp"
+#include "quad/world/scan_file.hpp"
 
 namespace quad::world {
 
@@ -165,9 +166,49 @@ void generate(Reader& r, YAML::Node node, const std::string& key, const Vector3&
   }
 }
 
+void parseMap(Reader& r, YAML::Node node, const std::string& key, const std::filesystem::path& base_dir,
+              std::vector<VoxelMap>& out)
+{
+  if (!node.IsMap()) {
+    r.problem(key, node, "expected {file: F, pose: [x, y, z, yaw], resolution: R}");
+    return;
+  }
+  r.onlyKeys(node, key + ".", {"file", "pose", "resolution"});
+  if (!node["file"].IsScalar() || node["file"].Scalar().empty()) {
+    r.problem(key + ".file", node["file"], "expected the path of a .bt, .ot, .ply or .pcd file");
+    return;
+  }
+  const std::filesystem::path file = base_dir / node["file"].Scalar();
+  const auto pose = node["pose"].IsDefined() ? r.numbers(node["pose"], key + ".pose", 4, -1e6, 1e6)
+                                             : std::optional<std::vector<double>>(std::vector<double>{0, 0, 0, 0});
+  const auto resolution = r.number(node["resolution"], key + ".resolution", 0.0, 0.0, 100.0);
+  if (!pose || !resolution) {
+    return;
+  }
+  if (*resolution > 0.0 && *resolution < 0.005) {
+    r.problem(key + ".resolution", node["resolution"], "finer than 5 mm");
+    return;
+  }
+  ScanPlacement placement;
+  placement.position = Vector3((*pose)[0], (*pose)[1], (*pose)[2]);
+  placement.yaw = (*pose)[3];
+  placement.resolution = *resolution;
+  try {
+    out.push_back(loadScan(file, placement));
+  } catch (const ScanError& e) {
+    r.problem(key + ".file", node["file"], e.what());
+  }
+}
+
 }  // namespace
 
 World parseWorld(std::string_view yaml_text, std::string_view origin)
+{
+  const std::filesystem::path from(origin);
+  return parseWorld(yaml_text, origin, from.has_parent_path() ? from.parent_path() : std::filesystem::path("."));
+}
+
+World parseWorld(std::string_view yaml_text, std::string_view origin, const std::filesystem::path& base_dir)
 {
   Reader r(origin);
   YAML::Node root = common::parseYaml(yaml_text, origin);  // not const: a missing key must read as undefined, not invalid
@@ -175,10 +216,27 @@ World parseWorld(std::string_view yaml_text, std::string_view origin)
     r.problem("(top level)", root, "expected a map with bounds, start, goal");
     r.throwIfAny();
   }
-  r.onlyKeys(root, "", {"bounds", "start", "goal", "obstacles", "generators", "index_cell_size"});
+  r.onlyKeys(root, "", {"bounds", "start", "goal", "obstacles", "generators", "maps", "index_cell_size"});
+  std::vector<VoxelMap> maps;
+  YAML::Node scans = root["maps"];
+  if (scans.IsDefined() && !scans.IsNull() && !scans.IsSequence()) {
+    r.problem("maps", scans, "expected a list");
+  } else if (scans.IsSequence()) {
+    for (std::size_t i = 0; i < scans.size(); ++i) {
+      parseMap(r, scans[i], "maps[" + std::to_string(i) + "]", base_dir, maps);
+    }
+  }
   YAML::Node bounds = root["bounds"];
   std::optional<Vector3> lo, hi;
-  if (!bounds.IsMap()) {
+  if (!bounds.IsDefined() && !maps.empty()) {
+    // The maps' box: a scanned place is its own extent.
+    for (const VoxelMap& m : maps) {
+      Vector3 mlo, mhi;
+      m.bounds(mlo, mhi);
+      lo = lo ? lo->cwiseMin(mlo) : mlo;
+      hi = hi ? hi->cwiseMax(mhi) : mhi;
+    }
+  } else if (!bounds.IsMap()) {
     r.problem("bounds", bounds, "expected {min: [x, y, z], max: [x, y, z]}");
   } else {
     r.onlyKeys(bounds, "bounds.", {"min", "max"});
@@ -215,12 +273,12 @@ World parseWorld(std::string_view yaml_text, std::string_view origin)
     }
   }
   r.throwIfAny();
-  return World(Bounds{*lo, *hi}, *start, *goal, std::move(obstacles), *cell);
+  return World(Bounds{*lo, *hi}, *start, *goal, std::move(obstacles), *cell, std::move(maps));
 }
 
 World loadWorld(const std::filesystem::path& file)
 {
-  return parseWorld(common::readTextFile(file), file.string());
+  return parseWorld(common::readTextFile(file), file.string(), file.parent_path().empty() ? "." : file.parent_path());
 }
 
 }  // namespace quad::world

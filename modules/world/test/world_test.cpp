@@ -201,7 +201,7 @@ TEST(WorldFile, BadInputNamesFileKeyAndValue)
             std::vector<std::string>{"w.yaml:obstacles[0].center[2]: .nan: not a finite number"});
   EXPECT_EQ(problems(head + "colour: red"),
             std::vector<std::string>{"w.yaml:colour: red: unknown key (expected one of: bounds, "
-                                     "generators, goal, index_cell_size, obstacles, start)"});
+                                     "generators, goal, index_cell_size, maps, obstacles, start)"});
   EXPECT_EQ(problems("bounds: {min: [0, 0, 0], max: [10, 10, 10]}\nstart: [11, 1, 0]\ngoal: [9, 9, 2]"),
             std::vector<std::string>{"w.yaml:start: [11, 1, 0]: outside the bounds"});
   EXPECT_EQ(problems(head + "generators:\n  - {type: forest, seed: 1, min: [0, 0], max: [10, 10], "

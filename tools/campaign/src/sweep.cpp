@@ -198,6 +198,14 @@ std::string worldVariant(const fs::path& world, const std::vector<std::pair<std:
                                  " generator"});
     }
   }
+  // The variant is written into the run's folder: its scans are found where the world's are.
+  YAML::Node maps = root["maps"];
+  for (std::size_t i = 0; maps && maps.IsSequence() && i < maps.size(); ++i) {
+    YAML::Node file = maps[i]["file"];
+    if (maps[i].IsMap() && file && file.IsScalar() && fs::path(file.Scalar()).is_relative()) {
+      maps[i]["file"] = fs::absolute(world.parent_path() / file.Scalar()).lexically_normal().string();
+    }
+  }
   YAML::Emitter out;
   out << root;
   return std::string(out.c_str()) + "\n";

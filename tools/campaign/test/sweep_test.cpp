@@ -110,7 +110,8 @@ TEST(Sweep, AWorldVariantSetsTheKeyInEveryGeneratorOfItsTypeAndNothingElse)
                           "generators:\n"
                           "  - {type: forest, seed: 1, min: [0, -15], max: [30, 15], density: 0.04}\n"
                           "  - {type: forest, seed: 2, min: [30, -15], max: [60, 15], density: 0.04}\n"
-                          "  - {type: pillars, seed: 3}\n";
+                          "  - {type: pillars, seed: 3}\n"
+                          "maps:\n  - {file: scans/a.bt}\n  - {file: /abs/b.ply, resolution: 0.1}\n";
   const YAML::Node v = YAML::Load(worldVariant(world, {{"world:forest.density", "0.02"}, {"world:forest.seed", "7"}}));
   for (int i = 0; i < 2; ++i) {
     EXPECT_DOUBLE_EQ(v["generators"][i]["density"].as<double>(), 0.02);
@@ -118,6 +119,9 @@ TEST(Sweep, AWorldVariantSetsTheKeyInEveryGeneratorOfItsTypeAndNothingElse)
   }
   EXPECT_EQ(v["generators"][2]["seed"].as<int>(), 3);  // another type keeps its own
   EXPECT_EQ(v["goal"][0].as<double>(), 50.0);
+  // the variant lives in the run's folder: its scans are named where the world's are
+  EXPECT_EQ(v["maps"][0]["file"].as<std::string>(), (fs::absolute(dir) / "scans" / "a.bt").lexically_normal().string());
+  EXPECT_EQ(v["maps"][1]["file"].as<std::string>(), "/abs/b.ply");
   const std::string problems = problemsOf([&] { worldVariant(world, {{"world:wall.x", "1"}}); });
   EXPECT_NE(problems.find(world.string()), std::string::npos) << problems;
   EXPECT_NE(problems.find("no wall generator"), std::string::npos) << problems;

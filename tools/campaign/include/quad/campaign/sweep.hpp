@@ -59,8 +59,9 @@ struct PlannedRun {
 std::vector<PlannedRun> planRuns(const std::vector<std::filesystem::path>& worlds, const std::vector<Axis>& axes,
                                  int seeds);
 
-/// The world file's text with the world axes' values set in its generators of their types.
-/// Throws common::ConfigError naming the file and axis when it has no generator of that type.
+/// The world file's text with the world axes' values set in its generators of their types,
+/// and its maps' files made absolute (the text is read from another folder). Throws
+/// common::ConfigError naming the file and axis when it has no generator of that type.
 std::string worldVariant(const std::filesystem::path& world,
                          const std::vector<std::pair<std::string, std::string>>& world_params);
 

@@ -9,42 +9,23 @@
 
 #include <nlohmann/json.hpp>
 
-#include "process.hpp"
-#include "scratch.hpp"
+#include "flight.hpp"
 
 namespace {
 
 using namespace std::chrono_literals;
 using quad::test::ChildProcess;
+using quad::test::Flight;
 namespace fs = std::filesystem;
-
-struct Flight {
-  int exit_status = -1;
-  nlohmann::json summary;
-  std::string output;  // for the failure message only
-};
 
 /// Flies the demo manifest in `world` (configs/worlds/<world>.yaml) on its own domain.
 Flight fly(const std::string& world, int domain)
 {
-  const fs::path dir = quad::test::scratchDir("quad_volume_" + world);
-  ChildProcess launch({QUAD_TOOL, "launch", std::string(QUAD_SOURCE_DIR) + "/bringup/demo.yaml", "--world",
-                       std::string(QUAD_SOURCE_DIR) + "/configs/worlds/" + world + ".yaml", "--domain",
-                       std::to_string(domain), "--quiet", "--wall-timeout", "300", "--summary",
-                       (dir / "summary.json").string(), "--log-dir", (dir / "run").string()});
-  Flight f;
-  const auto status = launch.wait(330s);
-  f.output = launch.output();
-  if (!status) {
-    ADD_FAILURE() << world << ": quad launch did not end within 330 s\n" << f.output;
-    return f;
-  }
-  f.exit_status = *status;
-  f.summary = nlohmann::json::parse(quad::test::readFile(dir / "summary.json"), nullptr, false);
-  if (!::testing::Test::HasFailure()) {
-    fs::remove_all(dir);
-  }
-  return f;
+  return quad::test::flyMission(QUAD_TOOL,
+                                {std::string(QUAD_SOURCE_DIR) + "/bringup/demo.yaml", "--world",
+                                 std::string(QUAD_SOURCE_DIR) + "/configs/worlds/" + world + ".yaml", "--domain",
+                                 std::to_string(domain)},
+                                "quad_volume_" + world);
 }
 
 /// Reached with no collision, landed at the goal.

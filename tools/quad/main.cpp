@@ -114,7 +114,11 @@ int main(int argc, char** argv)
   plan_options.config = (quad::common::configDir() / "planning.yaml").string();
   auto* plan = app.add_subcommand("plan", "The known-map optimum: plan on the whole world, every obstacle known");
   plan->add_option("--world", plan_options.world, "World file (default: the planning config's)");
-  plan->add_option("--config", plan_options.config, "Planning config (radius, margin, lattice)")->capture_default_str();
+  auto* plan_config =
+      plan->add_option("--config", plan_options.config, "Planning config (radius, margin, lattice)")->capture_default_str();
+  plan->add_option("--manifest", plan_options.manifest,
+                   "Plan as this manifest's planning module does (its config and set; its world unless --world)")
+      ->excludes(plan_config);
   plan->add_flag("--no-land", plan_options.no_land, "The mission does not land at the goal");
   plan->add_option("--json", plan_options.json, "Write the result as JSON to this file");
 

@@ -15,11 +15,26 @@ namespace quad::tools {
 int plan(const PlanOptions& options)
 {
   try {
+    std::optional<plan::PlanningSetup> from_manifest;
+    if (options.manifest) {
+      launch::LaunchOptions run;
+      run.manifest = *options.manifest;
+      run.world = options.world;
+      const auto m = launch::loadRunManifest(run);  // its problems are on stderr
+      if (!m) {
+        return launch::kExitInvalid;
+      }
+      from_manifest = launch::manifestPlanningSetup(*m);
+      if (!from_manifest) {
+        std::fprintf(stderr, "plan: %s has no planning module\n", options.manifest->c_str());
+        return launch::kExitInvalid;
+      }
+    }
     std::vector<common::ParamOverride> overrides;
     if (options.world) {
       overrides.push_back({"world", std::filesystem::absolute(*options.world).string()});
     }
-    const plan::PlanningSetup setup = plan::loadPlanningSetup(options.config, overrides);
+    const plan::PlanningSetup setup = from_manifest ? *std::move(from_manifest) : plan::loadPlanningSetup(options.config, overrides);
     const plan::KnownMapPlan p = plan::planOnKnownMap(setup.world, setup.params, !options.no_land);
     const auto& g = setup.world.goal();
     std::printf("%s: %s\n", setup.world_file.string().c_str(), std::string(toString(p.status)).c_str());

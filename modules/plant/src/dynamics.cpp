@@ -122,11 +122,11 @@ void QuadrotorDynamics::step(RigidBodyState& s, const RotorArray& commanded,
 
 void QuadrotorDynamics::resolveGround(RigidBodyState& s, const Environment& env) const
 {
-  if (s.p_W.z() > 0.0) {
+  if (s.p_W.z() > env.ground_z) {
     return;
   }
-  // Touchdown within this step: stop on the ground instead of passing through it.
-  s.p_W.z() = 0.0;
+  // Touchdown within this step: stop on the surface instead of passing through it.
+  s.p_W.z() = env.ground_z;
   s.v_W.setZero();
   s.w_B.setZero();
   s.q_WB = levelled(s.q_WB);

@@ -33,8 +33,9 @@ Simulation::Simulation(vehicle::VehicleParams vehicle, world::World world, Simul
                                 std::to_string(step_s) + " s: RK4 would be unstable; shorten sim.step");
   }
   state_.p_W = world_.start();
-  state_.landed = state_.p_W.z() <= 0.0;
-  state_.p_W.z() = std::max(0.0, state_.p_W.z());
+  const double surface = world_.supportHeight(state_.p_W, dynamics_.params().radius);
+  state_.landed = state_.p_W.z() <= surface;
+  state_.p_W.z() = std::max(surface, state_.p_W.z());
   if (config_.gimbal.enabled) {
     gimbal_.emplace(config_.gimbal, 0.0, 0.0);  // level, along world x: the vehicle starts level at yaw 0
   }
@@ -101,6 +102,7 @@ Environment Simulation::environment() const
   env.gravity_W = config_.gravity_W;
   env.wind_W = wind_.current();
   env.supply = battery_ ? battery_->supply() : 1.0;
+  env.ground_z = world_.supportHeight(state_.p_W, dynamics_.params().radius);
   for (const auto& a : faults_) {
     if (!a.applied) {
       continue;
@@ -247,7 +249,7 @@ StepOutputs Simulation::step()
     if (!std::binary_search(contacts_.begin(), contacts_.end(), id)) {
       ++collisions_;
       out.events.push_back({SimEventRecord::Kind::kCollision, t_ns_, state_.p_W, id,
-                            id == world::World::kBounds ? "left the bounds" : "hit obstacle " + std::to_string(id)});
+                            id == world::World::kBounds ? "left the bounds" : "hit " + world_.describe(id)});
     }
   }
   contacts_ = now;

@@ -61,6 +61,28 @@ TEST(Simulation, CollisionIsDetectedAtTheRightTime)
   EXPECT_EQ(sim.collisionCount(), 1U);
 }
 
+TEST(Simulation, AVehicleDroppedOntoABoxComesToRestOnItsTop)
+{
+  // GIVEN a 1 m high box under a vehicle let go 3 m up with its rotors stopped
+  const World w(Bounds{Vector3(-10, -10, 0), Vector3(10, 10, 10)}, Vector3(0, 0, 3), Vector3(5, 0, 2),
+                {Obstacle::makeBox({Vector3(0, 0, 0.5), Vector3(2, 2, 1), 0.0})});
+  Simulation sim(vehicle(), w, {});
+  ASSERT_FALSE(sim.state().landed);
+  std::size_t touchdowns = 0;
+  for (int k = 0; k < 1000; ++k) {  // 4 s
+    for (const auto& e : sim.step().events) {
+      touchdowns += e.kind == SimEventRecord::Kind::kGroundContact ? 1U : 0U;
+    }
+  }
+  // THEN it falls √(2·2/g) = 0.64 s and rests on the box's top, not on the ground, with no
+  // collision: what it stands on is contact
+  EXPECT_TRUE(sim.state().landed);
+  EXPECT_DOUBLE_EQ(sim.state().p_W.z(), 1.0);
+  EXPECT_TRUE(sim.state().v_W.isZero());
+  EXPECT_EQ(touchdowns, 1U);
+  EXPECT_EQ(sim.collisionCount(), 0U);
+}
+
 TEST(Simulation, SameSeedSameCommandsGiveBitIdenticalRuns)
 {
   const auto run = [](std::uint64_t seed) {

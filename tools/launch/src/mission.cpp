@@ -46,8 +46,9 @@ void MissionTracker::onState(double t, const Eigen::Vector3d& p)
   if (mission_t_ && t <= *mission_t_) {
     mission_length_ = length_;
   }
-  for (const auto& o : world_.obstacles()) {
-    min_clearance_ = std::min(min_clearance_, o.signedDistance(p) - radius_);
+  // only a solid nearer than the closest approach so far can change it
+  if (const auto near = world_.nearest(p, radius_, min_clearance_ + radius_)) {
+    min_clearance_ = std::min(min_clearance_, near->distance - radius_);
   }
   if (finished_) {
     return;
@@ -255,6 +256,24 @@ std::string_view toString(MissionEnd end)
   return "?";
 }
 
+namespace {
+
+/// Why a vehicle of `radius` cannot stand at p (`what` names the place): the nearest solid it
+/// would touch, past what it stands on.
+std::optional<std::string> tooNear(const world::World& world, const Eigen::Vector3d& p, double radius,
+                                   const std::string& what)
+{
+  const auto near = world.nearest(p, radius, radius);
+  if (!near || near->distance >= radius) {
+    return std::nullopt;
+  }
+  return near->distance <= 0.0 ? fmt::format("{} lies inside {}", what, world.describe(near->id))
+                               : fmt::format("{} lies {:.2f} m from {}, within the vehicle's radius ({} m)", what,
+                                             near->distance, world.describe(near->id), radius);
+}
+
+}  // namespace
+
 std::optional<std::string> goalProblem(const world::World& world, double radius, const common::Geofence& fence)
 {
   const Eigen::Vector3d& g = world.goal();
@@ -274,15 +293,7 @@ std::optional<std::string> goalProblem(const world::World& world, double radius,
     return fmt::format("{} is outside the world's bounds ({}, {}, {}) ... ({}, {}, {})", goal, b.min.x(), b.min.y(),
                        b.min.z(), b.max.x(), b.max.y(), b.max.z());
   }
-  for (std::size_t i = 0; i < world.obstacles().size(); ++i) {
-    const double d = world.obstacles()[i].signedDistance(g);
-    if (d < radius) {
-      return d < 0.0 ? fmt::format("{} lies inside obstacle {}", goal, i)
-                     : fmt::format("{} lies {:.2f} m from obstacle {}, within the vehicle's radius ({} m)", goal, d, i,
-                                   radius);
-    }
-  }
-  return std::nullopt;
+  return tooNear(world, g, radius, goal);
 }
 
 world::World memberWorld(const world::World& world, const FleetMember& v)
@@ -305,16 +316,8 @@ std::vector<std::string> fleetProblems(const world::World& world, const std::vec
       problems.push_back(name(i) + ": " + *goal);
     } else if (!world.bounds().contains(s)) {
       problems.push_back(fmt::format("{}: {} is outside the world's bounds", name(i), start));
-    } else {
-      for (std::size_t k = 0; k < world.obstacles().size(); ++k) {
-        if (const double d = world.obstacles()[k].signedDistance(s); d < radii[i]) {
-          problems.push_back(d < 0.0 ? fmt::format("{}: {} lies inside obstacle {}", name(i), start, k)
-                                     : fmt::format("{}: {} lies {:.2f} m from obstacle {}, within the vehicle's "
-                                                   "radius ({} m)",
-                                                   name(i), start, d, k, radii[i]));
-          break;
-        }
-      }
+    } else if (const auto near = tooNear(world, s, radii[i], start)) {
+      problems.push_back(name(i) + ": " + *near);
     }
     for (std::size_t j = 0; j < i; ++j) {
       const world::World other = memberWorld(world, vehicles[j]);

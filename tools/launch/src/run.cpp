@@ -422,26 +422,32 @@ std::vector<launch::ProcessCost> LaunchRun::processCosts() const
   return costs;
 }
 
-std::optional<double> LaunchRun::knownMapOptimum(const world::World& world)
+std::optional<plan::PlanningSetup> manifestPlanningSetup(const launch::Manifest& manifest)
 {
-  const auto modules = m_.hostedModules();
+  const auto modules = manifest.hostedModules();
   const auto found = std::find_if(modules.begin(), modules.end(), [](const Module* x) { return x->kind == "planning"; });
   if (found == modules.end()) {
     return std::nullopt;
   }
-  const Module* planning = *found;
-  try {
-    // The planner's parameters only: the node's own (state.source) do not shape a path.
-    const common::ParamSchema planner_schema = planning::planningSchema();
-    std::vector<common::ParamOverride> overrides;
-    for (const auto& [key, value] : planning->sets) {
-      if (planner_schema.find(key) != nullptr) {
-        overrides.push_back({key, value});
-      }
+  const common::ParamSchema planner_schema = planning::planningSchema();
+  std::vector<common::ParamOverride> overrides;
+  for (const auto& [key, value] : (*found)->sets) {
+    if (planner_schema.find(key) != nullptr) {
+      overrides.push_back({key, value});
     }
-    const plan::PlanningSetup setup = plan::loadPlanningSetup(planning->config, overrides);
+  }
+  return plan::loadPlanningSetup((*found)->config, overrides);
+}
+
+std::optional<double> LaunchRun::knownMapOptimum(const world::World& world)
+{
+  try {
+    const auto setup = manifestPlanningSetup(m_);
+    if (!setup) {
+      return std::nullopt;
+    }
     const plan::KnownMapPlan best = plan::planOnKnownMap(
-        setup.world.withStartAndGoal(world.start(), world.goal()), setup.params, m_.mission.land);
+        setup->world.withStartAndGoal(world.start(), world.goal()), setup->params, m_.mission.land);
     if (best.status != planning::PlanStatus::kOk) {
       return std::nullopt;  // no optimum where no path exists
     }

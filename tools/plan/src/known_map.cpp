@@ -23,8 +23,9 @@ std::pair<Vector3, Vector3> cellCentreRange(const planning::Lattice& lattice)
           lattice.grid().centre(lattice.origin() + lattice.dims() - VoxelIndex::Ones())};
 }
 
-/// Marks the surface voxels of every obstacle occupied (those that can block a cell of the
-/// lattice: within `inflation` [m] of it); returns how many.
+/// Marks the surface voxels of every obstacle, and every voxel a scan's voxel overlaps,
+/// occupied (those that can block a cell of the lattice: within `inflation` [m] of it);
+/// returns how many.
 std::size_t giveObstacles(const world::World& world, planning::DStarLite& planner, double inflation)
 {
   const planning::Lattice& lattice = planner.lattice();
@@ -59,6 +60,31 @@ std::size_t giveObstacles(const world::World& world, planning::DStarLite& planne
       }
     }
   }
+  // A scan's voxel makes every lattice voxel it overlaps occupied: what a mapper at the
+  // lattice's resolution would see of it.
+  for (const world::VoxelMap& m : world.maps()) {
+    const double eps = 1e-9 * m.resolution();
+    for (const VoxelIndex& v : m.occupiedVoxels()) {
+      const Vector3 lo = (v.cast<double>() * m.resolution()).cwiseMax(region_lo);
+      const Vector3 hi = ((v + VoxelIndex::Ones()).cast<double>() * m.resolution() - Vector3::Constant(eps)).cwiseMin(region_hi);
+      if ((lo.array() > hi.array()).any()) {
+        continue;
+      }
+      const VoxelIndex a = grid.toIndex(lo);
+      const VoxelIndex b = grid.toIndex(hi);
+      for (int z = a.z(); z <= b.z(); ++z) {
+        for (int y = a.y(); y <= b.y(); ++y) {
+          for (int x = a.x(); x <= b.x(); ++x) {
+            const VoxelIndex c(x, y, z);
+            if (planner.voxelState(c) != planning::Occupancy::kOccupied) {
+              planner.updateVoxel(c, planning::Occupancy::kOccupied);
+              ++marked;
+            }
+          }
+        }
+      }
+    }
+  }
   return marked;
 }
 
@@ -82,12 +108,21 @@ KnownMapPlan planOnKnownMap(const world::World& world, const planning::PlanningP
       planning::Lattice(geometry::VoxelGrid(params.resolution), params.bounds_min, params.bounds_max), params.planner);
   KnownMapPlan out;
   out.occupied_voxels = giveObstacles(world, planner, params.planner.vehicle_radius);
-  // Take-off: straight up from the start into the lattice's lowest layer (or down into its top).
+  // Take-off: straight up from the start into the lattice's lowest layer (or down into its top),
+  // and on until out of every obstacle's inflation.
   const auto [first, last] = cellCentreRange(planner.lattice());
   out.from = world.start();
   out.from.z() = std::clamp(out.from.z(), first.z(), last.z());
+  // A start on a platform or beside a wall lies in their inflation: the take-off climbs
+  // straight up until it leaves it.
+  const double step = planner.lattice().grid().resolution();
+  for (auto cell = planner.lattice().cellAt(out.from); cell && !planner.traversable(*cell) && out.from.z() + step <= last.z() + 1e-9;
+       cell = planner.lattice().cellAt(out.from)) {
+    out.from.z() += step;
+  }
   out.climb_m = (out.from - world.start()).norm();
-  out.landing_m = land ? std::max(0.0, world.goal().z() - world.bounds().min.z()) : 0.0;
+  // down to what lies beneath the goal: the ground, a roof, an upper floor
+  out.landing_m = land ? std::max(0.0, world.goal().z() - world.supportHeight(world.goal(), params.planner.vehicle_radius)) : 0.0;
   const auto start = planner.lattice().cellAt(out.from);
   const auto goal = planner.lattice().cellAt(world.goal());
   if (!start || !goal) {

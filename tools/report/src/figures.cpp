@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include <fmt/format.h>
@@ -163,6 +164,44 @@ std::vector<Point> projected(const std::vector<FlightData::State>& states, const
   return out;
 }
 
+/// The heights [m] the vehicle flew between (truth).
+std::pair<double, double> flightBand(const FlightData& f)
+{
+  double z_lo = std::numeric_limits<double>::infinity();
+  double z_hi = -z_lo;
+  for (const auto& s : f.truth) {
+    z_lo = std::min(z_lo, s.p_W.z());
+    z_hi = std::max(z_hi, s.p_W.z());
+  }
+  return {z_lo, z_hi};
+}
+
+/// Whether p lies within a metre of the side view's vertical plane (what is farther would hide
+/// the flight behind walls).
+bool nearPlane(const Vector3& p, const Projection& proj)
+{
+  const Eigen::Vector2d off = (p - proj.origin).head<2>();
+  return std::abs(off.x() * proj.along.y() - off.y() * proj.along.x()) <= 1.0;
+}
+
+/// The voxels of a scan that show what the vehicle flew past: from above, those between the
+/// lowest and highest heights it flew at (floors and ceilings would hide the rest); from the
+/// side, those within a metre of the vertical plane it is seen in.
+std::vector<Vector3> mapVoxelsInView(const world::VoxelMap& m, const FlightData& f, const Projection& proj)
+{
+  const auto [z_lo, z_hi] = flightBand(f);
+  const double half = 0.5 * m.resolution();
+  std::vector<Vector3> out;
+  for (const auto& i : m.occupiedVoxels()) {
+    const Vector3 c = m.grid().centre(i);
+    const bool in_view = proj.top ? c.z() + half > z_lo + 0.3 && c.z() - half < z_hi : nearPlane(c, proj);
+    if (in_view) {
+      out.push_back(c);
+    }
+  }
+  return out;
+}
+
 /// The goal the vehicle flew to: the last one sent, else the world's.
 std::optional<Vector3> finalGoal(const FlightData& f, const world::World* world)
 {
@@ -211,23 +250,32 @@ Figure view(const FlightData& f, const world::World* world, const Projection& pr
              proj.top ? "x [m] (east)" : "distance along the start-goal line [m]", proj.top ? "y [m] (north)" : "z [m] (up)", lo,
              hi);
   if (f.map_resolution_m > 0.0) {
-    // From above, the floor the camera saw would hide everything: the top view leaves out the
-    // voxels of the ground's layer.
-    const double ground = (world != nullptr ? world->bounds().min.z() : 0.0) + f.map_resolution_m;
+    // From above, the floor (and a ceiling) the camera saw would hide everything: the top view
+    // leaves out the voxels of the ground's layer and those above the highest flown.
+    const double ground = (world != nullptr ? world->supportHeight(world->start(), 0.0) : 0.0) + f.map_resolution_m;
+    const double top = flightBand(f).second + f.map_resolution_m;
     std::vector<Vector3> shown;
     for (const auto& c : f.occupied_W) {
-      if (!proj.top || c.z() > ground) {
+      if (proj.top ? c.z() > ground && c.z() <= top : nearPlane(c, proj)) {
         shown.push_back(c);
       }
     }
     v.squares(projectedVoxels(shown, f.map_resolution_m, proj), f.map_resolution_m, kVoxelColour, 0.45);
-    v.legend(proj.top ? "mapped occupied voxels (above the ground)" : "mapped occupied voxels", kVoxelColour);
+    v.legend(proj.top ? "mapped occupied voxels (from the ground to the highest flown)"
+                      : "mapped occupied voxels (within 1 m of this plane)",
+             kVoxelColour);
   }
   if (world != nullptr) {
     for (const auto& o : world->obstacles()) {
       drawObstacle(v, o, proj);
     }
-    v.legend("true obstacles", kObstacleColour);
+    for (const auto& m : world->maps()) {
+      v.squares(projectedVoxels(mapVoxelsInView(m, f, proj), m.resolution(), proj), m.resolution(), kObstacleColour, 0.55);
+    }
+    v.legend(world->maps().empty() ? "true obstacles"
+             : proj.top             ? "true obstacles (scans: at the heights flown)"
+                                    : "true obstacles (scans: within 1 m of this plane)",
+             kObstacleColour);
   }
   std::size_t drawn = 0;
   for (const auto& p : f.paths) {

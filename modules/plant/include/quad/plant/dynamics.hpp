@@ -25,7 +25,7 @@ struct RigidBodyState {
   Quaternion q_WB;                     ///< attitude, body → world
   Vector3 w_B = Vector3::Zero();       ///< [rad/s] angular velocity, body
   RotorArray rotor_speed{};            ///< [rad/s] actual rotor speeds
-  bool landed = false;                 ///< resting on the ground (z = 0)
+  bool landed = false;                 ///< resting on the surface beneath it (Environment::ground_z)
 };
 
 struct Environment {
@@ -36,6 +36,9 @@ struct Environment {
   RotorArray rotor_efficiency{1.0, 1.0, 1.0, 1.0};
   /// Fraction of the rated top rotor speed the battery's voltage allows (1: all of it).
   double supply = 1.0;
+  /// [m] height of the surface beneath the vehicle, where it stands or touches down: the
+  /// ground, a roof, a platform, an upper floor (world::World::supportHeight).
+  double ground_z = 0.0;
 };
 
 /// Forces and torques on the body for a state, in the body frame.
@@ -52,7 +55,7 @@ public:
 
   /// Advances `state` by dt [s] towards the commanded rotor speeds (clamped to the rotor
   /// limits, the top one scaled by the supply; the motors follow with their lag). Resolves ground contact after the step: the
-  /// vehicle never goes below z = 0; touching down stops it (inelastic, with friction) and
+  /// vehicle never goes below the surface beneath it (env.ground_z); touching down stops it (inelastic, with friction) and
   /// sets `landed`; it stays landed until the thrust lifts it.
   void step(RigidBodyState& state, const RotorArray& commanded, const Environment& env,
             double dt) const;

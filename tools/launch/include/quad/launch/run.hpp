@@ -24,6 +24,7 @@
 #include "quad/launch/observer.hpp"
 #include "quad/launch/run_record.hpp"
 #include "quad/launch/supervisor.hpp"
+#include "quad/plan/known_map.hpp"
 
 namespace quad::launch {
 
@@ -184,6 +185,11 @@ std::optional<launch::Manifest> loadRunManifest(const LaunchOptions& options);
 
 /// Runs a loaded manifest (in its own log folder unless `options.log_dir`); the exit code.
 int runManifest(const launch::Manifest& manifest, const LaunchOptions& options, RunExtension* extension);
+
+/// The planner's setup of a manifest: its planning module's config with the planner's keys
+/// of its `set` (the node's own, such as state.source, do not shape a path). Nothing without a
+/// planning module; throws common::ConfigError for a bad config or world.
+std::optional<plan::PlanningSetup> manifestPlanningSetup(const launch::Manifest& manifest);
 
 /// "demo-20261122-101500-4242": a run folder's name.
 std::string runFolderName(const std::string& name);

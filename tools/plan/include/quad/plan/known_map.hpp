@@ -20,11 +20,11 @@ using geometry::Vector3;
 
 struct KnownMapPlan {
   planning::PlanStatus status = planning::PlanStatus::kNoGoal;
-  Vector3 from = Vector3::Zero();   ///< [m] the start, lifted into the lattice (take-off)
+  Vector3 from = Vector3::Zero();   ///< [m] the start, lifted into the lattice and out of any inflation (take-off)
   std::vector<Vector3> waypoints;   ///< [m] the shortened path from `from` to the goal
   double path_m = 0.0;              ///< [m] its length
   double climb_m = 0.0;             ///< [m] from the start up into the lattice
-  double landing_m = 0.0;           ///< [m] from the goal down to the floor, when the mission lands
+  double landing_m = 0.0;           ///< [m] from the goal down to what lies beneath it, when the mission lands
   double optimum_m = 0.0;           ///< [m] climb + path + landing: what a flight is compared with
   std::size_t occupied_voxels = 0;  ///< obstacle surface voxels the map was given
   std::uint64_t expansions = 0;

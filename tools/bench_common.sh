@@ -13,3 +13,24 @@ benchSetup() {
   echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
   echo "runs in $out"
 }
+
+#   benchPairOptions SCRIPT "$@"
+# reads the options of the benches that fly pairs of runs: -n PAIRS, -s SEED and -d DOMAIN into
+# `pairs`, `seed` and `domain` (the caller sets their defaults first); any other option is
+# refused with SCRIPT's name.
+benchPairOptions() {
+  local script=$1
+  shift
+  while [[ ${1:-} == -* ]]; do
+    case "$1" in
+      -n) pairs=${2:?-n needs a number of pairs} ;;
+      -s) seed=${2:?-s needs a seed} ;;
+      -d) domain=${2:?-d needs a domain id} ;;
+      *)
+        echo "$script: unknown option $1" >&2
+        exit 2
+        ;;
+    esac
+    shift 2
+  done
+}

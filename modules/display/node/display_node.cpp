@@ -506,7 +506,7 @@ void DisplayNode::takeLogLines()
   }
   const auto classOf = [](msg::SimEventKind kind) {
     using C = EventLog::EventClass;
-    if (kind == msg::SIM_EVENT_COLLISION) {
+    if (kind == msg::SIM_EVENT_COLLISION || kind == msg::SIM_EVENT_CRASH) {
       return C::kCollision;
     }
     return kind == msg::SIM_EVENT_FAULT_APPLIED || kind == msg::SIM_EVENT_FAULT_CLEARED ? C::kFault : C::kOther;

@@ -111,6 +111,9 @@ msg::SimEvent toMessage(const SimEventRecord& e)
     case SimEventRecord::Kind::kFaultCleared:
       m.kind(msg::SIM_EVENT_FAULT_CLEARED);
       break;
+    case SimEventRecord::Kind::kCrash:
+      m.kind(msg::SIM_EVENT_CRASH);
+      break;
   }
   m.p_W(toMessage(e.p_W));
   m.subject_id(e.subject_id);

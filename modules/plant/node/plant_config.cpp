@@ -22,6 +22,8 @@ const common::ParamTable<PlantNodeConfig>& plantTable()
                 "seed of every random draw in the plant")
         .number("sim.duration", [](C& c) -> double& { return c.duration_s; }, {0.0, 1e7}, "s",
                 "stop after this much sim time; 0 = never")
+        .flag("sim.crash_on_impact", [](C& c) -> bool& { return c.simulation.crash_on_impact; },
+              "an impact with a solid stops the vehicle there and ends the run; false: count it and fly on")
         .list("lockstep.participants", [](C& c) -> std::vector<std::string>& { return c.lockstep_participants; },
               "comma-separated names the clock waits for")
         .flag("lockstep.wait_for_command", [](C& c) -> bool& { return c.lockstep_wait_for_command; },

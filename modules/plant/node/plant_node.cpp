@@ -302,6 +302,12 @@ void PlantNode::stepOnce()
     spdlog::info("plant: sim time {:.3f} s reached its duration", common::toSeconds(fleet_->timeNs()));
     stop();
   }
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (const auto& crash = fleet_->vehicle(i).crash(); crash && crash->t_ns == fleet_->timeNs()) {
+      spdlog::warn("plant: {}crashed: the run ends", io_.size() > 1 ? fmt::format("vehicle {} ", io_[i].id) : std::string());
+      stop();
+    }
+  }
 }
 
 void PlantNode::runRealTime(std::int64_t steady_ns)

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "quad/common/time.hpp"
 
 namespace quad::plant {
@@ -228,7 +230,9 @@ StepOutputs Simulation::step()
   wind_.step(state_.p_W, state_.v_W, common::toSeconds(config_.step_ns));
   const Environment env = environment();
   const bool was_landed = state_.landed;
-  dynamics_.step(state_, command, env, common::toSeconds(config_.step_ns));
+  if (!crash_) {
+    dynamics_.step(state_, command, env, common::toSeconds(config_.step_ns));
+  }
   if (battery_) {
     battery_->draw(battery_->powerFor(state_.rotor_speed, env.rotor_efficiency, dynamics_.params().torque_coefficient),
                    common::toSeconds(config_.step_ns));
@@ -243,13 +247,22 @@ StepOutputs Simulation::step()
     out.events.push_back({state_.landed ? SimEventRecord::Kind::kGroundContact : SimEventRecord::Kind::kTakeoff,
                           t_ns_, state_.p_W, -1, state_.landed ? "landed" : "took off"});
   }
-  // A collision is the start of a contact with an obstacle (or the bounds).
+  // A collision is the start of a contact with a solid (or the bounds). An impact with a solid
+  // stops the vehicle where it is: it has crashed, and holds still from then on.
   const std::vector<int> now = world_.contacts(state_.p_W, dynamics_.params().radius);
   for (const int id : now) {
     if (!std::binary_search(contacts_.begin(), contacts_.end(), id)) {
       ++collisions_;
       out.events.push_back({SimEventRecord::Kind::kCollision, t_ns_, state_.p_W, id,
                             id == world::World::kBounds ? "left the bounds" : "hit " + world_.describe(id)});
+      if (config_.crash_on_impact && id != world::World::kBounds && !crash_) {
+        crash_ = Crash{t_ns_, state_.v_W.norm(), id};
+        out.events.push_back({SimEventRecord::Kind::kCrash, t_ns_, state_.p_W, id,
+                              fmt::format("crashed into {} at {:.2f} m/s", world_.describe(id), crash_->speed)});
+        state_.v_W.setZero();
+        state_.w_B.setZero();
+        state_.rotor_speed.fill(0.0);
+      }
     }
   }
   contacts_ = now;

@@ -31,15 +31,21 @@ RotorArray hoverCommand(const Simulation& sim)
   return {w, w, w, w};
 }
 
-TEST(Simulation, CollisionIsDetectedAtTheRightTime)
+/// In the corridor without gravity, 5 m up at 2 m/s along x towards the box's face x = 5.
+Simulation headingIntoTheBox(SimulationConfig config)
 {
-  SimulationConfig config;
   config.gravity_W.setZero();
   Simulation sim(vehicle(), corridor(), config);
   RigidBodyState s;
   s.p_W = {0, 0, 5};
   s.v_W = {2, 0, 0};
   sim.setState(s);
+  return sim;
+}
+
+TEST(Simulation, CollisionIsDetectedAtTheRightTime)
+{
+  Simulation sim = headingIntoTheBox({});
   // The sphere (r = 0.35) meets the box face x = 5 at t = (5 − 0.35) / 2 = 2.325 s.
   std::optional<SimEventRecord> hit;
   for (int k = 0; k < 4000 && !hit; ++k) {
@@ -59,6 +65,42 @@ TEST(Simulation, CollisionIsDetectedAtTheRightTime)
     sim.step();
   }
   EXPECT_EQ(sim.collisionCount(), 1U);
+}
+
+TEST(Simulation, AVehicleFlownIntoAWallStopsThereCrashed)
+{
+  // GIVEN the vehicle at 2 m/s towards the box's face x = 5, no gravity
+  Simulation sim = headingIntoTheBox({});
+  std::vector<SimEventRecord> crashes;
+  for (int k = 0; k < 4000; ++k) {
+    for (const auto& e : sim.step().events) {
+      if (e.kind == SimEventRecord::Kind::kCrash) {
+        crashes.push_back(e);
+      }
+    }
+  }
+  // THEN it crashed once, at the impact (t = 2.325 s, x = 4.65), at 2 m/s, into the box, and
+  // stayed there at rest with its rotors stopped
+  ASSERT_EQ(crashes.size(), 1U);
+  ASSERT_TRUE(sim.crash().has_value());
+  EXPECT_EQ(sim.crash()->solid, 0);
+  EXPECT_NEAR(sim.crash()->speed, 2.0, 1e-9);
+  EXPECT_NEAR(static_cast<double>(sim.crash()->t_ns) * 1e-9, 2.325, 1e-3);
+  EXPECT_EQ(crashes[0].detail, "crashed into obstacle 0 at 2.00 m/s");
+  EXPECT_NEAR(sim.state().p_W.x(), 4.65, 0.003);
+  EXPECT_TRUE(sim.state().v_W.isZero());
+  EXPECT_EQ(sim.collisionCount(), 1U);
+
+  // WITHOUT crashes the vehicle flies on through it
+  SimulationConfig flying_on;
+  flying_on.crash_on_impact = false;
+  Simulation ghost = headingIntoTheBox(flying_on);
+  for (int k = 0; k < 4000; ++k) {
+    ghost.step();
+  }
+  EXPECT_FALSE(ghost.crash().has_value());
+  EXPECT_GT(ghost.state().p_W.x(), 7.0);
+  EXPECT_EQ(ghost.collisionCount(), 1U);
 }
 
 TEST(Simulation, AVehicleDroppedOntoABoxComesToRestOnItsTop)

@@ -124,6 +124,7 @@ public:
       facts.mission_known = true;
       facts.mission_success = s->success;
       facts.mission_outcome = s->outcome;
+      facts.mission_end = std::string(launch::toString(s->end));
       facts.collisions = s->collisions;
       for (const auto& v : s->vehicles) {
         facts.vehicle_missions[v.vehicle_id.value_or(0)] = {v.success, v.outcome};

@@ -272,7 +272,10 @@ std::vector<Judge::Row> Judge::finish(const RunFacts& facts)
   };
   end("no module failed", "", facts.run_failure.empty() ? "none" : facts.run_failure, facts.run_failure.empty());
   const Outcome& o = scenario_.outcome;
-  if (o.mission != Outcome::Mission::kAny) {
+  if (o.mission == Outcome::Mission::kCrashed) {
+    end("mission ends crashed", "", facts.mission_known ? facts.mission_outcome : "no mission",
+        facts.mission_known && facts.mission_end == "crashed");
+  } else if (o.mission != Outcome::Mission::kAny) {
     const bool want = o.mission == Outcome::Mission::kSuccess;
     end(want ? "mission succeeds" : "mission fails", "", facts.mission_known ? facts.mission_outcome : "no mission",
         facts.mission_known && facts.mission_success == want);

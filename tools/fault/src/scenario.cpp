@@ -603,14 +603,23 @@ private:
     return o;
   }
 
-  /// success, failure or any.
+  /// success, failure, crashed or any.
   std::optional<Outcome::Mission> mission(const YAML::Node& node, const std::string& key)
   {
     const std::string m = node.IsScalar() ? node.Scalar() : "";
-    if (m == "success" || m == "failure" || m == "any") {
-      return m == "success" ? Outcome::Mission::kSuccess : m == "failure" ? Outcome::Mission::kFailure : Outcome::Mission::kAny;
+    if (m == "success") {
+      return Outcome::Mission::kSuccess;
     }
-    r_.problem(key, node, "expected success, failure or any");
+    if (m == "failure") {
+      return Outcome::Mission::kFailure;
+    }
+    if (m == "crashed") {
+      return Outcome::Mission::kCrashed;
+    }
+    if (m == "any") {
+      return Outcome::Mission::kAny;
+    }
+    r_.problem(key, node, "expected success, failure, crashed or any");
     return std::nullopt;
   }
 

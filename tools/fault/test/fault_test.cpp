@@ -173,7 +173,7 @@ outcome: {mission: maybe, colisions: 1}
   EXPECT_TRUE(mentions(p, "steps[9].operator_link.lost: false: expected true"));
   EXPECT_TRUE(mentions(p, "steps[9].operator_link.for: 3: unknown key"));
   EXPECT_TRUE(mentions(p, "steps[10].expect[0].outliers: imu: not a sensor the estimator gates (position, baro, mag)"));
-  EXPECT_TRUE(mentions(p, "outcome.mission: maybe: expected success, failure or any"));
+  EXPECT_TRUE(mentions(p, "outcome.mission: maybe: expected success, failure, crashed or any"));
   EXPECT_TRUE(mentions(p, "outcome.colisions: 1: unknown key"));
 }
 
@@ -378,7 +378,7 @@ steps: [{at: 1, kill: planning}]
 outcome: {vehicles: {2: landed}}
 )");
   EXPECT_TRUE(mentions(q, "vehicle: 1.5: expected a vehicle id (a whole number)")) << ::testing::PrintToString(q);
-  EXPECT_TRUE(mentions(q, "outcome.vehicles.2: landed: expected success, failure or any"));
+  EXPECT_TRUE(mentions(q, "outcome.vehicles.2: landed: expected success, failure, crashed or any"));
 }
 
 constexpr std::int64_t kMs = 1'000'000;
@@ -471,16 +471,38 @@ TEST(Judge, LateOrMissingReactionsAndABadOutcomeFail)
   EXPECT_NE(toTable("k", rows).find("0.900 s"), std::string::npos);
 }
 
+/// The kill scenario's fault applied and every reaction in time.
+void reactInTime(Judge& j)
+{
+  j.applied(0, 5.0, 0, "SIGKILL to pid 7");
+  j.lost("planning", 100 * kMs);
+  j.mode(5.5, "HOVER");
+  j.back("planning", 2000 * kMs);
+}
+
+TEST(Judge, ACrashedOutcomeWantsTheMissionEndedCrashedNotJustFailed)
+{
+  Scenario s = killScenario();
+  s.outcome.mission = Outcome::Mission::kCrashed;
+  Judge j(s);
+  reactInTime(j);
+  RunFacts f = goodRun();
+  f.mission_success = false;
+  f.mission_end = "failed";
+  f.mission_outcome = "landed short of the goal";
+  EXPECT_FALSE(passed(j.finish(f))) << toTable("k", j.finish(f));
+  f.mission_end = "crashed";
+  f.mission_outcome = "crashed into obstacle 0 at 7.24 m/s";
+  EXPECT_TRUE(passed(j.finish(f))) << toTable("k", j.finish(f));
+}
+
 TEST(Judge, EachVehicleOfAFleetIsHeldToItsOwnOutcome)
 {
   Scenario s = killScenario();
   s.outcome.mission = Outcome::Mission::kFailure;
   s.outcome.vehicles = {{1, Outcome::Mission::kSuccess}, {2, Outcome::Mission::kFailure}, {3, Outcome::Mission::kSuccess}};
   Judge j(s);
-  j.applied(0, 5.0, 0, "SIGKILL to pid 7");
-  j.lost("planning", 100 * kMs);
-  j.mode(5.5, "HOVER");
-  j.back("planning", 2000 * kMs);
+  reactInTime(j);
   RunFacts f = goodRun();
   f.mission_success = false;
   f.vehicle_missions = {{1, {true, "landed at the goal"}}, {2, {true, "landed at the goal"}}};

@@ -16,24 +16,13 @@
 #   tools/launch/bench/layout_bench.sh BUILD_DIR [-n PAIRS] [-s SEED] [-d DOMAIN]
 #   (default: 5 pairs, seed 1, domain 85)
 set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/../../bench_common.sh"
 build=${1:?usage: layout_bench.sh BUILD_DIR [-n PAIRS] [-s SEED] [-d DOMAIN]}
 shift
 pairs=5
 seed=1
 domain=85
-while [[ ${1:-} == -* ]]; do
-  case "$1" in
-    -n) pairs=${2:?-n needs a number of pairs} ;;
-    -s) seed=${2:?-s needs a seed} ;;
-    -d) domain=${2:?-d needs a domain id} ;;
-    *)
-      echo "layout_bench.sh: unknown option $1" >&2
-      exit 2
-      ;;
-  esac
-  shift 2
-done
-source "$(dirname "${BASH_SOURCE[0]}")/../../bench_common.sh"
+benchPairOptions layout_bench.sh "$@"
 benchSetup layout_bench.sh "$build" quad_layout
 for ((i = 1; i <= pairs; ++i)); do
   for layout in distributed composed; do

@@ -148,6 +148,14 @@ void MissionTracker::onCollision(double t)
   progress_.push_back(fmt::format("t = {:.1f} s: COLLISION", t));
 }
 
+void MissionTracker::onCrash(double t, const std::string& detail)
+{
+  progress_.push_back(fmt::format("t = {:.1f} s: {}", t, detail));
+  if (!finished_) {
+    finish(t, MissionEnd::kCrashed, detail, detail);
+  }
+}
+
 namespace {
 /// A count since a module's start, heard in samples that may come out of order: the largest.
 void keepNewest(std::optional<std::uint64_t>& count, std::uint64_t heard)
@@ -252,6 +260,8 @@ std::string_view toString(MissionEnd end)
       return "failed";
     case MissionEnd::kNoPath:
       return "no_path";
+    case MissionEnd::kCrashed:
+      return "crashed";
   }
   return "?";
 }

@@ -359,6 +359,8 @@ void Observer::update()
   for (const auto& e : endpoints_->events.takeAll(ids_)) {
     if (auto* m = missionOf(e); m != nullptr && e.kind() == msg::SIM_EVENT_COLLISION) {
       m->onCollision(common::toSeconds(e.header().stamp_ns()));
+    } else if (m != nullptr && e.kind() == msg::SIM_EVENT_CRASH) {
+      m->onCrash(common::toSeconds(e.header().stamp_ns()), e.detail().to_string());
     }
   }
   for (const auto& m : endpoints_->map_stats.takeAll(ids_)) {

@@ -144,6 +144,24 @@ TEST(MissionTracker, ACollisionFailsTheMissionEvenAtTheGoal)
   EXPECT_EQ(s.collisions, 1);
 }
 
+TEST(MissionTracker, ACrashEndsTheMissionCrashedWhereItHappened)
+{
+  const auto w = world();
+  MissionTracker t(mission(true), w, 0.25);
+  fly(t, 0.0, {0, 0, 2}, {4, 0, 2});
+  t.onCollision(4.0);
+  t.onCrash(4.0, "crashed into obstacle 0 at 1.00 m/s");
+  ASSERT_TRUE(t.finished());
+  t.onState(4.5, {4, 0, 2});  // it holds still where it hit
+  const auto s = t.summary(1.0);
+  EXPECT_FALSE(s.success);
+  EXPECT_EQ(s.end, MissionEnd::kCrashed);
+  EXPECT_EQ(toString(s.end), "crashed");
+  EXPECT_EQ(s.outcome, "crashed into obstacle 0 at 1.00 m/s");
+  EXPECT_EQ(s.collisions, 1);
+  EXPECT_DOUBLE_EQ(s.sim_s, 4.0);
+}
+
 TEST(MissionTracker, NotReachingTheGoalInTimeFails)
 {
   const auto w = world();

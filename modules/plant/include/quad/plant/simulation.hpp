@@ -45,10 +45,13 @@ struct SimulationConfig {
   BatteryConfig battery;
   double battery_rate_hz = 10.0;  ///< battery readings (the pack's monitor)
   Vector3 gravity_W{0.0, 0.0, -9.81};
+  /// An impact with a solid (an obstacle or a scan, not the bounds) stops the vehicle where it
+  /// is: it has crashed and holds still. False: the collision is counted and it flies on.
+  bool crash_on_impact = true;
 };
 
 struct SimEventRecord {
-  enum class Kind { kCollision, kGroundContact, kTakeoff, kFaultApplied, kFaultCleared };
+  enum class Kind { kCollision, kGroundContact, kTakeoff, kFaultApplied, kFaultCleared, kCrash };
   Kind kind;
   std::int64_t t_ns = 0;
   Vector3 p_W = Vector3::Zero();
@@ -166,6 +169,14 @@ public:
 
   std::uint64_t collisionCount() const { return collisions_; }
 
+  /// An impact that stopped the vehicle (SimulationConfig::crash_on_impact).
+  struct Crash {
+    std::int64_t t_ns = 0;
+    double speed = 0.0;  ///< [m/s] at impact
+    int solid = -1;      ///< what it hit (world::World::describe)
+  };
+  const std::optional<Crash>& crash() const { return crash_; }
+
 private:
   struct Active {
     Fault fault;
@@ -207,6 +218,7 @@ private:
   std::vector<int> contacts_;
   std::vector<world::Sphere> others_;
   std::uint64_t collisions_ = 0;
+  std::optional<Crash> crash_;
   std::int64_t next_state_ns_ = 0;
   std::int64_t next_imu_ns_ = 0;
   std::int64_t next_depth_ns_ = 0;

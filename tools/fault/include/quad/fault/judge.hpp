@@ -21,6 +21,7 @@ struct RunFacts {
   bool mission_known = false;      ///< the manifest flew a mission and it was followed
   bool mission_success = false;
   std::string mission_outcome;     ///< "landed at the goal", ...
+  std::string mission_end;         ///< the summary's end: "success", "failed", "no_path", "crashed", ...
   /// A fleet's run: each vehicle's mission, its success and outcome in words.
   std::map<std::uint32_t, std::pair<bool, std::string>> vehicle_missions;
   int collisions = 0;

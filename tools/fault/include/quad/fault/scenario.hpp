@@ -107,7 +107,7 @@ struct Step {
 
 /// How the run must end.
 struct Outcome {
-  enum class Mission { kSuccess, kFailure, kAny };
+  enum class Mission { kSuccess, kFailure, kCrashed, kAny };  ///< kCrashed: a failure that ended crashed
   Mission mission = Mission::kSuccess;
   int max_collisions = 0;
   bool finite_actuators = true;   ///< no actuator command with a non-finite rotor speed

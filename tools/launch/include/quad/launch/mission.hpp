@@ -20,8 +20,8 @@
 namespace quad::launch {
 
 /// How a mission ended, for the exit status: each kind its own (docs/launch.md).
-enum class MissionEnd { kUnfinished, kSuccess, kFailed, kNoPath };
-/// "unfinished", "success", "failed", "no_path": the summary's `end`.
+enum class MissionEnd { kUnfinished, kSuccess, kFailed, kNoPath, kCrashed };
+/// "unfinished", "success", "failed", "no_path", "crashed": the summary's `end`.
 std::string_view toString(MissionEnd end);
 
 /// What a process of the run cost: the CPU time it took over the run (user and system, all
@@ -123,6 +123,9 @@ public:
   void onTrajectory(double t, double depth_t);
   /// The plant reported a collision.
   void onCollision(double t);
+  /// The vehicle hit a solid and stopped there (`detail`: what, at what speed): the mission
+  /// ends crashed.
+  void onCrash(double t, const std::string& detail);
   /// The mapper's count of updates over its budget (MapStats.overruns).
   void onMapStats(std::uint64_t overruns);
   /// The planner's count of paths over its budget (Path.overruns).

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The plant's costs: RK4 physics steps, depth frames in a 1,000-obstacle forest (indexed ray
 // casting beside brute force) and in a real scanned office (voxels marched at 0.32 to 0.04 m,
-// beside the same scan as one box per run of voxels), world generation, and a second of sim
-// time of fleets of 1 to 16 vehicles.
+// in 1 to 16 copies of the floor, and beside the same scan as one box per run of voxels),
+// world generation, and a second of sim time of fleets of 1 to 16 vehicles.
 #include <benchmark/benchmark.h>
 
 #include "quad/common/yaml_input.hpp"
@@ -124,6 +124,26 @@ void BM_ScanDepthFrame_Voxels(benchmark::State& state)
   state.counters["voxels"] = voxels;
 }
 
+/// Rays per second against the size of the map at one resolution: 1, 4 and 16 copies of the
+/// floor side by side (16 m apart in y), the camera in the first.
+void BM_ScanDepthFrame_Copies(benchmark::State& state)
+{
+  const world::VoxelMap floor = office(0.08);
+  std::vector<world::VoxelIndex> voxels;
+  for (int k = 0; k < state.range(0); ++k) {
+    for (const auto& v : floor.occupiedVoxels()) {
+      voxels.push_back(v + world::VoxelIndex(0, 200 * k, 0));  // 200 voxels: 16 m
+    }
+  }
+  world::VoxelMap map("copies", floor.grid(), std::move(voxels));
+  const double count = static_cast<double>(map.occupiedVoxels().size());
+  Vector3 lo, hi;
+  map.bounds(lo, hi);
+  const world::World world({lo, hi}, {2, -0.1, 0}, {26, -0.1, 1}, {}, 0.0, {std::move(map)});
+  scanFrame(state, world);
+  state.counters["voxels"] = count;
+}
+
 /// The same scan at 0.08 m as boxes, one per run of occupied voxels along x, in the x-y grid
 /// index of primitives: how a scan had to be given before voxel maps.
 void BM_ScanDepthFrame_AsBoxes(benchmark::State& state)
@@ -184,6 +204,7 @@ BENCHMARK(BM_SimulationStepNoSensors);
 BENCHMARK(BM_DepthFrame64x48_Indexed)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_DepthFrame64x48_BruteForce)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ScanDepthFrame_Voxels)->Arg(320)->Arg(160)->Arg(80)->Arg(40)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ScanDepthFrame_Copies)->Arg(1)->Arg(4)->Arg(16)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ScanDepthFrame_AsBoxes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_WorldGeneration1000Trees)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_FleetSecondOfSimTime)->Arg(1)->Arg(2)->Arg(4)->Arg(8)->Arg(16)->Unit(benchmark::kMillisecond);

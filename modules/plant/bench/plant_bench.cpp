@@ -94,6 +94,19 @@ world::VoxelMap office(double resolution)
   return world::loadScan(QUAD_CONFIG_DIR "/worlds/scans/geb079.bt", at);
 }
 
+/// A world of the scan's box, from the corridor's start to its end: the scan itself as its
+/// map (`solid`), or only `obstacles` in its box.
+world::World corridorWorld(world::VoxelMap scan, std::vector<world::Obstacle> obstacles, bool solid)
+{
+  Vector3 lo, hi;
+  scan.bounds(lo, hi);
+  std::vector<world::VoxelMap> maps;
+  if (solid) {
+    maps.push_back(std::move(scan));
+  }
+  return world::World({lo, hi}, {2, -0.1, 0}, {26, -0.1, 1}, std::move(obstacles), 0.0, std::move(maps));
+}
+
 /// A 64x48 depth frame, 8 m range, from the corridor 1 m up looking down its length: the
 /// indoor mission's camera.
 void scanFrame(benchmark::State& state, const world::World& world)
@@ -116,12 +129,8 @@ void scanFrame(benchmark::State& state, const world::World& world)
 void BM_ScanDepthFrame_Voxels(benchmark::State& state)
 {
   world::VoxelMap map = office(static_cast<double>(state.range(0)) / 1000.0);
-  const double voxels = static_cast<double>(map.occupiedVoxels().size());
-  Vector3 lo, hi;
-  map.bounds(lo, hi);
-  const world::World world({lo, hi}, {2, -0.1, 0}, {26, -0.1, 1}, {}, 0.0, {std::move(map)});
-  scanFrame(state, world);
-  state.counters["voxels"] = voxels;
+  state.counters["voxels"] = static_cast<double>(map.occupiedVoxels().size());
+  scanFrame(state, corridorWorld(std::move(map), {}, true));
 }
 
 /// Rays per second against the size of the map at one resolution: 1, 4 and 16 copies of the
@@ -136,12 +145,8 @@ void BM_ScanDepthFrame_Copies(benchmark::State& state)
     }
   }
   world::VoxelMap map("copies", floor.grid(), std::move(voxels));
-  const double count = static_cast<double>(map.occupiedVoxels().size());
-  Vector3 lo, hi;
-  map.bounds(lo, hi);
-  const world::World world({lo, hi}, {2, -0.1, 0}, {26, -0.1, 1}, {}, 0.0, {std::move(map)});
-  scanFrame(state, world);
-  state.counters["voxels"] = count;
+  state.counters["voxels"] = static_cast<double>(map.occupiedVoxels().size());
+  scanFrame(state, corridorWorld(std::move(map), {}, true));
 }
 
 /// The same scan at 0.08 m as boxes, one per run of occupied voxels along x, in the x-y grid
@@ -161,12 +166,8 @@ void BM_ScanDepthFrame_AsBoxes(benchmark::State& state)
     boxes.push_back(world::Obstacle::makeBox({lo + size / 2.0, size, 0.0}));
     i = j;
   }
-  Vector3 lo, hi;
-  map.bounds(lo, hi);
-  const double count = static_cast<double>(boxes.size());
-  const world::World world({lo, hi}, {2, -0.1, 0}, {26, -0.1, 1}, std::move(boxes));
-  scanFrame(state, world);
-  state.counters["boxes"] = count;
+  state.counters["boxes"] = static_cast<double>(boxes.size());
+  scanFrame(state, corridorWorld(map, std::move(boxes), false));
 }
 
 void BM_WorldGeneration1000Trees(benchmark::State& state)

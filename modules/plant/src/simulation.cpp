@@ -35,9 +35,9 @@ Simulation::Simulation(vehicle::VehicleParams vehicle, world::World world, Simul
                                 std::to_string(step_s) + " s: RK4 would be unstable; shorten sim.step");
   }
   state_.p_W = world_.start();
-  const double surface = world_.supportHeight(state_.p_W, dynamics_.params().radius);
-  state_.landed = state_.p_W.z() <= surface;
-  state_.p_W.z() = std::max(surface, state_.p_W.z());
+  surface_z_ = world_.supportHeight(state_.p_W, dynamics_.params().radius);
+  state_.landed = state_.p_W.z() <= surface_z_;
+  state_.p_W.z() = std::max(surface_z_, state_.p_W.z());
   if (config_.gimbal.enabled) {
     gimbal_.emplace(config_.gimbal, 0.0, 0.0);  // level, along world x: the vehicle starts level at yaw 0
   }
@@ -98,13 +98,19 @@ bool Simulation::clearFault(std::uint32_t id)
   return false;
 }
 
+void Simulation::setState(const RigidBodyState& state)
+{
+  state_ = state;
+  surface_z_ = world_.supportHeight(state_.p_W, dynamics_.params().radius);
+}
+
 Environment Simulation::environment() const
 {
   Environment env;
   env.gravity_W = config_.gravity_W;
   env.wind_W = wind_.current();
   env.supply = battery_ ? battery_->supply() : 1.0;
-  env.ground_z = world_.supportHeight(state_.p_W, dynamics_.params().radius);
+  env.ground_z = surface_z_;
   for (const auto& a : faults_) {
     if (!a.applied) {
       continue;
@@ -232,6 +238,7 @@ StepOutputs Simulation::step()
   const bool was_landed = state_.landed;
   if (!crash_) {
     dynamics_.step(state_, command, env, common::toSeconds(config_.step_ns));
+    surface_z_ = world_.supportHeight(state_.p_W, dynamics_.params().radius);
   }
   if (battery_) {
     battery_->draw(battery_->powerFor(state_.rotor_speed, env.rotor_efficiency, dynamics_.params().torque_coefficient),
@@ -249,7 +256,7 @@ StepOutputs Simulation::step()
   }
   // A collision is the start of a contact with a solid (or the bounds). An impact with a solid
   // stops the vehicle where it is: it has crashed, and holds still from then on.
-  const std::vector<int> now = world_.contacts(state_.p_W, dynamics_.params().radius);
+  const std::vector<int> now = world_.contacts(state_.p_W, dynamics_.params().radius, surface_z_);
   for (const int id : now) {
     if (!std::binary_search(contacts_.begin(), contacts_.end(), id)) {
       ++collisions_;

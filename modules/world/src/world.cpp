@@ -296,8 +296,12 @@ double World::supportHeight(const Vector3& p, double radius) const
 
 std::vector<int> World::contacts(const Vector3& p, double radius) const
 {
+  return contacts(p, radius, supportHeight(p, radius));
+}
+
+std::vector<int> World::contacts(const Vector3& p, double radius, double support) const
+{
   std::vector<int> out;
-  const double support = supportHeight(p, radius);
   forObstaclesNear(p, radius, [&](int i, const Obstacle& o) {
     if (topOf(o) > support + kTouch && o.signedDistance(p) <= radius) {
       out.push_back(i);

@@ -36,14 +36,13 @@ std::size_t giveObstacles(const world::World& world, planning::DStarLite& planne
   const Vector3 region_lo = first - reach;
   const Vector3 region_hi = last + reach;
   std::size_t marked = 0;
-  for (const world::Obstacle& o : world.obstacles()) {
-    Vector3 lo;
-    Vector3 hi;
-    o.bounds(lo, hi);
-    lo = (lo - Vector3::Constant(half_diagonal)).cwiseMax(region_lo);
-    hi = (hi + Vector3::Constant(half_diagonal)).cwiseMin(region_hi);
+  // Marks the voxels of the box [lo, hi] (clipped to the region that can block the lattice)
+  // that `solid` says are occupied.
+  const auto markBox = [&](Vector3 lo, Vector3 hi, const auto& solid) {
+    lo = lo.cwiseMax(region_lo);
+    hi = hi.cwiseMin(region_hi);
     if ((lo.array() > hi.array()).any()) {
-      continue;  // too far from the lattice to block any of it
+      return;  // too far from the lattice to block any of it
     }
     const VoxelIndex a = grid.toIndex(lo);
     const VoxelIndex b = grid.toIndex(hi);
@@ -51,38 +50,28 @@ std::size_t giveObstacles(const world::World& world, planning::DStarLite& planne
       for (int y = a.y(); y <= b.y(); ++y) {
         for (int x = a.x(); x <= b.x(); ++x) {
           const VoxelIndex v(x, y, z);
-          if (std::abs(o.signedDistance(grid.centre(v))) <= half_diagonal &&
-              planner.voxelState(v) != planning::Occupancy::kOccupied) {
+          if (solid(v) && planner.voxelState(v) != planning::Occupancy::kOccupied) {
             planner.updateVoxel(v, planning::Occupancy::kOccupied);
             ++marked;
           }
         }
       }
     }
+  };
+  for (const world::Obstacle& o : world.obstacles()) {
+    Vector3 lo;
+    Vector3 hi;
+    o.bounds(lo, hi);
+    markBox(lo - Vector3::Constant(half_diagonal), hi + Vector3::Constant(half_diagonal),
+            [&](const VoxelIndex& v) { return std::abs(o.signedDistance(grid.centre(v))) <= half_diagonal; });
   }
   // A scan's voxel makes every lattice voxel it overlaps occupied: what a mapper at the
   // lattice's resolution would see of it.
   for (const world::VoxelMap& m : world.maps()) {
-    const double eps = 1e-9 * m.resolution();
+    const Vector3 shrink = Vector3::Constant(1e-9 * m.resolution());  // its upper faces belong to the next voxels
     for (const VoxelIndex& v : m.occupiedVoxels()) {
-      const Vector3 lo = (v.cast<double>() * m.resolution()).cwiseMax(region_lo);
-      const Vector3 hi = ((v + VoxelIndex::Ones()).cast<double>() * m.resolution() - Vector3::Constant(eps)).cwiseMin(region_hi);
-      if ((lo.array() > hi.array()).any()) {
-        continue;
-      }
-      const VoxelIndex a = grid.toIndex(lo);
-      const VoxelIndex b = grid.toIndex(hi);
-      for (int z = a.z(); z <= b.z(); ++z) {
-        for (int y = a.y(); y <= b.y(); ++y) {
-          for (int x = a.x(); x <= b.x(); ++x) {
-            const VoxelIndex c(x, y, z);
-            if (planner.voxelState(c) != planning::Occupancy::kOccupied) {
-              planner.updateVoxel(c, planning::Occupancy::kOccupied);
-              ++marked;
-            }
-          }
-        }
-      }
+      markBox(v.cast<double>() * m.resolution(), (v + VoxelIndex::Ones()).cast<double>() * m.resolution() - shrink,
+              [](const VoxelIndex&) { return true; });
     }
   }
   return marked;
@@ -108,8 +97,7 @@ KnownMapPlan planOnKnownMap(const world::World& world, const planning::PlanningP
       planning::Lattice(geometry::VoxelGrid(params.resolution), params.bounds_min, params.bounds_max), params.planner);
   KnownMapPlan out;
   out.occupied_voxels = giveObstacles(world, planner, params.planner.vehicle_radius);
-  // Take-off: straight up from the start into the lattice's lowest layer (or down into its top),
-  // and on until out of every obstacle's inflation.
+  // Take-off: straight up from the start into the lattice's lowest layer (or down into its top).
   const auto [first, last] = cellCentreRange(planner.lattice());
   out.from = world.start();
   out.from.z() = std::clamp(out.from.z(), first.z(), last.z());

@@ -155,7 +155,7 @@ public:
   double baroOffset() const { return baro_.offset(); }
 
   /// Places the vehicle (scenarios and tests: start in the air, moving).
-  void setState(const RigidBodyState& state) { state_ = state; }
+  void setState(const RigidBodyState& state);
 
   /// The other vehicles in the world, each its bounding sphere, as the next step's depth
   /// camera sees them (a Fleet sets them before every step; contacts between vehicles are the
@@ -219,6 +219,7 @@ private:
   std::vector<world::Sphere> others_;
   std::uint64_t collisions_ = 0;
   std::optional<Crash> crash_;
+  double surface_z_ = 0.0;  // [m] what the vehicle stands on or would land on, where it is now
   std::int64_t next_state_ns_ = 0;
   std::int64_t next_imu_ns_ = 0;
   std::int64_t next_depth_ns_ = 0;

@@ -101,6 +101,8 @@ public:
   /// stands on (supportHeight) is contact, not collision: the ground, and every solid whose
   /// top lies at or below that surface. Sorted.
   std::vector<int> contacts(const Vector3& p, double radius) const;
+  /// The same where the caller knows what the vehicle stands on (supportHeight(p, radius)).
+  std::vector<int> contacts(const Vector3& p, double radius, double support) const;
 
   /// The nearest solid to a vehicle of `radius` at p, not counting what it stands on (as
   /// contacts does), if one is within `cap` [m].

@@ -22,6 +22,7 @@
 #include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
 #include <fastrtps/utils/IPLocator.h>
 #include <fastrtps/xmlparser/XMLProfileManager.h>
+#include <spdlog/spdlog.h>
 
 #include "quad/wire/fault_transport.hpp"
 #include "quad/dds/environment.hpp"
@@ -314,6 +315,12 @@ public:
       wire::DatagramFaults::GuidPrefix prefix;
       std::copy_n(d.m_guid.guidPrefix.value, prefix.size(), prefix.begin());
       faults->learnSender(prefix, d.m_participantName.to_string());
+    }
+    if (info.status == frtps::ParticipantDiscoveryInfo::DROPPED_PARTICIPANT) {
+      // Its lease ran out (killed, stopped, cut off). Where the other side kept this one, the
+      // two may never match again once it is heard from (docs/dds.md, "Leases").
+      spdlog::warn("DDS: participant {} at {} dropped: not heard from within its lease", d.m_participantName.to_string(),
+                   host.empty() ? "an unknown address" : host);
     }
     owner_.onRemoteParticipant(prefixText(d.m_guid.guidPrefix), {d.m_participantName.to_string(), host}, alive);
   }

@@ -73,6 +73,16 @@ std::int64_t clockNs(const std::map<std::string, std::string>& run_env)
   return samples.empty() ? -1 : samples.front()["sim_ns"].get<std::int64_t>();
 }
 
+/// The paths a planner published through a 30 s run (JSON lines) end with a path from the
+/// run's last seconds: it planned on to the end.
+void expectPlannedToTheEnd(const std::string& paths)
+{
+  const auto heard = quad::test::jsonLines(paths);
+  ASSERT_FALSE(heard.empty());
+  EXPECT_EQ(heard.back()["status"], "PLAN_OK") << heard.back();
+  EXPECT_GT(heard.back()["header"]["stamp_ns"].get<std::int64_t>(), 25'000'000'000) << heard.back();
+}
+
 /// The plant in lockstep for 30 s of sim time with the mapper and the planner, and a
 /// controller that holds 2 m over the start, everyone on the plant's true state (no
 /// estimator runs here), on `run_env`'s domain; the plant starts with start().
@@ -244,11 +254,62 @@ TEST(PlanningNode, InLockstepAnUpdateCountingFramesPastTheClockIsRefusedAndPlann
   ASSERT_EQ(stack.plant->wait(90s), 0) << stack.plant->output();
   paths.signal(SIGINT);
   ASSERT_EQ(paths.wait(10s), 0);
-  // AND plans on to the run's end: its last path is a path, from the run's last seconds
-  const auto heard = quad::test::jsonLines(paths.output());
-  ASSERT_FALSE(heard.empty());
-  EXPECT_EQ(heard.back()["status"], "PLAN_OK") << heard.back();
-  EXPECT_GT(heard.back()["header"]["stamp_ns"].get<std::int64_t>(), 25'000'000'000) << heard.back();
+  // AND plans on to the run's end
+  expectPlannedToTheEnd(paths.output());
+  stack.stop();
+}
+
+// A map update whose count of depth frames was damaged upwards by less than the clock's lead
+// passes that check, but counts more frames than the updates after it (the mapper's counts
+// never fall). Held until the clock got there, it held the updates after it back, and the
+// lockstep clock stood for good with the planner waiting for them; it is refused instead.
+TEST(PlanningNode, InLockstepAnUpdateCountingMoreFramesThanTheNextIsRefusedAndTheClockGoesOn)
+{
+  auto run_env = env(189);
+  run_env["QUAD_LOCKSTEP"] = "1";
+  run_env["QUAD_PARTICIPANT_LEASE"] = "10";  // peers keep the stopped plant
+  LockstepStack stack(run_env, "quad_planning_node_falling_count_test");
+  stack.ready(189);
+  if (::testing::Test::HasFatalFailure()) {
+    return;
+  }
+  ChildProcess paths({QUAD_TOOL, "topic", "echo", "quad/planning/path", "--json"}, run_env);  // until stopped
+  // Every clock sample, into a file (a stopped plant answers no new reader's discovery)
+  const auto clock_file = stack.dir / "clock.jsonl";
+  ChildProcess clock({"/bin/sh", "-c",
+                      std::string("exec ") + QUAD_TOOL + " topic echo quad/sim/clock --json > " + clock_file.string()},
+                     run_env);  // until stopped
+  ASSERT_TRUE(quad::test::waitForReader(189, "quad/planning/path", 15s));
+  std::this_thread::sleep_for(1s);  // the clock's echo matched
+  stack.start();
+  // GIVEN a lockstep run of 30 s, its planner past its third path, the plant stopped there
+  ASSERT_TRUE(quad::test::waitFor([&] { return quad::test::newestReached(paths.output(), "version", 3); }, 60s))
+      << paths.output() << stack.plant->output();
+  stack.plant->signal(SIGSTOP);
+  std::this_thread::sleep_for(500ms);
+  std::stringstream heard_clock;
+  heard_clock << std::ifstream(clock_file).rdbuf();
+  const auto clocks = quad::test::jsonLines(heard_clock.str());
+  ASSERT_FALSE(clocks.empty());
+  const auto frames = clocks.back()["depth_frames"].get<std::uint64_t>();
+  // WHEN an update comes that counts ten depth frames more than the clock (within its lead),
+  // and the mapper's next, counting fewer, after it
+  ChildProcess bad({QUAD_TOOL, "topic", "pub", "quad/mapping/update",
+                    "{update_seq: 1000000, resolution: 0.2, depth_frames: " + std::to_string(frames + 10) + "}",
+                    "--wait-match", "5"},
+                   run_env);
+  ASSERT_EQ(bad.wait(15s), 0) << bad.output();
+  std::this_thread::sleep_for(500ms);
+  stack.plant->signal(SIGCONT);
+  // THEN the planner counts it as an error
+  EXPECT_TRUE(quad::test::waitForModuleErrors(189, "planning", 1, 20s)) << stack.planning.output();
+  // AND the clock goes on to the run's end, the planner planning on to its last seconds
+  ASSERT_EQ(stack.plant->wait(90s), 0) << stack.plant->output() << stack.planning.output();
+  paths.signal(SIGINT);
+  ASSERT_EQ(paths.wait(10s), 0);
+  clock.signal(SIGINT);
+  ASSERT_EQ(clock.wait(10s), 0);
+  expectPlannedToTheEnd(paths.output());
   stack.stop();
 }
 

@@ -186,6 +186,19 @@ void PlanningNode::takeMapSamples()
                    dds::topics::kMapUpdate.info.name, u.update_seq(), u.depth_frames(), simClock().depthFrames());
       continue;
     }
+    // The mapper's counts never fall: a held update that counts more depth frames than the
+    // one after it was damaged on the way. Held until the clock got there, it would hold the
+    // updates after it back, and in lockstep the clock with them, for good (one bit flipped
+    // low in the count, within the clock's lead). Refused, it is a lost update.
+    while (!held_updates_.empty() && held_updates_.back().depth_frames() > u.depth_frames()) {
+      counters().errors++;
+      update_lost_ = true;
+      spdlog::warn("{}: update {} counts {} depth frames, more than update {} after it ({}): refused; a gap until "
+                   "the next snapshot",
+                   dds::topics::kMapUpdate.info.name, held_updates_.back().update_seq(),
+                   held_updates_.back().depth_frames(), u.update_seq(), u.depth_frames());
+      held_updates_.pop_back();
+    }
     held_updates_.push_back(std::move(u));
   }
 }

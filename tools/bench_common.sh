@@ -34,3 +34,14 @@ benchPairOptions() {
     shift 2
   done
 }
+
+#   benchLaunch DIR WHAT LAUNCH_ARGS...
+# flies one run: `quad launch LAUNCH_ARGS` quietly on `domain`, its logs in DIR, its summary in
+# DIR.json and its output in DIR.out. A run that fails still counts (its summary says how it
+# ended); one that wrote no summary stops the bench, naming WHAT ("run 2, indoor").
+benchLaunch() {
+  local dir=$1 what=$2
+  shift 2
+  "$quad" launch "$@" --quiet --domain "$domain" --log-dir "$dir" --summary "$dir.json" > "$dir.out" 2>&1 || true
+  [[ -f $dir.json ]] || { echo "$what wrote no summary: see $dir.out" >&2; exit 1; }
+}

@@ -26,10 +26,7 @@ benchPairOptions layout_bench.sh "$@"
 benchSetup layout_bench.sh "$build" quad_layout
 for ((i = 1; i <= pairs; ++i)); do
   for layout in distributed composed; do
-    dir="$out/run${i}_$layout"
-    "$quad" launch "$root/bringup/demo.yaml" --layout "$layout" --seed "$seed" --quiet --domain "$domain" \
-      --log-dir "$dir" --summary "$dir.json" > "$dir.out" 2>&1 || true
-    [[ -f $dir.json ]] || { echo "run $i, $layout, wrote no summary: see $dir.out" >&2; exit 1; }
+    benchLaunch "$out/run${i}_$layout" "run $i, $layout," "$root/bringup/demo.yaml" --layout "$layout" --seed "$seed"
   done
 done
 python3 - "$out" <<'EOF_PY'

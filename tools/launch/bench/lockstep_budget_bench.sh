@@ -44,10 +44,10 @@ benchSetup lockstep_budget_bench.sh "$build" quad_lockstep_budget
 side="${budget}_${path_budget}"
 for ((i = 1; i <= pairs; ++i)); do
   for b in 0_0 "$side"; do
-    dir="$out/run${i}_budget$b"
-    QUAD_MAP_BUDGET_MS=${b%_*} QUAD_PATH_BUDGET_MS=${b#*_} "$quad" launch "$root/bringup/demo.yaml" --quiet \
-      --no-record --domain "$domain" --log-dir "$dir" --summary "$dir.json" > "$dir.out" 2>&1 || true
-    [[ -f $dir.json ]] || { echo "run $i with budgets $b ms wrote no summary: see $dir.out" >&2; exit 1; }
+    (
+      export QUAD_MAP_BUDGET_MS=${b%_*} QUAD_PATH_BUDGET_MS=${b#*_}
+      benchLaunch "$out/run${i}_budget$b" "run $i with budgets $b ms" "$root/bringup/demo.yaml" --no-record
+    ) || exit 1
   done
 done
 python3 - "$out" "$side" <<'EOF'

@@ -19,10 +19,7 @@ benchPairOptions scan_bench.sh "$@"
 benchSetup scan_bench.sh "$build" quad_scan
 for ((i = 1; i <= pairs; ++i)); do
   for mission in demo indoor; do
-    dir="$out/run${i}_$mission"
-    "$quad" launch "$root/bringup/$mission.yaml" --seed "$seed" --quiet --domain "$domain" --no-record \
-      --log-dir "$dir" --summary "$dir.json" > "$dir.out" 2>&1 || true
-    [[ -f $dir.json ]] || { echo "run $i, $mission, wrote no summary: see $dir.out" >&2; exit 1; }
+    benchLaunch "$out/run${i}_$mission" "run $i, $mission," "$root/bringup/$mission.yaml" --seed "$seed" --no-record
   done
 done
 python3 - "$out" <<'EOF_PY'

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "quad/common/time.hpp"
+#include "quad/launch/mission.hpp"
 
 namespace quad::fault {
 
@@ -274,7 +275,7 @@ std::vector<Judge::Row> Judge::finish(const RunFacts& facts)
   const Outcome& o = scenario_.outcome;
   if (o.mission == Outcome::Mission::kCrashed) {
     end("mission ends crashed", "", facts.mission_known ? facts.mission_outcome : "no mission",
-        facts.mission_known && facts.mission_end == "crashed");
+        facts.mission_known && facts.mission_end == launch::toString(launch::MissionEnd::kCrashed));
   } else if (o.mission != Outcome::Mission::kAny) {
     const bool want = o.mission == Outcome::Mission::kSuccess;
     end(want ? "mission succeeds" : "mission fails", "", facts.mission_known ? facts.mission_outcome : "no mission",

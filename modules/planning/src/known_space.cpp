@@ -13,8 +13,15 @@ std::optional<double> knownFreeLength(const DStarLite& planner, const std::vecto
 {
   const geometry::VoxelGrid& grid = planner.lattice().grid();
   const std::vector<VoxelIndex> ball = geometry::inflationOffsets(check.radius, grid.resolution());
-  const auto known_free = [&](const VoxelIndex& v) {
-    return planner.voxelState(v) == Occupancy::kFree || (grid.centre(v) - vehicle_W).norm() <= check.own_radius;
+  // Read for the path's voxel `v`, `u` is known free, or the vehicle's own volume; or, when `v`
+  // is the voxel the vehicle is in, an obstacle's voxel: the vehicle is there already, beside
+  // it, and the voxels after it are read as ever (with one half diagonal less than that tube
+  // reaches, a vehicle stopped beside an obstacle never had a path known free again).
+  const VoxelIndex own = grid.toIndex(vehicle_W);
+  const auto known_free = [&](const VoxelIndex& v, const VoxelIndex& u) {
+    const Occupancy state = planner.voxelState(u);
+    return state == Occupancy::kFree || (v == own && state == Occupancy::kOccupied) ||
+           (grid.centre(u) - vehicle_W).norm() <= check.own_radius;
   };
   // Every voxel the polyline passes through, in order, with the arc length where the path
   // enters it (Amanatides & Woo's traversal): the frontier is where it enters the first
@@ -50,7 +57,7 @@ std::optional<double> knownFreeLength(const DStarLite& planner, const std::vecto
       if (!last || v != *last) {
         last = v;
         for (const VoxelIndex& o : ball) {
-          if (!known_free(v + o)) {
+          if (!known_free(v, v + o)) {
             return s + entry;
           }
         }

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "quad/geometry/inflation.hpp"
@@ -90,6 +91,46 @@ TEST(KnownSpace, TheVehiclesOwnVolumeCountsAsFree)
 }
 
 
+/// Known free space all round, but for a wall of occupied voxels whose face is at y = 0.4 m;
+/// checked with the tube and own radius of a 0.35 m vehicle with a 0.1 m margin on 0.2 m
+/// voxels (planning_params).
+DStarLite besideAWall(KnownSpaceCheck& check)
+{
+  DStarLite p = corridor(20.0, 2.5);
+  const VoxelGrid& g = p.lattice().grid();
+  const VoxelIndex lo = g.toIndex(Vector3(-2, 0.5, 0.5));
+  const VoxelIndex hi = g.toIndex(Vector3(6, 1.5, 3.5));
+  for (int x = lo.x(); x <= hi.x(); ++x) {
+    for (int y = lo.y(); y <= hi.y(); ++y) {
+      for (int z = lo.z(); z <= hi.z(); ++z) {
+        p.updateVoxel(VoxelIndex(x, y, z), Occupancy::kOccupied);
+      }
+    }
+  }
+  check.radius = 0.45;
+  check.own_radius = 0.45 + 0.5 * std::sqrt(3.0) * 0.2;
+  return p;
+}
+
+TEST(KnownSpace, AVehicleStoppedBesideAnObstacleCanLeaveItButNotNearIt)
+{
+  // GIVEN a vehicle of radius 0.35 m stopped 0.04 m from a wall's face
+  KnownSpaceCheck check;
+  const DStarLite p = besideAWall(check);
+  const Vector3 at(2.0, 0.01, 2.0);
+  // WHEN a path leads away from the wall
+  const auto away = knownFreeLength(p, {at, Vector3(2.0, -1.5, 2.0), Vector3(8.0, -1.5, 2.0)}, at, check);
+  // THEN it is known free beyond the vehicle's own voxel (before, the wall read round that
+  // voxel made every frontier 0: the vehicle never moved again)
+  EXPECT_TRUE(!away || *away > 0.5) << *away;
+  // AND a path towards the wall or along it is known free no further than that voxel
+  for (const Vector3& to : {Vector3(2.0, 0.3, 2.0), Vector3(4.0, 0.01, 2.0), Vector3(3.0, 0.3, 2.0)}) {
+    const auto frontier = knownFreeLength(p, {at, to}, at, check);
+    ASSERT_TRUE(frontier.has_value()) << to.transpose();
+    EXPECT_LT(*frontier, 0.3) << to.transpose();
+  }
+}
+
 TEST(KnownSpace, ThePathUpToTheFrontierNeverMeetsAVoxelThePolicyForbids)
 {
   // GIVEN random seeded maps (free, occupied and unknown voxels in blobs) and random paths
@@ -124,12 +165,16 @@ TEST(KnownSpace, ThePathUpToTheFrontierNeverMeetsAVoxelThePolicyForbids)
     // WHEN the frontier is found
     const auto frontier = knownFreeLength(p, path, path.front(), check);
     // THEN every point before it, sampled finely, has only known-free voxels (or the vehicle's
-    // own) within the checked ball; and when there is one, a forbidden voxel lies just past it
+    // own, or obstacles beside the vehicle's voxel) within the checked ball; and when there is
+    // one, a forbidden voxel lies just past it
     const auto ball = geometry::inflationOffsets(check.radius, grid.resolution());
     const auto allowed = [&](const Vector3& point) {
       const VoxelIndex v = grid.toIndex(point);
+      const bool own = v == grid.toIndex(path.front());
       for (const VoxelIndex& d : ball) {
-        if (p.voxelState(v + d) != Occupancy::kFree && (grid.centre(v + d) - path.front()).norm() > check.own_radius) {
+        const Occupancy state = p.voxelState(v + d);
+        if (state != Occupancy::kFree && !(own && state == Occupancy::kOccupied) &&
+            (grid.centre(v + d) - path.front()).norm() > check.own_radius) {
           return false;
         }
       }

@@ -24,7 +24,8 @@ struct KnownSpaceCheck {
 /// The frontier: the arc length [m] from the first waypoint to where the polyline enters the
 /// first voxel whose neighbourhood (the voxels within `check.radius` of its centre) holds a
 /// voxel not known free (unknown or occupied). Nothing when there is none within
-/// `check.horizon` of path. Voxels within `check.own_radius` of `vehicle_W` count as free. The
+/// `check.horizon` of path. Voxels within `check.own_radius` of `vehicle_W` count as free, and
+/// so do occupied voxels read round the voxel the vehicle is in (it is there already). The
 /// polyline is walked voxel by voxel (Amanatides & Woo 1987), each voxel's neighbourhood read
 /// once.
 std::optional<double> knownFreeLength(const DStarLite& planner, const std::vector<Vector3>& waypoints,

@@ -7,10 +7,12 @@
 #include <iterator>
 #include <optional>
 #include <set>
+#include <span>
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include "quad/common/digest.hpp"
 #include "quad/common/params.hpp"
 #include "quad/common/yaml_input.hpp"
 
@@ -27,6 +29,20 @@ std::optional<long> wholeNumber(const std::string& text)
   long v = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
   return ec == std::errc() && end == text.data() + text.size() ? std::optional<long>(v) : std::nullopt;
+}
+
+/// The longest run folder name kept whole: file systems hold 255 bytes a name, and a campaign
+/// with many axes names its cells past that.
+constexpr std::size_t kLongestName = 160;
+
+/// `name` when it is short enough, else its first part and the digest of the whole (still unique).
+std::string shortened(const std::string& name)
+{
+  if (name.size() <= kLongestName) {
+    return name;
+  }
+  const std::uint64_t whole = common::digest(std::as_bytes(std::span(name.data(), name.size())));
+  return fmt::format("{}-{:016x}", name.substr(0, kLongestName - 17), whole);
 }
 
 /// A folder name's piece: letters, digits, '.', '_' and '-' kept, anything else '_'.
@@ -154,7 +170,7 @@ std::vector<PlannedRun> planRuns(const std::vector<fs::path>& worlds, const std:
           r.params.emplace_back(axes[i].key, axes[i].values[at[i]]);
           r.name += "-" + labels[i] + folderSafe(axes[i].values[at[i]]);
         }
-        r.name += fmt::format("-seed{}", seed);
+        r.name = shortened(r.name + fmt::format("-seed{}", seed));
         runs.push_back(std::move(r));
       }
       more = false;

@@ -3,6 +3,7 @@
 // (each cell once), and world variants with their generators' parameters set.
 #include "quad/campaign/sweep.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -86,6 +87,26 @@ TEST(Sweep, TheProductFliesEveryCellOnceWorldsOutermostSeedsInnermost)
   EXPECT_EQ(runs.back().name, "b-density0.04-max_speed7-seed2");
   // without axes: the worlds and seeds alone
   EXPECT_EQ(planRuns(worlds, {}, 3).size(), 6U);
+}
+
+TEST(Sweep, ManyAxesNameTheirFoldersWithinWhatAFileSystemHoldsAndStillApart)
+{
+  // Fifteen axes named the cells past 255 bytes, more than a file system holds in one name.
+  std::vector<Axis> axes;
+  for (int i = 0; i < 15; ++i) {
+    axes.push_back(parseAxis(fmt::format("control:gains.a_rather_long_parameter_name_{}=1.25,2.5", i), "t"));
+  }
+  const auto runs = planRuns({"/w/benchmark_forest.yaml"}, axes, 1);
+  ASSERT_EQ(runs.size(), 1U << 15U);
+  std::set<std::string> names;
+  for (const PlannedRun& r : runs) {
+    EXPECT_LE(r.name.size(), 160U) << r.name;
+    names.insert(r.name);
+  }
+  EXPECT_EQ(names.size(), runs.size());
+  EXPECT_TRUE(runs.front().name.starts_with("benchmark_forest-a_rather_long_parameter_name_01.25-")) << runs.front().name;
+  // a short one is left whole
+  EXPECT_EQ(planRuns({"/w/a.yaml"}, {axes.front()}, 1).front().name, "a-a_rather_long_parameter_name_01.25-seed1");
 }
 
 TEST(Sweep, AnAxisNamedTwiceOrTwoWorldsOfOneNameAreRefused)

@@ -44,7 +44,8 @@ struct PlannedRun {
   std::filesystem::path world;  ///< the world file as given
   std::vector<std::pair<std::string, std::string>> params;  ///< axis key and value, in axis order
   std::uint64_t seed = 1;
-  /// Its folder's name, unique in the campaign: "benchmark_forest-density0.04-max_speed7-seed1".
+  /// Its folder's name, unique in the campaign: "benchmark_forest-density0.04-max_speed7-seed1";
+  /// past 160 characters, cut and ended with a digest of the whole.
   std::string name;
 
   /// Its params of module axes as `quad launch --set` texts.

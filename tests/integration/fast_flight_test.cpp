@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Fast flight (DDS domains 202 and 203): bringup/fast.yaml, the follower allowed 7 m/s, flies two
-// of the benchmark's densest forests (one tree per 25 m², seeds 1 and 2) in lockstep on the
+// Fast flight (DDS domains 202 and 203): bringup/fast.yaml, a racing-class vehicle whose follower
+// is allowed 7 m/s, flies two of the benchmark's densest forests (one tree per 25 m², seeds 1 and 2) in lockstep on the
 // estimate. Each reads the run's summary and exit status.
 #include <gtest/gtest.h>
 
@@ -34,8 +34,9 @@ fs::path forest(int seed, const fs::path& dir)
 }
 
 /// Flies bringup/fast.yaml in the forest of `seed`: the goal reached and landed on, no
-/// collision, the path within 1.3 times the known-map optimum, and the vehicle faster than
-/// the shipped follower's 2 m/s cap at its top and on average.
+/// collision, the path within 1.3 times the known-map optimum, and the vehicle near the
+/// commanded speed at its top and at least 4.5 m/s on average (the x500 at 5 m/s² made 3.3
+/// and 4.2 in these two forests).
 void expectFlownFast(int seed, int domain)
 {
   const fs::path dir = quad::test::scratchDir("quad_fast_flight_" + std::to_string(seed));
@@ -54,8 +55,8 @@ void expectFlownFast(int seed, int domain)
   ASSERT_TRUE(summary["flown_over_optimum"].is_number()) << summary.dump(2);
   EXPECT_LE(summary["flown_over_optimum"].get<double>(), 1.3) << summary.dump(2);
   ASSERT_TRUE(summary["average_speed_mps"].is_number()) << summary.dump(2);
-  EXPECT_GT(summary["average_speed_mps"].get<double>(), 2.5) << summary.dump(2);
-  EXPECT_GT(summary["top_speed_mps"].get<double>(), 5.0) << summary.dump(2);
+  EXPECT_GT(summary["average_speed_mps"].get<double>(), 4.5) << summary.dump(2);
+  EXPECT_GT(summary["top_speed_mps"].get<double>(), 6.5) << summary.dump(2);
   EXPECT_LE(summary["top_speed_mps"].get<double>(), 7.0 * 1.1) << summary.dump(2);
   if (!::testing::Test::HasFailure()) {
     fs::remove_all(dir);

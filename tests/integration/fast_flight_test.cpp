@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Fast flight (DDS domains 202 and 203): bringup/fast.yaml, a racing-class vehicle whose follower
-// is allowed 7 m/s, flies two of the benchmark's densest forests (one tree per 25 m², seeds 1 and 2) in lockstep on the
-// estimate. Each reads the run's summary and exit status.
+// is allowed 7 m/s, flies two of the benchmark's densest forests (one tree per 25 m², seeds 1
+// and 2) in lockstep on the estimate. Each reads the run's summary and exit status.
 #include <gtest/gtest.h>
 
 #include <chrono>

@@ -34,6 +34,8 @@ std::optional<long> wholeNumber(const std::string& text)
 /// The longest run folder name kept whole: file systems hold 255 bytes a name, and a campaign
 /// with many axes names its cells past that.
 constexpr std::size_t kLongestName = 160;
+/// What ends a cut name: a dash and the whole name's digest in 16 hexadecimal digits.
+constexpr std::size_t kDigestSuffix = 17;
 
 /// `name` when it is short enough, else its first part and the digest of the whole (still unique).
 std::string shortened(const std::string& name)
@@ -42,7 +44,7 @@ std::string shortened(const std::string& name)
     return name;
   }
   const std::uint64_t whole = common::digest(std::as_bytes(std::span(name.data(), name.size())));
-  return fmt::format("{}-{:016x}", name.substr(0, kLongestName - 17), whole);
+  return fmt::format("{}-{:016x}", name.substr(0, kLongestName - kDigestSuffix), whole);
 }
 
 /// A folder name's piece: letters, digits, '.', '_' and '-' kept, anything else '_'.

@@ -1,12 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "quad/common/layout.hpp"
 #include "quad/common/payload_header.hpp"
 #include "quad/dds/participant.hpp"
 
-#include <arpa/inet.h>
-
 #include <algorithm>
-#include <charconv>
 #include <cstdlib>
 #include <set>
 #include <sstream>
@@ -25,7 +21,7 @@
 #include <spdlog/spdlog.h>
 
 #include "quad/wire/fault_transport.hpp"
-#include "quad/dds/environment.hpp"
+#include "participant_inputs.hpp"
 #include "quad/dds/security.hpp"
 #include "quad/dds/sim_period_filter.hpp"
 #include "quad/dds/topics.hpp"
@@ -38,9 +34,6 @@ namespace frtps = eprosima::fastrtps::rtps;
 
 namespace {
 
-constexpr int kMaxDomainId = 232;  // RTPS port mapping limit with the default port parameters
-constexpr std::uint32_t kMinUdpMessage = 1200;   // room for an RTPS header and a fragment
-constexpr std::uint32_t kMaxUdpMessage = 65500;  // Fast DDS's own limit
 constexpr std::uint32_t kUdpReceiveBuffer = 4u << 20;  // the kernel caps it at net.core.rmem_max
 
 /// UDPv4 for quad: with the datagram size `max_message` when it is set, on `interfaces`
@@ -57,45 +50,6 @@ std::shared_ptr<eprosima::fastdds::rtps::UDPv4TransportDescriptor> udpDescriptor
   }
   d->interfaceWhiteList = interfaces;
   return d;
-}
-
-const char* env(const char* name)
-{
-  const char* value = std::getenv(name);
-  return (value != nullptr && *value != '\0') ? value : nullptr;
-}
-
-template <class Int>
-Int parseInt(std::string_view text, std::string_view what, Int lo, Int hi)
-{
-  Int value{};
-  const auto* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  if (ec != std::errc{} || ptr != end || value < lo || value > hi) {
-    throw std::invalid_argument(std::string(what) + ": " + std::string(text) +
-                                ": expected an integer in [" + std::to_string(lo) + ", " +
-                                std::to_string(hi) + "]");
-  }
-  return value;
-}
-
-/// Splits "IP[:PORT]" and checks both parts; `what` names the source in errors.
-frtps::Locator_t parseLocator(const std::string& text, std::string_view what, bool port_required)
-{
-  const auto colon = text.rfind(':');
-  const std::string ip = text.substr(0, colon);
-  in_addr addr{};
-  if (inet_pton(AF_INET, ip.c_str(), &addr) != 1) {
-    throw std::invalid_argument(std::string(what) + ": " + text + ": not an IPv4 address");
-  }
-  frtps::Locator_t locator;
-  frtps::IPLocator::setIPv4(locator, ip);
-  if (colon != std::string::npos) {
-    locator.port = parseInt<std::uint32_t>(std::string_view(text).substr(colon + 1), what, 1, 65535);
-  } else if (port_required) {
-    throw std::invalid_argument(std::string(what) + ": " + text + ": expected IP:PORT");
-  }
-  return locator;
 }
 
 /// Loads each QoS file once per process (Fast DDS refuses duplicate profile names).
@@ -165,117 +119,6 @@ void intraprocessDeliveryOff()
   settings.intraprocess_delivery = eprosima::fastrtps::INTRAPROCESS_OFF;
   eprosima::fastrtps::xmlparser::XMLProfileManager::library_settings(settings);
 }
-
-Transport parseTransport(std::string_view text)
-{
-  if (text == "default") {
-    return Transport::kDefault;
-  }
-  if (text == "udp") {
-    return Transport::kUdp;
-  }
-  if (text == "shm") {
-    return Transport::kSharedMemory;
-  }
-  throw std::invalid_argument("transport: " + std::string(text) + ": expected default, udp or shm");
-}
-
-std::filesystem::path defaultQosFile()
-{
-  if (const char* file = env(environment::kQosFile)) {
-    return file;
-  }
-  return common::configDir() / "dds" / "quad_qos.xml";
-}
-
-ParticipantOptions optionsFromEnvironment(std::string name)
-{
-  ParticipantOptions options;
-  options.name = std::move(name);
-  if (const char* v = env(environment::kDomainId)) {
-    options.domain_id = parseInt<int>(v, environment::kDomainId, 0, kMaxDomainId);
-  }
-  if (const char* v = env(environment::kTransport)) {
-    try {
-      options.transport = parseTransport(v);
-    } catch (const std::invalid_argument&) {
-      throw std::invalid_argument(std::string(environment::kTransport) + ": " + v +
-                                  ": expected default, udp or shm");
-    }
-  }
-  if (const char* v = env(environment::kInitialPeers)) {
-    std::stringstream list(v);
-    for (std::string peer; std::getline(list, peer, ',');) {
-      if (!peer.empty()) {
-        parseLocator(peer, environment::kInitialPeers, false);
-        options.initial_peers.push_back(peer);
-      }
-    }
-  }
-  if (const char* v = env(environment::kInterfaces)) {
-    std::stringstream list(v);
-    for (std::string address; std::getline(list, address, ',');) {
-      if (address.empty()) {
-        continue;
-      }
-      if (address.find(':') != std::string::npos) {
-        throw std::invalid_argument(std::string(environment::kInterfaces) + ": " + address +
-                                    ": expected an IPv4 address, without a port");
-      }
-      parseLocator(address, environment::kInterfaces, false);
-      options.interfaces.push_back(address);
-    }
-  }
-  if (const char* v = env(environment::kDiscoveryServer)) {
-    parseLocator(v, environment::kDiscoveryServer, true);
-    options.discovery_server = v;
-  }
-  if (const char* v = env(environment::kVehicleId)) {
-    options.vehicle_id = parseInt<std::uint32_t>(v, environment::kVehicleId, 0, common::kMaxVehicleId);
-  }
-  if (const char* v = env(environment::kUdpMaxMessage)) {
-    options.udp_max_message = parseInt<std::uint32_t>(v, environment::kUdpMaxMessage, kMinUdpMessage, kMaxUdpMessage);
-  }
-  if (const char* v = env(environment::kFaultLayer)) {
-    options.fault_layer = parseInt<int>(v, environment::kFaultLayer, 0, 1) == 1;
-  }
-  if (const char* v = env(environment::kSecurityDir)) {
-    options.security_dir = v;
-  }
-  if (const char* v = env(environment::kSecurityIdentity)) {
-    options.security_identity = v;
-  }
-  if (const char* v = env(environment::kValidateDatagrams)) {
-    options.validate_datagrams = parseInt<int>(v, environment::kValidateDatagrams, 0, 1) == 1;
-  }
-  if (const char* v = env(environment::kInlineKeys)) {
-    options.inline_keys = parseInt<int>(v, environment::kInlineKeys, 0, 1) == 1;
-  }
-  if (const char* v = env(environment::kLockstep)) {
-    options.lockstep = parseInt<int>(v, environment::kLockstep, 0, 1) == 1;
-  }
-  if (const char* v = env(environment::kLockstepRecorder)) {
-    options.lockstep_recorder = parseInt<int>(v, environment::kLockstepRecorder, 0, 1) == 1;
-  }
-  if (const char* v = env(environment::kLockstepObserver)) {
-    options.lockstep_observer = parseInt<int>(v, environment::kLockstepObserver, 0, 1) == 1;
-  }
-  if (const char* v = env(environment::kParticipantLease)) {
-    options.participant_lease_s = parseInt<int>(v, environment::kParticipantLease, 1, std::numeric_limits<int>::max());
-  }
-  if (const char* v = env(environment::kMapBudget)) {
-    options.map_budget_ns = 1'000'000LL * parseInt<int>(v, environment::kMapBudget, 0, 1000);
-  }
-  if (const char* v = env(environment::kPathBudget)) {
-    options.path_budget_ns = 1'000'000LL * parseInt<int>(v, environment::kPathBudget, 0, 1000);
-  }
-  options.qos_file = defaultQosFile();
-  return options;
-}
-
-std::int64_t ParticipantOptions::mapBudgetNs() const { return map_budget_ns.value_or(topics::kMapUpdateBudgetNs); }
-
-std::int64_t ParticipantOptions::pathBudgetNs() const { return path_budget_ns.value_or(topics::kPathBudgetNs); }
 
 /// Discovery callbacks: copy what was seen and hand it to the participant.
 class SharedParticipant::Listener : public fdds::DomainParticipantListener {
@@ -559,114 +402,6 @@ void SharedParticipant::releaseReaderTopic(fdds::TopicDescription* topic)
     std::lock_guard lock(endpoints_mutex_);
     participant_->delete_contentfilteredtopic(filtered);
   }
-}
-
-namespace {
-/// Reads `<class>.<role>` from the loaded profiles; data-sharing off for UDP-only runs, or
-/// local peers would bypass UDP through shared memory.
-template <class Qos, class Entity, class Getter>
-Qos profileQos(Entity* entity, Getter getter, std::string_view qos_class, const char* role,
-               const ParticipantOptions& options)
-{
-  const std::string profile = std::string(qos_class) + "." + role;
-  Qos qos;
-  if ((entity->*getter)(profile, qos) != ReturnCode_t::RETCODE_OK) {
-    throw std::runtime_error("QoS profiles file " + options.qos_file.string() + " has no " +
-                             role + " profile '" + profile + "'");
-  }
-  if (options.transport == Transport::kUdp) {
-    qos.data_sharing().off();
-  }
-  // An instance per vehicle (the key is Header.vehicle_id), for as many as a fleet may have;
-  // the history's bound on samples grows with it, or Fast DDS would find the limits
-  // inconsistent (fewer samples than instances times samples per instance).
-  auto& limits = qos.resource_limits();
-  limits.max_instances = common::kMaxFleetVehicles;
-  if (limits.max_samples > 0 && limits.max_samples_per_instance > 0) {
-    limits.max_samples = std::max(limits.max_samples, limits.max_instances * limits.max_samples_per_instance);
-  }
-  return qos;
-}
-}  // namespace
-
-fdds::DataWriterQos SharedParticipant::writerQos(std::string_view qos_class) const
-{
-  return profileQos<fdds::DataWriterQos>(own_publisher_, &fdds::Publisher::get_datawriter_qos_from_profile, qos_class, "writer", options_);
-}
-
-bool SharedParticipant::promisesEverySample(std::string_view qos_class) const
-{
-  const auto qos = writerQos(qos_class);
-  return qos.reliability().kind == fdds::RELIABLE_RELIABILITY_QOS && qos.history().kind == fdds::KEEP_ALL_HISTORY_QOS;
-}
-
-fdds::DataReaderQos SharedParticipant::readerQos(std::string_view qos_class) const
-{
-  auto qos = profileQos<fdds::DataReaderQos>(own_subscriber_, &fdds::Subscriber::get_datareader_qos_from_profile,
-                                             qos_class, "reader", options_);
-  // With inline keys, writers send each sample's key hash, which the validating transport
-  // compares with the key in the payload (wire::checkRtpsDatagram): a damaged key is
-  // refused before Fast DDS files the sample under an instance it invents.
-  qos.expects_inline_qos(options_.inline_keys);
-  return qos;
-}
-
-namespace {
-/// The contract's deadline as the endpoint's DEADLINE period, unless its class asks a tighter one.
-template <class Qos>
-Qos withContractDeadline(Qos qos, const TopicInfo& info)
-{
-  if (info.stale_after_s > 0.0) {
-    const eprosima::fastrtps::Duration_t contract(info.stale_after_s);
-    if (contract < qos.deadline().period) {
-      qos.deadline().period = contract;
-    }
-  }
-  return qos;
-}
-}  // namespace
-
-fdds::DataWriterQos SharedParticipant::writerQos(const TopicInfo& info) const
-{
-  return withContractDeadline(writerQos(info.qos_profile), info);
-}
-
-fdds::DataReaderQos SharedParticipant::readerQos(const TopicInfo& info) const
-{
-  // A reader asks for what the contract says: a class's tighter deadline (the state's two
-  // periods) is the writers' to offer, not a staleness a reader should act on.
-  fdds::DataReaderQos qos = readerQos(info.qos_profile);
-  if (info.stale_after_s > 0.0) {
-    qos.deadline().period = eprosima::fastrtps::Duration_t(info.stale_after_s);
-  }
-  return qos;
-}
-
-std::optional<fdds::DataReaderQos> readerQosWith(Participant& participant, const TopicInfo& topic, std::int32_t depth,
-                                                 std::int64_t period_ns)
-{
-  if (depth <= 0 && period_ns <= 0) {
-    return std::nullopt;
-  }
-  auto qos = withDepth(participant.readerQos(topic), depth);
-  return period_ns > 0 ? withMinimumSeparation(std::move(qos), period_ns) : qos;
-}
-
-fdds::DataReaderQos withDepth(fdds::DataReaderQos qos, std::int32_t depth)
-{
-  if (qos.history().kind != fdds::KEEP_LAST_HISTORY_QOS || qos.history().depth >= depth) {
-    return qos;
-  }
-  qos.history().depth = depth;
-  auto& limits = qos.resource_limits();
-  if (limits.max_samples_per_instance > 0 && limits.max_samples_per_instance < depth) {
-    limits.max_samples_per_instance = depth;
-  }
-  const std::int32_t needed = limits.max_samples_per_instance * std::max(1, limits.max_instances);
-  if (limits.max_samples > 0 && limits.max_samples < needed) {
-    limits.max_samples = needed;
-  }
-  return qos;
 }
 
 void SharedParticipant::addLocalEndpoint(const std::string& topic, const std::string& type_name, bool keyed,

@@ -52,7 +52,6 @@ frtps::Locator_t parseLocator(const std::string& text, std::string_view what, bo
   return locator;
 }
 
-
 Transport parseTransport(std::string_view text)
 {
   if (text == "default") {

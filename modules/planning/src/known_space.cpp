@@ -13,14 +13,16 @@ std::optional<double> knownFreeLength(const DStarLite& planner, const std::vecto
 {
   const geometry::VoxelGrid& grid = planner.lattice().grid();
   const std::vector<VoxelIndex> ball = geometry::inflationOffsets(check.radius, grid.resolution());
-  // Read for the path's voxel `v`, `u` is known free, or the vehicle's own volume; or, when `v`
-  // is the voxel the vehicle is in, an obstacle's voxel: the vehicle is there already, beside
-  // it, and the voxels after it are read as ever (with one half diagonal less than that tube
-  // reaches, a vehicle stopped beside an obstacle never had a path known free again).
+  // Read for the path's voxel `v`, `u` is known free, or the vehicle's own volume; and the voxel
+  // the vehicle is in passes whatever its tube holds: the vehicle is there already, beside an
+  // obstacle maybe (with one half diagonal less than that tube reaches, a vehicle stopped beside
+  // one never had a path known free again), or where its camera never looked (behind and below
+  // it, when it took over in the air: the tube's far corners lie past the own radius). The
+  // voxels after it are read as ever.
   const VoxelIndex own = grid.toIndex(vehicle_W);
   const auto known_free = [&](const VoxelIndex& v, const VoxelIndex& u) {
     const Occupancy state = planner.voxelState(u);
-    return state == Occupancy::kFree || (v == own && state == Occupancy::kOccupied) ||
+    return state == Occupancy::kFree || v == own ||
            (grid.centre(u) - vehicle_W).norm() <= check.own_radius;
   };
   // Every voxel the polyline passes through, in order, with the arc length where the path

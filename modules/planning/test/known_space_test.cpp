@@ -91,6 +91,39 @@ TEST(KnownSpace, TheVehiclesOwnVolumeCountsAsFree)
 }
 
 
+TEST(KnownSpace, AVehicleTakingOverInTheAirSetsOffThoughItsCameraNeverSawBehindIt)
+{
+  // GIVEN everything known free but the space behind a vehicle (x < 0) that started in the air
+  // looking along +x, off the centre of its voxel; the tube and own radius of planning_params
+  const DStarLite p = corridor(20.0, 2.5);
+  DStarLite unseen(Lattice(VoxelGrid(0.2), Vector3(-2, -3, 0), Vector3(20, 3, 5)), {26, true, 0.65});
+  const VoxelGrid& g = unseen.lattice().grid();
+  for (int x = g.toIndex(Vector3(0.0, 0, 0)).x(); x <= g.toIndex(Vector3(20.0 - 1e-9, 0, 0)).x(); ++x) {
+    for (int y = g.toIndex(Vector3(0, -2.5, 0)).y(); y <= g.toIndex(Vector3(0, 2.5, 0)).y(); ++y) {
+      for (int z = g.toIndex(Vector3(0, 0, 0.5)).z(); z <= g.toIndex(Vector3(0, 0, 4.5)).z(); ++z) {
+        unseen.updateVoxel(VoxelIndex(x, y, z), Occupancy::kFree);
+      }
+    }
+  }
+  KnownSpaceCheck check;
+  check.radius = 0.45;
+  check.own_radius = 0.45 + 0.5 * std::sqrt(3.0) * 0.2;
+  check.horizon = 8.0;
+  const Vector3 at(0.15, 0.05, 2.05);
+  // (the tube read round its voxel reaches unseen voxels past the own radius)
+  bool reaches = false;
+  for (const VoxelIndex& o : geometry::inflationOffsets(check.radius, g.resolution())) {
+    const VoxelIndex u = g.toIndex(at) + o;
+    reaches = reaches || (unseen.voxelState(u) != Occupancy::kFree && (g.centre(u) - at).norm() > check.own_radius);
+  }
+  ASSERT_TRUE(reaches);
+  // WHEN a path leads ahead from where it hovers
+  const std::vector<Vector3> ahead{at, Vector3(10.0, 0.05, 2.05)};
+  // THEN it is known free as far as the horizon, as where everything is known
+  EXPECT_EQ(knownFreeLength(unseen, ahead, at, check), std::nullopt);
+  EXPECT_EQ(knownFreeLength(p, ahead, at, check), std::nullopt);
+}
+
 /// Known free space all round, but for a wall of occupied voxels whose face is at y = 0.4 m;
 /// checked with the tube and own radius of a 0.35 m vehicle with a 0.1 m margin on 0.2 m
 /// voxels (planning_params).
@@ -165,7 +198,7 @@ TEST(KnownSpace, ThePathUpToTheFrontierNeverMeetsAVoxelThePolicyForbids)
     // WHEN the frontier is found
     const auto frontier = knownFreeLength(p, path, path.front(), check);
     // THEN every point before it, sampled finely, has only known-free voxels (or the vehicle's
-    // own, or obstacles beside the vehicle's voxel) within the checked ball; and when there is
+    // own) within the checked ball, or lies in the vehicle's voxel; and when there is
     // one, a forbidden voxel lies just past it
     const auto ball = geometry::inflationOffsets(check.radius, grid.resolution());
     const auto allowed = [&](const Vector3& point) {
@@ -173,7 +206,7 @@ TEST(KnownSpace, ThePathUpToTheFrontierNeverMeetsAVoxelThePolicyForbids)
       const bool own = v == grid.toIndex(path.front());
       for (const VoxelIndex& d : ball) {
         const Occupancy state = p.voxelState(v + d);
-        if (state != Occupancy::kFree && !(own && state == Occupancy::kOccupied) &&
+        if (state != Occupancy::kFree && !own &&
             (grid.centre(v + d) - path.front()).norm() > check.own_radius) {
           return false;
         }

@@ -88,8 +88,16 @@ bool TrajectoryFollower::setPath(const std::vector<Vector3>& waypoints, std::uin
       next = i + 1;
     }
   }
-  std::vector<Vector3> path{join};
-  path.insert(path.end(), waypoints.begin() + static_cast<std::ptrdiff_t>(next), waypoints.end());
+  // Within the corridor of the path, the reference goes straight on to the next waypoint: that
+  // hop keeps within the corridor of the path, where a detour by the nearest point would turn
+  // the motion aside (a path planned during the climb, taken in the hover a few decimetres
+  // above its start, dipped to it first). When no trajectory within the limits goes straight
+  // on (a long first hop begun while the reference still accelerates aside), the path is
+  // joined at the nearest point after all.
+  std::vector<Vector3> rest(waypoints.begin() + static_cast<std::ptrdiff_t>(next), waypoints.end());
+  std::vector<Vector3> joined{join};
+  joined.insert(joined.end(), rest.begin(), rest.end());
+  const bool straight_on = best <= generator_.config().corridor && next > 0;
   // The trajectory flown is space made for it too: a new one may keep to it while it turns
   // from the old motion to the new path.
   std::vector<Vector3> flown;
@@ -100,9 +108,12 @@ bool TrajectoryFollower::setPath(const std::vector<Vector3>& waypoints, std::uin
     }
     flown.push_back(trajectory_.at(until).p);
   }
-  trajectory::GenerateResult r = generator_.generate(t, start, path, flown.size() > 1
-                                                                         ? std::vector<std::vector<Vector3>>{flown}
-                                                                         : std::vector<std::vector<Vector3>>{});
+  const std::vector<std::vector<Vector3>> made = flown.size() > 1 ? std::vector<std::vector<Vector3>>{flown}
+                                                                   : std::vector<std::vector<Vector3>>{};
+  trajectory::GenerateResult r = generator_.generate(t, start, straight_on ? rest : joined, made);
+  if (straight_on && r.status != trajectory::GenerateStatus::kOk) {
+    r = generator_.generate(t, start, joined, made);
+  }
   if (r.status != trajectory::GenerateStatus::kOk) {
     ++refused_;
     last_refusal_ = std::string(trajectory::toString(r.status)) + ": " + r.why;

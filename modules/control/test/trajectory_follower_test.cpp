@@ -89,6 +89,32 @@ TEST(TrajectoryFollower, AReplanIsTakenFromTheReferenceWithoutAJump)
   EXPECT_EQ(f.taken(), 3U);  // the hold, the first path, the replan
 }
 
+TEST(TrajectoryFollower, AHoverNearAPathsStartGoesStraightOnRatherThanDippingToIt)
+{
+  // GIVEN a reference at rest 0.15 m above the start of a level path (planned during the climb)
+  FollowerLimits limits = fast();
+  limits.corridor = 0.2;
+  TrajectoryFollower f = follower(limits);
+  const Vector3 hover(0, 0, 2);
+  f.hold(hover, 0.0, 0.0);
+  const std::vector<Vector3> path{{0, 0, 1.85}, {20, 0, 1.85}};
+  // WHEN it takes the path
+  ASSERT_TRUE(f.setPath(path, 1, 0.0)) << f.lastRefusal();
+  // THEN it heads for the path's end at once: it never sinks faster than the straight line from
+  // the hover to that end, keeps within the corridor of that line, and rests on the end
+  const std::vector<Vector3> hop{hover, path.back()};
+  double t = 0.0;
+  double sinking = 0.0, off = 0.0;
+  for (; !f.finished(t) && t < 60.0; t += kTick) {
+    const Reference r = f.step(t);
+    sinking = std::max(sinking, -r.v_W.z() - 0.15 / 20.0 * std::max(0.0, r.v_W.x()));
+    off = std::max(off, geometry::distanceToPolyline(hop, r.p_W));
+  }
+  EXPECT_LT(sinking, 0.05);
+  EXPECT_LE(off, limits.corridor * 1.01);
+  EXPECT_LT((f.step(t).p_W - path.back()).norm(), 1e-6);
+}
+
 TEST(TrajectoryFollower, APathTooShortToStopOnIsRefusedAndTheTrajectoryFlownStopsWhereItWasMadeTo)
 {
   // GIVEN a fast reference whose trajectory ends at rest 30 m on

@@ -65,7 +65,10 @@ bool changedPath(const Replan& next, const Replan& previous, double resolution)
   if (next.result.status != previous.result.status || next.waypoints.size() != previous.waypoints.size()) {
     return true;
   }
-  for (std::size_t i = 1; i < next.waypoints.size(); ++i) {  // the first point moves with the vehicle
+  // The first point is where the vehicle is expected: a path that starts a voxel away from the
+  // last one's start (a climb, a drift) is new, so that a follower taking it later (at the
+  // mission's start) joins it where the vehicle is, not where it was.
+  for (std::size_t i = 0; i < next.waypoints.size(); ++i) {
     if ((next.waypoints[i] - previous.waypoints[i]).norm() > resolution) {
       return true;
     }

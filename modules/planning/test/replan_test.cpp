@@ -92,7 +92,7 @@ TEST(Replan, AVehicleBelowTheLatticePlansFromItsNearestCellByWayOfIt)
   EXPECT_EQ(replanFrom(c.planner, Vector3(NAN, 0, 2), c.params).result.status, PlanStatus::kOutOfBounds);
 }
 
-TEST(Replan, ANewVersionIsAnotherPathNotTheVehiclesOwnPointMoving)
+TEST(Replan, ANewVersionIsAnotherPathOrAStartAVoxelAwayNotTheVehicleJittering)
 {
   Corridor c(5.0);
   const Replan first = replanFrom(c.planner, Vector3(0, 0, 2), c.params);
@@ -108,6 +108,11 @@ TEST(Replan, ANewVersionIsAnotherPathNotTheVehiclesOwnPointMoving)
   Replan moved = first;
   moved.waypoints.back().y() += 0.5;
   EXPECT_TRUE(changedPath(moved, first, c.params.resolution));
+  // The vehicle climbed by more than a voxel: a path that starts where it now is.
+  Replan climbed = first;
+  climbed.waypoints.front().z() += 0.25;
+  ASSERT_LT((*frontierPoint(climbed) - *frontierPoint(first)).norm(), c.params.resolution);
+  EXPECT_TRUE(changedPath(climbed, first, c.params.resolution));
   // Another status.
   Replan none = first;
   none.result.status = PlanStatus::kNoPath;

@@ -51,8 +51,11 @@ public:
   /// Throws std::invalid_argument (the generator's) naming a limit out of its range.
   TrajectoryFollower(FollowerLimits limits, const trajectory::GeneratorConfig& generator);
 
-  /// Flies `waypoints` from the reference at sim time `t` [s], joining them where they pass
-  /// nearest the reference. False, with the trajectory flown kept (lastRefusal() says why),
+  /// Flies `waypoints` from the reference at sim time `t` [s]. Within the corridor of the
+  /// path, the reference goes straight on to the waypoint after the point nearest it (the
+  /// trajectory keeps within the corridor of that hop: within twice the corridor of the path);
+  /// farther off, or when no trajectory within the limits goes straight on, it joins the path
+  /// at that nearest point. False, with the trajectory flown kept (lastRefusal() says why),
   /// when there is no waypoint, one is not finite, or no trajectory from the reference along
   /// them keeps the limits.
   bool setPath(const std::vector<Vector3>& waypoints, std::uint32_t version, double t);

@@ -38,7 +38,7 @@ Replan replanFrom(DStarLite& planner, const Eigen::Vector3d& from, const Plannin
 std::optional<Eigen::Vector3d> frontierPoint(const Replan& r);
 
 /// Whether `next` is a new path for the follower against `previous`: another status, another
-/// number of waypoints, a waypoint past the first (which moves with the vehicle) or the
+/// number of waypoints, a waypoint (the first, where the vehicle is expected, included) or the
 /// stopping point (frontierPoint) moved by more than `resolution`.
 bool changedPath(const Replan& next, const Replan& previous, double resolution);
 

@@ -35,8 +35,8 @@ fs::path forest(int seed, const fs::path& dir)
 
 /// Flies bringup/fast.yaml in the forest of `seed`: the goal reached and landed on, no
 /// collision, the path within 1.3 times the known-map optimum, and the vehicle near the
-/// commanded speed at its top and at least 4.5 m/s on average (the x500 at 5 m/s² made 3.3
-/// and 4.2 in these two forests).
+/// commanded speed at its top and on average at least 0.8 of it, the benchmark's goal (6.3 in
+/// both forests; the x500 at 5 m/s² made 3.3 and 4.2).
 void expectFlownFast(int seed, int domain)
 {
   const fs::path dir = quad::test::scratchDir("quad_fast_flight_" + std::to_string(seed));
@@ -55,7 +55,7 @@ void expectFlownFast(int seed, int domain)
   ASSERT_TRUE(summary["flown_over_optimum"].is_number()) << summary.dump(2);
   EXPECT_LE(summary["flown_over_optimum"].get<double>(), 1.3) << summary.dump(2);
   ASSERT_TRUE(summary["average_speed_mps"].is_number()) << summary.dump(2);
-  EXPECT_GT(summary["average_speed_mps"].get<double>(), 4.5) << summary.dump(2);
+  EXPECT_GT(summary["average_speed_mps"].get<double>(), 0.8 * 7.0) << summary.dump(2);
   EXPECT_GT(summary["top_speed_mps"].get<double>(), 6.5) << summary.dump(2);
   EXPECT_LE(summary["top_speed_mps"].get<double>(), 7.0 * 1.1) << summary.dump(2);
   if (!::testing::Test::HasFailure()) {

@@ -115,6 +115,41 @@ TEST(TrajectoryFollower, AHoverNearAPathsStartGoesStraightOnRatherThanDippingToI
   EXPECT_LT((f.step(t).p_W - path.back()).norm(), 1e-6);
 }
 
+TEST(TrajectoryFollower, APathNoTrajectoryGoesStraightOnToIsJoinedAtItsNearestPointInstead)
+{
+  // GIVEN the demo's limits, and a reference just setting off (0.12 s into a path that leads
+  // away), a new path passing within the corridor of it and turning back up and away
+  FollowerLimits limits;
+  limits.max_speed = 5.0;
+  limits.max_acceleration = 4.0;
+  limits.max_jerk = 25.0;
+  TrajectoryFollower f = follower(limits);
+  f.hold(Vector3(0, 0, 2), 0.0, 0.0);
+  ASSERT_TRUE(f.setPath({Vector3(0, 0, 2), Vector3(0.6, -3.6, 2.1)}, 1, 0.0)) << f.lastRefusal();
+  const double t1 = 0.12;
+  Reference r;
+  for (double t = 0.0; t <= t1; t += kTick) {
+    r = f.step(t);
+  }
+  const Vector3 far = r.p_W + Vector3(-9.7, 3.2, 1.16);
+  const std::vector<Vector3> path{r.p_W + Vector3(-0.02, -0.025, 0.0), far, far + Vector3(5, 0, 0)};
+  // WHEN it is given (no trajectory within the limits heads straight for its second waypoint:
+  // the minimum-snap piece over the whole hop from a reference still accelerating away)
+  // THEN it is taken, joined at the point nearest the reference, and flown within the limits to
+  // rest on its end
+  ASSERT_TRUE(f.setPath(path, 2, t1)) << f.lastRefusal();
+  double t = t1;
+  double worst_speed = 0.0, worst_acc = 0.0;
+  for (; !f.finished(t) && t < 60.0; t += kTick) {
+    const Reference s = f.step(t);
+    worst_speed = std::max(worst_speed, s.v_W.norm());
+    worst_acc = std::max(worst_acc, s.a_W.norm());
+  }
+  EXPECT_LE(worst_speed, limits.max_speed * 1.01);
+  EXPECT_LE(worst_acc, limits.max_acceleration * 1.01);
+  EXPECT_LT((f.step(t).p_W - path.back()).norm(), 1e-6);
+}
+
 TEST(TrajectoryFollower, APathTooShortToStopOnIsRefusedAndTheTrajectoryFlownStopsWhereItWasMadeTo)
 {
   // GIVEN a fast reference whose trajectory ends at rest 30 m on

@@ -90,7 +90,6 @@ TEST(KnownSpace, TheVehiclesOwnVolumeCountsAsFree)
   EXPECT_LT(*frontier, 0.55);
 }
 
-
 TEST(KnownSpace, AVehicleTakingOverInTheAirSetsOffThoughItsCameraNeverSawBehindIt)
 {
   // GIVEN everything known free but the space behind a vehicle (x < 0) that started in the air

@@ -169,6 +169,7 @@ public:
 
   void on_data_available(fdds::DataReader*) override
   {
+    told_of_data_.store(true, std::memory_order_release);
     if (waker_ != nullptr) {
       waker_->notify();
     }
@@ -219,6 +220,9 @@ public:
     push(EventKind::kSampleLost, std::to_string(s.total_count) + " sample(s) lost so far", s.total_count_change);
   }
 
+  /// Whether on_data_available has been called: Fast DDS has counted an instance's sample.
+  bool toldOfData() const { return told_of_data_.load(std::memory_order_acquire); }
+
 private:
   void push(EventKind kind, std::string detail, std::int64_t count = 0)
   {
@@ -226,6 +230,7 @@ private:
   }
   ReaderEndpoint& owner_;
   Waker* waker_;
+  std::atomic<bool> told_of_data_{false};
 };
 
 ReaderEndpoint::ReaderEndpoint(Participant& participant, const TopicInfo& info,
@@ -301,6 +306,9 @@ bool ReaderEndpoint::servedVehicle(std::uint32_t vehicle_id, std::span<const std
 
 bool ReaderEndpoint::takeSample(void* sample, std::uint64_t* writer, std::int64_t* received_ns)
 {
+  if (!listener_->toldOfData()) {
+    return false;
+  }
   fdds::SampleInfo info;
   while (reader_->take_next_sample(sample, &info) == ReturnCode_t::RETCODE_OK) {
     if (info.valid_data) {

@@ -133,6 +133,9 @@ protected:
   /// Takes the next sample with valid data into `sample`; false when none is left. `writer`,
   /// when given, receives an id of the writer that sent it (a hash of its GUID);
   /// `received_ns`, the wall time (CLOCK_REALTIME) at which the middleware received it.
+  /// Nothing is taken before Fast DDS first told the reader of data (docs/dds.md,
+  /// "Publishers and subscribers"): 2.9.1 can let a sample be taken before it has counted
+  /// the sample's instance, and then aborts on the instance's next sample.
   bool takeSample(void* sample, std::uint64_t* writer = nullptr, std::int64_t* received_ns = nullptr);
   /// True for a sample of this participant's vehicle; else counts it and reports it (the 1st,
   /// 2nd, 4th, 8th... time) as an event.

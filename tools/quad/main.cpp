@@ -278,6 +278,7 @@ int main(int argc, char** argv)
   bag_diff->add_flag("--json", diff_options.json, "One JSON object instead of text");
 
   quad::security::InitOptions security_options;
+  std::vector<std::string> security_containers;
   auto* security = app.add_subcommand("security", "DDS Security: authorities, identities and permissions");
   security->require_subcommand(1);
   auto* security_init = security->add_subcommand(
@@ -287,6 +288,9 @@ int main(int argc, char** argv)
       ->check(CLI::Range(1, 3650));
   security_init->add_flag("--force", security_options.force,
                           "Replace an existing CA (identities signed by the old one stop working)");
+  security_init->add_option("--container", security_containers,
+                            "Also an identity for a container of these modules, comma-separated in its manifest's "
+                            "order (e.g. plant,estimation,control); repeatable");
 
   auto* topic = app.add_subcommand("topic", "Inspect and publish topics of a running stack");
   topic->require_subcommand(1);
@@ -475,7 +479,7 @@ int main(int argc, char** argv)
       return replay_options.compare ? quad::tools::replayCompare(replay_options) : quad::tools::replay(replay_options);
     }
     if (security_init->parsed()) {
-      return quad::tools::securityInit(security_options);
+      return quad::tools::securityInit(security_options, security_containers);
     }
     if (bag_info->parsed()) {
       return quad::tools::bagInfo(bag_file, bag_json);

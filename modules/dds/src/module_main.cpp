@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "quad/common/identity.hpp"
 #include "quad/common/logging.hpp"
 #include "quad/common/yaml_input.hpp"
 
@@ -209,15 +210,6 @@ int runModule(int argc, char** argv, const ModuleEntry& module)
   });
 }
 
-std::string containerName(const std::vector<std::string>& modules)
-{
-  std::string name;
-  for (const auto& m : modules) {
-    name += (name.empty() ? "" : "+") + m;
-  }
-  return name;
-}
-
 int runContainer(int argc, char** argv, const std::vector<ModuleEntry>& known)
 {
   const std::string program = programName(argv);
@@ -283,7 +275,7 @@ int runContainer(int argc, char** argv, const std::vector<ModuleEntry>& known)
   if (hosted.empty()) {
     return usageError(program, "no module to host", usage);
   }
-  const std::string name = containerName(names);
+  const std::string name = common::containerName(names);
   std::vector<common::Params> params(hosted.size());
   std::vector<std::string> problems;
   for (std::size_t i = 0; i < hosted.size(); ++i) {

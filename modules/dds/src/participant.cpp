@@ -22,7 +22,7 @@
 
 #include "quad/wire/fault_transport.hpp"
 #include "participant_inputs.hpp"
-#include "quad/dds/security.hpp"
+#include "quad/common/identity.hpp"
 #include "quad/dds/sim_period_filter.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/wire/validating_transport.hpp"
@@ -90,8 +90,8 @@ std::string prefixText(const frtps::GuidPrefix_t& prefix)
 void SharedParticipant::enableSecurity(fdds::DomainParticipantQos& qos) const
 {
   const std::string identity =
-      options_.security_identity.empty() ? securityIdentity(options_.name) : options_.security_identity;
-  const SecurityFiles files = securityFiles(options_.security_dir, identity);
+      options_.security_identity.empty() ? common::securityIdentity(options_.name) : options_.security_identity;
+  const common::SecurityFiles files = common::securityFiles(options_.security_dir, identity);
   for (const auto& f : {files.ca, files.certificate, files.key, files.governance, files.permissions}) {
     std::ifstream readable(f);
     if (!readable) {

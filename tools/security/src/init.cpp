@@ -3,7 +3,7 @@
 
 #include <stdexcept>
 
-#include "quad/dds/security.hpp"
+#include "quad/common/identity.hpp"
 
 namespace quad::security {
 
@@ -49,7 +49,7 @@ std::vector<fs::path> init(const InitOptions& options, const std::vector<Role>& 
   writeFile(options.dir / "governance.p7s", ca.signSmime(governance), kPublic);
   written.insert(written.end(), {options.dir / "governance.xml", options.dir / "governance.p7s"});
   for (const auto& role : roles) {
-    const dds::SecurityFiles files = dds::securityFiles(options.dir, role.identity);
+    const common::SecurityFiles files = common::securityFiles(options.dir, role.identity);
     const KeyPair identity = KeyPair::makeIdentity(ca, role.identity, not_before, not_after);
     identity.save(files.certificate, files.key);
     const std::string permissions = permissionsXml(

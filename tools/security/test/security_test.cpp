@@ -2,8 +2,9 @@
 // DDS Security with the files of `quad security init`, between real participants: the
 // authorised talk; a participant without a certificate, with one from another authority
 // under the same name, or with an expired one, and a module writing a topic it was not
-// granted each get no match and no sample, while the authorised keep talking; a capture of
-// the traffic holds no plaintext payload.
+// granted each get no match and no sample, while the authorised keep talking; a container's
+// one identity writes what each of its modules may and nothing more; a capture of the
+// traffic holds no plaintext payload.
 #include <arpa/inet.h>
 #include <linux/if_ether.h>
 #include <linux/if_packet.h>
@@ -12,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 
 #include <chrono>
@@ -22,10 +24,11 @@
 #include <vector>
 #include <thread>
 
+#include "quad/common/identity.hpp"
 #include "quad/common/time.hpp"
 #include "wait.hpp"
 #include "quad/dds/publisher.hpp"
-#include "quad/dds/security.hpp"
+#include "quad/common/identity.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
 #include "scratch.hpp"
@@ -43,6 +46,7 @@ constexpr int kExpiredDomain = 176;
 constexpr int kNotGrantedDomain = 177;
 constexpr int kCaptureDomain = 178;
 constexpr int kCaptureControlDomain = 179;
+constexpr int kContainerDomain = 164;
 constexpr double kQuietSeconds = 3.0;  // how long the unauthorised are watched
 // A secure match on a busy machine has taken over 10 s (a handshake message resent): the tests
 // are about who gets what, not how soon.
@@ -105,7 +109,7 @@ protected:
 
 TEST_F(Security, InitWritesPrivateKeysAndSignedDocuments)
 {
-  const auto files = dds::securityFiles(domainDir(), "plant");
+  const auto files = common::securityFiles(domainDir(), "plant");
   for (const auto& f : {files.ca, files.certificate, files.key, files.governance, files.permissions}) {
     EXPECT_TRUE(fs::exists(f)) << f;
   }
@@ -115,13 +119,18 @@ TEST_F(Security, InitWritesPrivateKeysAndSignedDocuments)
   EXPECT_NE(permissions.find("<subject_name>CN=plant,O=quad</subject_name>"), std::string::npos);
   EXPECT_NE(permissions.find("<topic>quad/sim/state</topic>"), std::string::npos);
   EXPECT_EQ(permissions.find("<topic>quad/control/actuators</topic>"), std::string::npos);
+  // The recorder only reads, but for the lockstep reports of its start gate.
   const std::string record = test::readFile(domainDir() / "record.permissions.xml");
-  EXPECT_EQ(record.find("<publish>"), std::string::npos);  // the recorder only reads
+  const auto from = record.find("<publish>");
+  ASSERT_NE(from, std::string::npos);
+  const std::string published = record.substr(from, record.find("</publish>") - from);
+  EXPECT_NE(published.find("<topic>quad/sim/lockstep</topic>"), std::string::npos) << published;
+  EXPECT_EQ(published.find("<topic>", published.find("<topic>") + 1), std::string::npos) << published;
 }
 
 TEST_F(Security, TheBridgeMayPublishOnlyTheOperatorsTopics)
 {
-  EXPECT_EQ(dds::securityIdentity("quad_bridge"), "bridge");
+  EXPECT_EQ(common::securityIdentity("quad_bridge"), "bridge");
   const std::string permissions = test::readFile(domainDir() / "bridge.permissions.xml");
   const auto from = permissions.find("<publish>");
   const auto to = permissions.find("</publish>");
@@ -174,7 +183,7 @@ TEST_F(Security, AnExpiredCertificateGetsNothing)
   fs::copy(domainDir(), expired);
   const auto ca = security::KeyPair::load(domainDir() / "ca.pem", domainDir() / "ca.key");
   const auto now = security::Clock::now();
-  const auto files = dds::securityFiles(expired, "control");
+  const auto files = common::securityFiles(expired, "control");
   security::KeyPair::makeIdentity(ca, "control", now - std::chrono::hours(48), now - std::chrono::hours(24))
       .save(files.certificate, files.key);
   // Fast DDS refuses to create a participant with it at all: it never reaches the wire.
@@ -192,6 +201,47 @@ TEST_F(Security, AModuleCannotWriteATopicItWasNotGranted)
   // And a granted writer still reaches it.
   dds::Publisher<msg::VehicleState> states(plant, dds::topics::kSimState);
   EXPECT_TRUE(test::waitFor([&] { return reader.matchedWriters() == 1; }, kSecureMatch));
+}
+
+TEST_F(Security, AContainersIdentityWritesWhatEachOfItsModulesMayAndNothingElse)
+{
+  const std::vector<std::string> hosted{"plant", "estimation", "control"};
+  auto roles = quadRoles();
+  roles.push_back(containerRole(hosted));
+  const fs::path dir = dir_ / "containers";
+  init({dir, 1, false}, roles);
+  // One participant for the three, as quad_container makes it: its name is its identity.
+  dds::Participant fast(options(common::containerName(hosted), kContainerDomain, dir));
+  dds::Participant mapping(options("mapping", kContainerDomain, dir));
+  dds::Publisher<msg::VehicleState> states(fast, dds::topics::kSimState);           // the plant's
+  dds::Publisher<msg::EstimatedState> estimates(fast, dds::topics::kEstimatedState);  // estimation's
+  dds::Publisher<msg::ActuatorCommand> commands(fast, dds::topics::kActuators);       // control's
+  // The planner's path is none of theirs: refused where it is made.
+  EXPECT_THROW(dds::Publisher<msg::Path>(fast, dds::topics::kPath), std::exception);
+  dds::Subscriber<msg::EstimatedState> reader(mapping, dds::topics::kEstimatedState);
+  ASSERT_TRUE(test::waitFor([&] { return reader.matchedWriters() == 1; }, kSecureMatch));
+  int got = 0;
+  EXPECT_TRUE(test::waitFor([&] {
+    estimates.write(msg::EstimatedState{});
+    got += static_cast<int>(reader.takeAll().size());
+    return got >= 10;
+  }));
+}
+
+TEST_F(Security, AContainersRoleNamesOnlyModulesEachOnce)
+{
+  const Role role = containerRole({"mapping", "planning"});
+  EXPECT_EQ(role.identity, "mapping+planning");
+  const auto grants = [&](std::string_view topic) {
+    return std::find(role.publish.begin(), role.publish.end(), topic) != role.publish.end();
+  };
+  EXPECT_TRUE(grants(dds::topics::kMapUpdate.info.name));
+  EXPECT_TRUE(grants(dds::topics::kPath.info.name));
+  EXPECT_FALSE(grants(dds::topics::kActuators.info.name));
+  EXPECT_EQ(std::count(role.publish.begin(), role.publish.end(), std::string(dds::topics::kHeartbeat.info.name)), 1);
+  EXPECT_THROW(containerRole({"mapping", "record"}), std::invalid_argument);
+  EXPECT_THROW(containerRole({"mapping", "mapping"}), std::invalid_argument);
+  EXPECT_THROW(containerRole({}), std::invalid_argument);
 }
 
 /// Every frame on every interface of this host while it lives (an AF_PACKET socket: root).

@@ -52,16 +52,12 @@ int runNodeMain(int argc, char** argv, std::string_view module_name, common::Par
 int runModule(int argc, char** argv, const ModuleEntry& module);
 
 /// The container's main: hosts the modules the command line names, each of `known`,
-/// on one participant of the environment's options (named after them, joined by "+"):
+/// on one participant of the environment's options (named common::containerName()):
 ///   --module NAME [--config FILE] [--set KEY=VALUE]... [--module NAME ...]
 /// Every module's config is checked before any DDS entity exists (as runNodeMain's). Each
 /// node runs on a thread of its own; the container lives and dies as one process: a node that
 /// stops on its own (its run ended, or it failed) stops the others, a signal stops them all,
 /// and the exit status is 1 when any failed.
 int runContainer(int argc, char** argv, const std::vector<ModuleEntry>& known);
-
-/// The name of a container of these modules: "plant+estimation+control". Its participant's
-/// name, its log's, and the default DDS Security identity (securityIdentity()) are this one.
-std::string containerName(const std::vector<std::string>& modules);
 
 }  // namespace quad::dds

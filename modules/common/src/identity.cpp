@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "quad/dds/security.hpp"
+#include "quad/common/identity.hpp"
 
-namespace quad::dds {
+namespace quad::common {
 
 SecurityFiles securityFiles(const std::filesystem::path& dir, const std::string& identity)
 {
@@ -21,4 +21,13 @@ std::string securityIdentity(std::string_view participant_name)
   return std::string(name);
 }
 
-}  // namespace quad::dds
+std::string containerName(const std::vector<std::string>& modules)
+{
+  std::string name;
+  for (const auto& m : modules) {
+    name += (name.empty() ? "" : "+") + m;
+  }
+  return name;
+}
+
+}  // namespace quad::common

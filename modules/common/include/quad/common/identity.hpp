@@ -1,14 +1,17 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
-/// Where a participant finds its DDS Security files (made by `quad security init`), and which
-/// identity a participant of a given name uses.
+/// What a participant is called and who it is to DDS Security: the name of a container of
+/// modules, which identity a participant of a given name uses, and where it finds that
+/// identity's files (made by `quad security init`). No DDS: the launcher checks a manifest
+/// against the same rules.
 
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
-namespace quad::dds {
+namespace quad::common {
 
 struct SecurityFiles {
   std::filesystem::path ca;           ///< identity and permissions authority (ca.pem)
@@ -25,4 +28,8 @@ SecurityFiles securityFiles(const std::filesystem::path& dir, const std::string&
 /// publishes and keeps its own).
 std::string securityIdentity(std::string_view participant_name);
 
-}  // namespace quad::dds
+/// The name of a container of these modules: "plant+estimation+control". Its participant's
+/// name, its log's, and the default DDS Security identity (securityIdentity()) are this one.
+std::string containerName(const std::vector<std::string>& modules);
+
+}  // namespace quad::common

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Fleets (DDS domains 77 and 78): several vehicles, each with its own modules, flown by one
 // manifest in lockstep with a fixed seed; each reads the run's summary and exit status, and
-// two runs' recordings are compared.
+// two runs' recordings, one with a process per module and one composed, are compared.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -35,11 +35,12 @@ double configuredSeparation()
 /// vehicle must reach its goal with no collision of any kind, and no two vehicles come closer
 /// than the configured separation.
 void expectEveryVehicleReachesItsGoalApart(const fs::path& manifest, int domain, std::size_t vehicles,
-                                           const fs::path& dir, const std::optional<fs::path>& recording = {})
+                                           const fs::path& dir, const std::optional<fs::path>& recording = {},
+                                           const std::string& layout = "distributed")
 {
   std::vector<std::string> argv{QUAD_TOOL, "launch", manifest.string(), "--domain", std::to_string(domain), "--quiet",
                                 "--no-report", "--wall-timeout", "400", "--summary", (dir / "summary.json").string(),
-                                "--log-dir", (dir / "run").string()};
+                                "--log-dir", (dir / "run").string(), "--layout", layout};
   if (recording) {
     argv.insert(argv.end(), {"--record", recording->string()});
   } else {
@@ -73,15 +74,18 @@ TEST(Fleet, ThreeVehiclesWhoseLinesCrossReachEveryGoalApart)
   }
 }
 
-TEST(Fleet, TwoVehiclesMeetingHeadOnInACorridorKeepTheSeparationAndTwoRunsRecordTheSameMessages)
+TEST(Fleet, TwoVehiclesMeetingHeadOnInACorridorKeepTheSeparationAndTwoRunsRecordTheSameMessagesComposedOrNot)
 {
-  // GIVEN the head-on meeting flown twice in lockstep, each run recorded
+  // GIVEN the head-on meeting flown twice in lockstep, each run recorded: with a process per
+  // module, then composed (a container per vehicle for its mapper and planner, one for its
+  // estimator and controller, the plant alone)
   const fs::path dir = quad::test::scratchDir("quad_fleet_head_on");
   const fs::path manifest = fs::path(QUAD_SOURCE_DIR) / "tests/fixtures/head_on.yaml";
   expectEveryVehicleReachesItsGoalApart(manifest, 78, 2, dir / "first", dir / "first.mcap");
-  expectEveryVehicleReachesItsGoalApart(manifest, 78, 2, dir / "second", dir / "second.mcap");
+  expectEveryVehicleReachesItsGoalApart(manifest, 78, 2, dir / "second", dir / "second.mcap", "composed");
   // WHEN the recordings are compared message by message THEN each vehicle's samples are the
-  // same in both, whatever turns the two vehicles' writers took within a step
+  // same in both, whatever turns the two vehicles' writers took within a step or which
+  // process hosted them
   quad::test::expectIdenticalRecordings(QUAD_TOOL, dir / "first.mcap", dir / "second.mcap", 15, 50000);
   if (!::testing::Test::HasFailure()) {
     fs::remove_all(dir);

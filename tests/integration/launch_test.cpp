@@ -67,8 +67,9 @@ auto runningAfterStart(const std::string& module, int starts = 1)
   };
 }
 
-/// Flies a shipped manifest's mission and checks the summary and the run folder; given
-/// `recording`, records the run and keeps the file there, and given `scores`, the summary.
+/// Flies a shipped manifest's mission (or the manifest at an absolute path) and checks the
+/// summary and the run folder; given `recording`, records the run and keeps the file there,
+/// and given `scores`, the summary.
 void flyMission(const std::string& manifest, int domain, std::vector<std::string> extra, const fs::path& recording = {},
                 nlohmann::json* scores = nullptr)
 {
@@ -76,7 +77,9 @@ void flyMission(const std::string& manifest, int domain, std::vector<std::string
   if (!recording.empty()) {
     extra.insert(extra.end(), {"--record", (dir / "run.mcap").string()});
   }
-  std::vector<std::string> argv{QUAD_TOOL, "launch", std::string(QUAD_SOURCE_DIR) + "/bringup/" + manifest,
+  const std::string manifest_file =
+      manifest.starts_with("/") ? manifest : std::string(QUAD_SOURCE_DIR) + "/bringup/" + manifest;
+  std::vector<std::string> argv{QUAD_TOOL, "launch", manifest_file,
                                 "--domain", std::to_string(domain), "--quiet", "--wall-timeout", "300",
                                 "--summary", (dir / "summary.json").string(), "--log-dir", (dir / "run").string()};
   argv.insert(argv.end(), extra.begin(), extra.end());
@@ -197,6 +200,31 @@ void flyMission(const std::string& manifest, int domain, std::vector<std::string
   }
   if (!::testing::Test::HasFailure()) {
     fs::remove_all(dir);  // kept to look into otherwise
+  }
+}
+
+TEST(Launch, TheDemoFliesComposedUnderDdsSecurityEachContainerWithAnIdentityOfItsOwn)
+{
+  // GIVEN a domain's DDS Security files with an identity for each of the demo's containers,
+  // and the demo's manifest naming them
+  const fs::path dir = quad::test::scratchDir("quad_launch_secure");
+  const fs::path security = dir / "security";
+  ChildProcess init({QUAD_TOOL, "security", "init", security.string(), "--container", "mapping,planning",
+                     "--container", "estimation,control,plant"});
+  const auto made = init.wait(60s);
+  ASSERT_TRUE(made.has_value() && *made == 0) << init.output();
+  std::string text = quad::test::readFile(fs::path(QUAD_SOURCE_DIR) / "bringup/demo.yaml");
+  for (auto at = text.find("../"); at != std::string::npos; at = text.find("../", at)) {
+    text.replace(at, 3, std::string(QUAD_SOURCE_DIR) + "/");
+  }
+  const fs::path manifest = dir / "secure_demo.yaml";
+  std::ofstream(manifest) << "security: " << security.string() << "\n" << text;
+  // WHEN it flies composed and recorded: each container on its own identity, the recorder and
+  // the launcher's observer holding the lockstep start on theirs
+  // THEN the mission ends at the goal, as the demo's does
+  flyMission(manifest.string(), 124, {"--layout", "composed"}, dir / "secure.mcap");
+  if (!::testing::Test::HasFailure()) {
+    fs::remove_all(dir);
   }
 }
 

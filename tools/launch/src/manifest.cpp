@@ -558,13 +558,21 @@ void readContainers(const YAML::Node& node, Reader& r, const ProgramLookup& look
     r.problem("containers", node, "expected a map of container names to lists of modules");
     return;
   }
+  // A fleet's containers are a vehicle's: the lists name the manifest's modules, and each
+  // container is made once per vehicle, of that vehicle's instances ("slow.2": mapping.2 and
+  // planning.2). The plant, which serves every vehicle, stays a process of its own.
+  const bool fleet = !m.vehicles.empty();
+  const auto instance = [&](const std::string& name) {
+    return fleet ? fleetInstanceName(name, m.vehicles.front().id) : name;
+  };
   std::map<std::string, std::string> container_of;
+  std::vector<ContainerSpec> specs;
   for (auto kv : node) {
     ContainerSpec spec{kv.first.as<std::string>(), {}};
     const std::string key = "containers." + spec.name;
     if (!validName(spec.name)) {
       r.problem(key, kv.first, "a container name is lower case letters, digits and _, at most 15");
-    } else if (m.findModule(spec.name) != nullptr) {
+    } else if (m.findModule(spec.name) != nullptr || m.findModule(instance(spec.name)) != nullptr) {
       r.problem(key, kv.first, "already a module's name: a container's process needs one of its own");
     }
     spec.modules = r.strings(kv.second, key);
@@ -574,8 +582,11 @@ void readContainers(const YAML::Node& node, Reader& r, const ProgramLookup& look
     for (std::size_t i = 0; i < spec.modules.size(); ++i) {
       const std::string& name = spec.modules[i];
       const std::string item = key + "[" + std::to_string(i) + "]";
-      const Module* mod = m.findModule(name);
-      if (mod == nullptr) {
+      const Module* mod = m.findModule(instance(name));
+      if (mod == nullptr && fleet && m.findModule(name) != nullptr) {
+        r.problem(item, kv.second[i],
+                  "'" + name + "' serves every vehicle of the fleet: a fleet's container holds one vehicle's modules");
+      } else if (mod == nullptr) {
         r.problem(item, kv.second[i], "no module '" + name + "' in modules");
       } else if (mod->kind.empty() || mod->kind == "quad") {
         r.problem(item, kv.second[i], "'" + name + "' is a program, not one of quad's modules: only those can share a process");
@@ -583,15 +594,29 @@ void readContainers(const YAML::Node& node, Reader& r, const ProgramLookup& look
         r.problem(item, kv.second[i], "'" + name + "' is already in container " + it->second);
       }
     }
-    m.containers.push_back(std::move(spec));
+    specs.push_back(std::move(spec));
   }
-  if (!m.vehicles.empty() && m.layout == "composed") {
-    r.problem("layout", YAML::Node(m.layout), "a fleet's modules run a process each: give the distributed layout");
+  std::map<std::string, std::string> written_as;  // a container's name as the manifest writes it
+  for (const ContainerSpec& spec : specs) {
+    if (!fleet) {
+      written_as.emplace(spec.name, spec.name);
+      m.containers.push_back(spec);
+      continue;
+    }
+    for (const FleetMember& v : m.vehicles) {
+      ContainerSpec one{fleetInstanceName(spec.name, v.id), {}};
+      written_as.emplace(one.name, spec.name);
+      for (const auto& name : spec.modules) {
+        one.modules.push_back(fleetInstanceName(name, v.id));
+      }
+      m.containers.push_back(std::move(one));
+    }
   }
-  if (!m.security_dir.empty() && m.layout == "composed") {
-    r.problem("layout", YAML::Node(m.layout),
-              "with DDS Security each participant has an identity of its own, and quad security init makes one per "
-              "module, none for a container: give the distributed layout");
+  container_of.clear();
+  for (const ContainerSpec& spec : m.containers) {
+    for (const auto& name : spec.modules) {
+      container_of.emplace(name, spec.name);
+    }
   }
   if (m.layout != "composed" || !r.ok()) {
     return;
@@ -621,8 +646,11 @@ void readContainers(const YAML::Node& node, Reader& r, const ProgramLookup& look
     }
     std::vector<std::string> problems;
     composed.push_back(composeContainer(*spec, members, program, lookup, problems));
+    if (!m.security_dir.empty()) {
+      checkContainerIdentity(composed.back(), m.security_dir, problems);
+    }
     for (const auto& problem : problems) {
-      r.problem("containers." + spec->name, node[spec->name], problem);
+      r.problem("containers." + spec->name, node[written_as.at(spec->name)], problem);
     }
   }
   m.modules = std::move(composed);

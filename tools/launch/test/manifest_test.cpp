@@ -366,6 +366,48 @@ TEST_F(ManifestTest, AFleetRunsEachModuleOncePerVehicleAndThePlantOnceForAll)
             "  - {id: 7, start: [0.8, 0.2, 0]}\n");
 }
 
+TEST_F(ManifestTest, AComposedFleetHasEachVehiclesContainerAndOnePlant)
+{
+  // Vehicle 4's planner runs on host b in fleetManifest(): not with its mapper.
+  std::string text = fleetManifest("containers: {slow: [mapping, planning]}\nlayout: composed\n");
+  text.replace(text.find(", hosts: {planning: b}"), std::string(", hosts: {planning: b}").size(), "");
+  const Manifest m = parse(text);
+  std::vector<std::string> names;
+  for (const Module& mod : m.modules) {
+    names.push_back(mod.name);
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"slow.4", "slow.7", "plant"}));
+  const Module& seven = m.modules[1];
+  EXPECT_EQ(seven.kind, kContainerKind);
+  EXPECT_EQ(seven.vehicle, 7U);  // its process's QUAD_VEHICLE_ID
+  ASSERT_EQ(seven.hosted.size(), 2U);
+  EXPECT_EQ(seven.hosted[0].name, "mapping.7");
+  EXPECT_EQ(seven.hosted[1].name, "planning.7");
+  EXPECT_EQ(seven.hosted[0].sets[0].second, std::string(kRunStateVariable) + "/vehicle7/mapping.checkpoint");
+  EXPECT_TRUE(seven.needs.empty());  // the map update is its own mapper's
+  EXPECT_FALSE(m.modules[2].vehicle.has_value());
+  EXPECT_EQ(m.processOf("planning.4"), &m.modules[0]);
+  ASSERT_EQ(m.containers.size(), 2U);
+  EXPECT_EQ(m.containers[1].modules, (std::vector<std::string>{"mapping.7", "planning.7"}));
+
+  const auto refused = [&](const std::string& manifest, const std::string& text_expected) {
+    try {
+      parse(manifest);
+    } catch (const common::ConfigError& e) {
+      const auto& p = e.problems();
+      return std::any_of(p.begin(), p.end(), [&](const std::string& x) { return x.find(text_expected) != std::string::npos; });
+    }
+    return false;
+  };
+  // The plant serves every vehicle; a vehicle's modules must share its host.
+  EXPECT_TRUE(refused(fleetManifest("containers: {fast: [planning, plant]}\nlayout: composed\n"),
+                      "containers.fast[1]: plant: 'plant' serves every vehicle of the fleet"));
+  const std::string apart = fleetManifest("containers: {slow: [mapping, planning]}\nlayout: composed\n");
+  EXPECT_TRUE(refused(apart, "containers.slow.4: "));
+  EXPECT_TRUE(refused(apart, "planning.4 runs on b and mapping.4 on a: a container's modules share one host"));
+  EXPECT_TRUE(refused(fleetManifest("containers: {planning: [mapping]}\n"), "containers.planning: planning: already a module's name"));
+}
+
 TEST_F(ManifestTest, OneVehicleOfAFleetIsFlownAloneOnRequest)
 {
   ManifestOverrides o;
@@ -558,8 +600,17 @@ TEST_F(ManifestTest, ContainerMistakesAreRefusedNamingTheContainerAndModule)
   fs::create_directories(root_ / "sec");
   std::ofstream(root_ / "sec/ca.pem") << "";
   std::ofstream(root_ / "sec/governance.p7s") << "";
-  p = problems("security: ../sec\nlayout: composed\nmodules: {plant: {}, mapping: {}}\ncontainers: {all: [plant, mapping]}\n");
-  EXPECT_TRUE(has(p, "layout: composed: with DDS Security each participant has an identity of its own")) << p.front();
+  // With DDS Security a container is one participant with one identity, made for it.
+  const std::string secured = "security: ../sec\nlayout: composed\nmodules: {plant: {}, mapping: {}}\n"
+                              "containers: {all: [mapping, plant]}\n";
+  p = problems(secured);
+  // Named as its participant is: its modules in start order, not the container's list.
+  EXPECT_TRUE(has(p, "containers.all: ") && has(p, "no plant+mapping.pem in ") &&
+              has(p, ": a container has one identity; make it with quad security init ") &&
+              has(p, " --container plant,mapping"))
+      << (p.empty() ? "" : p.front());
+  std::ofstream(root_ / "sec/plant+mapping.pem") << "";
+  EXPECT_NO_THROW(parse(secured));
   p = problems(modules + "layout: apart\ncontainers: {fast: [plant]}\n");
   EXPECT_TRUE(has(p, "layout: apart: expected one of: composed, distributed")) << p.front();
 }

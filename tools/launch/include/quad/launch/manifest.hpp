@@ -124,6 +124,8 @@ struct Manifest {
   /// each of the `containers` one process on its modules' one host (`modules` then holds it
   /// in the place of its first module).
   std::string layout = "distributed";
+  /// In a fleet, each container of the manifest once per vehicle, of its instances
+  /// (fleetInstanceName of the container and of each module); the plant is in none.
   std::vector<ContainerSpec> containers;
   Mission mission;
   /// `geofence: {min: [x, y, z], max: [x, y, z]}`: the keep-in volume [m], handed to every

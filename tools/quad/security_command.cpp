@@ -4,23 +4,16 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "quad/common/name_list.hpp"
+
 namespace quad::tools {
 
 int securityInit(const security::InitOptions& options, const std::vector<std::string>& containers)
 {
   auto roles = security::quadRoles();
   for (const auto& list : containers) {
-    std::vector<std::string> modules;
-    for (std::size_t from = 0;;) {
-      const std::size_t comma = list.find(',', from);
-      modules.push_back(list.substr(from, comma == std::string::npos ? std::string::npos : comma - from));
-      if (comma == std::string::npos) {
-        break;
-      }
-      from = comma + 1;
-    }
     try {
-      roles.push_back(security::containerRole(modules));
+      roles.push_back(security::containerRole(common::nameList(list)));
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("--container " + list + ": " + e.what());
     }

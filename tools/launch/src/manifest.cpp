@@ -565,7 +565,7 @@ void readContainers(const YAML::Node& node, Reader& r, const ProgramLookup& look
   const auto instance = [&](const std::string& name) {
     return fleet ? fleetInstanceName(name, m.vehicles.front().id) : name;
   };
-  std::map<std::string, std::string> container_of;
+  std::map<std::string, std::string> listed_in;  // a module as the lists name it, and its container
   std::vector<ContainerSpec> specs;
   for (auto kv : node) {
     ContainerSpec spec{kv.first.as<std::string>(), {}};
@@ -590,7 +590,7 @@ void readContainers(const YAML::Node& node, Reader& r, const ProgramLookup& look
         r.problem(item, kv.second[i], "no module '" + name + "' in modules");
       } else if (mod->kind.empty() || mod->kind == "quad") {
         r.problem(item, kv.second[i], "'" + name + "' is a program, not one of quad's modules: only those can share a process");
-      } else if (const auto [it, fresh] = container_of.emplace(name, spec.name); !fresh) {
+      } else if (const auto [it, fresh] = listed_in.emplace(name, spec.name); !fresh) {
         r.problem(item, kv.second[i], "'" + name + "' is already in container " + it->second);
       }
     }
@@ -612,7 +612,7 @@ void readContainers(const YAML::Node& node, Reader& r, const ProgramLookup& look
       m.containers.push_back(std::move(one));
     }
   }
-  container_of.clear();
+  std::map<std::string, std::string> container_of;  // a module (a fleet's: an instance), and its container
   for (const ContainerSpec& spec : m.containers) {
     for (const auto& name : spec.modules) {
       container_of.emplace(name, spec.name);

@@ -60,6 +60,12 @@ protected:
     return {};
   }
 
+  /// Whether one of `problems` holds `text`.
+  static bool has(const std::vector<std::string>& problems, const std::string& text)
+  {
+    return std::any_of(problems.begin(), problems.end(), [&](const std::string& p) { return p.find(text) != std::string::npos; });
+  }
+
   fs::path root_;
   ProgramLookup lookup_;
 };
@@ -390,22 +396,14 @@ TEST_F(ManifestTest, AComposedFleetHasEachVehiclesContainerAndOnePlant)
   ASSERT_EQ(m.containers.size(), 2U);
   EXPECT_EQ(m.containers[1].modules, (std::vector<std::string>{"mapping.7", "planning.7"}));
 
-  const auto refused = [&](const std::string& manifest, const std::string& text_expected) {
-    try {
-      parse(manifest);
-    } catch (const common::ConfigError& e) {
-      const auto& p = e.problems();
-      return std::any_of(p.begin(), p.end(), [&](const std::string& x) { return x.find(text_expected) != std::string::npos; });
-    }
-    return false;
-  };
   // The plant serves every vehicle; a vehicle's modules must share its host.
-  EXPECT_TRUE(refused(fleetManifest("containers: {fast: [planning, plant]}\nlayout: composed\n"),
-                      "containers.fast[1]: plant: 'plant' serves every vehicle of the fleet"));
-  const std::string apart = fleetManifest("containers: {slow: [mapping, planning]}\nlayout: composed\n");
-  EXPECT_TRUE(refused(apart, "containers.slow.4: "));
-  EXPECT_TRUE(refused(apart, "planning.4 runs on b and mapping.4 on a: a container's modules share one host"));
-  EXPECT_TRUE(refused(fleetManifest("containers: {planning: [mapping]}\n"), "containers.planning: planning: already a module's name"));
+  EXPECT_TRUE(has(problems(fleetManifest("containers: {fast: [planning, plant]}\nlayout: composed\n")),
+                  "containers.fast[1]: plant: 'plant' serves every vehicle of the fleet"));
+  const auto apart = problems(fleetManifest("containers: {slow: [mapping, planning]}\nlayout: composed\n"));
+  EXPECT_TRUE(has(apart, "containers.slow.4: "));
+  EXPECT_TRUE(has(apart, "planning.4 runs on b and mapping.4 on a: a container's modules share one host"));
+  EXPECT_TRUE(has(problems(fleetManifest("containers: {planning: [mapping]}\n")),
+                  "containers.planning: planning: already a module's name"));
 }
 
 TEST_F(ManifestTest, OneVehicleOfAFleetIsFlownAloneOnRequest)
@@ -582,9 +580,6 @@ TEST_F(ManifestTest, ContainerMistakesAreRefusedNamingTheContainerAndModule)
 {
   const std::string modules = "hosts: {a: {type: local}, b: {type: netns}}\n"
                               "modules: {plant: {}, control: {host: b}, mapping: {}}\n";
-  const auto has = [](const std::vector<std::string>& problems, const std::string& text) {
-    return std::any_of(problems.begin(), problems.end(), [&](const std::string& p) { return p.find(text) != std::string::npos; });
-  };
   auto p = problems(modules + "containers: {fast: [plant, nothing]}\n");
   EXPECT_TRUE(has(p, "containers.fast[1]: nothing: no module 'nothing' in modules")) << p.front();
   p = problems(modules + "containers: {fast: [plant], other: [plant]}\n");

@@ -18,13 +18,13 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
+#include "quad/common/name_list.hpp"
 #include "quad/common/params.hpp"
 #include "quad/common/time.hpp"
 
@@ -199,13 +199,8 @@ public:
     readers_.push_back([k, field](const Params& p, Config& c, const std::filesystem::path&) {
       List& out = field(c);
       out = {};
-      std::stringstream items(p.getString(k));
-      for (std::string item; std::getline(items, item, ',');) {
-        item.erase(0, item.find_first_not_of(' '));
-        item.erase(item.find_last_not_of(' ') + 1);
-        if (!item.empty()) {
-          out.insert(out.end(), item);
-        }
+      for (auto& item : nameList(p.getString(k))) {
+        out.insert(out.end(), std::move(item));
       }
     });
     return *this;

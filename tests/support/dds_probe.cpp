@@ -19,11 +19,11 @@
 #include <thread>
 
 #include "quad/common/time.hpp"
-#include "quad/dds/lockstep.hpp"
 #include "quad/dds/participant.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
+#include "quad/runtime/lockstep.hpp"
 #include "wait.hpp"
 
 namespace {
@@ -127,7 +127,7 @@ int lockstepClock(Participant& p, int steps, std::chrono::milliseconds timeout,
                   std::vector<std::string> names)
 {
   const auto expected = static_cast<int>(names.size());
-  quad::dds::LockstepBarrier barrier(p, std::move(names));
+  quad::runtime::LockstepBarrier barrier(p, std::move(names));
   quad::dds::Publisher<quad::msg::SimClock> clock(p, topics::kSimClock);
   // Participants that are up must be listening before time starts; a missing one is what
   // the barrier's timeout reports.
@@ -157,7 +157,7 @@ int lockstepParticipant(Participant& p, const std::string& name)
 {
   quad::dds::Waker waker;
   quad::dds::Subscriber<quad::msg::SimClock> clock(p, topics::kSimClock, &waker);
-  quad::dds::LockstepReporter reporter(p, name);
+  quad::runtime::LockstepReporter reporter(p, name);
   std::cout << "ready" << std::endl;
   // Runs until killed by the test.
   while (true) {

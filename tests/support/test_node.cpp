@@ -6,14 +6,14 @@
 #include <spdlog/spdlog.h>
 
 #include "quad/common/params.hpp"
-#include "quad/dds/module_main.hpp"
-#include "quad/dds/node.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
+#include "quad/runtime/module_main.hpp"
+#include "quad/runtime/node.hpp"
 
 namespace {
 
-class TestNode : public quad::dds::Node {
+class TestNode : public quad::runtime::Node {
 public:
   explicit TestNode(const quad::common::Params& params)
       : Node("test_node", quad::dds::optionsFromEnvironment("test_node")),
@@ -45,7 +45,7 @@ int main(int argc, char** argv)
   quad::common::ParamSchema schema;
   schema.addString("greeting", "hello", {}, "logged at start")
       .addDouble("command_timeout", 1.0, 0.01, 60.0, "s", "unused; gives the tests a number");
-  return quad::dds::runNodeMain(argc, argv, "test_node", std::move(schema),
+  return quad::runtime::runNodeMain(argc, argv, "test_node", std::move(schema),
                                 [](const quad::common::Params& params) {
                                   return std::make_unique<TestNode>(params);
                                 });

@@ -6,11 +6,11 @@
 #include "mapping_node.hpp"
 #include "planning_node.hpp"
 #include "plant_node.hpp"
-#include "quad/dds/module_main.hpp"
+#include "quad/runtime/module_main.hpp"
 
 int main(int argc, char** argv)
 {
-  return quad::dds::runContainer(argc, argv,
+  return quad::runtime::runContainer(argc, argv,
                                  {quad::plant::plantModule(), quad::estimation::estimationModule(),
                                   quad::control::controlModule(), quad::mapping::mappingModule(),
                                   quad::planning::planningModule(), quad::display::displayModule()});

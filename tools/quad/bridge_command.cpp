@@ -3,7 +3,7 @@
 
 #include <atomic>
 
-#include "quad/dds/node.hpp"
+#include "quad/runtime/node.hpp"
 
 namespace quad::tools {
 
@@ -13,7 +13,7 @@ std::atomic<int> g_stop{0};
 
 int bridge(const bridge::BridgeOptions& options)
 {
-  dds::SignalWatcher signals;  // before any thread exists
+  runtime::SignalWatcher signals;  // before any thread exists
   signals.onSignal([](int s) { g_stop.store(s); });
   return bridge::runBridge(options, g_stop);
 }

@@ -12,9 +12,9 @@
 #include "quad/campaign/campaign_report.hpp"
 #include "quad/campaign/slurm.hpp"
 #include "quad/common/params.hpp"
-#include "quad/dds/node.hpp"
 #include "quad/dds/participant.hpp"
 #include "quad/launch/run.hpp"
+#include "quad/runtime/node.hpp"
 
 namespace quad::tools {
 
@@ -99,7 +99,7 @@ int flyTask(const campaign::CampaignOptions& c, int task)
 
 int campaign(const CampaignCommandOptions& options)
 {
-  dds::SignalWatcher signals;  // before any thread exists
+  runtime::SignalWatcher signals;  // before any thread exists
   campaign::CampaignOptions c;
   try {
     c = campaignOptions(options);

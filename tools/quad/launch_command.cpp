@@ -3,11 +3,11 @@
 
 #include <cstdio>
 
+#include "quad/common/params.hpp"
+#include "quad/dds/topics.hpp"
 #include "quad/launch/module_check.hpp"
 #include "quad/launch/run.hpp"
-#include "quad/common/params.hpp"
-#include "quad/dds/node.hpp"
-#include "quad/dds/topics.hpp"
+#include "quad/runtime/node.hpp"
 
 namespace quad::tools {
 
@@ -15,7 +15,7 @@ namespace fs = std::filesystem;
 
 int launch(const launch::LaunchOptions& options)
 {
-  dds::SignalWatcher signals;  // before any thread exists
+  runtime::SignalWatcher signals;  // before any thread exists
   signals.onSignal([](int s) { launch::LaunchRun::received_signal.store(s); });
 
   const auto manifest = launch::loadRunManifest(options);

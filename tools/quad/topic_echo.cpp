@@ -2,11 +2,11 @@
 #include <cstdio>
 #include <iostream>
 
-#include "quad/topic/connection.hpp"
 #include "quad/common/time.hpp"
-#include "quad/dds/node.hpp"
 #include "quad/dds/raw_type.hpp"
 #include "quad/introspection/cdr.hpp"
+#include "quad/runtime/node.hpp"
+#include "quad/topic/connection.hpp"
 #include "quad/topic/text_format.hpp"
 #include "topic_commands.hpp"
 
@@ -15,7 +15,7 @@ namespace quad::tools {
 int topicEcho(const TopicEchoOptions& options)
 {
   const dds::TopicInfo info = topic::requireTopic(options.topic);
-  dds::SignalWatcher signals;
+  runtime::SignalWatcher signals;
   dds::Participant participant(topic::participantOptions("quad_topic_echo", options.connection));
   dds::Waker waker;
   signals.onSignal([&waker](int) { waker.notify(); });

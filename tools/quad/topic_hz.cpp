@@ -6,11 +6,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "quad/topic/connection.hpp"
 #include "quad/common/time.hpp"
-#include "quad/dds/node.hpp"
 #include "quad/dds/raw_type.hpp"
 #include "quad/dds/waker.hpp"
+#include "quad/runtime/node.hpp"
+#include "quad/topic/connection.hpp"
 #include "topic_commands.hpp"
 
 namespace quad::tools {
@@ -18,7 +18,7 @@ namespace quad::tools {
 int topicHz(const TopicHzOptions& options)
 {
   const dds::TopicInfo info = topic::requireTopic(options.topic);
-  dds::SignalWatcher signals;
+  runtime::SignalWatcher signals;
   dds::Participant participant(topic::participantOptions("quad_topic_hz", options.connection));
   dds::Waker waker;
   dds::RawSubscriber subscriber(participant, info, &waker);

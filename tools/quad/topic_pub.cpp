@@ -4,11 +4,11 @@
 #include <stdexcept>
 #include <thread>
 
+#include "quad/common/time.hpp"
+#include "quad/dds/raw_type.hpp"
+#include "quad/runtime/node.hpp"
 #include "quad/topic/connection.hpp"
 #include "quad/topic/samples.hpp"
-#include "quad/common/time.hpp"
-#include "quad/dds/node.hpp"
-#include "quad/dds/raw_type.hpp"
 #include "topic_commands.hpp"
 
 namespace quad::tools {
@@ -21,7 +21,7 @@ int topicPub(const TopicPubOptions& options)
   }
   const nlohmann::ordered_json value = topic::sampleValues(info, options.values);
 
-  dds::SignalWatcher signals;
+  runtime::SignalWatcher signals;
   const dds::ParticipantOptions participant_options =
       topic::participantOptions("quad_topic_pub", options.connection);
   dds::Participant participant(participant_options);

@@ -7,7 +7,7 @@
 
 #include "quad/common/param_table.hpp"
 #include "quad/control/flight_controller.hpp"
-#include "quad/dds/state_input.hpp"
+#include "quad/runtime/state_input.hpp"
 
 namespace quad::control {
 
@@ -19,7 +19,7 @@ FlightControllerConfig nodeFlightDefaults();
 struct ControlNodeConfig {
   std::filesystem::path vehicle_file = "vehicles/x500.yaml";
   FlightControllerConfig flight = nodeFlightDefaults();
-  dds::StateSource state_source = dds::StateSource::kEstimate;
+  runtime::StateSource state_source = runtime::StateSource::kEstimate;
   bool autostart = false;     ///< arm and take off by itself once the state is fresh
   double status_rate = 20.0;  ///< [Hz]
 };

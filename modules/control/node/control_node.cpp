@@ -4,9 +4,9 @@
 #include <spdlog/spdlog.h>
 
 #include "conversions.hpp"
+#include "quad/common/time.hpp"
 #include "quad/dds/geometry_messages.hpp"
 #include "quad/dds/trajectory_messages.hpp"
-#include "quad/common/time.hpp"
 
 namespace quad::control {
 
@@ -20,7 +20,7 @@ constexpr double kTickBackstopS = 0.04;
 constexpr double kDeadlineEventSlackS = 0.01;
 
 /// The same state sent again: every member equal (a NaN never is).
-bool sameState(const dds::StateSample& a, const dds::StateSample& b)
+bool sameState(const runtime::StateSample& a, const runtime::StateSample& b)
 {
   return a.aligned == b.aligned && a.p_W == b.p_W && a.v_W == b.v_W && a.w_B == b.w_B && a.q_WB.w == b.q_WB.w &&
          a.q_WB.x == b.q_WB.x && a.q_WB.y == b.q_WB.y && a.q_WB.z == b.q_WB.z && a.landed == b.landed &&
@@ -49,7 +49,7 @@ ControlNode::ControlNode(ControlNodeConfig config, dds::Participant handle)
   followSimClock();
   setWakeOnReceipt(true);  // each round's state is answered on the thread that received it
   spdlog::info("control: vehicle {}, autostart {}, flying on the {} ({})", config_.vehicle_file.string(),
-               config_.autostart, dds::toString(config_.state_source), state_.topic().name);
+               config_.autostart, runtime::toString(config_.state_source), state_.topic().name);
 }
 
 void ControlNode::takeInputs()
@@ -433,6 +433,6 @@ void ControlNode::onEvent(const dds::EndpointEvent& event)
   }
 }
 
-dds::ModuleEntry controlModule() { return dds::moduleEntry<ControlNode>("control", controlSchema(), controlConfigFrom); }
+runtime::ModuleEntry controlModule() { return runtime::moduleEntry<ControlNode>("control", controlSchema(), controlConfigFrom); }
 
 }  // namespace quad::control

@@ -11,16 +11,16 @@
 #include <string>
 
 #include "control_config.hpp"
-#include "quad/dds/module_main.hpp"
-#include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
-#include "quad/dds/state_input.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
+#include "quad/runtime/module_main.hpp"
+#include "quad/runtime/node.hpp"
+#include "quad/runtime/state_input.hpp"
 
 namespace quad::control {
 
-class ControlNode : public dds::Node {
+class ControlNode : public runtime::Node {
 public:
   ControlNode(ControlNodeConfig config, dds::Participant handle);
 
@@ -49,7 +49,7 @@ private:
 
   ControlNodeConfig config_;
   FlightController fc_;
-  dds::StateInput state_;
+  runtime::StateInput state_;
   dds::Subscriber<msg::Path> path_;
   dds::Subscriber<msg::Goal> goal_;
   dds::Subscriber<msg::VehicleCommand> command_;
@@ -88,7 +88,7 @@ private:
   void applySensorsBefore(std::int64_t stamp_ns);
   std::int64_t answered_ns_ = -1;          // in lockstep, the stamp of the last command sent
   msg::ActuatorCommand answer_;            // that command, sent again for a state sent again
-  std::optional<dds::StateSample> answered_state_;  // the state it answered (none: the clock's time)
+  std::optional<runtime::StateSample> answered_state_;  // the state it answered (none: the clock's time)
   std::int64_t imu_ns_ = 0;                // the newest IMU sample's sim time
   std::int64_t last_stateless_ns_ = 0;     // the sim time last commanded without a state
   double latest_t_ = -1.0;                 // sim time of the newest state [s]
@@ -107,6 +107,6 @@ private:
 };
 
 /// The control module as a process hosts it: its name, parameters and node.
-dds::ModuleEntry controlModule();
+runtime::ModuleEntry controlModule();
 
 }  // namespace quad::control

@@ -7,7 +7,7 @@ namespace quad::control {
 
 using dds::toMessage;
 
-VehicleState fromSample(const dds::StateSample& s) { return {s.p_W, s.v_W, s.q_WB, s.w_B}; }
+VehicleState fromSample(const runtime::StateSample& s) { return {s.p_W, s.v_W, s.q_WB, s.w_B}; }
 
 std::vector<Vector3> waypointsOf(const msg::Path& m)
 {

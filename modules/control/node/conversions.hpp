@@ -9,13 +9,13 @@
 #include <quad/msg/ControlStatus.h>
 #include <quad/msg/Path.h>
 #include <quad/msg/VehicleCommand.h>
-#include "quad/dds/state_input.hpp"
+#include "quad/runtime/state_input.hpp"
 
 #include "quad/control/flight_controller.hpp"
 
 namespace quad::control {
 
-VehicleState fromSample(const dds::StateSample& s);
+VehicleState fromSample(const runtime::StateSample& s);
 std::vector<Vector3> waypointsOf(const msg::Path& m);
 /// What a planner status means to the controller: fly, hold, or give the goal up.
 PathKind pathKind(msg::PlanStatus status);

@@ -158,10 +158,10 @@ const common::ParamTable<DisplayNodeConfig>& displayNodeTable()
   static const common::ParamTable<N> table = [] {
     common::ParamTable<N> t;
     t.include(displayTable(), [](N& n) -> DisplayParams& { return n; })
-        .choice("state.source", [](N& n) -> dds::StateSource& { return n.state_source; }, dds::stateSourceNames(),
-                "the state drawn as the body frame: " + std::string(dds::kStateSourceDescription))
+        .choice("state.source", [](N& n) -> runtime::StateSource& { return n.state_source; }, runtime::stateSourceNames(),
+                "the state drawn as the body frame: " + std::string(runtime::kStateSourceDescription))
         .number("state.rate", [](N& n) -> double& { return n.state_rate; }, {0.0, 1000.0}, "Hz",
-                std::string(dds::kStateRateDescription) + " (the truth's too)");
+                std::string(runtime::kStateRateDescription) + " (the truth's too)");
     return t;
   }();
   return table;
@@ -179,7 +179,7 @@ DisplayNode::DisplayNode(DisplayNodeConfig config, dds::Participant handle)
       config_(std::move(config)),
       trace_(config_.trace),
       true_trace_(config_.trace),
-      state_(participant(), config_.state_source, nullptr, 0, dds::statePeriodNs(config_.state_rate)),
+      state_(participant(), config_.state_source, nullptr, 0, runtime::statePeriodNs(config_.state_rate)),
       depth_(participant(), dds::topics::kSimDepth, nullptr),
       updates_(participant(), dds::topics::kMapUpdate, nullptr),
       snapshots_(participant(), dds::topics::kMapSnapshot, nullptr),
@@ -201,8 +201,8 @@ DisplayNode::DisplayNode(DisplayNodeConfig config, dds::Participant handle)
       depth_cloud_(participant(), dds::topics::kDisplayDepth),
       log_(participant(), dds::topics::kDisplayLog)
 {
-  if (config_.state_source == dds::StateSource::kEstimate) {
-    truth_.emplace(participant(), dds::StateSource::kTruth, nullptr, 0, dds::statePeriodNs(config_.state_rate));
+  if (config_.state_source == runtime::StateSource::kEstimate) {
+    truth_.emplace(participant(), runtime::StateSource::kTruth, nullptr, 0, runtime::statePeriodNs(config_.state_rate));
   }
   if (!config_.world_file.empty()) {
     obstacles_ = obstacleShapes(world::loadWorld(config_.world_file));
@@ -547,6 +547,6 @@ void DisplayNode::log(const LogLine& line)
   counters().samples_out++;
 }
 
-dds::ModuleEntry displayModule() { return dds::moduleEntry<DisplayNode>("display", displayNodeSchema(), displayConfigFrom); }
+runtime::ModuleEntry displayModule() { return runtime::moduleEntry<DisplayNode>("display", displayNodeSchema(), displayConfigFrom); }
 
 }  // namespace quad::display

@@ -9,15 +9,15 @@
 #include <optional>
 #include <string>
 
-#include "quad/dds/module_main.hpp"
-#include "quad/dds/node.hpp"
-#include "quad/dds/state_input.hpp"
-#include "quad/mapping/map_follower.hpp"
 #include "quad/display/display_params.hpp"
 #include "quad/display/event_log.hpp"
 #include "quad/display/occupied_voxels.hpp"
 #include "quad/display/packed_cloud.hpp"
 #include "quad/display/scene.hpp"
+#include "quad/mapping/map_follower.hpp"
+#include "quad/runtime/module_main.hpp"
+#include "quad/runtime/node.hpp"
+#include "quad/runtime/state_input.hpp"
 
 namespace quad::display {
 
@@ -27,7 +27,7 @@ inline constexpr const char* kBodyFrame = "body";          ///< the state the st
 inline constexpr const char* kTrueBodyFrame = "body_true";  ///< the simulator's truth
 
 struct DisplayNodeConfig : DisplayParams {
-  dds::StateSource state_source = dds::StateSource::kEstimate;
+  runtime::StateSource state_source = runtime::StateSource::kEstimate;
   double state_rate = 50.0;  ///< [Hz] of sim time, at most: the states read (flown on, and the truth); 0: every one
 };
 
@@ -35,7 +35,7 @@ const common::ParamTable<DisplayNodeConfig>& displayNodeTable();
 common::ParamSchema displayNodeSchema();
 DisplayNodeConfig displayConfigFrom(const common::Params& params);
 
-class DisplayNode : public dds::Node {
+class DisplayNode : public runtime::Node {
 public:
   DisplayNode(DisplayNodeConfig config, dds::Participant handle);
 
@@ -62,8 +62,8 @@ private:
   Trace true_trace_;
   EventLog events_;
 
-  dds::StateInput state_;
-  std::optional<dds::StateInput> truth_;  // when the stack flies on the estimate
+  runtime::StateInput state_;
+  std::optional<runtime::StateInput> truth_;  // when the stack flies on the estimate
   dds::Subscriber<msg::PointCloud> depth_;
   dds::Subscriber<msg::MapUpdate> updates_;
   dds::Subscriber<msg::MapSnapshot> snapshots_;
@@ -86,7 +86,7 @@ private:
   dds::Publisher<foxglove::PointCloud> depth_cloud_;
   dds::Publisher<foxglove::Log> log_;
 
-  std::optional<dds::StateSample> body_;   // the newest state flown on
+  std::optional<runtime::StateSample> body_;   // the newest state flown on
   std::optional<TracePose> body_true_;     // the newest true state
   std::map<std::string, foxglove::FrameTransform> sensors_;  // body to each depth sensor, by frame
   std::int64_t next_transforms_ns_ = 0;
@@ -99,6 +99,6 @@ private:
 };
 
 /// The display module as a process hosts it: its name, parameters and node.
-dds::ModuleEntry displayModule();
+runtime::ModuleEntry displayModule();
 
 }  // namespace quad::display

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // quad_display_node: the flight in Foxglove's display schemas, for viewers and recordings.
 #include "display_node.hpp"
-#include "quad/dds/module_main.hpp"
+#include "quad/runtime/module_main.hpp"
 
 int main(int argc, char** argv)
 {
-  return quad::dds::runModule(argc, argv, quad::display::displayModule());
+  return quad::runtime::runModule(argc, argv, quad::display::displayModule());
 }

@@ -11,7 +11,7 @@ TEST(DisplayConfig, TheShippedFileIsReadAndBadValuesAreRefusedNamingFileAndKey)
 {
   const DisplayNodeConfig c = displayConfigFrom(common::loadParams(QUAD_CONFIG_DIR "/display.yaml", displayNodeSchema()));
   EXPECT_TRUE(c.world_file.empty());
-  EXPECT_EQ(c.state_source, dds::StateSource::kEstimate);
+  EXPECT_EQ(c.state_source, runtime::StateSource::kEstimate);
   EXPECT_DOUBLE_EQ(c.trace.spacing, 0.05);
   EXPECT_EQ(c.trace.max_poses, 20000U);
   for (const auto& [yaml, key] : {std::pair{"trajectory:\n  max_poses: 1\n", "d.yaml:trajectory.max_poses: 1"},

@@ -229,6 +229,6 @@ void EstimationNode::publish()
   counters().samples_out++;
 }
 
-dds::ModuleEntry estimationModule() { return dds::moduleEntry<EstimationNode>("estimation", estimatorSchema(), estimatorParamsOf); }
+runtime::ModuleEntry estimationModule() { return runtime::moduleEntry<EstimationNode>("estimation", estimatorSchema(), estimatorParamsOf); }
 
 }  // namespace quad::estimation

@@ -12,16 +12,16 @@
 #include <variant>
 #include <vector>
 
-#include "quad/dds/module_main.hpp"
-#include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/estimation/error_state_filter.hpp"
+#include "quad/runtime/module_main.hpp"
+#include "quad/runtime/node.hpp"
 
 namespace quad::estimation {
 
-class EstimationNode : public dds::Node {
+class EstimationNode : public runtime::Node {
 public:
   EstimationNode(EstimatorParams params, dds::Participant handle);
 
@@ -63,6 +63,6 @@ private:
 };
 
 /// The estimation module as a process hosts it: its name, parameters and node.
-dds::ModuleEntry estimationModule();
+runtime::ModuleEntry estimationModule();
 
 }  // namespace quad::estimation

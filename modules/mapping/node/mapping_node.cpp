@@ -12,8 +12,8 @@
 
 #include "quad/common/time.hpp"
 #include "quad/dds/geometry_messages.hpp"
-#include "quad/mapping/checkpoint.hpp"
 #include "quad/geometry/cspace.hpp"
+#include "quad/mapping/checkpoint.hpp"
 
 namespace quad::mapping {
 
@@ -54,10 +54,10 @@ const common::ParamTable<MappingParams>& mappingTable()
               ".bt file written on shutdown and on COMMAND_SAVE_MAP; empty: never")
         .text("checkpoint.file", [](P& p) -> std::string& { return p.checkpoint_file; }, {},
               "the map resumed from at the start and written with every snapshot; empty: none")
-        .choice("state.source", [](P& p) -> dds::StateSource& { return p.state_source; }, dds::stateSourceNames(),
-                dds::kStateSourceDescription)
+        .choice("state.source", [](P& p) -> runtime::StateSource& { return p.state_source; }, runtime::stateSourceNames(),
+                runtime::kStateSourceDescription)
         .number("state.rate", [](P& p) -> double& { return p.state_rate; }, {0.0, 1000.0}, "Hz",
-                std::string(dds::kStateRateDescription) + "; at least " + common::formatValue(kMinStateRate) +
+                std::string(runtime::kStateRateDescription) + "; at least " + common::formatValue(kMinStateRate) +
                     ": a cloud is placed on the pose interpolated between the states around it");
     return t;
   }();
@@ -86,7 +86,7 @@ MappingNodeConfig mappingConfigFrom(const common::Params& p)
                                                          " Hz: clouds between its states could not be placed "
                                                          "(0 reads every state)")});
   }
-  c.state_period_ns = dds::statePeriodNs(m.state_rate);
+  c.state_period_ns = runtime::statePeriodNs(m.state_rate);
   return c;
 }
 
@@ -99,16 +99,16 @@ MappingNode::MappingNode(MappingNodeConfig config, dds::Participant handle)
       // newer one (the next cloud is placed with the state of its own time).
       depth_(participant(), dds::topics::kSimDepth, waker(),
              dds::readerQosWith(participant(), dds::topics::kSimDepth.info, kHeldClouds)),
-      state_(participant(), config_.state_source, waker(), dds::kHeldStates, statePeriodNs()),
+      state_(participant(), config_.state_source, waker(), runtime::kHeldStates, statePeriodNs()),
       commands_(participant(), dds::topics::kVehicleCommand, waker()),
       updates_(participant(), dds::topics::kMapUpdate),
       snapshots_(participant(), dds::topics::kMapSnapshot),
       stats_(participant(), dds::topics::kMapStats),
       lockstep_(participant(), "mapping")
 {
-  followSimClock(dds::kHeldStates);  // a sample at the state's rate, each saying whether a state went out
+  followSimClock(runtime::kHeldStates);  // a sample at the state's rate, each saying whether a state went out
   spdlog::info("mapping: resolution {} m, max range {} m, clouds placed on the {} ({})", config_.map.resolution,
-               config_.map.max_range, dds::toString(config_.state_source), state_.topic().name);
+               config_.map.max_range, runtime::toString(config_.state_source), state_.topic().name);
   map_bytes_ = mapper_.bytes();  // the empty map's; resume() counts a resumed one
   resume();
 }
@@ -435,6 +435,6 @@ void MappingNode::onStop()
                update_seq_, rejected_, skipped_, mapper_.nodes(), mapper_.tree().updatesSkippedAtBounds());
 }
 
-dds::ModuleEntry mappingModule() { return dds::moduleEntry<MappingNode>("mapping", mappingSchema(), mappingConfigFrom); }
+runtime::ModuleEntry mappingModule() { return runtime::moduleEntry<MappingNode>("mapping", mappingSchema(), mappingConfigFrom); }
 
 }  // namespace quad::mapping

@@ -10,16 +10,16 @@
 #include <set>
 #include <string>
 
-#include "quad/dds/lockstep.hpp"
-#include "quad/dds/module_main.hpp"
-#include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
-#include "quad/dds/state_input.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/mapping/mapper.hpp"
 #include "quad/mapping/pose_history.hpp"
 #include "quad/mapping/stuck_sensor.hpp"
+#include "quad/runtime/lockstep.hpp"
+#include "quad/runtime/module_main.hpp"
+#include "quad/runtime/node.hpp"
+#include "quad/runtime/state_input.hpp"
 
 namespace quad::mapping {
 
@@ -31,7 +31,7 @@ struct MappingNodeConfig {
   /// Resumed from when it exists at the start, written with every snapshot and on shutdown;
   /// empty: none (a mapper started again begins with an empty map).
   std::filesystem::path checkpoint_file;
-  dds::StateSource state_source = dds::StateSource::kEstimate;  ///< where the body's pose comes from
+  runtime::StateSource state_source = runtime::StateSource::kEstimate;  ///< where the body's pose comes from
   /// [ns] of sim time: one state read per period (a cloud between two is placed on the pose
   /// interpolated between them); 0: every state.
   std::int64_t state_period_ns = 0;
@@ -45,7 +45,7 @@ struct MappingParams {
   double snapshot_period_s = 1.0;                        ///< [s] of sim time between snapshots
   std::string save_path;                                 ///< .bt file; empty: never saved
   std::string checkpoint_file;                           ///< empty: none
-  dds::StateSource state_source = dds::StateSource::kEstimate;
+  runtime::StateSource state_source = runtime::StateSource::kEstimate;
   double state_rate = 50.0;  ///< [Hz] of sim time, at most; 0: every state
 };
 
@@ -54,7 +54,7 @@ const common::ParamTable<MappingParams>& mappingTable();
 common::ParamSchema mappingSchema();
 MappingNodeConfig mappingConfigFrom(const common::Params& params);
 
-class MappingNode : public dds::Node {
+class MappingNode : public runtime::Node {
 public:
   MappingNode(MappingNodeConfig config, dds::Participant handle);
 
@@ -86,12 +86,12 @@ private:
   MappingNodeConfig config_;
   Mapper mapper_;
   dds::Subscriber<msg::PointCloud> depth_;
-  dds::StateInput state_;
+  runtime::StateInput state_;
   dds::Subscriber<msg::VehicleCommand> commands_;
   dds::Publisher<msg::MapUpdate> updates_;
   dds::Publisher<msg::MapSnapshot> snapshots_;
   dds::Publisher<msg::MapStats> stats_;
-  dds::LockstepReporter lockstep_;
+  runtime::LockstepReporter lockstep_;
 
   PoseHistory poses_;
   std::int64_t states_heard_ns_ = -1;    // the newest state's stamp, an estimate still aligning included
@@ -115,6 +115,6 @@ private:
 };
 
 /// The mapping module as a process hosts it: its name, parameters and node.
-dds::ModuleEntry mappingModule();
+runtime::ModuleEntry mappingModule();
 
 }  // namespace quad::mapping

@@ -10,9 +10,9 @@
 #include "quad/common/time.hpp"
 #include "quad/dds/geometry_messages.hpp"
 #include "quad/dds/sim_period_filter.hpp"
-#include "quad/world/world_file.hpp"
 #include "quad/planning/replan.hpp"
 #include "quad/vehicle/vehicle.hpp"
+#include "quad/world/world_file.hpp"
 
 namespace quad::planning {
 
@@ -72,8 +72,8 @@ const common::ParamTable<PlanningNodeConfig>& planningNodeTable()
   static const common::ParamTable<N> table = [] {
     common::ParamTable<N> t;
     t.include(planningTable(), [](N& n) -> PlanningParams& { return n; })
-        .choice("state.source", [](N& n) -> dds::StateSource& { return n.state_source; }, dds::stateSourceNames(),
-                dds::kStateSourceDescription);
+        .choice("state.source", [](N& n) -> runtime::StateSource& { return n.state_source; }, runtime::stateSourceNames(),
+                runtime::kStateSourceDescription);
     return t;
   }();
   return table;
@@ -108,7 +108,7 @@ PlanningNode::PlanningNode(PlanningNodeConfig config, dds::Participant handle)
       // In lockstep the clock runs on while a replan works, up to the path's budget: the
       // states that come meanwhile wait here, none replaced by a newer one (each is handled
       // in turn, with the map due by its time).
-      state_(participant(), config_.state_source, waker(), dds::kHeldStates, dds::statePeriodNs(config_.state_rate)),
+      state_(participant(), config_.state_source, waker(), runtime::kHeldStates, runtime::statePeriodNs(config_.state_rate)),
       goal_(participant(), dds::topics::kGoal, waker()),
       // Every path of every vehicle, none replaced by a newer before it is taken: the one in
       // effect at a replan may be older than the newest heard (kPathEffectDelayNs).
@@ -124,7 +124,7 @@ PlanningNode::PlanningNode(PlanningNodeConfig config, dds::Participant handle)
       deconfliction_(participant().options().vehicle_id, config_.fleet, config_.planner.vehicle_radius,
                      config_.planner.vehicle_radius - config_.safety_margin)
 {
-  followSimClock(dds::kHeldStates);  // every sample: the depth frames due at each state's time
+  followSimClock(runtime::kHeldStates);  // every sample: the depth frames due at each state's time
   current_.depth_stamp_ns(depth_stamp_ns_);
   spdlog::info("planning: lattice {} cells at {} m, inflation {} m", planner_.lattice().size(), config_.resolution,
                config_.planner.vehicle_radius);
@@ -449,7 +449,7 @@ void PlanningNode::takeGoal(const msg::Goal& g)
   answerGoal(g.goal_id(), true, fmt::format("planning to goal {} at ({}, {}, {})", g.goal_id(), p.x(), p.y(), p.z()));
 }
 
-bool PlanningNode::handleState(const dds::StateSample& s)
+bool PlanningNode::handleState(const runtime::StateSample& s)
 {
   const std::int64_t t = s.stamp_ns;
   // The frames due at t come from the clock's samples up to t, sent reliably on another topic
@@ -550,7 +550,7 @@ std::int64_t PlanningNode::handledNs() const
   // The last state handled, and when one a period is read the rest of its period (no other state
   // of it comes); the clock's time once no state is held and none was sent since (a fault
   // dropped them): nothing before then can still ask for a path.
-  const std::int64_t period = dds::statePeriodNs(config_.state_rate);
+  const std::int64_t period = runtime::statePeriodNs(config_.state_rate);
   std::int64_t through = period > 0 ? dds::simPeriodWindowEnd(now_ns_, period) - 1 : now_ns_;
   if (!held_states_.empty()) {
     through = std::min(through, held_states_.front().stamp_ns - 1);  // the first state, held
@@ -611,6 +611,6 @@ void PlanningNode::onWake()
   reportLockstep();
 }
 
-dds::ModuleEntry planningModule() { return dds::moduleEntry<PlanningNode>("planning", planningNodeSchema(), planningConfigFrom); }
+runtime::ModuleEntry planningModule() { return runtime::moduleEntry<PlanningNode>("planning", planningNodeSchema(), planningConfigFrom); }
 
 }  // namespace quad::planning

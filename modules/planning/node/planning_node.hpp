@@ -12,12 +12,8 @@
 #include <utility>
 #include <vector>
 
-#include "quad/dds/lockstep.hpp"
 #include "quad/dds/module_watch.hpp"
-#include "quad/dds/module_main.hpp"
-#include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
-#include "quad/dds/state_input.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/mapping/map_follower.hpp"
@@ -25,13 +21,17 @@
 #include "quad/planning/mapper_lapse.hpp"
 #include "quad/planning/planning_params.hpp"
 #include "quad/planning/replan.hpp"
+#include "quad/runtime/lockstep.hpp"
+#include "quad/runtime/module_main.hpp"
+#include "quad/runtime/node.hpp"
+#include "quad/runtime/state_input.hpp"
 
 namespace quad::planning {
 
 /// The node's parameters: the planner's (shared with `quad plan`, `state.rate` among them) and
 /// where the vehicle state comes from.
 struct PlanningNodeConfig : PlanningParams {
-  dds::StateSource state_source = dds::StateSource::kEstimate;
+  runtime::StateSource state_source = runtime::StateSource::kEstimate;
 };
 
 /// configs/planning.yaml as the node reads it: planningTable() and `state.source`.
@@ -42,7 +42,7 @@ common::ParamSchema planningNodeSchema();
 /// the files it names. Throws common::ConfigError naming the file or key.
 PlanningNodeConfig planningConfigFrom(const common::Params& params);
 
-class PlanningNode : public dds::Node {
+class PlanningNode : public runtime::Node {
 public:
   PlanningNode(PlanningNodeConfig config, dds::Participant handle);
 
@@ -60,7 +60,7 @@ private:
   std::uint64_t framesDueAt(std::int64_t at_ns);
   /// The oldest held state, once the map due by its time is in (see the .cpp): its goals, its
   /// replan. False when it must wait.
-  bool handleState(const dds::StateSample& s);
+  bool handleState(const runtime::StateSample& s);
   /// The sim time up to which every input is handled (see the .cpp).
   std::int64_t handledNs() const;
   /// In lockstep: reports done up to the handled time plus the path's budget, or says why not.
@@ -86,16 +86,16 @@ private:
   mapping::MapFollower follower_;  // the mapper's classification, from updates and snapshots
   dds::Subscriber<msg::MapUpdate> updates_;
   dds::Subscriber<msg::MapSnapshot> snapshots_;
-  dds::StateInput state_;
+  runtime::StateInput state_;
   dds::Subscriber<msg::Goal> goal_;
   dds::Subscriber<msg::Path> fleet_paths_;  // every vehicle's: the others' for deconfliction
   dds::Subscriber<msg::LockstepReport> reports_;  // polled: the mapper's tell a lost update from a late one
   dds::Publisher<msg::Path> path_;
   dds::Publisher<msg::GoalAck> goal_acks_;
   dds::ModuleWatch mapper_;
-  dds::LockstepReporter lockstep_;
+  runtime::LockstepReporter lockstep_;
 
-  std::deque<dds::StateSample> held_states_;     // arrived, not yet handled
+  std::deque<runtime::StateSample> held_states_;     // arrived, not yet handled
   std::deque<msg::MapSnapshot> held_snapshots_;  // arrived, not yet due
   std::deque<msg::MapUpdate> held_updates_;      // arrived, not yet due
   std::vector<std::pair<VoxelIndex, Occupancy>> pending_;  // voxel changes not yet in the graph
@@ -133,6 +133,6 @@ private:
 };
 
 /// The planning module as a process hosts it: its name, parameters and node.
-dds::ModuleEntry planningModule();
+runtime::ModuleEntry planningModule();
 
 }  // namespace quad::planning

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "quad/common/param_table.hpp"
-#include "quad/dds/state_input.hpp"
 #include "quad/plant/simulation.hpp"
+#include "quad/runtime/state_input.hpp"
 
 namespace quad::plant {
 
@@ -24,7 +24,7 @@ struct PlantNodeConfig {
   std::int64_t lockstep_period_ns = 4'000'000;  ///< sim time between lockstep rounds
   /// What the stack flies on. In lockstep the controller answers it: the true state, or the
   /// estimate the estimator makes of each IMU sample; the round waits for that answer.
-  dds::StateSource state_source = dds::StateSource::kEstimate;
+  runtime::StateSource state_source = runtime::StateSource::kEstimate;
   std::filesystem::path vehicle_file = "vehicles/x500.yaml";
   std::filesystem::path world_file = "worlds/demo.yaml";
   std::filesystem::path fault_schedule_file;    ///< empty: none

@@ -7,9 +7,9 @@
 #include <spdlog/spdlog.h>
 
 #include "conversions.hpp"
+#include "quad/common/time.hpp"
 #include "quad/dds/fault_messages.hpp"
 #include "quad/dds/geometry_messages.hpp"
-#include "quad/common/time.hpp"
 #include "quad/plant/fleet_file.hpp"
 #include "quad/world/world_file.hpp"
 
@@ -93,11 +93,11 @@ PlantNode::PlantNode(PlantNodeConfig config, dds::Participant handle)
       participants.emplace_back(name);
     }
   };
-  holdsStart(participant().options().lockstep_recorder, dds::kRecorderParticipant);
-  holdsStart(participant().options().lockstep_observer, dds::kObserverParticipant);
+  holdsStart(participant().options().lockstep_recorder, runtime::kRecorderParticipant);
+  holdsStart(participant().options().lockstep_observer, runtime::kObserverParticipant);
   if (config_.mode == PlantNodeConfig::Mode::kLockstep && !participants.empty()) {
     // With a fleet file each vehicle has its own participants (its mapper, its planner).
-    barrier_ = std::make_unique<dds::LockstepBarrier>(
+    barrier_ = std::make_unique<runtime::LockstepBarrier>(
         participant(), participants, waker(),
         config_.fleet_file.empty() ? std::vector<std::uint32_t>{} : fleet_->ids());
   }
@@ -225,7 +225,7 @@ void PlantNode::publishClock(std::size_t vehicle)
 
 std::int64_t PlantNode::answeredInputNs(const VehicleIo& io) const
 {
-  if (config_.state_source == dds::StateSource::kEstimate) {
+  if (config_.state_source == runtime::StateSource::kEstimate) {
     return io.last_imu ? io.last_imu->header().stamp_ns() : -1;
   }
   return io.last_state ? io.last_state->t_ns : -1;
@@ -470,6 +470,6 @@ void PlantNode::onStop()
   }
 }
 
-dds::ModuleEntry plantModule() { return dds::moduleEntry<PlantNode>("plant", plantSchema(), plantConfigFrom); }
+runtime::ModuleEntry plantModule() { return runtime::moduleEntry<PlantNode>("plant", plantSchema(), plantConfigFrom); }
 
 }  // namespace quad::plant

@@ -12,16 +12,16 @@
 
 #include "plant_config.hpp"
 #include "quad/dds/fleet_publisher.hpp"
-#include "quad/dds/lockstep.hpp"
-#include "quad/dds/module_main.hpp"
-#include "quad/dds/node.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/plant/fleet.hpp"
+#include "quad/runtime/lockstep.hpp"
+#include "quad/runtime/module_main.hpp"
+#include "quad/runtime/node.hpp"
 
 namespace quad::plant {
 
-class PlantNode : public dds::Node {
+class PlantNode : public runtime::Node {
 public:
   /// Loads vehicle(s), world and fault schedule(s); throws common::ConfigError naming the file.
   PlantNode(PlantNodeConfig config, dds::Participant handle);
@@ -75,7 +75,7 @@ private:
   dds::FleetPublisher<msg::SimEvent> events_;
   dds::Subscriber<msg::ActuatorCommand> actuators_;
   dds::Subscriber<msg::FaultCommand> faults_;
-  std::unique_ptr<dds::LockstepBarrier> barrier_;
+  std::unique_ptr<runtime::LockstepBarrier> barrier_;
 
   std::int64_t wall_start_ns_ = 0;
   std::int64_t round_end_ns_ = 0;          // lockstep: sim time the current round runs to
@@ -88,6 +88,6 @@ private:
 };
 
 /// The plant module as a process hosts it: its name, parameters and node.
-dds::ModuleEntry plantModule();
+runtime::ModuleEntry plantModule();
 
 }  // namespace quad::plant

@@ -14,21 +14,21 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "quad/topic/connection.hpp"
-#include "quad/topic/samples.hpp"
-#include "quad/fault/judge.hpp"
-#include "quad/fault/scenario.hpp"
-#include "quad/plant_messages/faults.hpp"
 #include "quad/bag/audit.hpp"
 #include "quad/bag/mcap.hpp"
 #include "quad/common/time.hpp"
 #include "quad/dds/fault_messages.hpp"
 #include "quad/dds/geometry_messages.hpp"
-#include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/raw_type.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
+#include "quad/fault/judge.hpp"
+#include "quad/fault/scenario.hpp"
+#include "quad/plant_messages/faults.hpp"
+#include "quad/runtime/node.hpp"
+#include "quad/topic/connection.hpp"
+#include "quad/topic/samples.hpp"
 
 namespace quad::fault {
 

@@ -7,9 +7,9 @@
 #include "driver.hpp"
 #include "quad/common/params.hpp"
 #include "quad/dds/environment.hpp"
-#include "quad/dds/node.hpp"
 #include "quad/launch/observer.hpp"
 #include "quad/launch/run.hpp"
+#include "quad/runtime/node.hpp"
 #include "quad/topic/connection.hpp"
 #include "quad/topic/samples.hpp"
 

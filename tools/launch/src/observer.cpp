@@ -9,13 +9,13 @@
 #include "quad/common/time.hpp"
 #include "quad/dds/geometry_messages.hpp"
 #include "quad/dds/liveliness.hpp"
-#include "quad/dds/lockstep.hpp"
-#include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
-#include "quad/dds/sim_clock.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/introspection/idl.hpp"
+#include "quad/runtime/lockstep.hpp"
+#include "quad/runtime/node.hpp"
+#include "quad/runtime/sim_clock.hpp"
 
 namespace quad::launch {
 
@@ -44,7 +44,7 @@ struct Observer::Sim {
   }
   dds::Subscriber<msg::VehicleState> state;
   dds::Subscriber<msg::EstimatedState> estimate;
-  dds::SimClockFollower clock;
+  runtime::SimClockFollower clock;
   dds::Subscriber<msg::Heartbeat> heartbeats;
 };
 
@@ -127,8 +127,8 @@ void Observer::releaseStart()
     }
     msg::LockstepReport report;
     report.header().stamp_ns(sim_->clock.ns());
-    report.participant(dds::kObserverParticipant);
-    report.done_ns(dds::kDoneForGoodNs);
+    report.participant(runtime::kObserverParticipant);
+    report.done_ns(runtime::kDoneForGoodNs);
     if (start_hold_->reports.writeFor(id, report)) {
       start_hold_->released.push_back(id);
     }  // else tried again with the next update
@@ -380,7 +380,7 @@ void Observer::update()
   const std::int64_t now_ns = sim_->clock.ns();
   if (operator_link_ && now_ns >= next_operator_beat_ns_) {
     for (const std::uint32_t id : ids_) {
-      endpoints_->operator_beat.writeFor(id, dds::processHeartbeat("operator", msg::MODULE_RUNNING, now_ns));
+      endpoints_->operator_beat.writeFor(id, runtime::processHeartbeat("operator", msg::MODULE_RUNNING, now_ns));
     }
     next_operator_beat_ns_ = now_ns + kOperatorBeatNs;
   }

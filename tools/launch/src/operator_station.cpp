@@ -14,10 +14,10 @@
 #include "quad/common/time.hpp"
 #include "quad/dds/geometry_messages.hpp"
 #include "quad/dds/publisher.hpp"
-#include "quad/dds/sim_clock.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/launch/observer.hpp"
+#include "quad/runtime/sim_clock.hpp"
 
 namespace quad::launch {
 
@@ -90,7 +90,7 @@ struct OperatorStation::Endpoints {
   dds::Publisher<msg::VehicleCommand> command;
   dds::Subscriber<msg::CommandAck> acks;
   dds::Subscriber<msg::ControlStatus> status;
-  dds::SimClockFollower clock;
+  runtime::SimClockFollower clock;
   std::string mode;  // of the newest status taken
 };
 

@@ -14,19 +14,19 @@
 #include <fmt/chrono.h>
 #include <fmt/format.h>
 
-#include "quad/launch/estimate_plot.hpp"
-#include "quad/launch/shm.hpp"
 #include "quad/common/layout.hpp"
 #include "quad/common/params.hpp"
 #include "quad/common/time.hpp"
-#include "quad/plan/known_map.hpp"
 #include "quad/dds/environment.hpp"
-#include "quad/dds/node.hpp"
-#include "quad/dds/state_input.hpp"
 #include "quad/dds/topics.hpp"
+#include "quad/launch/estimate_plot.hpp"
+#include "quad/launch/shm.hpp"
+#include "quad/plan/known_map.hpp"
 #include "quad/report/report.hpp"
-#include "quad/world/world_file.hpp"
+#include "quad/runtime/node.hpp"
+#include "quad/runtime/state_input.hpp"
 #include "quad/vehicle/vehicle.hpp"
+#include "quad/world/world_file.hpp"
 
 namespace quad::launch {
 
@@ -595,7 +595,7 @@ int LaunchRun::execute(RunExtension* extension)
   po.observe_all = true;
   observer_ = std::make_unique<launch::Observer>(
       po, m_.vehicles.empty() ? std::vector<std::uint32_t>{} : m_.vehicleIds(),
-      dds::statePeriodNs(m_.mission.score_rate_hz));
+      runtime::statePeriodNs(m_.mission.score_rate_hz));
   if (po.lockstep_observer) {
     const auto modules = m_.hostedModules();
     observer_->holdStart(static_cast<std::size_t>(

@@ -17,18 +17,18 @@
 #include <fmt/chrono.h>
 #include <fmt/format.h>
 
-#include "quad/topic/connection.hpp"
 #include "quad/bag/audit.hpp"
 #include "quad/bag/mcap.hpp"
+#include "quad/topic/connection.hpp"
 #include "recording_files.hpp"
 #include "start_gate.hpp"
 #include "quad/common/payload_header.hpp"
 #include "quad/common/time.hpp"
-#include "quad/dds/node.hpp"
 #include "quad/dds/raw_type.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/dds/waker.hpp"
 #include "quad/introspection/idl.hpp"
+#include "quad/runtime/node.hpp"
 
 namespace quad::record {
 

@@ -3,8 +3,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "quad/dds/lockstep.hpp"
 #include "quad/dds/topics.hpp"
+#include "quad/runtime/lockstep.hpp"
 #include "quad/topic/samples.hpp"
 
 namespace quad::record {
@@ -25,7 +25,7 @@ void StartGate::release(bool plant_matched)
     return;
   }
   for (auto it = waiting_.begin(); it != waiting_.end();) {
-    const nlohmann::ordered_json report{{"participant", dds::kRecorderParticipant}, {"done_ns", dds::kDoneForGoodNs}};
+    const nlohmann::ordered_json report{{"participant", runtime::kRecorderParticipant}, {"done_ns", runtime::kDoneForGoodNs}};
     dds::RawSample raw = topic::encodeSample(dds::topics::kLockstep.info, report, clock_ns_, ++seq_, *it);
     if (!reports_.write(raw)) {
       ++it;  // tried again with the next clock sample

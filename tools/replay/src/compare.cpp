@@ -24,13 +24,13 @@
 #include "quad/common/payload_header.hpp"
 #include "quad/common/time.hpp"
 #include "quad/dds/environment.hpp"
-#include "quad/dds/lockstep.hpp"
-#include "quad/dds/node.hpp"
 #include "quad/dds/raw_type.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/dds/waker.hpp"
 #include "quad/launch/manifest.hpp"
 #include "quad/process/spawn.hpp"
+#include "quad/runtime/lockstep.hpp"
+#include "quad/runtime/node.hpp"
 #include "quad/topic/connection.hpp"
 
 namespace quad::tools {
@@ -228,7 +228,7 @@ int run(const ReplayOptions& options)
   fs::create_directories(work / "state");
   const auto argv = moduleCommand(run_dir / "run.json", module, work / "state", options.sets);
 
-  dds::SignalWatcher signals;
+  runtime::SignalWatcher signals;
   dds::Participant participant(topic::participantOptions("quad_replay", options.connection));
   dds::Waker waker;
   std::map<std::uint16_t, std::unique_ptr<dds::RawPublisher>> publishers;  // by input channel
@@ -242,9 +242,9 @@ int run(const ReplayOptions& options)
   if (outputs.empty()) {
     throw ReplayError(fmt::format("{}: holds nothing {} wrote to compare with", options.file, module));
   }
-  std::unique_ptr<dds::LockstepBarrier> barrier;
+  std::unique_ptr<runtime::LockstepBarrier> barrier;
   if (module != "control") {
-    barrier = std::make_unique<dds::LockstepBarrier>(participant, std::vector<std::string>{module}, &waker);
+    barrier = std::make_unique<runtime::LockstepBarrier>(participant, std::vector<std::string>{module}, &waker);
   }
 
   ModuleProcess child(argv,

@@ -8,12 +8,12 @@
 #include <memory>
 #include <thread>
 
-#include "quad/topic/connection.hpp"
 #include "quad/bag/mcap.hpp"
 #include "quad/common/time.hpp"
-#include "quad/dds/node.hpp"
 #include "quad/dds/raw_type.hpp"
 #include "quad/dds/topics.hpp"
+#include "quad/runtime/node.hpp"
+#include "quad/topic/connection.hpp"
 
 namespace quad::tools {
 
@@ -30,7 +30,7 @@ int replay(const ReplayOptions& options)
     std::fprintf(stderr, "replay: %s is incomplete (%s); replaying what it holds\n", options.file.c_str(),
                  c.problem.c_str());
   }
-  dds::SignalWatcher signals;
+  runtime::SignalWatcher signals;
   dds::Participant participant(topic::participantOptions("quad_replay", options.connection));
 
   // The channels to publish: selected, and with a quad contract to publish them under.

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "quad/dds/participant.hpp"
 #include "quad/launch/estimate_score.hpp"
 #include "quad/launch/mission.hpp"
-#include "quad/dds/participant.hpp"
 
 namespace quad::launch {
 
@@ -61,7 +61,7 @@ public:
   bool goalDelivered();
   /// In a lockstep run whose plant counts this observer among its participants
   /// (QUAD_LOCKSTEP_OBSERVER), holds the first round as the run's recorder does: update()
-  /// reports this participant done for good (dds::kObserverParticipant) for each vehicle once
+  /// reports this participant done for good (runtime::kObserverParticipant) for each vehicle once
   /// it reads the plant's clock and states and the states of the run's `estimators`, so
   /// that the scores take in every one from sim time 0. Best-effort states a reader has not
   /// matched yet are lost to it: without the hold a machine slow to discover left the

@@ -11,16 +11,16 @@
 #include <quad/msg/FaultCommand.h>
 #include <quad/msg/SimEvent.h>
 
-#include "quad/wire/datagram_faults.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
+#include "quad/wire/datagram_faults.hpp"
 
-namespace quad::dds {
+namespace quad::runtime {
 
 class FaultLayerControl {
 public:
   /// `participant` must have a fault layer (ParticipantOptions::fault_layer).
-  FaultLayerControl(Participant& participant, std::string module_name, Waker* waker);
+  FaultLayerControl(dds::Participant& participant, std::string module_name, dds::Waker* waker);
 
   /// Handles every fault command that arrived.
   void take();
@@ -36,8 +36,8 @@ private:
 
   wire::DatagramFaults& layer_;
   std::string module_name_;
-  Subscriber<msg::FaultCommand> commands_;
-  Publisher<msg::SimEvent> events_;
+  dds::Subscriber<msg::FaultCommand> commands_;
+  dds::Publisher<msg::SimEvent> events_;
 };
 
-}  // namespace quad::dds
+}  // namespace quad::runtime

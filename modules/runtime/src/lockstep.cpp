@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "quad/dds/lockstep.hpp"
+#include "quad/runtime/lockstep.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -10,10 +10,10 @@
 #include "quad/common/time.hpp"
 #include "quad/dds/topics.hpp"
 
-namespace quad::dds {
+namespace quad::runtime {
 
-LockstepReporter::LockstepReporter(Participant& participant, std::string name)
-    : name_(std::move(name)), publisher_(participant, topics::kLockstep)
+LockstepReporter::LockstepReporter(dds::Participant& participant, std::string name)
+    : name_(std::move(name)), publisher_(participant, dds::topics::kLockstep)
 {
 }
 
@@ -78,12 +78,12 @@ std::vector<std::string> ledgerNames(std::vector<std::string> participants, cons
 
 }  // namespace
 
-LockstepBarrier::LockstepBarrier(Participant& participant, std::vector<std::string> participants,
-                                 Waker* waker, std::vector<std::uint32_t> vehicles)
+LockstepBarrier::LockstepBarrier(dds::Participant& participant, std::vector<std::string> participants,
+                                 dds::Waker* waker, std::vector<std::uint32_t> vehicles)
     : vehicles_(std::move(vehicles)),
       ledger_(ledgerNames(std::move(participants), vehicles_)),
       waker_(waker != nullptr ? waker : &own_waker_),
-      subscriber_(participant, topics::kLockstep, waker_)
+      subscriber_(participant, dds::topics::kLockstep, waker_)
 {
 }
 
@@ -103,10 +103,10 @@ void LockstepBarrier::collect()
     const std::string name = vehicles_.empty() ? report->participant().to_string()
                                                : fleetName(report->participant().to_string(), report->header().vehicle_id());
     const auto outcome = ledger_.report(name, report->done_ns());
-    if (outcome != common::LockstepLedger::Report::kAccepted) {
+    if (outcome != LockstepLedger::Report::kAccepted) {
       ++ignored_;
       spdlog::warn("lockstep: ignored report from '{}' at {} ns: {}", name, report->done_ns(),
-                   outcome == common::LockstepLedger::Report::kUnknownParticipant
+                   outcome == LockstepLedger::Report::kUnknownParticipant
                        ? "not an expected participant"
                        : "earlier than its previous report");
     }
@@ -138,4 +138,4 @@ LockstepBarrier::Result LockstepBarrier::waitUntilDone(std::int64_t sim_ns,
   return Result{.caught_up = true};
 }
 
-}  // namespace quad::dds
+}  // namespace quad::runtime

@@ -15,47 +15,47 @@
 #include <vector>
 
 #include "wait.hpp"
-#include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
+#include "quad/runtime/node.hpp"
 
-namespace quad::dds {
+namespace quad::runtime {
 namespace {
 
 // ctest runs each case alone and in parallel with others: each has a domain of its own.
 constexpr int kEventsDomain = 68;
 constexpr int kPingDomain = 69;
 
-ParticipantOptions options(int domain)
+dds::ParticipantOptions options(int domain)
 {
-  return ParticipantOptions{.name = "shared_test", .domain_id = domain, .transport = Transport::kUdp};
+  return dds::ParticipantOptions{.name = "shared_test", .domain_id = domain, .transport = dds::Transport::kUdp};
 }
 
-bool heardOf(EventQueue& events, EventKind kind, std::string_view topic, std::chrono::milliseconds timeout)
+bool heardOf(dds::EventQueue& events, dds::EventKind kind, std::string_view topic, std::chrono::milliseconds timeout)
 {
-  return !events.waitFor([&](const EndpointEvent& e) { return e.kind == kind && e.topic == topic; }, timeout).empty();
+  return !events.waitFor([&](const dds::EndpointEvent& e) { return e.kind == kind && e.topic == topic; }, timeout).empty();
 }
 
 }  // namespace
 
 TEST(SharedParticipant, EachNodeHearsOfItsOwnEndpointsOnlyAndTheParticipantOutlivesItsMaker)
 {
-  auto maker = std::make_unique<Participant>(options(kEventsDomain));
-  Participant reader_node(maker->shared());
-  Participant bystander(maker->shared());
+  auto maker = std::make_unique<dds::Participant>(options(kEventsDomain));
+  dds::Participant reader_node(maker->shared());
+  dds::Participant bystander(maker->shared());
   EXPECT_EQ(maker->raw(), reader_node.raw());  // one DDS participant
   EXPECT_TRUE(maker->reportsProcessInputs());
   EXPECT_FALSE(reader_node.reportsProcessInputs());
-  EXPECT_THROW(Participant(std::shared_ptr<SharedParticipant>()), std::invalid_argument);
+  EXPECT_THROW(dds::Participant(std::shared_ptr<dds::SharedParticipant>()), std::invalid_argument);
 
-  auto writer = std::make_unique<Publisher<msg::SimEvent>>(*maker, topics::kSimEvents);
-  Subscriber<msg::SimEvent> reader(reader_node, topics::kSimEvents);
-  Subscriber<msg::Heartbeat> unrelated(bystander, topics::kHeartbeat);
-  const auto topic = topics::kSimEvents.info.name;
-  EXPECT_TRUE(heardOf(maker->events(), EventKind::kMatched, topic, std::chrono::seconds(10)));
-  EXPECT_TRUE(heardOf(reader_node.events(), EventKind::kMatched, topic, std::chrono::seconds(10)));
-  EXPECT_FALSE(heardOf(bystander.events(), EventKind::kMatched, topic, std::chrono::milliseconds(300)));
+  auto writer = std::make_unique<dds::Publisher<msg::SimEvent>>(*maker, dds::topics::kSimEvents);
+  dds::Subscriber<msg::SimEvent> reader(reader_node, dds::topics::kSimEvents);
+  dds::Subscriber<msg::Heartbeat> unrelated(bystander, dds::topics::kHeartbeat);
+  const auto topic = dds::topics::kSimEvents.info.name;
+  EXPECT_TRUE(heardOf(maker->events(), dds::EventKind::kMatched, topic, std::chrono::seconds(10)));
+  EXPECT_TRUE(heardOf(reader_node.events(), dds::EventKind::kMatched, topic, std::chrono::seconds(10)));
+  EXPECT_FALSE(heardOf(bystander.events(), dds::EventKind::kMatched, topic, std::chrono::milliseconds(300)));
 
   msg::SimEvent event;
   event.subject_id(7);
@@ -71,7 +71,7 @@ TEST(SharedParticipant, EachNodeHearsOfItsOwnEndpointsOnlyAndTheParticipantOutli
   // The node that made the participant goes; the others keep it.
   writer.reset();
   maker.reset();
-  Publisher<msg::SimEvent> second(bystander, topics::kSimEvents);
+  dds::Publisher<msg::SimEvent> second(bystander, dds::topics::kSimEvents);
   event.subject_id(8);
   ASSERT_TRUE(test::waitFor([&] { return second.matchedReaders() == 1; }));
   ASSERT_TRUE(second.write(event));
@@ -85,7 +85,7 @@ namespace {
 /// sample, and answers each on `out` (the pinger sends the next ping, up to `rounds`).
 class PingNode : public Node {
 public:
-  PingNode(std::string name, Participant participant, const Topic<msg::SimEvent>& in, const Topic<msg::SimEvent>& out,
+  PingNode(std::string name, dds::Participant participant, const dds::Topic<msg::SimEvent>& in, const dds::Topic<msg::SimEvent>& out,
            bool starts, std::int64_t rounds)
       : Node(std::move(name), std::move(participant)),
         in_(this->participant(), in, waker()),
@@ -145,8 +145,8 @@ private:
     EXPECT_TRUE(out_.write(e));
   }
 
-  Subscriber<msg::SimEvent> in_;
-  Publisher<msg::SimEvent> out_;
+  dds::Subscriber<msg::SimEvent> in_;
+  dds::Publisher<msg::SimEvent> out_;
   bool starts_;
   bool started_ = false;
   std::int64_t rounds_;
@@ -159,10 +159,10 @@ private:
 TEST(SharedParticipant, NodesOfOneProcessPassSamplesOnTheWritersThreadEachInOrderAndOnce)
 {
   constexpr std::int64_t kRounds = 50;
-  Participant maker(options(kPingDomain));
+  dds::Participant maker(options(kPingDomain));
   const auto shared = maker.shared();
-  PingNode ping("ping", std::move(maker), topics::kSimEvents, topics::kFaultEvents, true, kRounds);
-  PingNode pong("pong", Participant(shared), topics::kFaultEvents, topics::kSimEvents, false, kRounds);
+  PingNode ping("ping", std::move(maker), dds::topics::kSimEvents, dds::topics::kFaultEvents, true, kRounds);
+  PingNode pong("pong", dds::Participant(shared), dds::topics::kFaultEvents, dds::topics::kSimEvents, false, kRounds);
   std::thread ping_thread([&] { ping.run(); });
   std::thread pong_thread([&] { pong.run(); });
   const bool done = test::waitFor([&] { return ping.taken().size() >= static_cast<std::size_t>(kRounds); });
@@ -195,4 +195,4 @@ TEST(SharedParticipant, NodesOfOneProcessPassSamplesOnTheWritersThreadEachInOrde
   EXPECT_FALSE(pong.overlapped.load());
 }
 
-}  // namespace quad::dds
+}  // namespace quad::runtime

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "quad/common/lockstep.hpp"
+#include "quad/runtime/lockstep_ledger.hpp"
 
 #include <cstdio>
 #include <stdexcept>
 
 #include "quad/common/time.hpp"
 
-namespace quad::common {
+namespace quad::runtime {
 
 LockstepLedger::LockstepLedger(std::vector<std::string> participants)
     : order_(std::move(participants))
@@ -51,7 +51,7 @@ std::vector<std::string> LockstepLedger::late(std::int64_t sim_ns) const
       out.push_back(name + " (no report yet)");
     } else if (*done < sim_ns) {
       char text[64];
-      std::snprintf(text, sizeof(text), " (done up to %.3f s)", toSeconds(*done));
+      std::snprintf(text, sizeof(text), " (done up to %.3f s)", common::toSeconds(*done));
       out.push_back(name + text);
     }
   }
@@ -78,4 +78,4 @@ std::optional<std::int64_t> LockstepLedger::minimumDoneNs() const
   return minimum;
 }
 
-}  // namespace quad::common
+}  // namespace quad::runtime

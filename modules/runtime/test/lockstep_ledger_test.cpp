@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "quad/common/lockstep.hpp"
+#include "quad/runtime/lockstep_ledger.hpp"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
-namespace quad::common {
+namespace quad::runtime {
 namespace {
 
 TEST(LockstepLedger, CaughtUpOnlyWhenEveryParticipantReachedTheTime)
@@ -69,4 +69,4 @@ TEST(LockstepLedger, CaughtUpEqualsTheMinimumOfRandomReports)
 }
 
 }  // namespace
-}  // namespace quad::common
+}  // namespace quad::runtime

@@ -15,7 +15,7 @@
 #include "quad/dds/topics.hpp"
 #include "quad/geometry/quaternion.hpp"
 
-namespace quad::dds {
+namespace quad::runtime {
 
 enum class StateSource { kEstimate, kTruth };
 
@@ -27,7 +27,7 @@ inline constexpr const char* kStateSourceDescription =
     "the vehicle state flown on: the estimator's (quad/estimation/state), or the plant's ground truth "
     "(quad/sim/state) to compare against it";
 /// The topic a source is read from.
-const TopicInfo& stateTopic(StateSource s);
+const dds::TopicInfo& stateTopic(StateSource s);
 /// What `state.rate` means, for the parameter tables of the modules that need fewer states than
 /// the plant's steps (StateInput's period).
 inline constexpr const char* kStateRateDescription =
@@ -67,18 +67,18 @@ public:
   /// `depth` > 0: the reader keeps that many unread samples, not the topic profile's newest
   /// only (a reader that needs the state of a given time after working for a while).
   /// `period_ns` > 0: at most one sample per that much sim time (withMinimumSeparation).
-  StateInput(Participant& participant, StateSource source, Waker* waker, std::int32_t depth = 0,
+  StateInput(dds::Participant& participant, StateSource source, dds::Waker* waker, std::int32_t depth = 0,
              std::int64_t period_ns = 0);
 
   /// Every unread sample, oldest first.
   std::vector<StateSample> takeAll();
   StateSource source() const { return source_; }
-  const TopicInfo& topic() const { return stateTopic(source_); }
+  const dds::TopicInfo& topic() const { return stateTopic(source_); }
 
 private:
   StateSource source_;
-  std::optional<Subscriber<msg::VehicleState>> truth_;
-  std::optional<Subscriber<msg::EstimatedState>> estimate_;
+  std::optional<dds::Subscriber<msg::VehicleState>> truth_;
+  std::optional<dds::Subscriber<msg::EstimatedState>> estimate_;
 };
 
-}  // namespace quad::dds
+}  // namespace quad::runtime

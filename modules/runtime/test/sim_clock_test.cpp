@@ -10,12 +10,12 @@
 
 #include "quad/dds/participant.hpp"
 #include "quad/dds/publisher.hpp"
-#include "quad/dds/sim_clock.hpp"
 #include "quad/dds/topics.hpp"
+#include "quad/runtime/sim_clock.hpp"
 #include "side_by_side.hpp"
 #include "wait.hpp"
 
-namespace quad::dds {
+namespace quad::runtime {
 namespace {
 
 // Each test has a domain of its own: ctest runs them side by side, and one's clock samples
@@ -42,9 +42,9 @@ struct ClockLink {
       : plant{test::sideBySide("plant", domain)}, reader{test::sideBySide("reader", domain)}
   {
   }
-  Participant plant;
-  Participant reader;
-  Publisher<msg::SimClock> clock{plant, topics::kSimClock};
+  dds::Participant plant;
+  dds::Participant reader;
+  dds::Publisher<msg::SimClock> clock{plant, dds::topics::kSimClock};
   SimClockFollower follower{reader};
 };
 
@@ -74,8 +74,8 @@ TEST(SimClockFollower, TimeOnlyMovesForwardAndTheNewestSampleSaysTheRest)
   EXPECT_FALSE(follower.stateSent());
   // AND a state is vouched for up to half a second past the clock, not beyond
   EXPECT_TRUE(follower.vouchesFor(2'000'000'000));
-  EXPECT_TRUE(follower.vouchesFor(2'000'000'000 + topics::kStateAheadOfClockNs));
-  EXPECT_FALSE(follower.vouchesFor(2'000'000'001 + topics::kStateAheadOfClockNs));
+  EXPECT_TRUE(follower.vouchesFor(2'000'000'000 + dds::topics::kStateAheadOfClockNs));
+  EXPECT_FALSE(follower.vouchesFor(2'000'000'001 + dds::topics::kStateAheadOfClockNs));
 }
 
 TEST(SimClockFollower, KeepsTheFramesPublishedAndTheStatesNotSentUpToATimeForTwoSeconds)
@@ -117,4 +117,4 @@ TEST(SimClockFollower, KeepsTheFramesPublishedAndTheStatesNotSentUpToATimeForTwo
 }
 
 }  // namespace
-}  // namespace quad::dds
+}  // namespace quad::runtime

@@ -12,17 +12,17 @@
 #include <vector>
 
 #include "quad/common/params.hpp"
-#include "quad/dds/node.hpp"
 #include "quad/dds/participant.hpp"
+#include "quad/runtime/node.hpp"
 
-namespace quad::dds {
+namespace quad::runtime {
 
 /// What a process needs to host a module: its name, the schema of its parameters, and how to
 /// build its node of checked params on a participant handle.
 struct ModuleEntry {
   std::string name;
   common::ParamSchema schema;
-  std::function<std::unique_ptr<Node>(const common::Params&, Participant)> make;
+  std::function<std::unique_ptr<Node>(const common::Params&, dds::Participant)> make;
 };
 
 /// The entry of the usual module: a `NodeType(Config, Participant)` built of the config that
@@ -30,7 +30,7 @@ struct ModuleEntry {
 template <typename NodeType, typename ConfigFrom>
 ModuleEntry moduleEntry(std::string name, common::ParamSchema schema, ConfigFrom config_from)
 {
-  return {std::move(name), std::move(schema), [config_from](const common::Params& params, Participant participant) {
+  return {std::move(name), std::move(schema), [config_from](const common::Params& params, dds::Participant participant) {
             return std::make_unique<NodeType>(config_from(params), std::move(participant));
           }};
 }
@@ -60,4 +60,4 @@ int runModule(int argc, char** argv, const ModuleEntry& module);
 /// and the exit status is 1 when any failed.
 int runContainer(int argc, char** argv, const std::vector<ModuleEntry>& known);
 
-}  // namespace quad::dds
+}  // namespace quad::runtime

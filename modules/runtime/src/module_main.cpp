@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "quad/dds/module_main.hpp"
+#include "quad/runtime/module_main.hpp"
 
 #include <atomic>
 #include <chrono>
@@ -17,7 +17,7 @@
 #include "quad/common/logging.hpp"
 #include "quad/common/yaml_input.hpp"
 
-namespace quad::dds {
+namespace quad::runtime {
 
 namespace {
 
@@ -206,7 +206,7 @@ int runNodeMain(int argc, char** argv, std::string_view module_name, common::Par
 int runModule(int argc, char** argv, const ModuleEntry& module)
 {
   return runNodeMain(argc, argv, module.name, module.schema, [&](const common::Params& params) {
-    return module.make(params, Participant(optionsFromEnvironment(module.name)));
+    return module.make(params, dds::Participant(dds::optionsFromEnvironment(module.name)));
   });
 }
 
@@ -232,7 +232,7 @@ int runContainer(int argc, char** argv, const std::vector<ModuleEntry>& known)
       std::string help = fmt::format(
           "usage: {} | --help | --version\n\n"
           "Hosts several of quad's modules in one process, on one DDS participant: each is a node\n"
-          "with its own readers, writers and thread, on the same topics as when it runs alone.\n"
+          "with its own readers, writers and thread, on the same dds::topics as when it runs alone.\n"
           "Each --module takes its own --config and --set, as that module's program does; the\n"
           "participant's domain and transport come from the environment (QUAD_DOMAIN_ID, ...).\n"
           "A module that stops or fails stops the container; --check only checks every module's\n"
@@ -311,13 +311,13 @@ int runContainer(int argc, char** argv, const std::vector<ModuleEntry>& known)
   }
   return runHosted(name, [&] {
     std::vector<std::unique_ptr<Node>> nodes;
-    Participant first(optionsFromEnvironment(name));
-    const std::shared_ptr<SharedParticipant> shared = first.shared();
+    dds::Participant first(dds::optionsFromEnvironment(name));
+    const std::shared_ptr<dds::SharedParticipant> shared = first.shared();
     for (std::size_t i = 0; i < hosted.size(); ++i) {
-      nodes.push_back(hosted[i]->make(params[i], i == 0 ? std::move(first) : Participant(shared)));
+      nodes.push_back(hosted[i]->make(params[i], i == 0 ? std::move(first) : dds::Participant(shared)));
     }
     return nodes;
   });
 }
 
-}  // namespace quad::dds
+}  // namespace quad::runtime

@@ -12,12 +12,12 @@
 #include <vector>
 
 #include "wait.hpp"
-#include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
+#include "quad/runtime/node.hpp"
 
-namespace quad::dds {
+namespace quad::runtime {
 namespace {
 
 // ctest runs each case alone and in parallel with others: each has a domain of its own.
@@ -25,16 +25,16 @@ constexpr int kReceiptDomain = 104;
 constexpr int kBusyDomain = 105;
 constexpr int kLoopDomain = 97;
 
-ParticipantOptions options(const std::string& name, int domain)
+dds::ParticipantOptions options(const std::string& name, int domain)
 {
-  return ParticipantOptions{.name = name, .domain_id = domain, .transport = Transport::kUdp};
+  return dds::ParticipantOptions{.name = name, .domain_id = domain, .transport = dds::Transport::kUdp};
 }
 
 /// Takes quad/sim/events and notes, for each sample, whether run()'s thread took it.
 class EventNode : public Node {
 public:
   EventNode(int domain, bool wake_on_receipt, std::int64_t busy_tick_ns = 0)
-      : Node("wake_test_node", options("wake_test_node", domain)), events_(participant(), topics::kSimEvents, waker())
+      : Node("wake_test_node", options("wake_test_node", domain)), events_(participant(), dds::topics::kSimEvents, waker())
   {
     setWakeOnReceipt(wake_on_receipt);
     if (busy_tick_ns > 0) {
@@ -75,21 +75,21 @@ protected:
   }
 
 private:
-  Subscriber<msg::SimEvent> events_;
+  dds::Subscriber<msg::SimEvent> events_;
   mutable std::mutex mutex_;
   std::vector<Taken> taken_;
 };
 
 struct Talker {
-  explicit Talker(int domain) : participant(options("wake_test_talker", domain)), writer(participant, topics::kSimEvents) {}
+  explicit Talker(int domain) : participant(options("wake_test_talker", domain)), writer(participant, dds::topics::kSimEvents) {}
   void send(std::int64_t id)
   {
     msg::SimEvent e;
     e.subject_id(id);
     EXPECT_TRUE(writer.write(e));
   }
-  Participant participant;
-  Publisher<msg::SimEvent> writer;
+  dds::Participant participant;
+  dds::Publisher<msg::SimEvent> writer;
 };
 
 std::vector<std::int64_t> ids(const std::vector<EventNode::Taken>& taken)
@@ -175,4 +175,4 @@ TEST(NodeWake, WithoutWakeOnReceiptEverySampleIsTakenOnTheNodesThread)
   }
 }
 
-}  // namespace quad::dds
+}  // namespace quad::runtime

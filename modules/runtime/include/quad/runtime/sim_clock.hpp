@@ -16,7 +16,7 @@
 
 #include "quad/dds/subscriber.hpp"
 
-namespace quad::dds {
+namespace quad::runtime {
 
 class SimClockFollower {
 public:
@@ -24,7 +24,7 @@ public:
   /// of those vehicles (the launcher following a fleet: one clock, a sample per vehicle).
   /// `depth` > 0: the reader keeps that many unread samples, not the newest only, so that a
   /// follower that works while the clock runs on still takes every sample.
-  SimClockFollower(Participant& participant, Waker* waker = nullptr, std::vector<std::uint32_t> served = {},
+  SimClockFollower(dds::Participant& participant, dds::Waker* waker = nullptr, std::vector<std::uint32_t> served = {},
                    std::int32_t depth = 0);
 
   /// Takes every clock sample that arrived; true when one did.
@@ -53,7 +53,7 @@ public:
   bool vouchesFor(std::int64_t stamp_ns) const;
 
 private:
-  Subscriber<msg::SimClock> clock_;
+  dds::Subscriber<msg::SimClock> clock_;
   std::vector<std::uint32_t> served_;
   bool seen_ = false;
   bool lockstep_ = false;
@@ -65,4 +65,4 @@ private:
   std::int64_t last_sent_ns_ = -1;
 };
 
-}  // namespace quad::dds
+}  // namespace quad::runtime

@@ -7,13 +7,13 @@
 #include "quad/dds/fault_messages.hpp"
 #include "quad/dds/topics.hpp"
 
-namespace quad::dds {
+namespace quad::runtime {
 
-FaultLayerControl::FaultLayerControl(Participant& participant, std::string module_name, Waker* waker)
+FaultLayerControl::FaultLayerControl(dds::Participant& participant, std::string module_name, dds::Waker* waker)
     : layer_(*participant.datagramFaults()),
       module_name_(std::move(module_name)),
-      commands_(participant, topics::kFault, waker),
-      events_(participant, topics::kFaultEvents)
+      commands_(participant, dds::topics::kFault, waker),
+      events_(participant, dds::topics::kFaultEvents)
 {
   spdlog::info("datagram fault layer in front of UDP (shared memory and data-sharing off)");
 }
@@ -33,11 +33,11 @@ void FaultLayerControl::take()
       }
       continue;  // not the layer's: the module's own (the plant's) to clear
     }
-    if (!isDatagramFault(command->kind())) {
+    if (!dds::isDatagramFault(command->kind())) {
       continue;
     }
     std::string why_not;
-    const auto fault = datagramFaultFrom(*command, why_not);
+    const auto fault = dds::datagramFaultFrom(*command, why_not);
     if (fault && !layer_.apply(*fault)) {
       why_not = "fault id " + std::to_string(fault->id) + " already in use";
     }
@@ -71,4 +71,4 @@ void FaultLayerControl::acknowledge(const msg::FaultCommand& command, msg::SimEv
   events_.write(e);
 }
 
-}  // namespace quad::dds
+}  // namespace quad::runtime

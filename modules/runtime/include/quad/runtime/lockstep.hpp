@@ -13,11 +13,11 @@
 
 #include <quad/msg/LockstepReport.h>
 
-#include "quad/common/lockstep.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
+#include "quad/runtime/lockstep_ledger.hpp"
 
-namespace quad::dds {
+namespace quad::runtime {
 
 /// The lockstep name of a run's recorder. It holds only the run's start: once it reads every
 /// topic the clock owner writes, it reports itself done up to kDoneForGoodNs.
@@ -33,7 +33,7 @@ inline constexpr std::int64_t kDoneForGoodNs = std::numeric_limits<std::int64_t>
 class LockstepReporter {
 public:
   /// `name` must be one the clock owner's barrier expects.
-  LockstepReporter(Participant& participant, std::string name);
+  LockstepReporter(dds::Participant& participant, std::string name);
 
   /// Reports that the work due up to `done_ns` of sim time is finished.
   bool reportDone(std::int64_t done_ns);
@@ -56,7 +56,7 @@ public:
 
 private:
   std::string name_;
-  Publisher<msg::LockstepReport> publisher_;
+  dds::Publisher<msg::LockstepReport> publisher_;
   std::int64_t reported_ns_ = -1;  // the newest done time reported (-1: none yet)
   std::int64_t holding_clock_ns_ = -1;  // the clock time held since holding_since_ns_ (wall)
   std::int64_t holding_since_ns_ = 0;
@@ -71,8 +71,8 @@ public:
   /// fleet): each of the participants is expected once per vehicle, its reports told apart by
   /// their header's vehicle id and named "mapping of vehicle 2"; empty: once, for this
   /// participant's vehicle.
-  LockstepBarrier(Participant& participant, std::vector<std::string> participants,
-                  Waker* waker = nullptr, std::vector<std::uint32_t> vehicles = {});
+  LockstepBarrier(dds::Participant& participant, std::vector<std::string> participants,
+                  dds::Waker* waker = nullptr, std::vector<std::uint32_t> vehicles = {});
 
   struct Result {
     bool caught_up = false;
@@ -91,17 +91,17 @@ public:
 
   /// Reports ignored so far (unknown participant or time going backwards).
   std::uint64_t ignoredReports() const { return ignored_; }
-  const common::LockstepLedger& ledger() const { return ledger_; }
+  const LockstepLedger& ledger() const { return ledger_; }
 
 private:
   void collect();
 
   std::vector<std::uint32_t> vehicles_;  // a fleet's: reports named per vehicle; empty: this participant's
-  common::LockstepLedger ledger_;
-  Waker own_waker_;
-  Waker* waker_;  // the one the subscriber notifies: the caller's, or own_waker_
-  Subscriber<msg::LockstepReport> subscriber_;
+  LockstepLedger ledger_;
+  dds::Waker own_waker_;
+  dds::Waker* waker_;  // the one the subscriber notifies: the caller's, or own_waker_
+  dds::Subscriber<msg::LockstepReport> subscriber_;
   std::uint64_t ignored_ = 0;
 };
 
-}  // namespace quad::dds
+}  // namespace quad::runtime

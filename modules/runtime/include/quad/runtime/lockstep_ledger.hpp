@@ -3,7 +3,7 @@
 /// @file
 /// Bookkeeping of lockstep (DESIGN.md §5): sim time may advance to t only when every lockstep
 /// participant has reported its work due up to t as done. Pure logic; the DDS helpers in
-/// quad/dds/lockstep.hpp feed it.
+/// quad/runtime/lockstep.hpp feed it.
 
 #include <cstdint>
 #include <map>
@@ -12,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-namespace quad::common {
+namespace quad::runtime {
 
 class LockstepLedger {
 public:
@@ -49,4 +49,4 @@ private:
   std::map<std::string, std::optional<std::int64_t>, std::less<>> done_;
 };
 
-}  // namespace quad::common
+}  // namespace quad::runtime

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "quad/dds/node.hpp"
+#include "quad/runtime/node.hpp"
 
 #include <algorithm>
 #include <csignal>
@@ -21,7 +21,7 @@
 #include "quad/wire/validating_transport.hpp"
 #include "fault_layer_control.hpp"
 
-namespace quad::dds {
+namespace quad::runtime {
 
 namespace {
 constexpr std::int64_t kHeartbeatPeriodNs = 500'000'000;  // 2 Hz, the contract's rate
@@ -79,15 +79,15 @@ void SignalWatcher::watch()
   }
 }
 
-Node::Node(std::string module_name, ParticipantOptions options)
-    : Node(std::move(module_name), Participant(std::move(options)))
+Node::Node(std::string module_name, dds::ParticipantOptions options)
+    : Node(std::move(module_name), dds::Participant(std::move(options)))
 {
 }
 
-Node::Node(std::string module_name, Participant participant)
+Node::Node(std::string module_name, dds::Participant participant)
     : module_name_(std::move(module_name)),
       participant_(std::move(participant)),
-      heartbeat_(participant_, topics::kHeartbeat)
+      heartbeat_(participant_, dds::topics::kHeartbeat)
 {
   lockstep_ = participant_.options().lockstep;
   waker_.setRunner([this] { return wakeOnReceipt(); });
@@ -102,12 +102,12 @@ Node::~Node()
   participant_.events().setNotifier({});
 }
 
-void Node::countLoss(const EndpointEvent& event)
+void Node::countLoss(const dds::EndpointEvent& event)
 {
-  if (event.kind != EventKind::kSampleLost || event.count <= 0) {
+  if (event.kind != dds::EventKind::kSampleLost || event.count <= 0) {
     return;
   }
-  const auto contract = topics::find(event.topic);
+  const auto contract = dds::topics::find(event.topic);
   if (contract && participant_.promisesEverySample(contract->qos_profile)) {
     counters_.samples_lost += static_cast<std::uint64_t>(event.count);
   }
@@ -117,19 +117,19 @@ void Node::countRejectedPayloads()
 {
   // Of the types this node reads: in a container, each node its own. The process's count,
   // read without a lock, says whether there is anything new to look at.
-  const std::uint64_t in_process = rejectedPayloadCount();
+  const std::uint64_t in_process = dds::rejectedPayloadCount();
   std::uint64_t refused = rejected_payloads_;
   if (in_process != process_rejected_payloads_) {
     process_rejected_payloads_ = in_process;
     refused = 0;
     for (const auto& type : participant_.readerTypes()) {
-      refused += rejectedPayloadCount(type);
+      refused += dds::rejectedPayloadCount(type);
     }
   }
   if (refused > rejected_payloads_) {
     counters_.errors += refused - rejected_payloads_;
     spdlog::warn("{}: {} received payload(s) refused; the process's last: {}", module_name_, refused - rejected_payloads_,
-                 rejectedPayloads().last);
+                 dds::rejectedPayloads().last);
     rejected_payloads_ = refused;
   }
   // The validating transport logs each itself (at most once a second); the process's node
@@ -173,9 +173,9 @@ void Node::publishHeartbeat(msg::ModuleState state)
   heartbeat_.write(hb);
 }
 
-void Node::onEvent(const EndpointEvent& event)
+void Node::onEvent(const dds::EndpointEvent& event)
 {
-  if (event.kind == EventKind::kDeadlineMissed) {
+  if (event.kind == dds::EventKind::kDeadlineMissed) {
     if (lockstep_) {
       return;
     }
@@ -185,12 +185,12 @@ void Node::onEvent(const EndpointEvent& event)
     }
     last_deadline_log_ns_ = now;
   }
-  const bool problem = event.kind == EventKind::kIncompatibleQos ||
-                       event.kind == EventKind::kTypeMismatch ||
-                       event.kind == EventKind::kWriteFailed ||
-                       event.kind == EventKind::kLivelinessLost ||
-                       event.kind == EventKind::kForeignSample ||
-                       event.kind == EventKind::kDeadlineMissed;
+  const bool problem = event.kind == dds::EventKind::kIncompatibleQos ||
+                       event.kind == dds::EventKind::kTypeMismatch ||
+                       event.kind == dds::EventKind::kWriteFailed ||
+                       event.kind == dds::EventKind::kLivelinessLost ||
+                       event.kind == dds::EventKind::kForeignSample ||
+                       event.kind == dds::EventKind::kDeadlineMissed;
   if (problem) {
     spdlog::warn("{}: {}: {}", event.topic, toString(event.kind), event.detail);
   } else {
@@ -320,4 +320,4 @@ void Node::run()
   onStop();
 }
 
-}  // namespace quad::dds
+}  // namespace quad::runtime

@@ -1,16 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "quad/dds/sim_clock.hpp"
+#include "quad/runtime/sim_clock.hpp"
 
 #include <algorithm>
 #include <iterator>
 
 #include "quad/dds/topics.hpp"
 
-namespace quad::dds {
+namespace quad::runtime {
 
-SimClockFollower::SimClockFollower(Participant& participant, Waker* waker, std::vector<std::uint32_t> served,
+SimClockFollower::SimClockFollower(dds::Participant& participant, dds::Waker* waker, std::vector<std::uint32_t> served,
                                    std::int32_t depth)
-    : clock_(participant, topics::kSimClock, waker, readerQosWith(participant, topics::kSimClock.info, depth)),
+    : clock_(participant, dds::topics::kSimClock, waker, readerQosWith(participant, dds::topics::kSimClock.info, depth)),
       served_(std::move(served))
 {
 }
@@ -59,7 +59,7 @@ std::uint64_t SimClockFollower::depthFramesAt(std::int64_t ns) const
 
 bool SimClockFollower::vouchesFor(std::int64_t stamp_ns) const
 {
-  return stamp_ns <= ns_ + topics::kStateAheadOfClockNs;
+  return stamp_ns <= ns_ + dds::topics::kStateAheadOfClockNs;
 }
 
-}  // namespace quad::dds
+}  // namespace quad::runtime

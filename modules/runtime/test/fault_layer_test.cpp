@@ -11,12 +11,12 @@
 #include "quad/common/time.hpp"
 #include "wait.hpp"
 #include "quad/dds/fault_messages.hpp"
-#include "quad/dds/node.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
+#include "quad/runtime/node.hpp"
 
-namespace quad::dds {
+namespace quad::runtime {
 namespace {
 
 // ctest runs each case alone and in parallel with others: each has a domain of its own.
@@ -25,9 +25,9 @@ constexpr int kReorderDomain = 197;
 constexpr int kNodeDomain = 198;
 constexpr int kSamples = 200;
 
-ParticipantOptions options(const std::string& name, bool fault_layer, int domain)
+dds::ParticipantOptions options(const std::string& name, bool fault_layer, int domain)
 {
-  return ParticipantOptions{.name = name, .domain_id = domain, .transport = Transport::kUdp,
+  return dds::ParticipantOptions{.name = name, .domain_id = domain, .transport = dds::Transport::kUdp,
                             .fault_layer = fault_layer};
 }
 
@@ -36,10 +36,10 @@ ParticipantOptions options(const std::string& name, bool fault_layer, int domain
 std::vector<std::int64_t> sendThrough(int domain, const std::vector<wire::DatagramFault>& faults,
                                       wire::DatagramFaults::Counts* counts)
 {
-  Participant talker(options("talker", false, domain));
-  Participant listener(options("listener", true, domain));
-  Publisher<msg::SimEvent> writer(talker, topics::kSimEvents);
-  Subscriber<msg::SimEvent> reader(listener, topics::kSimEvents);
+  dds::Participant talker(options("talker", false, domain));
+  dds::Participant listener(options("listener", true, domain));
+  dds::Publisher<msg::SimEvent> writer(talker, dds::topics::kSimEvents);
+  dds::Subscriber<msg::SimEvent> reader(listener, dds::topics::kSimEvents);
   EXPECT_TRUE(test::waitFor([&] { return reader.matchedWriters() == 1 && writer.matchedReaders() == 1; }));
   for (const auto& f : faults) {
     EXPECT_TRUE(listener.datagramFaults()->apply(f));
@@ -108,9 +108,9 @@ TEST(FaultLayer, ANodeAppliesRefusesAndClearsCommandedFaultsAndAcknowledgesEach)
 {
   IdleNode node;
   std::thread running([&] { node.run(); });
-  Participant tool(options("layer_test_tool", false, kNodeDomain));
-  Publisher<msg::FaultCommand> commands(tool, topics::kFault);
-  Subscriber<msg::SimEvent> acks(tool, topics::kFaultEvents);
+  dds::Participant tool(options("layer_test_tool", false, kNodeDomain));
+  dds::Publisher<msg::FaultCommand> commands(tool, dds::topics::kFault);
+  dds::Subscriber<msg::SimEvent> acks(tool, dds::topics::kFaultEvents);
   ASSERT_TRUE(test::waitFor([&] { return commands.matchedReaders() == 1 && acks.matchedWriters() == 1; }));
 
   const auto send = [&](msg::FaultCommand c) {
@@ -122,8 +122,8 @@ TEST(FaultLayer, ANodeAppliesRefusesAndClearsCommandedFaultsAndAcknowledgesEach)
     test::waitFor([&] { return (e = acks.take()).has_value(); });
     return e;
   };
-  send(toCommand({41, wire::DatagramFaultKind::kLoss, 0.5, "elsewhere", 3}, "layer_test_node"));
-  send(toCommand({42, wire::DatagramFaultKind::kLoss, 0.5, "", 3}, "another_module"));  // not this node's
+  send(dds::toCommand({41, wire::DatagramFaultKind::kLoss, 0.5, "elsewhere", 3}, "layer_test_node"));
+  send(dds::toCommand({42, wire::DatagramFaultKind::kLoss, 0.5, "", 3}, "another_module"));  // not this node's
   auto ack = nextAck();
   ASSERT_TRUE(ack);
   EXPECT_EQ(ack->kind(), msg::SIM_EVENT_FAULT_APPLIED);
@@ -133,7 +133,7 @@ TEST(FaultLayer, ANodeAppliesRefusesAndClearsCommandedFaultsAndAcknowledgesEach)
   EXPECT_TRUE(node.isDatagramFaultId(41));
   EXPECT_FALSE(node.isDatagramFaultId(42));
 
-  msg::FaultCommand bad = toCommand({43, wire::DatagramFaultKind::kCorrupt, 2.0, "", 3}, "layer_test_node");
+  msg::FaultCommand bad = dds::toCommand({43, wire::DatagramFaultKind::kCorrupt, 2.0, "", 3}, "layer_test_node");
   send(bad);
   ack = nextAck();
   ASSERT_TRUE(ack);
@@ -158,10 +158,10 @@ TEST(FaultLayer, ANodeAppliesRefusesAndClearsCommandedFaultsAndAcknowledgesEach)
 
 TEST(FaultLayer, SharedMemoryAndAFaultLayerAreRefusedTogether)
 {
-  ParticipantOptions o = options("layer_test_shm", true, kNodeDomain);
-  o.transport = Transport::kSharedMemory;
-  EXPECT_THROW(Participant p(o), std::invalid_argument);
+  dds::ParticipantOptions o = options("layer_test_shm", true, kNodeDomain);
+  o.transport = dds::Transport::kSharedMemory;
+  EXPECT_THROW(dds::Participant p(o), std::invalid_argument);
 }
 
 }  // namespace
-}  // namespace quad::dds
+}  // namespace quad::runtime

@@ -20,11 +20,11 @@
 #include "quad/dds/liveliness.hpp"
 #include "quad/dds/participant.hpp"
 #include "quad/dds/publisher.hpp"
-#include "quad/dds/sim_clock.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/waker.hpp"
+#include "quad/runtime/sim_clock.hpp"
 
-namespace quad::dds {
+namespace quad::runtime {
 
 class FaultLayerControl;  // fault_layer_control.hpp: the node's side of its datagram fault layer
 
@@ -68,9 +68,9 @@ public:
   /// `module_name` names the node in heartbeats and logs ("plant", "control"); `participant`
   /// is its handle on the process's participant, its own or one it shares with the other
   /// nodes of a container.
-  Node(std::string module_name, Participant participant);
+  Node(std::string module_name, dds::Participant participant);
   /// A node on a participant of its own.
-  Node(std::string module_name, ParticipantOptions options);
+  Node(std::string module_name, dds::ParticipantOptions options);
   virtual ~Node();
   Node(const Node&) = delete;
   Node& operator=(const Node&) = delete;
@@ -82,7 +82,7 @@ public:
   void stop();
   bool stopping() const { return stop_.load(); }
 
-  Participant& participant() { return participant_; }
+  dds::Participant& participant() { return participant_; }
   const std::string& moduleName() const { return module_name_; }
 
   /// A datagram fault of this node's fault layer has (had) this id: a FAULT_CLEAR with it is
@@ -91,7 +91,7 @@ public:
 
 protected:
   /// The Waker to give every Subscriber of this node.
-  Waker* waker() { return &waker_; }
+  dds::Waker* waker() { return &waker_; }
   NodeCounters& counters() { return counters_; }
   /// 0 (the default) for no ticks.
   void setTickPeriod(std::int64_t period_ns) { tick_period_ns_ = period_ns; }
@@ -125,7 +125,7 @@ protected:
   virtual void onWake() {}
   virtual void onTick(std::int64_t /*steady_ns*/) {}
   /// Default: logs the event (deadline misses at most once a second; none in lockstep).
-  virtual void onEvent(const EndpointEvent& event);
+  virtual void onEvent(const dds::EndpointEvent& event);
   virtual void onStop() {}
 
 private:
@@ -140,17 +140,17 @@ private:
   bool wakeOnReceipt();
   void publishHeartbeat(msg::ModuleState state);
   /// Adds a reader's lost samples to the heartbeat's count, on topics that promise every one.
-  void countLoss(const EndpointEvent& event);
+  void countLoss(const dds::EndpointEvent& event);
   /// Payloads of the types its readers take refused for breaking their IDL (message_types.hpp),
   /// and, in the node that made the participant, datagrams the validating transport dropped,
   /// count as rejected inputs.
   void countRejectedPayloads();
 
   std::string module_name_;
-  Participant participant_;
-  Waker waker_;
+  dds::Participant participant_;
+  dds::Waker waker_;
   NodeCounters counters_;
-  Publisher<msg::Heartbeat> heartbeat_;
+  dds::Publisher<msg::Heartbeat> heartbeat_;
   // With a fault layer only (ParticipantOptions::fault_layer).
   std::unique_ptr<FaultLayerControl> fault_layer_;
   std::unique_ptr<SimClockFollower> sim_clock_;  // with followSimClock() only
@@ -158,7 +158,7 @@ private:
   bool wake_on_receipt_ = false;
   std::atomic<bool> running_{false};  // between onStart() and onStop(): onWake() may run
   std::mutex work_mutex_;             // held while anything of the node runs
-  LivelinessKeeper heartbeat_alive_{heartbeat_};  // a node busy in a long computation stays alive
+  dds::LivelinessKeeper heartbeat_alive_{heartbeat_};  // a node busy in a long computation stays alive
   std::int64_t tick_period_ns_ = 0;
   bool lockstep_ = false;
   std::int64_t last_deadline_log_ns_ = 0;
@@ -167,4 +167,4 @@ private:
   std::uint64_t malformed_datagrams_ = 0;
 };
 
-}  // namespace quad::dds
+}  // namespace quad::runtime

@@ -57,7 +57,7 @@ void ControlNode::takeInputs()
   while (auto m = imu_.take()) {
     counters().samples_in++;
     if (lockstep()) {
-      imu_due_.push_back(std::move(*m));
+      imu_due_.hold(runtime::dueAfter(m->header().stamp_ns()), std::move(*m));
     } else {
       applyImu(*m);
     }
@@ -65,7 +65,7 @@ void ControlNode::takeInputs()
   while (auto b = battery_.take()) {
     counters().samples_in++;
     if (lockstep()) {
-      battery_due_.push_back(std::move(*b));
+      battery_due_.hold(runtime::dueAfter(b->header().stamp_ns()), std::move(*b));
     } else {
       applyBattery(*b);
     }
@@ -101,17 +101,16 @@ void ControlNode::takeInputs()
   while (auto g = goal_.take()) {
     counters().samples_in++;
     if (lockstep()) {
-      goals_due_.emplace_back(dds::topics::operatorInputDueNs(g->header().stamp_ns(), simClock().ns()), std::move(*g));
-    } else if (!fc_.onGoal(dds::toVector(g->p_W()), g->tolerance(), g->land())) {
-      counters().errors++;
-      spdlog::warn("{}: goal {} rejected: non-finite", dds::topics::kGoal.info.name, g->goal_id());
+      goals_due_.hold(dds::topics::operatorInputDueNs(g->header().stamp_ns(), simClock().ns()), std::move(*g));
+    } else {
+      applyGoal(*g);
     }
   }
   while (auto p = path_.take()) {
     counters().samples_in++;
     path_wall_ns_ = common::steadyTimeNs();
     if (lockstep()) {
-      paths_due_.emplace_back(p->header().stamp_ns() + 1, std::move(*p));
+      paths_due_.hold(runtime::dueAfter(p->header().stamp_ns()), std::move(*p));
     } else {
       applyPath(*p, latest_t_ >= 0.0 ? latest_t_ : common::toSeconds(p->header().stamp_ns()));
     }
@@ -157,30 +156,22 @@ void ControlNode::applyBattery(const msg::BatteryState& b)
 
 void ControlNode::applySensorsBefore(std::int64_t stamp_ns)
 {
-  while (!imu_due_.empty() && imu_due_.front().header().stamp_ns() < stamp_ns) {
-    applyImu(imu_due_.front());
-    imu_due_.pop_front();
-  }
-  while (!battery_due_.empty() && battery_due_.front().header().stamp_ns() < stamp_ns) {
-    applyBattery(battery_due_.front());
-    battery_due_.pop_front();
+  imu_due_.release(stamp_ns, [this](const msg::Imu& m) { applyImu(m); });
+  battery_due_.release(stamp_ns, [this](const msg::BatteryState& b) { applyBattery(b); });
+}
+
+void ControlNode::applyGoal(const msg::Goal& g)
+{
+  if (!fc_.onGoal(dds::toVector(g.p_W()), g.tolerance(), g.land())) {
+    counters().errors++;
+    spdlog::warn("{}: goal {} rejected: non-finite", dds::topics::kGoal.info.name, g.goal_id());
   }
 }
 
 void ControlNode::applyDueInputs(std::int64_t stamp_ns)
 {
-  while (!goals_due_.empty() && goals_due_.front().first <= stamp_ns) {
-    const msg::Goal& g = goals_due_.front().second;
-    if (!fc_.onGoal(dds::toVector(g.p_W()), g.tolerance(), g.land())) {
-      counters().errors++;
-      spdlog::warn("{}: goal {} rejected: non-finite", dds::topics::kGoal.info.name, g.goal_id());
-    }
-    goals_due_.pop_front();
-  }
-  while (!paths_due_.empty() && paths_due_.front().first <= stamp_ns) {
-    applyPath(paths_due_.front().second, common::toSeconds(stamp_ns));
-    paths_due_.pop_front();
-  }
+  goals_due_.release(stamp_ns, [this](const msg::Goal& g) { applyGoal(g); });
+  paths_due_.release(stamp_ns, [&](const msg::Path& p) { applyPath(p, common::toSeconds(stamp_ns)); });
 }
 
 bool ControlNode::autostart()

@@ -14,6 +14,7 @@
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
+#include "quad/runtime/due_queue.hpp"
 #include "quad/runtime/module_main.hpp"
 #include "quad/runtime/node.hpp"
 #include "quad/runtime/state_input.hpp"
@@ -34,6 +35,7 @@ private:
   void takeInputs();
   /// In lockstep, the paths, goals and commands taken that are due at `stamp_ns` (see the .cpp).
   void applyDueInputs(std::int64_t stamp_ns);
+  void applyGoal(const msg::Goal& goal);
   void applyPath(const msg::Path& path, double t);
   void control(double t, std::int64_t stamp_ns);
   /// A command when states stopped coming, on the clock's time (lockstep) or the IMU's.
@@ -75,14 +77,14 @@ private:
   /// Answers `command` on quad/control/command_ack.
   void acknowledge(const QueuedCommand& command, const CommandAnswer& answer, Mode mode, std::int64_t stamp_ns);
 
-  /// In lockstep, paths and goals taken but not yet due, with the sim time each is due at.
-  std::deque<std::pair<std::int64_t, msg::Path>> paths_due_;
-  std::deque<std::pair<std::int64_t, msg::Goal>> goals_due_;
+  /// In lockstep, paths and goals taken but not yet due.
+  runtime::DueQueue<msg::Path> paths_due_;
+  runtime::DueQueue<msg::Goal> goals_due_;
   /// In lockstep, IMU and battery samples not yet used: a state stamped t is answered with
   /// those stamped before t only, whether the plant's samples of t came before the state or
   /// after it (they come on other writers than the state's), so that runs repeat.
-  std::deque<msg::Imu> imu_due_;
-  std::deque<msg::BatteryState> battery_due_;
+  runtime::DueQueue<msg::Imu> imu_due_;
+  runtime::DueQueue<msg::BatteryState> battery_due_;
   void applyImu(const msg::Imu& m);
   void applyBattery(const msg::BatteryState& b);
   void applySensorsBefore(std::int64_t stamp_ns);

@@ -487,10 +487,7 @@ bool PlanningNode::handleState(const runtime::StateSample& s)
     velocity_ = s.v_W;
   }
   now_ns_ = t;
-  while (!goals_due_.empty() && goals_due_.front().first <= now_ns_) {
-    takeGoal(goals_due_.front().second);
-    goals_due_.pop_front();
-  }
+  goals_due_.release(now_ns_, [this](const msg::Goal& g) { takeGoal(g); });
   // A planner that joined late or missed an update plans nothing until a snapshot fills the
   // gap: a path through what it does not know the mapper saw could hit it. Without paths the
   // controller holds position.
@@ -596,7 +593,7 @@ void PlanningNode::onWake()
   while (auto g = goal_.take()) {
     counters().samples_in++;
     if (lockstep()) {
-      goals_due_.emplace_back(dds::topics::operatorInputDueNs(g->header().stamp_ns(), simClock().ns()), std::move(*g));
+      goals_due_.hold(dds::topics::operatorInputDueNs(g->header().stamp_ns(), simClock().ns()), std::move(*g));
     } else {
       takeGoal(*g);
     }

@@ -21,6 +21,7 @@
 #include "quad/planning/mapper_lapse.hpp"
 #include "quad/planning/planning_params.hpp"
 #include "quad/planning/replan.hpp"
+#include "quad/runtime/due_queue.hpp"
 #include "quad/runtime/lockstep.hpp"
 #include "quad/runtime/module_main.hpp"
 #include "quad/runtime/node.hpp"
@@ -113,7 +114,7 @@ private:
   std::int64_t joining_since_ns_ = 0;   // steady time it began waiting for the first snapshot (0: not)
   std::string waiting_for_;             // why the oldest held state waits (for lockstep's log)
   bool goal_changed_ = false;
-  std::deque<std::pair<std::int64_t, msg::Goal>> goals_due_;  // in lockstep: goals taken, not yet due
+  runtime::DueQueue<msg::Goal> goals_due_;  // in lockstep: goals taken, not yet due
   std::optional<std::uint32_t> goal_id_;
   /// Answers a goal on quad/planning/goal_ack.
   void answerGoal(std::uint32_t goal_id, bool accepted, const std::string& reason);

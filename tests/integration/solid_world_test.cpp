@@ -1,18 +1,23 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Real scanned places and a solid world (DDS domains 170 to 173): the indoor vehicle down the
+// Real scanned places and a solid world (DDS domains 170 to 174): the indoor vehicle down the
 // corridor of a laser-scanned office floor and through one of its doors, and the demo's vehicle
 // from a platform onto a roof and up through a hole onto an upper floor. In lockstep with a
-// fixed seed; each reads the run's summary and exit status, and `quad plan`'s optimum.
+// fixed seed; each reads the run's summary and exit status, and `quad plan`'s optimum. And the
+// scan as the display draws it, read from its scene topic.
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
+#include <csignal>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "flight.hpp"
+#include "quad/world/world_file.hpp"
 
 namespace {
 
@@ -93,6 +98,49 @@ TEST(SolidWorld, TheVehicleTakesOffFromAPlatformAndLandsOnARoof)
 TEST(SolidWorld, TheVehicleClimbsThroughAHoleAndLandsOnTheUpperFloor)
 {
   expectLandedBeneathTheGoal("demo", "upper_floor", 173, 1.7);  // the slab's top at 5.3 m, the goal at 7
+}
+
+TEST(SolidWorld, TheDisplayDrawsTheScanAsBoxesHoldingEachOccupiedVoxelOnce)
+{
+  const std::string world_file = kSource + "/configs/worlds/geb079.yaml";
+  const quad::world::World world = quad::world::loadWorld(world_file);
+  ASSERT_EQ(world.maps().size(), 1u);
+  const auto& map = world.maps()[0];
+  const std::map<std::string, std::string> env{{"QUAD_DOMAIN_ID", "174"}, {"QUAD_TRANSPORT", "udp"}};
+  ChildProcess display({QUAD_DISPLAY_NODE, "--set", "world=" + world_file}, env);
+  ChildProcess echo({QUAD_TOOL, "topic", "echo", "quad/display/scene", "--domain", "174", "-n", "1", "--timeout", "60",
+                     "--json", "--max-elements", "1000000"},
+                    env);
+  const auto status = echo.wait(90s);
+  display.signal(SIGTERM);
+  EXPECT_EQ(display.wait(10s), 0) << display.output();
+  ASSERT_TRUE(status) << echo.output();
+  ASSERT_EQ(*status, 0) << echo.output();
+  const std::string out = echo.output();
+  const auto scene = nlohmann::json::parse(out.substr(out.find('{')), nullptr, false);
+  ASSERT_TRUE(scene.is_object()) << out.substr(0, 2000);
+  // The world has no other obstacle: every cube is the scan's. Their volumes add up to the
+  // occupied voxels' (the boxes do not overlap: unit.display.Scene.*), each within the scan's
+  // box, and far fewer boxes than voxels.
+  Eigen::Vector3d lo, hi;
+  map.bounds(lo, hi);
+  double volume = 0.0;
+  std::size_t cubes = 0;
+  for (const auto& entity : scene["entities"]) {
+    for (const auto& cube : entity["cubes"]) {
+      const Eigen::Vector3d c(cube["pose"]["position"]["x"].get<double>(), cube["pose"]["position"]["y"].get<double>(),
+                              cube["pose"]["position"]["z"].get<double>());
+      const Eigen::Vector3d size(cube["size"]["x"].get<double>(), cube["size"]["y"].get<double>(),
+                                 cube["size"]["z"].get<double>());
+      EXPECT_TRUE(((c - size / 2.0).array() >= lo.array() - 1e-6).all() && ((c + size / 2.0).array() <= hi.array() + 1e-6).all())
+          << c.transpose() << " size " << size.transpose();
+      volume += size.prod();
+      ++cubes;
+    }
+  }
+  const double voxel = std::pow(map.resolution(), 3);
+  EXPECT_NEAR(volume / voxel, static_cast<double>(map.occupiedVoxels().size()), 1e-3);
+  EXPECT_LT(cubes, map.occupiedVoxels().size() / 2);
 }
 
 }  // namespace

@@ -205,16 +205,16 @@ DisplayNode::DisplayNode(DisplayNodeConfig config, dds::Participant handle)
     truth_.emplace(participant(), runtime::StateSource::kTruth, nullptr, 0, runtime::statePeriodNs(config_.state_rate));
   }
   if (!config_.world_file.empty()) {
-    obstacles_ = obstacleShapes(world::loadWorld(config_.world_file));
+    obstacles_ = worldShapes(world::loadWorld(config_.world_file));  // a scan's voxels as boxes too
   }
   if (obstacles_.size() > kShapesPerEntity * (kEntitiesPerScene - 1)) {
-    spdlog::warn("display: {} obstacles; the scene draws the first {}", obstacles_.size(),
+    spdlog::warn("display: {} solid shapes (obstacles and a scan's boxes); the scene draws the first {}", obstacles_.size(),
                  kShapesPerEntity * (kEntitiesPerScene - 1));
     obstacles_.resize(kShapesPerEntity * (kEntitiesPerScene - 1));
   }
   // A viewer's refresh, not each sample: the readers are drained on a wall-clock tick.
   setTickPeriod(kTickPeriodNs);
-  spdlog::info("display: body frame from {}, {} obstacles drawn", state_.topic().name, obstacles_.size());
+  spdlog::info("display: body frame from {}, {} solid shapes drawn", state_.topic().name, obstacles_.size());
 }
 
 void DisplayNode::onTick(std::int64_t /*steady_ns*/)

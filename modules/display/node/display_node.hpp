@@ -57,7 +57,7 @@ private:
   void log(const LogLine& line);
 
   DisplayNodeConfig config_;
-  std::vector<Shape> obstacles_;
+  std::vector<Shape> obstacles_;  // the world's solid shapes: obstacles, then a scan's boxes
   Trace trace_;
   Trace true_trace_;
   EventLog events_;

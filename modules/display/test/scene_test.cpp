@@ -53,6 +53,88 @@ TEST(Scene, EachShapeCoversExactlyItsObstacle)
   }
 }
 
+TEST(Scene, AMapsBoxesHoldEachOccupiedVoxelOnceAndNothingElse)
+{
+  // Property, on random voxel sets of several densities: the centre of every voxel in and
+  // around the map lies in exactly one box when occupied, in none when free; the boxes are
+  // axis-aligned and at most one per voxel.
+  std::mt19937 rng(17);
+  for (int trial = 0; trial < 40; ++trial) {
+    const double res = 0.05 + 0.05 * (trial % 3);
+    const geometry::VoxelGrid grid(res);
+    const double density = 0.1 + 0.2 * (trial % 5);
+    std::vector<geometry::VoxelIndex> occupied;
+    std::bernoulli_distribution pick(density);
+    for (int z = -2; z < 4; ++z) {
+      for (int y = -3; y < 5; ++y) {
+        for (int x = -4; x < 6; ++x) {
+          if (pick(rng)) {
+            occupied.emplace_back(x, y, z);
+          }
+        }
+      }
+    }
+    if (occupied.empty()) {
+      continue;
+    }
+    const world::VoxelMap map("random", grid, occupied);
+    const auto boxes = mapShapes(map);
+    ASSERT_LE(boxes.size(), map.occupiedVoxels().size());
+    for (const auto& b : boxes) {
+      ASSERT_EQ(b.kind, Shape::Kind::kBox);
+      ASSERT_EQ(b.q_WS.w, 1.0);
+    }
+    for (int z = -3; z < 5; ++z) {
+      for (int y = -4; y < 6; ++y) {
+        for (int x = -5; x < 7; ++x) {
+          const geometry::VoxelIndex i(x, y, z);
+          const Vector3 c = grid.centre(i);
+          int holding = 0;
+          for (const auto& b : boxes) {
+            holding += insideShape(b, c) ? 1 : 0;
+          }
+          ASSERT_EQ(holding, map.occupied(i) ? 1 : 0) << "voxel " << i.transpose() << ", trial " << trial;
+        }
+      }
+    }
+  }
+}
+
+TEST(Scene, AWallOfVoxelsIsOneBox)
+{
+  const geometry::VoxelGrid grid(0.1);
+  std::vector<geometry::VoxelIndex> wall;
+  for (int z = 0; z < 3; ++z) {
+    for (int y = 0; y < 20; ++y) {
+      for (int x = 5; x < 8; ++x) {
+        wall.emplace_back(x, y, z);
+      }
+    }
+  }
+  const auto boxes = mapShapes(world::VoxelMap("wall", grid, wall));
+  ASSERT_EQ(boxes.size(), 1u);
+  EXPECT_NEAR(boxes[0].size.x(), 0.3, 1e-12);
+  EXPECT_NEAR(boxes[0].size.y(), 2.0, 1e-12);
+  EXPECT_NEAR(boxes[0].size.z(), 0.3, 1e-12);
+  EXPECT_NEAR(boxes[0].centre_W.x(), 0.65, 1e-12);
+  EXPECT_NEAR(boxes[0].centre_W.y(), 1.0, 1e-12);
+  EXPECT_NEAR(boxes[0].centre_W.z(), 0.15, 1e-12);
+}
+
+TEST(Scene, TheWorldsShapesAreItsObstaclesThenItsMaps)
+{
+  const geometry::VoxelGrid grid(0.1);
+  std::vector<world::VoxelMap> maps;
+  maps.emplace_back("block", grid, std::vector<geometry::VoxelIndex>{{0, 0, 0}, {1, 0, 0}});
+  const world::World w({{-5, -5, 0}, {5, 5, 5}}, {-4, 0, 1}, {4, 0, 1},
+                       {world::Obstacle::makeSphere({{2, 2, 2}, 0.5})}, 0.0, std::move(maps));
+  const auto shapes = worldShapes(w);
+  ASSERT_EQ(shapes.size(), 2u);
+  EXPECT_EQ(shapes[0].kind, Shape::Kind::kSphere);
+  EXPECT_EQ(shapes[1].kind, Shape::Kind::kBox);
+  EXPECT_NEAR(shapes[1].size.x(), 0.2, 1e-12);
+}
+
 TEST(Scene, TheGoalIsASphereOfItsRadius)
 {
   const Shape g = goalShape({1, 2, 3}, 0.25);

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 /// @file
-/// The world's obstacles and the goal as shapes a viewer draws (Foxglove's scene primitives):
-/// each a box, a cylinder or a sphere, posed in the world frame.
+/// The world's obstacles, its scanned maps and the goal as shapes a viewer draws (Foxglove's
+/// scene primitives): each a box, a cylinder or a sphere, posed in the world frame.
 
 #include <vector>
 
@@ -33,6 +33,16 @@ struct Shape {
 /// One shape per obstacle, in the world's order: a box with its yaw, a vertical cylinder
 /// standing on the ground, a sphere.
 std::vector<Shape> obstacleShapes(const world::World& world);
+
+/// The occupied voxels of a scanned map as boxes: each voxel in exactly one box, no two boxes
+/// overlapping. Runs of voxels along x become one box, runs of the same extent in neighbouring
+/// rows one box again, and rectangles of the same extent in neighbouring layers one box, so a
+/// wall of voxels is a few boxes, not thousands.
+std::vector<Shape> mapShapes(const world::VoxelMap& map);
+
+/// Everything solid the world holds: obstacleShapes(), then each map's mapShapes() in the
+/// world's order.
+std::vector<Shape> worldShapes(const world::World& world);
 
 /// The goal: a sphere of `radius` [m] at `goal_W`.
 Shape goalShape(const Vector3& goal_W, double radius);

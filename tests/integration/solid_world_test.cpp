@@ -89,10 +89,9 @@ TEST(SolidWorld, TheVehicleLeavesTheCorridorThroughADoorOfTheScan)
 
 TEST(SolidWorld, TheVehicleTakesOffFromAPlatformAndLandsOnARoof)
 {
-  // The controller cannot see the platform under it: told that a still vehicle below 2.5 m is
-  // standing, it takes off rather than taking over in the air (docs/control.md).
-  expectLandedBeneathTheGoal("demo", "platform_roof", 172, 1.5,  // the roof at 3 m, the goal at 4.5
-                             {"control:land_detector.ground_clearance=2.5"});
+  // The controller knows from the downward rangefinder that the vehicle stands on the platform,
+  // 2 m up: it takes off from there rather than taking over in the air (docs/control.md).
+  expectLandedBeneathTheGoal("demo", "platform_roof", 172, 1.5);  // the roof at 3 m, the goal at 4.5
 }
 
 TEST(SolidWorld, TheVehicleClimbsThroughAHoleAndLandsOnTheUpperFloor)

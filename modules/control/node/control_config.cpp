@@ -81,7 +81,10 @@ const common::ParamTable<ControlNodeConfig>& controlTable()
                 {0.0, 10.0}, "s", "... for this long")
         .number("land_detector.ground_clearance",
                 [](C& c) -> double& { return c.flight.land_detector.ground_clearance; }, {0.0, 10.0}, "m",
-                "on an estimate, a controller started below this height (and still) takes the vehicle for landed")
+                "on an estimate, a controller started still with the rangefinder reading less than this (without a "
+                "reading within range_wait: below this height above z = 0) takes the vehicle for standing")
+        .number("land_detector.range_wait", [](C& c) -> double& { return c.flight.land_detector.range_wait; },
+                {0.0, 10.0}, "s", "how long after the first state the first judgment waits for a rangefinder reading")
         .number("land_detector.rest_accel_tolerance",
                 [](C& c) -> double& { return c.flight.land_detector.rest_accel_tolerance; }, {0.01, 5.0}, "m/s^2",
                 "without any state, a landing has touched down once the accelerometer reads gravity within this ...")

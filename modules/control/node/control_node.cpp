@@ -38,6 +38,7 @@ ControlNode::ControlNode(ControlNodeConfig config, dds::Participant handle)
       command_(participant(), dds::topics::kVehicleCommand, waker()),
       imu_(participant(), dds::topics::kSimImu, waker()),
       battery_(participant(), dds::topics::kSimBattery, waker()),
+      range_(participant(), dds::topics::kSimRange, waker()),
       operator_(participant(), dds::topics::kOperatorHeartbeat, waker()),
       actuators_(participant(), dds::topics::kActuators),
       status_(participant(), dds::topics::kControlStatus),
@@ -54,22 +55,9 @@ ControlNode::ControlNode(ControlNodeConfig config, dds::Participant handle)
 
 void ControlNode::takeInputs()
 {
-  while (auto m = imu_.take()) {
-    counters().samples_in++;
-    if (lockstep()) {
-      imu_due_.hold(runtime::dueAfter(m->header().stamp_ns()), std::move(*m));
-    } else {
-      applyImu(*m);
-    }
-  }
-  while (auto b = battery_.take()) {
-    counters().samples_in++;
-    if (lockstep()) {
-      battery_due_.hold(runtime::dueAfter(b->header().stamp_ns()), std::move(*b));
-    } else {
-      applyBattery(*b);
-    }
-  }
+  takeDueAfterStamp(imu_, imu_due_, [this](const msg::Imu& m) { applyImu(m); });
+  takeDueAfterStamp(battery_, battery_due_, [this](const msg::BatteryState& b) { applyBattery(b); });
+  takeDueAfterStamp(range_, range_due_, [this](const msg::Range& r) { applyRange(r); });
   while (auto h = operator_.take()) {
     counters().samples_in++;
     if (!fc_.onOperatorHeartbeat(common::toSeconds(h->header().stamp_ns()))) {
@@ -143,6 +131,15 @@ void ControlNode::applyImu(const msg::Imu& m)
   imu_ns_ = std::max(imu_ns_, m.header().stamp_ns());
 }
 
+void ControlNode::applyRange(const msg::Range& r)
+{
+  if (!fc_.onRange(r.range(), r.max_range(), common::toSeconds(r.header().stamp_ns()))) {
+    counters().errors++;
+    spdlog::warn("{}: sample seq {} rejected: range {} m, max_range {} m", dds::topics::kSimRange.info.name,
+                 r.header().seq(), r.range(), r.max_range());
+  }
+}
+
 void ControlNode::applyBattery(const msg::BatteryState& b)
 {
   const BatteryReading reading{b.voltage(), b.current(), b.charge(), b.capacity(), b.cells()};
@@ -158,6 +155,7 @@ void ControlNode::applySensorsBefore(std::int64_t stamp_ns)
 {
   imu_due_.release(stamp_ns, [this](const msg::Imu& m) { applyImu(m); });
   battery_due_.release(stamp_ns, [this](const msg::BatteryState& b) { applyBattery(b); });
+  range_due_.release(stamp_ns, [this](const msg::Range& r) { applyRange(r); });
 }
 
 void ControlNode::applyGoal(const msg::Goal& g)

@@ -57,6 +57,7 @@ private:
   dds::Subscriber<msg::VehicleCommand> command_;
   dds::Subscriber<msg::Imu> imu_;
   dds::Subscriber<msg::BatteryState> battery_;
+  dds::Subscriber<msg::Range> range_;
   dds::Subscriber<msg::Heartbeat> operator_;
   dds::Publisher<msg::ActuatorCommand> actuators_;
   dds::Publisher<msg::ControlStatus> status_;
@@ -80,13 +81,15 @@ private:
   /// In lockstep, paths and goals taken but not yet due.
   runtime::DueQueue<msg::Path> paths_due_;
   runtime::DueQueue<msg::Goal> goals_due_;
-  /// In lockstep, IMU and battery samples not yet used: a state stamped t is answered with
+  /// In lockstep, IMU, battery and range samples not yet used: a state stamped t is answered with
   /// those stamped before t only, whether the plant's samples of t came before the state or
   /// after it (they come on other writers than the state's), so that runs repeat.
   runtime::DueQueue<msg::Imu> imu_due_;
   runtime::DueQueue<msg::BatteryState> battery_due_;
+  runtime::DueQueue<msg::Range> range_due_;
   void applyImu(const msg::Imu& m);
   void applyBattery(const msg::BatteryState& b);
+  void applyRange(const msg::Range& r);
   void applySensorsBefore(std::int64_t stamp_ns);
   std::int64_t answered_ns_ = -1;          // in lockstep, the stamp of the last command sent
   msg::ActuatorCommand answer_;            // that command, sent again for a state sent again

@@ -146,6 +146,16 @@ void FlightController::aimCamera(Mode mode, const Vector3& p_W)
   camera_.pitch = std::atan2(look.z(), horizontal);
 }
 
+bool FlightController::onRange(double range, double max_range, double t)
+{
+  if (!std::isfinite(t) || std::isnan(range) || range < 0.0 || !std::isfinite(max_range) || max_range <= 0.0) {
+    ++rejected_;
+    return false;
+  }
+  land_detector_.onRange(range <= max_range ? std::optional<double>(range) : std::nullopt);
+  return true;
+}
+
 bool FlightController::onBattery(const BatteryReading& b, double t)
 {
   const bool valid = std::isfinite(t) && std::isfinite(b.voltage) && b.voltage >= 0.0 && std::isfinite(b.current) &&
@@ -315,6 +325,7 @@ FlightOutput FlightController::update(double t)
     landed_ = land_detector_.update(t, modes_.mode(), *imu_, thrust_ratio_);  // blind: the IMU alone
   }
   in.landed = landed_;
+  in.landing_judged = !judge_landing_ || land_detector_.judged();
   in.estimate_uncertain = !notes_.covariance_ok;
   in.takeoff_altitude_reached = modes_.mode() == Mode::kTakeoff && state_ && follower_.finished(t) &&
                                 std::abs(state_->p_W.z() - takeoff_target_.z()) < 0.1;

@@ -8,8 +8,19 @@ namespace quad::control {
 bool LandDetector::update(double t, Mode mode, const VehicleState& s, double thrust_ratio)
 {
   if (!judged_) {
-    judged_ = true;
-    landed_ = s.p_W.z() < config_.ground_clearance && s.v_W.norm() < config_.max_vertical_speed;
+    // The first state: standing on what the rangefinder sees beneath, or, when no reading came
+    // in time (or the controller already left DISARMED), on the ground plane.
+    if (first_state_t_ < 0.0) {
+      first_state_t_ = t;
+    }
+    const bool slow = s.v_W.norm() < config_.max_vertical_speed;
+    if (range_seen_) {
+      judged_ = true;
+      landed_ = range_ && *range_ < config_.ground_clearance && slow;
+    } else if (t - first_state_t_ >= config_.range_wait || mode != Mode::kDisarmed) {
+      judged_ = true;
+      landed_ = s.p_W.z() < config_.ground_clearance && slow;
+    }
     return landed_;
   }
   const bool still = std::abs(s.v_W.z()) < config_.max_vertical_speed && thrust_ratio < config_.max_thrust;

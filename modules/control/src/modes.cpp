@@ -152,6 +152,10 @@ std::optional<Transition> ModeMachine::update(const ModeInputs& in)
         return go(Mode::kHover, Reason::kNone, "took over in the air: holding position", in.t);
       }
       if (commanded(Command::kArm)) {
+        if (!in.landing_judged) {
+          refuse("what the vehicle stands on is not judged yet (waiting for the rangefinder)");
+          return std::nullopt;
+        }
         if (!in.landed || !in.state_fresh) {
           refuse(!in.landed ? "not on the ground" : "no fresh vehicle state");
           return std::nullopt;

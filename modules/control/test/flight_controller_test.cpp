@@ -32,11 +32,13 @@ struct Rig {
 
   explicit Rig(FlightControllerConfig config = defaults(), plant::SimulationConfig plant = {},
                std::vector<plant::Fault> faults = {})
-      : sim(v,
-            world::World(world::Bounds{Vector3(-50, -50, 0), Vector3(50, 50, 30)}, Vector3::Zero(), Vector3(10, 0, 2),
-                         {}),
-            plant, std::move(faults)),
-        fc(v, withGains(config, v))
+      : Rig(world::World(world::Bounds{Vector3(-50, -50, 0), Vector3(50, 50, 30)}, Vector3::Zero(), Vector3(10, 0, 2), {}),
+            config, plant, std::move(faults))
+  {
+  }
+  Rig(world::World world, FlightControllerConfig config, plant::SimulationConfig plant = {},
+      std::vector<plant::Fault> faults = {})
+      : sim(v, std::move(world), plant, std::move(faults)), fc(v, withGains(config, v))
   {
   }
 
@@ -66,6 +68,10 @@ struct Rig {
       if (t() < operator_until && t() >= operator_next) {
         fc.onOperatorHeartbeat(t());
         operator_next = t() + 0.5;
+      }
+      if (out.range) {
+        fc.onRange(out.range->range.value_or(std::numeric_limits<double>::infinity()), out.range->max_range,
+                   common::toSeconds(out.range->t_ns));
       }
       if (out.battery) {
         const plant::BatteryReading& b = *out.battery;
@@ -168,6 +174,26 @@ TEST(FlightController, AControllerStartedInTheAirWithoutTheGroundContactTakesOve
   EXPECT_EQ(rig.mode(), Mode::kHover);
   EXPECT_FALSE(rig.fc.landed());
   EXPECT_NEAR(rig.sim.state().p_W.z(), 2.0, 0.3);
+}
+
+TEST(FlightController, OnAPlatformTheRangefinderSaysTheVehicleStandsAndItArmsAndTakesOffFromThere)
+{
+  // A 2.5 m platform under the start: far above the ground plane, yet the vehicle stands.
+  Rig rig(world::World(world::Bounds{Vector3(-50, -50, 0), Vector3(50, 50, 30)}, Vector3(0, 0, 2.5), Vector3(10, 0, 2),
+                       {world::Obstacle::makeBox({{0, 0, 1.25}, {3, 3, 2.5}, 0.0})}),
+          Rig::defaults());
+  rig.tell_landed = false;
+  rig.run(0.1);
+  EXPECT_EQ(rig.mode(), Mode::kDisarmed) << "standing: nothing to take over";
+  EXPECT_TRUE(rig.fc.landed());
+  rig.fc.onCommand(Command::kArm);
+  rig.run(0.1);
+  ASSERT_EQ(rig.mode(), Mode::kIdle);
+  rig.fc.onCommand(Command::kTakeoff, 2.0);  // 2 m above where it stands
+  rig.run(15.0, [&] { return rig.mode() == Mode::kHover; });
+  ASSERT_EQ(rig.mode(), Mode::kHover);
+  EXPECT_NEAR(rig.sim.state().p_W.z(), 4.5, 0.1);
+  EXPECT_EQ(rig.sim.collisionCount(), 0U);
 }
 
 TEST(FlightController, EveryCommandIsAnsweredInTheTickThatAppliesItAndATakeOffClimbsAsHighAsAsked)

@@ -15,14 +15,49 @@ VehicleState at(double z, double vz)
   return s;
 }
 
-TEST(LandDetector, TheFirstStateIsJudgedByHeightAndSpeed)
+TEST(LandDetector, TheFirstStateIsJudgedByTheRangefinderAndSpeedWhateverTheHeight)
 {
-  LandDetector ground;
-  EXPECT_TRUE(ground.update(0.0, Mode::kDisarmed, at(0.05, 0.0), 0.0));
-  LandDetector flying;
-  EXPECT_FALSE(flying.update(0.0, Mode::kDisarmed, at(2.0, 0.0), 0.0));
-  LandDetector falling;
+  LandDetector on_platform;  // 2 m up, on what the rangefinder sees 1 cm below
+  on_platform.onRange(0.01);
+  EXPECT_TRUE(on_platform.update(0.0, Mode::kDisarmed, at(2.0, 0.0), 0.0));
+  EXPECT_TRUE(on_platform.judged());
+  LandDetector hovering;  // as high, the floor 2 m below
+  hovering.onRange(2.0);
+  EXPECT_FALSE(hovering.update(0.0, Mode::kDisarmed, at(2.0, 0.0), 0.0));
+  LandDetector high;  // nothing within the rangefinder's reach
+  high.onRange(std::nullopt);
+  EXPECT_FALSE(high.update(0.0, Mode::kDisarmed, at(40.0, 0.0), 0.0));
+  LandDetector falling;  // just above the ground, but falling
+  falling.onRange(0.1);
   EXPECT_FALSE(falling.update(0.0, Mode::kDisarmed, at(0.1, -1.0), 0.0));
+}
+
+TEST(LandDetector, WithoutARangefinderReadingTheFirstStateWaitsThenIsJudgedByHeight)
+{
+  LandDetectorConfig c;
+  c.range_wait = 0.25;
+  LandDetector flying(c);
+  // Not judged before the wait is over: taken for landed (nothing takes over), not judged
+  // (nothing may arm it).
+  EXPECT_TRUE(flying.update(1.0, Mode::kDisarmed, at(2.0, 0.0), 0.0));
+  EXPECT_FALSE(flying.judged());
+  EXPECT_TRUE(flying.update(1.2, Mode::kDisarmed, at(2.0, 0.0), 0.0));
+  EXPECT_FALSE(flying.judged());
+  EXPECT_FALSE(flying.update(1.25, Mode::kDisarmed, at(2.0, 0.0), 0.0));
+  EXPECT_TRUE(flying.judged());
+  // A reading within the wait judges at once.
+  LandDetector late_reading(c);
+  EXPECT_TRUE(late_reading.update(1.0, Mode::kDisarmed, at(2.0, 0.0), 0.0));
+  late_reading.onRange(2.0);
+  EXPECT_FALSE(late_reading.update(1.1, Mode::kDisarmed, at(2.0, 0.0), 0.0));
+  EXPECT_TRUE(late_reading.judged());
+  // No wait: by height at once, as without a rangefinder.
+  c.range_wait = 0.0;
+  LandDetector ground(c);
+  EXPECT_TRUE(ground.update(0.0, Mode::kDisarmed, at(0.05, 0.0), 0.0));
+  LandDetector high(c);
+  EXPECT_FALSE(high.update(0.0, Mode::kDisarmed, at(2.0, 0.0), 0.0));
+  EXPECT_TRUE(high.judged());
 }
 
 TEST(LandDetector, TakingOffLeavesTheGroundAndALandingEndsOnlyAfterTheHold)

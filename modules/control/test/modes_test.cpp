@@ -243,6 +243,22 @@ TEST(Modes, AControllerStartedInFlightTakesOverWhateverIsAskedOnceItHasAFreshSta
   EXPECT_EQ(tr->why, "took over in the air: holding position");
 }
 
+TEST(Modes, NothingArmsAVehicleWhoseFootingIsNotJudgedYet)
+{
+  ModeMachine m;
+  ModeInputs in;
+  in.landed = true;  // the land detector's word while it waits for the rangefinder
+  in.landing_judged = false;
+  in.command = Command::kArm;
+  EXPECT_FALSE(m.update(in).has_value());
+  EXPECT_EQ(m.mode(), Mode::kDisarmed);
+  EXPECT_EQ(m.refused(), "arm refused in DISARMED: what the vehicle stands on is not judged yet (waiting for the rangefinder)");
+  in.landing_judged = true;
+  const auto tr = m.update(in);
+  ASSERT_TRUE(tr.has_value());
+  EXPECT_EQ(tr->to, Mode::kIdle);
+}
+
 TEST(Modes, LeavingTheGeofenceHoldsThenReturnsAndLandsSayingWhy)
 {
   ModeConfig config;

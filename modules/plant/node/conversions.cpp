@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "conversions.hpp"
 
-#include "quad/dds/geometry_messages.hpp"
-
 #include <cmath>
+#include <limits>
 
 #include "quad/common/time.hpp"
+#include "quad/dds/geometry_messages.hpp"
 
 namespace quad::plant {
 
@@ -47,6 +47,16 @@ msg::BaroAltitude toMessage(const BaroReading& r)
   msg::BaroAltitude m;
   m.header().stamp_ns(r.t_ns);
   m.altitude(r.altitude);
+  m.std_dev(r.std_dev);
+  return m;
+}
+
+msg::Range toMessage(const RangeReading& r)
+{
+  msg::Range m;
+  m.header().stamp_ns(r.t_ns);
+  m.range(r.range.value_or(std::numeric_limits<double>::infinity()));
+  m.max_range(r.max_range);
   m.std_dev(r.std_dev);
   return m;
 }

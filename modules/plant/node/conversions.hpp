@@ -12,6 +12,7 @@
 #include <quad/msg/MagneticField.h>
 #include <quad/msg/PointCloud.h>
 #include <quad/msg/PositionFix.h>
+#include <quad/msg/Range.h>
 #include <quad/msg/SimEvent.h>
 #include <quad/msg/VehicleState.h>
 
@@ -24,6 +25,7 @@ msg::VehicleState toMessage(const StateSample& s);
 msg::Imu toMessage(const ImuReading& r);
 msg::PositionFix toMessage(const PositionReading& r);
 msg::BaroAltitude toMessage(const BaroReading& r);
+msg::Range toMessage(const RangeReading& r);
 msg::MagneticField toMessage(const MagReading& r);
 msg::BatteryState toMessage(const BatteryReading& r);
 msg::PointCloud toMessage(const DepthReading& r, double max_range);

@@ -98,6 +98,14 @@ const common::ParamTable<PlantNodeConfig>& plantTable()
                 "Earth's field in the world frame (ENU)")
         .number("mag.noise", [](C& c) -> double& { return c.simulation.mag.noise_std; }, {0.0001, 100.0}, "uT",
                 "white noise std dev per axis")
+        .flag("range.enabled", [](C& c) -> bool& { return c.simulation.range.enabled; },
+              "publish the downward rangefinder (the controller knows from it what the vehicle stands on)")
+        .number("range.rate", [](C& c) -> double& { return c.simulation.range.rate_hz; }, {0.1, 1000.0}, "Hz",
+                "rangefinder rate (it also reads once at the first step)")
+        .number("range.max", [](C& c) -> double& { return c.simulation.range.max_range; }, {0.1, 1000.0}, "m",
+                "the farthest surface it measures")
+        .number("range.noise", [](C& c) -> double& { return c.simulation.range.noise_std; }, {0.0, 10.0}, "m",
+                "white noise std dev")
         .number("depth.width", [](C& c) -> int& { return c.simulation.depth.width; }, {1, 1024}, "px",
                 "depth image width")
         .number("depth.height", [](C& c) -> int& { return c.simulation.depth.height; }, {1, 1024}, "px",

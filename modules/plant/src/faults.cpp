@@ -32,12 +32,15 @@ std::string_view toString(Sensor s)
       return "baro";
     case Sensor::kMag:
       return "mag";
+    case Sensor::kRange:
+      return "range";
   }
   return "?";
 }
 
 namespace {
-constexpr std::array kSensors{Sensor::kDepth, Sensor::kImu, Sensor::kState, Sensor::kPosition, Sensor::kBaro, Sensor::kMag};
+constexpr std::array kSensors{Sensor::kDepth, Sensor::kImu, Sensor::kState, Sensor::kPosition, Sensor::kBaro, Sensor::kMag,
+                              Sensor::kRange};
 }  // namespace
 
 std::string sensorNames()

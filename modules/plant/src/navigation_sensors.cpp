@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "quad/plant/navigation_sensors.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "quad/geometry/quaternion.hpp"
@@ -46,6 +47,18 @@ Vector3 measureMagnetometer(const MagnetometerConfig& config, const geometry::Qu
 {
   const geometry::Matrix3 R_WB = geometry::toMatrix(q_WB);
   return R_WB.transpose() * (config.field_W + disturbance_W) + (config.noise_std + extra_noise_std) * standardNormal3(rng);
+}
+
+std::optional<double> measureRange(const RangefinderConfig& config, const world::World& world, const Vector3& p_W,
+                                   const geometry::Quaternion& q_WB, std::mt19937_64& rng, double extra_noise_std)
+{
+  const Vector3 down_W = geometry::toMatrix(q_WB) * Vector3(0.0, 0.0, -1.0);
+  const auto hit = world.raycast(p_W - kRangefinderLift * down_W, down_W, config.max_range + kRangefinderLift);
+  const double noise = (config.noise_std + extra_noise_std) * std::normal_distribution<double>(0.0, 1.0)(rng);
+  if (!hit || hit->distance - kRangefinderLift > config.max_range) {
+    return std::nullopt;
+  }
+  return std::max(0.0, hit->distance - kRangefinderLift + noise);
 }
 
 }  // namespace quad::plant

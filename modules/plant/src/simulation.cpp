@@ -22,6 +22,7 @@ Simulation::Simulation(vehicle::VehicleParams vehicle, world::World world, Simul
       rng_(config_.seed),
       wind_(config_.wind, config_.seed ^ 0x9e3779b97f4a7c15ULL),
       nav_rng_(config_.seed ^ 0x6a09e667f3bcc909ULL),
+      range_rng_(config_.seed ^ 0x3c6ef372fe94f82bULL),
       imu_bias_(turnOnBias(config_.imu, nav_rng_)),
       position_(config_.position),
       baro_(config_.baro, nav_rng_)
@@ -226,6 +227,20 @@ void Simulation::measureNavigation(StepOutputs& out)
     }
     last_mag_->t_ns = t_ns_;
     out.mag = last_mag_;
+  }
+  // The rangefinder reads at turn-on (the first step), then on its grid: a controller knows
+  // what the vehicle stands on from its first state on.
+  if (config_.range.enabled && due(t_ns_, next_range_ns_, config_.range.rate_hz) && live(Sensor::kRange)) {
+    if (fresh(Sensor::kRange, last_range_)) {
+      const Vector3 offset = sensorOffset(Sensor::kRange);
+      auto range = measureRange(config_.range, world_, state_.p_W, state_.q_WB, range_rng_, sensorNoise(Sensor::kRange));
+      if (range) {
+        *range = std::max(0.0, *range + offset.z());
+      }
+      last_range_ = RangeReading{t_ns_, range, config_.range.max_range, config_.range.noise_std};
+    }
+    last_range_->t_ns = t_ns_;
+    out.range = last_range_;
   }
 }
 

@@ -108,5 +108,48 @@ TEST(Magnetometer, ReadsEarthsFieldRotatedIntoTheBodyAndGivesTheHeading)
   EXPECT_NEAR((m_B - (config.field_W + Vector3(5.0, 0.0, 0.0))).norm(), 0.0, 1e-9);
 }
 
+TEST(Rangefinder, ReadsHowFarBelowTheBodyTheSurfaceBeneathLiesAlongTheBodysDownAxis)
+{
+  RangefinderConfig config;
+  config.noise_std = 0.0;
+  const world::World w({{-20, -20, 0}, {20, 20, 30}}, {0, 0, 0}, {10, 0, 2},
+                       {world::Obstacle::makeBox({{5, 0, 1.5}, {2, 2, 3}, 0.0})});  // top at 3 m
+  std::mt19937_64 rng(3);
+  const geometry::Quaternion level;
+  // Over the ground plane, over the box's top, and standing on each.
+  EXPECT_NEAR(*measureRange(config, w, {0, 0, 2}, level, rng), 2.0, 1e-9);
+  EXPECT_NEAR(*measureRange(config, w, {5, 0, 4.5}, level, rng), 1.5, 1e-9);
+  EXPECT_NEAR(*measureRange(config, w, {0, 0, 0}, level, rng), 0.0, 1e-9);
+  EXPECT_NEAR(*measureRange(config, w, {5, 0, 3}, level, rng), 0.0, 1e-9);
+  // Tilted by θ, the slant range to a level floor is h / cos θ.
+  for (const double tilt : {0.1, 0.3, 0.6}) {
+    const auto q = geometry::fromAxisAngle(Vector3::UnitX(), tilt);
+    EXPECT_NEAR(*measureRange(config, w, {-5, -5, 2}, q, rng), 2.0 / std::cos(tilt), 1e-9) << tilt;
+  }
+  // Beyond its reach: nothing.
+  config.max_range = 1.0;
+  EXPECT_FALSE(measureRange(config, w, {0, 0, 2}, level, rng).has_value());
+  EXPECT_NEAR(*measureRange(config, w, {0, 0, 0.5}, level, rng), 0.5, 1e-9);
+}
+
+TEST(Rangefinder, ItsNoiseHasTheStatedSpreadAndNeverReadsBelowZero)
+{
+  RangefinderConfig config;
+  config.noise_std = 0.05;
+  const world::World w({{-20, -20, 0}, {20, 20, 30}}, {0, 0, 0}, {10, 0, 2}, {});
+  std::mt19937_64 rng(4);
+  double sum = 0.0;
+  double sum2 = 0.0;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    const double r = *measureRange(config, w, {0, 0, 3}, {}, rng);
+    sum += r - 3.0;
+    sum2 += (r - 3.0) * (r - 3.0);
+    ASSERT_GE(*measureRange(config, w, {0, 0, 0}, {}, rng), 0.0);
+  }
+  EXPECT_NEAR(sum / n, 0.0, 0.002);
+  EXPECT_NEAR(std::sqrt(sum2 / n), 0.05, 0.002);
+}
+
 }  // namespace
 }  // namespace quad::plant

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include "quad/common/params.hpp"
 #include "test_vehicle.hpp"
@@ -311,6 +312,38 @@ TEST(Simulation, NavigationAidsComeAtTheirRatesAndAFixArrivesItsLatencyLate)
   EXPECT_EQ(mags, 100);
 }
 
+TEST(Simulation, TheRangefinderReadsAtTheFirstStepBeforeTheFirstStateThenAtItsRate)
+{
+  SimulationConfig config;
+  config.range.noise_std = 0.0;
+  Simulation sim(vehicle(), corridor(), config);  // standing on the ground at the start
+  std::optional<std::int64_t> first_range, first_state;
+  int ranges = 0;
+  for (int k = 0; k < 1000; ++k) {  // 1 s
+    const StepOutputs out = sim.step();
+    if (out.range) {
+      ++ranges;
+      first_range = first_range.value_or(out.range->t_ns);
+      ASSERT_TRUE(out.range->range.has_value());
+      EXPECT_NEAR(*out.range->range, 0.0, 1e-9);
+      EXPECT_EQ(out.range->max_range, config.range.max_range);
+    }
+    if (out.state) {
+      first_state = first_state.value_or(out.state->t_ns);
+    }
+  }
+  ASSERT_TRUE(first_range && first_state);
+  EXPECT_EQ(*first_range, config.step_ns);
+  EXPECT_LT(*first_range, *first_state);
+  EXPECT_EQ(ranges, 1 + 20);  // at turn-on, then 20 Hz
+  // Switched off: none.
+  config.range.enabled = false;
+  Simulation off(vehicle(), corridor(), config);
+  for (int k = 0; k < 200; ++k) {
+    ASSERT_FALSE(off.step().range.has_value());
+  }
+}
+
 // GIVEN a vehicle at rest WHEN sensor_offset faults are active THEN each sensor reads its
 // offset on top (a position jump, a barometer step, a magnetic disturbance, an accelerometer
 // bias step), within its noise, and reads true again once the fault clears.
@@ -452,7 +485,7 @@ TEST(FaultSchedule, FileIsValidatedAndParsed)
     EXPECT_EQ(e.problems()[3], "faults.yaml:[3].kind: (missing): expected motor, sensor_dropout, "
                                "sensor_stuck, sensor_noise, sensor_offset, wind_gust, push or cell_loss");
     EXPECT_EQ(e.problems()[0], "faults.yaml:[0].rotor: 5: out of range [0, 3]");
-    EXPECT_EQ(e.problems()[1], "faults.yaml:[1].sensor: lidar: expected depth, imu, state, position, baro or mag");
+    EXPECT_EQ(e.problems()[1], "faults.yaml:[1].sensor: lidar: expected depth, imu, state, position, baro, mag or range");
     EXPECT_EQ(e.problems()[2], "faults.yaml:[2].kind: meteor: expected motor, sensor_dropout, "
                                "sensor_stuck, sensor_noise, sensor_offset, wind_gust, push or cell_loss");
   }

@@ -150,6 +150,11 @@ public:
   /// non-finite or out of its range (negative voltage or current, charge outside 0 … 1, no
   /// capacity, no cells).
   bool onBattery(const BatteryReading& reading, double t);
+  /// A downward rangefinder's reading at sim time t [s]: how far below the body's origin the
+  /// surface beneath lies [m] (+inf: nothing within `max_range`). The first state is judged
+  /// standing or flying by it (LandDetector). Rejected (false, counted) when the range is
+  /// negative or NaN, `max_range` not positive and finite, or t not finite.
+  bool onRange(double range, double max_range, double t);
   /// [s] how long the charge left above the reserve lasts at the average current; infinite
   /// before any reading.
   double batteryTimeLeft() const;

@@ -71,6 +71,8 @@ struct ModeInputs {
   bool path_fresh = false;        ///< a valid path (status OK) within its timeout
   bool no_path = false;           ///< the planner's latest word: the goal cannot be reached
   bool landed = true;
+  /// The land detector has judged the first state (landed is its word); before, arming waits.
+  bool landing_judged = true;
   bool takeoff_altitude_reached = false;
   bool goal_reached = false;
   bool land_at_goal = false;      ///< the goal asks to land once it is reached

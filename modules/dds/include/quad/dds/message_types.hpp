@@ -37,6 +37,7 @@
 #include <quad/msg/PathPubSubTypes.h>
 #include <quad/msg/PointCloudPubSubTypes.h>
 #include <quad/msg/PositionFixPubSubTypes.h>
+#include <quad/msg/RangePubSubTypes.h>
 #include <quad/msg/SimClockPubSubTypes.h>
 #include <quad/msg/SimEventPubSubTypes.h>
 #include <quad/msg/TrajectoryPubSubTypes.h>
@@ -172,6 +173,7 @@ QUAD_DDS_MESSAGE(MapUpdate);
 QUAD_DDS_MESSAGE(Path);
 QUAD_DDS_MESSAGE(PositionFix);
 QUAD_DDS_MESSAGE(PointCloud);
+QUAD_DDS_MESSAGE(Range);
 QUAD_DDS_MESSAGE(SimClock);
 QUAD_DDS_MESSAGE(SimEvent);
 QUAD_DDS_MESSAGE(Trajectory);

@@ -15,7 +15,7 @@ namespace quad::dds::topics {
 
 using msg::ActuatorCommand, msg::BaroAltitude, msg::BatteryState, msg::CommandAck, msg::ControlReference, msg::ControlStatus, msg::EstimatedState, msg::FaultCommand, msg::Goal, msg::GoalAck, msg::Heartbeat,
     msg::Imu, msg::LockstepReport, msg::MagneticField, msg::MapSnapshot, msg::MapStats, msg::MapUpdate, msg::Path,
-    msg::PointCloud, msg::PositionFix, msg::SimClock, msg::SimEvent, msg::Trajectory, msg::VehicleCommand,
+    msg::PointCloud, msg::PositionFix, msg::Range, msg::SimClock, msg::SimEvent, msg::Trajectory, msg::VehicleCommand,
     msg::VehicleState;
 // The display topics carry Foxglove's schemas (foxglove::*), for viewers: docs/recording.md.
 using FrameTransforms = foxglove::FrameTransforms;
@@ -43,6 +43,9 @@ inline constexpr auto kSimBaro = makeTopic<BaroAltitude>(
 inline constexpr auto kSimMag = makeTopic<MagneticField>(
     "quad/sim/mag", "sensor", 50.0, Owner::kPlant,
     "Magnetometer: the field in the body frame");
+inline constexpr auto kSimRange = makeTopic<Range>(
+    "quad/sim/range", "sensor", 20.0, Owner::kPlant,
+    "Downward rangefinder: how far below the body the surface beneath lies");
 inline constexpr auto kEstimatedState = makeTopic<EstimatedState>(
     "quad/estimation/state", "state", 250.0, Owner::kEstimation,
     "The estimator's vehicle state: pose, velocity, biases, 1-sigma, health", 0.1);
@@ -177,7 +180,7 @@ inline constexpr std::int64_t kPathBudgetNs = 100'000'000;
 
 /// Every contract, for tools that iterate over topics.
 inline constexpr std::array kAll{
-    kSimClock.info, kSimState.info, kSimImu.info, kSimPosition.info, kSimBaro.info, kSimMag.info,
+    kSimClock.info, kSimState.info, kSimImu.info, kSimPosition.info, kSimBaro.info, kSimMag.info, kSimRange.info,
     kEstimatedState.info, kSimBattery.info, kSimDepth.info, kSimEvents.info, kLockstep.info, kMapUpdate.info,
     kMapSnapshot.info, kMapStats.info, kGoal.info, kGoalAck.info, kPath.info, kActuators.info,
     kControlStatus.info, kCommandAck.info, kControlReference.info, kTrajectory.info, kHeartbeat.info,

@@ -20,7 +20,7 @@
 
 namespace quad::plant {
 
-enum class Sensor { kDepth, kImu, kState, kPosition, kBaro, kMag };
+enum class Sensor { kDepth, kImu, kState, kPosition, kBaro, kMag, kRange };
 
 std::string_view toString(Sensor s);
 std::optional<Sensor> parseSensor(std::string_view text);
@@ -38,7 +38,8 @@ struct Fault {
   geometry::Vector3 wind_W = geometry::Vector3::Zero();  ///< kWindGust [m/s]
   geometry::Vector3 force_W = geometry::Vector3::Zero(); ///< kPush [N] on the vehicle
   /// kSensorOffset: added to the sensor's readings: position [m, world] (a jump), baro
-  /// [m] (z only), mag [µT, world] (a disturbance), imu [m/s², body] (an accelerometer bias step)
+  /// [m] (z only), mag [µT, world] (a disturbance), imu [m/s², body] (an accelerometer bias step),
+  /// range [m] (z only: a reading that far off)
   geometry::Vector3 offset = geometry::Vector3::Zero();
   int cells = 0;                         ///< kCellLoss: battery cells that fail short (for good)
   std::int64_t start_ns = 0;             ///< sim time it takes effect

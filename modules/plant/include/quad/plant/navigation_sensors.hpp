@@ -4,13 +4,15 @@
 /// The navigation aids an estimator fuses with the IMU: an absolute position sensor (a GNSS
 /// receiver or a motion-capture system: white noise, a latency, outages), a barometric
 /// altimeter (an offset that starts at the pressure of the day and drifts, and noise) and a
-/// magnetometer (Earth's field in the body frame, and noise). Randomness comes from a
+/// magnetometer (Earth's field in the body frame, and noise). And a downward rangefinder, by
+/// which the controller knows the vehicle stands on something. Randomness comes from a
 /// generator the caller owns, so a run is reproducible for a seed.
 
 #include <optional>
 #include <random>
 
 #include "quad/geometry/cspace.hpp"
+#include "quad/world/world.hpp"
 
 namespace quad::plant {
 
@@ -81,5 +83,20 @@ struct MagnetometerConfig {
 /// nearby magnet, a power line) added to Earth's.
 Vector3 measureMagnetometer(const MagnetometerConfig& config, const geometry::Quaternion& q_WB,
                             const Vector3& disturbance_W, std::mt19937_64& rng, double extra_noise_std = 0.0);
+
+struct RangefinderConfig {
+  bool enabled = true;
+  double rate_hz = 20.0;    ///< [Hz] (it also reads once at turn-on, at the first step)
+  double max_range = 10.0;  ///< [m] beyond it: nothing in range
+  double noise_std = 0.01;  ///< [m] white
+};
+
+/// [m] A downward rangefinder at the body's origin: how far along the body's -z axis the first
+/// surface lies (the ground, an obstacle, a scan), with white noise, never below 0; none when
+/// nothing is within `max_range`. A vehicle standing on a surface reads about 0. The ray
+/// starts kRangefinderLift above the origin, so a surface the origin touches is seen.
+std::optional<double> measureRange(const RangefinderConfig& config, const world::World& world, const Vector3& p_W,
+                                   const geometry::Quaternion& q_WB, std::mt19937_64& rng, double extra_noise_std = 0.0);
+inline constexpr double kRangefinderLift = 0.05;  ///< [m]
 
 }  // namespace quad::plant

@@ -41,6 +41,7 @@ struct SimulationConfig {
   PositionSensorConfig position;
   BarometerConfig baro;
   MagnetometerConfig mag;
+  RangefinderConfig range;
   WindConfig wind;  ///< steady wind and turbulence (gusts come as faults, on top)
   BatteryConfig battery;
   double battery_rate_hz = 10.0;  ///< battery readings (the pack's monitor)
@@ -89,6 +90,14 @@ struct MagReading {
   double std_dev = 0.0;   ///< [µT] per axis, as the sensor declares it
 };
 
+/// A downward rangefinder's reading (measureRange).
+struct RangeReading {
+  std::int64_t t_ns = 0;
+  std::optional<double> range;  ///< [m] below the body's origin; none: nothing within max_range
+  double max_range = 0.0;       ///< [m]
+  double std_dev = 0.0;         ///< [m] the white noise's, as the sensor declares it
+};
+
 struct DepthReading {
   std::int64_t t_ns = 0;
   DepthScan scan;
@@ -114,6 +123,7 @@ struct StepOutputs {
   std::optional<PositionReading> position;  ///< delivered now, measured at its stamp
   std::optional<BaroReading> baro;
   std::optional<MagReading> mag;
+  std::optional<RangeReading> range;
   std::optional<DepthReading> depth;
   std::optional<BatteryReading> battery;
   std::vector<SimEventRecord> events;
@@ -208,6 +218,7 @@ private:
   // The IMU's bias walks and the navigation aids draw from their own too: they left the depth
   // camera's and the IMU noise's draws as they were when they came.
   std::mt19937_64 nav_rng_;
+  std::mt19937_64 range_rng_;  // the rangefinder's own: it left every other draw as it was
   ImuBias imu_bias_;
   PositionSensor position_;
   Barometer baro_;
@@ -227,10 +238,12 @@ private:
   std::int64_t next_position_ns_ = 0;
   std::int64_t next_baro_ns_ = 0;
   std::int64_t next_mag_ns_ = 0;
+  std::int64_t next_range_ns_ = 0;  // 0: it reads at the first step, then on its grid
   std::deque<PositionReading> positions_in_flight_;  // measured, not yet delivered
   std::optional<PositionReading> last_position_;
   std::optional<BaroReading> last_baro_;
   std::optional<MagReading> last_mag_;
+  std::optional<RangeReading> last_range_;
   std::optional<StateSample> last_state_;
   std::optional<ImuReading> last_imu_;
   std::optional<DepthReading> last_depth_;

@@ -22,6 +22,7 @@
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/waker.hpp"
+#include "quad/runtime/due_queue.hpp"
 #include "quad/runtime/sim_clock.hpp"
 
 namespace quad::runtime {
@@ -116,6 +117,21 @@ protected:
   /// Takes the clock samples that arrived: run() does before every onWake() and onTick(); a
   /// node whose work takes long calls it to know where the clock got meanwhile.
   void takeSimClock();
+  /// Takes every unread sample of `reader`, each counted as an input: in lockstep held in
+  /// `due` until the first time handled after its stamp (dueAfter: a state stamped t is
+  /// answered with what was stamped before t), otherwise handed to `apply` at once.
+  template <typename T, typename Apply>
+  void takeDueAfterStamp(dds::Subscriber<T>& reader, DueQueue<T>& due, Apply&& apply)
+  {
+    while (auto sample = reader.take()) {
+      counters_.samples_in++;
+      if (lockstep_) {
+        due.hold(dueAfter(sample->header().stamp_ns()), std::move(*sample));
+      } else {
+        apply(*sample);
+      }
+    }
+  }
   /// For an output due at `due_ns` about to go out: takes the clock's samples and, in
   /// lockstep, says whether the clock reached that time first (it waits there for the output:
   /// an overrun, which the caller counts), logging how far past it is at debug level as `what`.

@@ -25,10 +25,9 @@ const common::ParamTable<ControlNodeConfig>& controlTable()
   using C = ControlNodeConfig;
   static const common::ParamTable<C> table = [] {
     common::ParamTable<C> t;
-    t.path("vehicle", [](C& c) -> std::filesystem::path& { return c.vehicle_file; }, "vehicle file (the plant's)")
-        .choice("state.source", [](C& c) -> runtime::StateSource& { return c.state_source; }, runtime::stateSourceNames(),
-                runtime::kStateSourceDescription)
-        .number("gains.position", [](C& c) -> double& { return c.flight.gains.kx; }, {0.01, 1e4}, "N/m", "k_x")
+    t.path("vehicle", [](C& c) -> std::filesystem::path& { return c.vehicle_file; }, "vehicle file (the plant's)");
+    runtime::declareStateSource(t, [](C& c) -> runtime::StateSource& { return c.state_source; });
+    t.number("gains.position", [](C& c) -> double& { return c.flight.gains.kx; }, {0.01, 1e4}, "N/m", "k_x")
         .number("gains.velocity", [](C& c) -> double& { return c.flight.gains.kv; }, {0.01, 1e4}, "N s/m", "k_v")
         .number("gains.integral", [](C& c) -> double& { return c.flight.gains.ki; }, {0.0, 1e4}, "N/(m s)",
                 "k_i, on the position error's integral; 0: none")

@@ -157,11 +157,10 @@ const common::ParamTable<DisplayNodeConfig>& displayNodeTable()
   using N = DisplayNodeConfig;
   static const common::ParamTable<N> table = [] {
     common::ParamTable<N> t;
-    t.include(displayTable(), [](N& n) -> DisplayParams& { return n; })
-        .choice("state.source", [](N& n) -> runtime::StateSource& { return n.state_source; }, runtime::stateSourceNames(),
-                "the state drawn as the body frame: " + std::string(runtime::kStateSourceDescription))
-        .number("state.rate", [](N& n) -> double& { return n.state_rate; }, {0.0, 1000.0}, "Hz",
-                std::string(runtime::kStateRateDescription) + " (the truth's too)");
+    t.include(displayTable(), [](N& n) -> DisplayParams& { return n; });
+    runtime::declareStateSource(t, [](N& n) -> runtime::StateSource& { return n.state_source; },
+                                "; the one drawn as the body frame");
+    runtime::declareStateRate(t, [](N& n) -> double& { return n.state_rate; }, " (the truth's too)");
     return t;
   }();
   return table;

@@ -53,12 +53,11 @@ const common::ParamTable<MappingParams>& mappingTable()
         .text("save_path", [](P& p) -> std::string& { return p.save_path; }, {},
               ".bt file written on shutdown and on COMMAND_SAVE_MAP; empty: never")
         .text("checkpoint.file", [](P& p) -> std::string& { return p.checkpoint_file; }, {},
-              "the map resumed from at the start and written with every snapshot; empty: none")
-        .choice("state.source", [](P& p) -> runtime::StateSource& { return p.state_source; }, runtime::stateSourceNames(),
-                runtime::kStateSourceDescription)
-        .number("state.rate", [](P& p) -> double& { return p.state_rate; }, {0.0, 1000.0}, "Hz",
-                std::string(runtime::kStateRateDescription) + "; at least " + common::formatValue(kMinStateRate) +
-                    ": a cloud is placed on the pose interpolated between the states around it");
+              "the map resumed from at the start and written with every snapshot; empty: none");
+    runtime::declareStateSource(t, [](P& p) -> runtime::StateSource& { return p.state_source; });
+    runtime::declareStateRate(t, [](P& p) -> double& { return p.state_rate; },
+                              "; at least " + common::formatValue(kMinStateRate) +
+                                  ": a cloud is placed on the pose interpolated between the states around it");
     return t;
   }();
   return table;

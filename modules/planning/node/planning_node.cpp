@@ -71,9 +71,8 @@ const common::ParamTable<PlanningNodeConfig>& planningNodeTable()
   using N = PlanningNodeConfig;
   static const common::ParamTable<N> table = [] {
     common::ParamTable<N> t;
-    t.include(planningTable(), [](N& n) -> PlanningParams& { return n; })
-        .choice("state.source", [](N& n) -> runtime::StateSource& { return n.state_source; }, runtime::stateSourceNames(),
-                runtime::kStateSourceDescription);
+    t.include(planningTable(), [](N& n) -> PlanningParams& { return n; });
+    runtime::declareStateSource(t, [](N& n) -> runtime::StateSource& { return n.state_source; });
     return t;
   }();
   return table;

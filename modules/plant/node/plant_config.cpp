@@ -29,11 +29,11 @@ const common::ParamTable<PlantNodeConfig>& plantTable()
         .flag("lockstep.wait_for_command", [](C& c) -> bool& { return c.lockstep_wait_for_command; },
               "wait for the controller's command of each round")
         .seconds("lockstep.period", [](C& c) -> std::int64_t& { return c.lockstep_period_ns; }, {1e-4, 1.0},
-                 "sim time between lockstep rounds")
-        .choice("state.source", [](C& c) -> runtime::StateSource& { return c.state_source; }, runtime::stateSourceNames(),
-                std::string(runtime::kStateSourceDescription) +
-                    "; in lockstep a round waits for the command answering it (the estimate follows each IMU sample)")
-        .number("lockstep.timeout", [](C& c) -> double& { return c.lockstep_timeout_s; }, {0.01, 3600.0}, "s",
+                 "sim time between lockstep rounds");
+    runtime::declareStateSource(
+        t, [](C& c) -> runtime::StateSource& { return c.state_source; },
+        "; in lockstep a round waits for the command answering it (the estimate follows each IMU sample)");
+    t.number("lockstep.timeout", [](C& c) -> double& { return c.lockstep_timeout_s; }, {0.01, 3600.0}, "s",
                 "wall time before a stalled round is reported")
         .path("vehicle", [](C& c) -> std::filesystem::path& { return c.vehicle_file; }, "vehicle file")
         .path("world", [](C& c) -> std::filesystem::path& { return c.world_file; }, "world file")

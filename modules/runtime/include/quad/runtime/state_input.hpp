@@ -8,9 +8,11 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
+#include "quad/common/param_table.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/geometry/quaternion.hpp"
@@ -22,19 +24,32 @@ enum class StateSource { kEstimate, kTruth };
 /// "estimate", "truth": the names a config's `state.source` takes (common::ParamTable::choice).
 std::vector<std::pair<std::string, StateSource>> stateSourceNames();
 const char* toString(StateSource s);
-/// What `state.source` means, for every module's parameter table.
-inline constexpr const char* kStateSourceDescription =
-    "the vehicle state flown on: the estimator's (quad/estimation/state), or the plant's ground truth "
-    "(quad/sim/state) to compare against it";
 /// The topic a source is read from.
 const dds::TopicInfo& stateTopic(StateSource s);
-/// What `state.rate` means, for the parameter tables of the modules that need fewer states than
-/// the plant's steps (StateInput's period).
-inline constexpr const char* kStateRateDescription =
-    "states read per second of sim time, at most (the first of each period): their writers send no "
-    "more; 0: every one";
 /// [ns] The sim-time period of `rate_hz` states a second: StateInput's `period_ns`; 0 for 0.
 std::int64_t statePeriodNs(double rate_hz);
+
+/// Declares `state.source` in a module's parameter table: which state it flies on (or draws),
+/// with the choices and meaning every module shares; `also` adds what it means for this module.
+template <typename Config, typename Field>
+void declareStateSource(common::ParamTable<Config>& table, Field field, std::string_view also = {})
+{
+  table.choice("state.source", field, stateSourceNames(),
+               "the vehicle state flown on: the estimator's (quad/estimation/state), or the plant's ground truth "
+               "(quad/sim/state) to compare against it" +
+                   std::string(also));
+}
+
+/// Declares `state.rate` for a module that needs fewer states than the plant's steps
+/// (StateInput's period: statePeriodNs()); `also` adds what it means for this module.
+template <typename Config, typename Field>
+void declareStateRate(common::ParamTable<Config>& table, Field field, std::string_view also = {})
+{
+  table.number("state.rate", field, {0.0, 1000.0}, "Hz",
+               "states read per second of sim time, at most (the first of each period): their writers send no "
+               "more; 0: every one" +
+                   std::string(also));
+}
 
 /// One vehicle state, whichever the source.
 struct StateSample {

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "quad/geometry/so3.hpp"
+
 namespace quad::plant {
 
 DepthCamera::DepthCamera(DepthCameraConfig config)
@@ -107,12 +109,44 @@ ImuSample measureImu(const ImuConfig& config, const ImuBias& bias, const geometr
                      const Vector3& w_B, const Vector3& gravity_W, std::mt19937_64& rng,
                      double extra_noise_std)
 {
-  const geometry::Matrix3 R_WB = geometry::toMatrix(q_WB);
+  return measureImuIntegrals(config, bias, geometry::toMatrix(q_WB).transpose() * (a_W - gravity_W), w_B, rng,
+                             extra_noise_std);
+}
+
+ImuSample measureImuIntegrals(const ImuConfig& config, const ImuBias& bias, const Vector3& force_B, const Vector3& w_B,
+                              std::mt19937_64& rng, double extra_noise_std)
+{
   ImuSample out;
-  out.specific_force_B = R_WB.transpose() * (a_W - gravity_W) + bias.accel +
-                         (config.accel_noise_std + extra_noise_std) * standardNormal3(rng);
+  out.specific_force_B = force_B + bias.accel + (config.accel_noise_std + extra_noise_std) * standardNormal3(rng);
   out.angular_rate_B = w_B + bias.gyro + (config.gyro_noise_std + extra_noise_std) * standardNormal3(rng);
   return out;
+}
+
+void ImuIntegrals::addStep(const geometry::Matrix3& R_WB_before, const Vector3& dv_W, const Vector3& gravity_W,
+                           double dt_s)
+{
+  dv_B_ += R_WB_before.transpose() * (dv_W - gravity_W * dt_s);
+  dt_s_ += dt_s;
+}
+
+std::optional<ImuIntegrals::Means> ImuIntegrals::sample(const geometry::Quaternion& q_WB)
+{
+  std::optional<Means> out;
+  if (q_last_ && dt_s_ > 0.0) {
+    const geometry::Matrix3 turn = geometry::toMatrix(*q_last_).transpose() * geometry::toMatrix(q_WB);
+    out = Means{dv_B_ / dt_s_, geometry::logSO3(turn) / dt_s_};
+  }
+  q_last_ = q_WB;
+  dv_B_.setZero();
+  dt_s_ = 0.0;
+  return out;
+}
+
+void ImuIntegrals::restart()
+{
+  q_last_.reset();
+  dv_B_.setZero();
+  dt_s_ = 0.0;
 }
 
 }  // namespace quad::plant

@@ -103,6 +103,7 @@ void Simulation::setState(const RigidBodyState& state)
 {
   state_ = state;
   surface_z_ = world_.supportHeight(state_.p_W, dynamics_.params().radius);
+  imu_integrals_.restart();  // a state set is not a motion the IMU felt
 }
 
 Environment Simulation::environment() const
@@ -251,6 +252,8 @@ StepOutputs Simulation::step()
   wind_.step(state_.p_W, state_.v_W, common::toSeconds(config_.step_ns));
   const Environment env = environment();
   const bool was_landed = state_.landed;
+  const Vector3 v_before = state_.v_W;
+  const geometry::Matrix3 R_before = geometry::toMatrix(state_.q_WB);
   if (!crash_) {
     dynamics_.step(state_, command, env, common::toSeconds(config_.step_ns));
     surface_z_ = world_.supportHeight(state_.p_W, dynamics_.params().radius);
@@ -309,21 +312,21 @@ StepOutputs Simulation::step()
     out.state = last_state_;
   }
   const bool imu_due = due(t_ns_, next_imu_ns_, config_.imu.rate_hz);
-  const std::optional<Vector3> imu_v_before = imu_v_prev_;
-  if (imu_due) {
-    imu_v_prev_ = state_.v_W;
-  }
+  imu_integrals_.addStep(R_before, state_.v_W - v_before, env.gravity_W, common::toSeconds(config_.step_ns));
+  const std::optional<ImuIntegrals::Means> felt = imu_due ? imu_integrals_.sample(state_.q_WB) : std::nullopt;
   if (imu_due && !sensorFault(Sensor::kImu, Fault::Kind::kSensorDropout)) {
     if (!sensorFault(Sensor::kImu, Fault::Kind::kSensorStuck) || !last_imu_) {
       walkBias(imu_bias_, config_.imu, 1.0 / config_.imu.rate_hz, nav_rng_);
       ImuBias bias = imu_bias_;
       bias.accel += sensorOffset(Sensor::kImu);  // a bias step
-      // The accelerometer integrates over its sample period, as real ones do (delta velocity):
-      // a touchdown, which stops the body within a step, shows as the jolt it is.
-      const Vector3 a_W = imu_v_before ? Vector3((state_.v_W - *imu_v_before) * config_.imu.rate_hz)
-                                      : dynamics_.acceleration(state_, after);
-      last_imu_ = ImuReading{t_ns_, measureImu(config_.imu, bias, state_.q_WB, a_W, state_.w_B, after.gravity_W, rng_,
-                                               sensorNoise(Sensor::kImu))};
+      // Integrated over the sample period (ImuIntegrals); the first sample reads the instant.
+      const ImuIntegrals::Means means =
+          felt ? *felt
+               : ImuIntegrals::Means{geometry::toMatrix(state_.q_WB).transpose() *
+                                         (dynamics_.acceleration(state_, after) - after.gravity_W),
+                                     state_.w_B};
+      last_imu_ = ImuReading{t_ns_, measureImuIntegrals(config_.imu, bias, means.force_B, means.w_B, rng_,
+                                                        sensorNoise(Sensor::kImu))};
     }
     last_imu_->t_ns = t_ns_;
     out.imu = last_imu_;

@@ -7,6 +7,7 @@
 /// caller owns, so a run is reproducible for a seed. The navigation aids (position, altitude,
 /// heading) are in navigation_sensors.hpp.
 
+#include <optional>
 #include <random>
 #include <span>
 #include <vector>
@@ -103,5 +104,36 @@ struct ImuSample {
 ImuSample measureImu(const ImuConfig& config, const ImuBias& bias, const geometry::Quaternion& q_WB, const Vector3& a_W,
                      const Vector3& w_B, const Vector3& gravity_W, std::mt19937_64& rng,
                      double extra_noise_std = 0.0);
+
+/// The same from what the IMU integrated (ImuIntegrals): the specific force `force_B` [m/s²]
+/// and the rate `w_B` [rad/s], both in the body frame, means over the sample period.
+ImuSample measureImuIntegrals(const ImuConfig& config, const ImuBias& bias, const Vector3& force_B, const Vector3& w_B,
+                              std::mt19937_64& rng, double extra_noise_std = 0.0);
+
+/// What an IMU integrates between its samples, as real ones do at a rate above the one they
+/// report: the specific force in the body frame, step by step (delta velocity), and the
+/// rotation since the last sample (delta angle). A touchdown, which stops and levels the body
+/// within a step, shows as the jolt and the turn it is; read at an instant, the rate would
+/// miss the turn, and an estimator would keep the tilt it had.
+class ImuIntegrals {
+public:
+  struct Means {
+    Vector3 force_B;  ///< [m/s²] the mean specific force over the period, body frame
+    Vector3 w_B;      ///< [rad/s] the rotation over the period, as a mean rate
+  };
+  /// One step of the dynamics: the velocity changed by `dv_W` over `dt_s`, the body at
+  /// `R_WB_before` when it began (a stop comes before the turn it causes).
+  void addStep(const geometry::Matrix3& R_WB_before, const Vector3& dv_W, const Vector3& gravity_W, double dt_s);
+  /// A sample at attitude `q_WB`: the means since the last one (none before the first, nor
+  /// after restart()), and the next period starts.
+  std::optional<Means> sample(const geometry::Quaternion& q_WB);
+  /// Forgets the period: a state set, not a motion felt.
+  void restart();
+
+private:
+  Vector3 dv_B_ = Vector3::Zero();             ///< [m/s] Σ R_WBᵀ (Δv − g Δt)
+  double dt_s_ = 0.0;                          ///< [s] the time those steps cover
+  std::optional<geometry::Quaternion> q_last_;  ///< the attitude at the last sample
+};
 
 }  // namespace quad::plant

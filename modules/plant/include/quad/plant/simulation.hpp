@@ -211,7 +211,7 @@ private:
   SimulationConfig config_;
   DepthCamera camera_;
   std::optional<Gimbal> gimbal_;
-  std::optional<Vector3> imu_v_prev_;  ///< the velocity at the last IMU sample's time (delta velocity)
+  ImuIntegrals imu_integrals_;  ///< what the IMU felt since its last sample
   CommandGuard guard_;
   std::mt19937_64 rng_;
   Wind wind_;  // its own generator: turbulence on or off leaves the sensors' draws as they were

@@ -67,6 +67,9 @@ const common::ParamTable<ControlNodeConfig>& controlTable()
                 "of limits.max_tilt a trajectory may ask for (the rest is the feedback's)")
         .number("takeoff_altitude", [](C& c) -> double& { return c.flight.takeoff_altitude; }, {0.2, 100.0}, "m",
                 "above the take-off point")
+        .number("takeoff_ceiling_margin", [](C& c) -> double& { return c.flight.takeoff_ceiling_margin; },
+                {0.0, 100.0}, "m",
+                "a take-off at takeoff_altitude stops this far under the geofence's ceiling when it would reach it")
         .number("land_speed", [](C& c) -> double& { return c.flight.land_speed; }, {0.05, 5.0}, "m/s",
                 "descent in LAND")
         .number("timeouts.state", [](C& c) -> double& { return c.flight.state_timeout; }, {0.005, 10.0}, "s",

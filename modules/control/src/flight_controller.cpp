@@ -214,18 +214,31 @@ double FlightController::returnTime() const
          config_.battery.return_overhead;
 }
 
-std::string FlightController::checkTakeoff(double altitude) const
+FlightController::TakeoffClimb FlightController::takeoffClimb(double altitude, const Vector3& from) const
 {
   std::ostringstream why;
   if (!std::isfinite(altitude) || altitude < 0.0) {
     why << "takeoff refused: altitude " << altitude << " m is not a height above the take-off point";
-    return why.str();
+    return {0.0, why.str()};
   }
-  const double up = altitude > 0.0 ? altitude : config_.takeoff_altitude;
-  if (state_ && !config_.geofence.contains(Vector3(state_->p_W + up * Vector3::UnitZ()))) {
+  double up = altitude > 0.0 ? altitude : config_.takeoff_altitude;
+  if (altitude == 0.0 && config_.geofence.max[2] < common::Geofence::kUnbounded) {
+    // The configured altitude is a default: under a low ceiling (a room), climb less.
+    const double room = config_.geofence.max[2] - config_.takeoff_ceiling_margin - from.z();
+    if (room <= config_.land_detector.ground_clearance) {
+      why << "takeoff refused: the geofence's ceiling at " << config_.geofence.max[2] << " m leaves " << room
+          << " m to climb (takeoff_ceiling_margin " << config_.takeoff_ceiling_margin
+          << " m under it), too little to leave the ground (land_detector.ground_clearance "
+          << config_.land_detector.ground_clearance << " m)";
+      return {0.0, why.str()};
+    }
+    up = std::min(up, room);
+  }
+  if (!config_.geofence.contains(Vector3(from + up * Vector3::UnitZ()))) {
     why << "takeoff refused: " << up << " m up would leave the geofence";
+    return {0.0, why.str()};
   }
-  return why.str();
+  return {up, ""};
 }
 
 bool FlightController::onGoal(const Vector3& p, double tolerance, bool land)
@@ -252,7 +265,7 @@ void FlightController::enter(Mode from, Mode mode, double t, const std::optional
       break;
     case Mode::kTakeoff:
       follower_.hold(p, yaw, t);
-      takeoff_altitude_ = pending_altitude_ > 0.0 ? pending_altitude_ : config_.takeoff_altitude;
+      takeoff_altitude_ = takeoffClimb(pending_altitude_, p).up;
       takeoff_target_ = p + Vector3(0.0, 0.0, takeoff_altitude_);
       follower_.setPath({p, takeoff_target_}, 0, t);
       flown_ = {takeoff_target_};
@@ -311,7 +324,8 @@ FlightOutput FlightController::update(double t)
   in.t = t;
   in.command = pending_;
   pending_ = Command::kNone;
-  const std::string takeoff_refused = in.command == Command::kTakeoff ? checkTakeoff(pending_altitude_) : "";
+  const std::string takeoff_refused =
+      in.command == Command::kTakeoff && state_ ? takeoffClimb(pending_altitude_, state_->p_W).refused : "";
   if (!takeoff_refused.empty()) {
     in.command = Command::kNone;
   }

@@ -196,6 +196,44 @@ TEST(FlightController, OnAPlatformTheRangefinderSaysTheVehicleStandsAndItArmsAnd
   EXPECT_EQ(rig.sim.collisionCount(), 0U);
 }
 
+// GIVEN a room fenced 1.9 m high WHEN the take-off is asked at the configured altitude (2 m)
+// THEN it climbs to 0.5 m under the ceiling (1.4 m) instead of being refused; an altitude asked
+// for is flown as asked or refused, never lowered; under a ceiling that leaves no room to leave
+// the ground the take-off is refused, naming the ceiling.
+TEST(FlightController, ATakeOffAtTheConfiguredAltitudeStopsUnderALowCeiling)
+{
+  FlightControllerConfig config = Rig::defaults();
+  config.takeoff_altitude = 2.0;
+  config.takeoff_ceiling_margin = 0.5;
+  config.geofence.max = {50, 50, 1.9};
+  {
+    Rig rig(config);
+    rig.run(0.1);
+    rig.fc.onCommand(Command::kArm);
+    rig.run(0.1);
+    rig.fc.onCommand(Command::kTakeoff, 2.0);
+    rig.run(0.1);
+    EXPECT_EQ(rig.mode(), Mode::kIdle) << "2 m asked for would leave the fence";
+    rig.fc.onCommand(Command::kTakeoff);
+    rig.run(15.0, [&] { return rig.mode() == Mode::kHover; });
+    ASSERT_EQ(rig.mode(), Mode::kHover);
+    EXPECT_NEAR(rig.sim.state().p_W.z(), 1.4, 0.1);
+    EXPECT_EQ(rig.sim.collisionCount(), 0U);
+  }
+  config.geofence.max = {50, 50, 0.7};  // 0.2 m to climb under the margin: not off the ground
+  Rig rig(config);
+  rig.run(0.1);
+  rig.fc.onCommand(Command::kArm);
+  rig.run(0.1);
+  rig.fc.onCommand(Command::kTakeoff);
+  rig.run(0.05, [&] { return !rig.log.empty() && rig.log.back().answer.has_value(); });
+  ASSERT_TRUE(rig.log.back().answer.has_value());
+  EXPECT_FALSE(rig.log.back().answer->accepted);
+  EXPECT_TRUE(rig.log.back().answer->reason.starts_with("takeoff refused: the geofence's ceiling at 0.7 m"))
+      << rig.log.back().answer->reason;
+  EXPECT_EQ(rig.mode(), Mode::kIdle);
+}
+
 TEST(FlightController, EveryCommandIsAnsweredInTheTickThatAppliesItAndATakeOffClimbsAsHighAsAsked)
 {
   FlightControllerConfig config = Rig::defaults();

@@ -56,6 +56,9 @@ struct FlightControllerConfig {
   FollowerLimits follower;
   ModeConfig modes;
   double takeoff_altitude = 2.0;  ///< [m] above the take-off point
+  /// [m] a take-off at the configured altitude climbs no closer than this to the geofence's
+  /// ceiling: in a room fenced below it, it stops lower (an altitude asked for is not lowered)
+  double takeoff_ceiling_margin = 0.5;
   double land_speed = 0.5;        ///< [m/s] descent in LAND
   double state_timeout = 0.1;     ///< [s] a state older than this is stale
   double path_timeout = 3.0;      ///< [s] a path not (re)published for this long is stale
@@ -175,8 +178,9 @@ public:
   bool onGoal(const Vector3& p, double tolerance, bool land = false);
   /// An operator command, applied (or refused) at the next update, which answers it. A
   /// take-off climbs `takeoff_altitude` [m] above the take-off point, or the configured
-  /// altitude when it is 0; a negative, non-finite one, or one whose top lies outside the
-  /// geofence, is refused.
+  /// altitude when it is 0, lowered to stay `takeoff_ceiling_margin` under the geofence's
+  /// ceiling; a negative or non-finite one, one whose top lies outside the geofence, or one
+  /// under a ceiling too low to leave the ground (land_detector.ground_clearance), is refused.
   void onCommand(Command command, double takeoff_altitude = 0.0)
   {
     pending_ = command;
@@ -199,7 +203,13 @@ public:
 private:
   void enter(Mode from, Mode mode, double t, const std::optional<VehicleState>& state);
   /// Why a take-off `altitude` [m] up (0: the configured one) is refused; empty when it is not.
-  std::string checkTakeoff(double altitude) const;
+  /// How far a take-off asked to climb `altitude` (0: the configured one) climbs from `from`,
+  /// or why it is refused (then `refused` says so and `up` is 0).
+  struct TakeoffClimb {
+    double up = 0.0;  ///< [m]
+    std::string refused;
+  };
+  TakeoffClimb takeoffClimb(double altitude, const Vector3& from) const;
   /// The follower's path: the planner's, up to its known-free length.
   std::vector<Vector3> flyablePath() const;
   void aimCamera(Mode mode, const Vector3& p_W);

@@ -334,10 +334,11 @@ Update BasicErrorStateFilter<Rotations>::position(std::int64_t t_ns, const Vecto
     // Unaided past the timeout and still refusing fixes: the estimate has drifted off, and
     // the gate would shut out the truth for ever. Start the position over from this fix (as
     // PX4's EKF2 resets after a fusion timeout), and forget what was known of the velocity:
-    // its 1σ is the moving alignment's, wide enough for the next fixes to be taken. A drift that outran the gate may come from a tilt gone wrong (gravity read through it is
-    // an acceleration that is not there): the attitude's 1σ goes back to the moving
-    // alignment's, so that the fixes can pull the tilt in too, where a 1σ still sure of the
-    // wrong tilt would let it drive the position off again after every reset.
+    // its 1σ is the moving alignment's, wide enough for the next fixes to be taken. A drift
+    // that outran the gate may come from a tilt gone wrong (gravity read through it is an
+    // acceleration that is not there): the attitude's 1σ goes back to the moving alignment's,
+    // so that the fixes can pull the tilt in too, where a 1σ still sure of the wrong tilt
+    // would let it drive the position off again after every reset.
     p_ += y;
     for (auto& h : history_) {
       h.second += y;

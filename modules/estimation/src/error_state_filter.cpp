@@ -135,19 +135,6 @@ void BasicErrorStateFilter<Rotations>::keepForAlignment(std::int64_t t_ns, const
 }
 
 template <class Rotations>
-void BasicErrorStateFilter<Rotations>::setMovingAttitudeStd()
-{
-  P_.block<3, 3>(kAttitude, kAttitude) = Matrix3::Identity() * params_.moving_tilt_std * params_.moving_tilt_std;
-  // The heading is the field's levelled with the tilt: a tilt off by δ turns it by about
-  // δ times the field's vertical over its horizontal part (2 here, the field dipping 64°).
-  const Vector3& m = params_.mag_field_W;
-  const double yaw_std = std::min(std::numbers::pi,
-                                  std::hypot(params_.initial_yaw_std, params_.moving_tilt_std * std::abs(m.z()) /
-                                                                          std::max(m.head<2>().norm(), 1e-9)));
-  P_(kAttitude + 2, kAttitude + 2) = yaw_std * yaw_std;
-}
-
-template <class Rotations>
 void BasicErrorStateFilter<Rotations>::align(std::int64_t t_ns)
 {
   if (fixes_.size() < 2 || !newest_force_ || !newest_field_) {
@@ -188,12 +175,16 @@ void BasicErrorStateFilter<Rotations>::align(std::int64_t t_ns)
   const auto block = [&](int at, double std_dev) { P_.block<3, 3>(at, at) = Matrix3::Identity() * std_dev * std_dev; };
   block(kPosition, 0.05);
   block(kVelocity, at_rest ? params_.initial_velocity_std : params_.moving_velocity_std);
-  if (at_rest) {
-    block(kAttitude, params_.initial_tilt_std);
-    P_(kAttitude + 2, kAttitude + 2) = params_.initial_yaw_std * params_.initial_yaw_std;
-  } else {
-    setMovingAttitudeStd();
-  }
+  block(kAttitude, at_rest ? params_.initial_tilt_std : params_.moving_tilt_std);
+  // The heading is the field's levelled with the tilt: a tilt off by δ turns it by about
+  // δ times the field's vertical over its horizontal part (2 here, the field dipping 64°).
+  const Vector3& m = params_.mag_field_W;
+  const double yaw_std =
+      at_rest ? params_.initial_yaw_std
+              : std::min(std::numbers::pi, std::hypot(params_.initial_yaw_std,
+                                                      params_.moving_tilt_std * std::abs(m.z()) /
+                                                          std::max(m.head<2>().norm(), 1e-9)));
+  P_(kAttitude + 2, kAttitude + 2) = yaw_std * yaw_std;
   block(kAccelBias, params_.accel_bias_prior);
   block(kGyroBias, params_.gyro_bias_prior);
   if (first_baro_) {
@@ -333,23 +324,17 @@ Update BasicErrorStateFilter<Rotations>::position(std::int64_t t_ns, const Vecto
     }
     // Unaided past the timeout and still refusing fixes: the estimate has drifted off, and
     // the gate would shut out the truth for ever. Start the position over from this fix (as
-    // PX4's EKF2 resets after a fusion timeout), and forget what was known of the velocity:
-    // its 1σ is the moving alignment's, wide enough for the next fixes to be taken. A drift
-    // that outran the gate may come from a tilt gone wrong (gravity read through it is an
-    // acceleration that is not there): the attitude's 1σ goes back to the moving alignment's,
-    // so that the fixes can pull the tilt in too, where a 1σ still sure of the wrong tilt
-    // would let it drive the position off again after every reset.
+    // PX4's EKF2 resets after a fusion timeout), and forget what was known of the velocity.
     p_ += y;
     for (auto& h : history_) {
       h.second += y;
     }
-    for (const int block : {kPosition, kVelocity, kAttitude}) {
+    for (const int block : {kPosition, kVelocity}) {
       P_.middleRows<3>(block).setZero();
       P_.middleCols<3>(block).setZero();
     }
     P_.block<3, 3>(kPosition, kPosition) = R;
-    P_.block<3, 3>(kVelocity, kVelocity) = Matrix3::Identity() * params_.moving_velocity_std * params_.moving_velocity_std;
-    setMovingAttitudeStd();
+    P_.block<3, 3>(kVelocity, kVelocity) = Matrix3::Identity() * params_.initial_velocity_std * params_.initial_velocity_std;
     ++position_resets_;
   } else {
     ++position_counts_.accepted;

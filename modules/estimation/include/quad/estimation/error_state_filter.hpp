@@ -108,9 +108,6 @@ public:
 private:
   /// Aligns when the samples kept allow it (at rest, falling, or waited moving_after).
   void align(std::int64_t t_ns);
-  /// The attitude's 1σ of an alignment in motion: the tilt unknown within moving_tilt_std, the
-  /// heading within what that tilt does to the levelled field (set in P_, uncorrelated).
-  void setMovingAttitudeStd();
   /// Before alignment: whether the IMU sample reads as at rest, kept for it.
   void keepForAlignment(std::int64_t t_ns, const Vector3& f_B, const Vector3& w_B);
   void predict(std::int64_t t_ns, const Vector3& f_B, const Vector3& w_B);

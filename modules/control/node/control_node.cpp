@@ -39,6 +39,7 @@ ControlNode::ControlNode(ControlNodeConfig config, dds::Participant handle)
       imu_(participant(), dds::topics::kSimImu, waker()),
       battery_(participant(), dds::topics::kSimBattery, waker()),
       range_(participant(), dds::topics::kSimRange, waker()),
+      range_up_(participant(), dds::topics::kSimRangeUp, waker()),
       operator_(participant(), dds::topics::kOperatorHeartbeat, waker()),
       actuators_(participant(), dds::topics::kActuators),
       status_(participant(), dds::topics::kControlStatus),
@@ -58,6 +59,7 @@ void ControlNode::takeInputs()
   takeDueAfterStamp(imu_, imu_due_, [this](const msg::Imu& m) { applyImu(m); });
   takeDueAfterStamp(battery_, battery_due_, [this](const msg::BatteryState& b) { applyBattery(b); });
   takeDueAfterStamp(range_, range_due_, [this](const msg::Range& r) { applyRange(r); });
+  takeDueAfterStamp(range_up_, range_up_due_, [this](const msg::Range& r) { applyRangeUp(r); });
   while (auto h = operator_.take()) {
     counters().samples_in++;
     if (!fc_.onOperatorHeartbeat(common::toSeconds(h->header().stamp_ns()))) {
@@ -133,10 +135,22 @@ void ControlNode::applyImu(const msg::Imu& m)
 
 void ControlNode::applyRange(const msg::Range& r)
 {
-  if (!fc_.onRange(r.range(), r.max_range(), common::toSeconds(r.header().stamp_ns()))) {
+  checkRange(r, dds::topics::kSimRange.info.name,
+             fc_.onRange(r.range(), r.max_range(), common::toSeconds(r.header().stamp_ns())));
+}
+
+void ControlNode::applyRangeUp(const msg::Range& r)
+{
+  checkRange(r, dds::topics::kSimRangeUp.info.name,
+             fc_.onRangeUp(r.range(), r.max_range(), common::toSeconds(r.header().stamp_ns())));
+}
+
+void ControlNode::checkRange(const msg::Range& r, std::string_view topic, bool accepted)
+{
+  if (!accepted) {
     counters().errors++;
-    spdlog::warn("{}: sample seq {} rejected: range {} m, max_range {} m", dds::topics::kSimRange.info.name,
-                 r.header().seq(), r.range(), r.max_range());
+    spdlog::warn("{}: sample seq {} rejected: range {} m, max_range {} m", topic, r.header().seq(), r.range(),
+                 r.max_range());
   }
 }
 
@@ -156,6 +170,7 @@ void ControlNode::applySensorsBefore(std::int64_t stamp_ns)
   imu_due_.release(stamp_ns, [this](const msg::Imu& m) { applyImu(m); });
   battery_due_.release(stamp_ns, [this](const msg::BatteryState& b) { applyBattery(b); });
   range_due_.release(stamp_ns, [this](const msg::Range& r) { applyRange(r); });
+  range_up_due_.release(stamp_ns, [this](const msg::Range& r) { applyRangeUp(r); });
 }
 
 void ControlNode::applyGoal(const msg::Goal& g)

@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "control_config.hpp"
 #include "quad/dds/publisher.hpp"
@@ -58,6 +59,7 @@ private:
   dds::Subscriber<msg::Imu> imu_;
   dds::Subscriber<msg::BatteryState> battery_;
   dds::Subscriber<msg::Range> range_;
+  dds::Subscriber<msg::Range> range_up_;
   dds::Subscriber<msg::Heartbeat> operator_;
   dds::Publisher<msg::ActuatorCommand> actuators_;
   dds::Publisher<msg::ControlStatus> status_;
@@ -81,15 +83,19 @@ private:
   /// In lockstep, paths and goals taken but not yet due.
   runtime::DueQueue<msg::Path> paths_due_;
   runtime::DueQueue<msg::Goal> goals_due_;
-  /// In lockstep, IMU, battery and range samples not yet used: a state stamped t is answered with
-  /// those stamped before t only, whether the plant's samples of t came before the state or
-  /// after it (they come on other writers than the state's), so that runs repeat.
+  /// In lockstep, IMU, battery and rangefinder samples not yet used: a state stamped t is
+  /// answered with those stamped before t only, whether the plant's samples of t came before
+  /// the state or after it (they come on other writers than the state's), so that runs repeat.
   runtime::DueQueue<msg::Imu> imu_due_;
   runtime::DueQueue<msg::BatteryState> battery_due_;
   runtime::DueQueue<msg::Range> range_due_;
+  runtime::DueQueue<msg::Range> range_up_due_;
   void applyImu(const msg::Imu& m);
   void applyBattery(const msg::BatteryState& b);
   void applyRange(const msg::Range& r);
+  void applyRangeUp(const msg::Range& r);
+  /// Counts and reports a range sample the controller rejected.
+  void checkRange(const msg::Range& r, std::string_view topic, bool accepted);
   void applySensorsBefore(std::int64_t stamp_ns);
   std::int64_t answered_ns_ = -1;          // in lockstep, the stamp of the last command sent
   msg::ActuatorCommand answer_;            // that command, sent again for a state sent again

@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
+#include <vector>
 
 #include "quad/geometry/polyline.hpp"
 #include "quad/geometry/so3.hpp"
@@ -146,13 +148,30 @@ void FlightController::aimCamera(Mode mode, const Vector3& p_W)
   camera_.pitch = std::atan2(look.z(), horizontal);
 }
 
+namespace {
+bool validRange(double range, double max_range, double t)
+{
+  return std::isfinite(t) && !std::isnan(range) && range >= 0.0 && std::isfinite(max_range) && max_range > 0.0;
+}
+}  // namespace
+
 bool FlightController::onRange(double range, double max_range, double t)
 {
-  if (!std::isfinite(t) || std::isnan(range) || range < 0.0 || !std::isfinite(max_range) || max_range <= 0.0) {
+  if (!validRange(range, max_range, t)) {
     ++rejected_;
     return false;
   }
   land_detector_.onRange(range <= max_range ? std::optional<double>(range) : std::nullopt);
+  return true;
+}
+
+bool FlightController::onRangeUp(double range, double max_range, double t)
+{
+  if (!validRange(range, max_range, t)) {
+    ++rejected_;
+    return false;
+  }
+  overhead_ = range <= max_range ? range : std::numeric_limits<double>::infinity();
   return true;
 }
 
@@ -222,17 +241,33 @@ FlightController::TakeoffClimb FlightController::takeoffClimb(double altitude, c
     return {0.0, why.str()};
   }
   double up = altitude > 0.0 ? altitude : config_.takeoff_altitude;
-  if (altitude == 0.0 && config_.geofence.max[2] < common::Geofence::kUnbounded) {
-    // The configured altitude is a default: under a low ceiling (a room), climb less.
-    const double room = config_.geofence.max[2] - config_.takeoff_ceiling_margin - from.z();
-    if (room <= config_.land_detector.ground_clearance) {
-      why << "takeoff refused: the geofence's ceiling at " << config_.geofence.max[2] << " m leaves " << room
-          << " m to climb (takeoff_ceiling_margin " << config_.takeoff_ceiling_margin
-          << " m under it), too little to leave the ground (land_detector.ground_clearance "
-          << config_.land_detector.ground_clearance << " m)";
-      return {0.0, why.str()};
+  if (altitude == 0.0) {
+    // The configured altitude is a default: under a low ceiling (a room), climb less. The
+    // ceilings: the geofence's, and the one the upward rangefinder measured over the vehicle.
+    struct Ceiling {
+      double room;  // [m] to climb under it, less the margin
+      std::string what;
+    };
+    std::vector<Ceiling> ceilings;
+    if (config_.geofence.max[2] < common::Geofence::kUnbounded) {
+      std::ostringstream what;
+      what << "the geofence's ceiling at " << config_.geofence.max[2] << " m";
+      ceilings.push_back({config_.geofence.max[2] - config_.takeoff_ceiling_margin - from.z(), what.str()});
     }
-    up = std::min(up, room);
+    if (std::isfinite(overhead_)) {
+      std::ostringstream what;
+      what << "the ceiling measured " << overhead_ << " m above";
+      ceilings.push_back({overhead_ - config_.takeoff_ceiling_margin, what.str()});
+    }
+    for (const Ceiling& c : ceilings) {
+      if (c.room <= config_.land_detector.ground_clearance) {
+        why << "takeoff refused: " << c.what << " leaves " << c.room << " m to climb (takeoff_ceiling_margin "
+            << config_.takeoff_ceiling_margin << " m under it), too little to leave the ground "
+            << "(land_detector.ground_clearance " << config_.land_detector.ground_clearance << " m)";
+        return {0.0, why.str()};
+      }
+      up = std::min(up, c.room);
+    }
   }
   if (!config_.geofence.contains(Vector3(from + up * Vector3::UnitZ()))) {
     why << "takeoff refused: " << up << " m up would leave the geofence";

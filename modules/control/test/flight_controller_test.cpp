@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <limits>
 #include <random>
+#include <string>
 
 #include "closed_loop.hpp"
 #include "quad/common/time.hpp"
@@ -73,6 +74,10 @@ struct Rig {
         fc.onRange(out.range->range.value_or(std::numeric_limits<double>::infinity()), out.range->max_range,
                    common::toSeconds(out.range->t_ns));
       }
+      if (out.range_up) {
+        fc.onRangeUp(out.range_up->range.value_or(std::numeric_limits<double>::infinity()), out.range_up->max_range,
+                     common::toSeconds(out.range_up->t_ns));
+      }
       if (out.battery) {
         const plant::BatteryReading& b = *out.battery;
         fc.onBattery({b.voltage, b.current, b.charge, b.capacity, b.cells}, common::toSeconds(b.t_ns));
@@ -98,6 +103,21 @@ void takeOff(Rig& rig)
   rig.run(0.1);
   rig.fc.onCommand(Command::kTakeoff);
   rig.run(15.0, [&] { return rig.mode() == Mode::kHover; });
+}
+
+/// After 0.1 s on the ground, arms and asks for a take-off at the configured altitude: the
+/// answer, which must be a refusal starting with `reason`; the vehicle stays idle.
+void expectTakeOffRefused(Rig& rig, const std::string& reason)
+{
+  rig.run(0.1);
+  rig.fc.onCommand(Command::kArm);
+  rig.run(0.1);
+  rig.fc.onCommand(Command::kTakeoff);
+  rig.run(0.05, [&] { return !rig.log.empty() && rig.log.back().answer.has_value(); });
+  ASSERT_TRUE(rig.log.back().answer.has_value());
+  EXPECT_FALSE(rig.log.back().answer->accepted);
+  EXPECT_TRUE(rig.log.back().answer->reason.starts_with(reason)) << rig.log.back().answer->reason;
+  EXPECT_EQ(rig.mode(), Mode::kIdle);
 }
 
 TEST(FlightController, ArmTakeOffFlyTheMissionAndLand)
@@ -222,16 +242,40 @@ TEST(FlightController, ATakeOffAtTheConfiguredAltitudeStopsUnderALowCeiling)
   }
   config.geofence.max = {50, 50, 0.7};  // 0.2 m to climb under the margin: not off the ground
   Rig rig(config);
-  rig.run(0.1);
-  rig.fc.onCommand(Command::kArm);
-  rig.run(0.1);
-  rig.fc.onCommand(Command::kTakeoff);
-  rig.run(0.05, [&] { return !rig.log.empty() && rig.log.back().answer.has_value(); });
-  ASSERT_TRUE(rig.log.back().answer.has_value());
-  EXPECT_FALSE(rig.log.back().answer->accepted);
-  EXPECT_TRUE(rig.log.back().answer->reason.starts_with("takeoff refused: the geofence's ceiling at 0.7 m"))
-      << rig.log.back().answer->reason;
-  EXPECT_EQ(rig.mode(), Mode::kIdle);
+  expectTakeOffRefused(rig, "takeoff refused: the geofence's ceiling at 0.7 m");
+}
+
+TEST(FlightController, ATakeOffAtTheConfiguredAltitudeStopsUnderTheCeilingItMeasures)
+{
+  // No geofence: the ceiling is a slab over the start, found by the upward rangefinder.
+  FlightControllerConfig config = Rig::defaults();
+  config.takeoff_altitude = 2.0;
+  config.takeoff_ceiling_margin = 0.5;
+  const auto room = [](double ceiling) {
+    return world::World(world::Bounds{Vector3(-50, -50, 0), Vector3(50, 50, 30)}, Vector3::Zero(), Vector3(10, 0, 2),
+                        {world::Obstacle::makeBox({{0, 0, ceiling + 0.1}, {10, 10, 0.2}, 0.0})});
+  };
+  {
+    Rig rig(room(1.9), config);
+    rig.run(0.1);
+    takeOff(rig);
+    ASSERT_EQ(rig.mode(), Mode::kHover);
+    EXPECT_NEAR(rig.sim.state().p_W.z(), 1.4, 0.1);
+    EXPECT_EQ(rig.sim.collisionCount(), 0U);
+  }
+  {
+    // An altitude asked for is flown as asked, the margin's or not: never lowered.
+    Rig rig(room(1.9), config);
+    rig.run(0.1);
+    rig.fc.onCommand(Command::kArm);
+    rig.run(0.1);
+    rig.fc.onCommand(Command::kTakeoff, 1.6);
+    rig.run(15.0, [&] { return rig.mode() == Mode::kHover; });
+    ASSERT_EQ(rig.mode(), Mode::kHover);
+    EXPECT_NEAR(rig.sim.state().p_W.z(), 1.6, 0.1);
+  }
+  Rig rig(room(0.75), config);  // 0.25 m to climb under the margin: not off the ground
+  expectTakeOffRefused(rig, "takeoff refused: the ceiling measured 0.7");
 }
 
 TEST(FlightController, EveryCommandIsAnsweredInTheTickThatAppliesItAndATakeOffClimbsAsHighAsAsked)

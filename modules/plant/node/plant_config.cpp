@@ -6,6 +6,25 @@
 
 namespace quad::plant {
 
+namespace {
+
+/// One rangefinder's keys under `prefix`, filling the simulation's `which`.
+void declareRangefinder(common::ParamTable<PlantNodeConfig>& t, const std::string& prefix,
+                        RangefinderConfig SimulationConfig::*which, const std::string& what)
+{
+  using C = PlantNodeConfig;
+  const auto of = [which](C& c) -> RangefinderConfig& { return c.simulation.*which; };
+  t.flag(prefix + ".enabled", [of](C& c) -> bool& { return of(c).enabled; }, "publish the " + what)
+      .number(prefix + ".rate", [of](C& c) -> double& { return of(c).rate_hz; }, {0.1, 1000.0}, "Hz",
+              "rangefinder rate (it also reads once at the first step)")
+      .number(prefix + ".max", [of](C& c) -> double& { return of(c).max_range; }, {0.1, 1000.0}, "m",
+              "the farthest surface it measures")
+      .number(prefix + ".noise", [of](C& c) -> double& { return of(c).noise_std; }, {0.0, 10.0}, "m",
+              "white noise std dev");
+}
+
+}  // namespace
+
 const common::ParamTable<PlantNodeConfig>& plantTable()
 {
   using C = PlantNodeConfig;
@@ -97,16 +116,12 @@ const common::ParamTable<PlantNodeConfig>& plantTable()
         .vector("mag.field", [](C& c) -> Vector3& { return c.simulation.mag.field_W; }, {-100.0, 100.0}, "uT",
                 "Earth's field in the world frame (ENU)")
         .number("mag.noise", [](C& c) -> double& { return c.simulation.mag.noise_std; }, {0.0001, 100.0}, "uT",
-                "white noise std dev per axis")
-        .flag("range.enabled", [](C& c) -> bool& { return c.simulation.range.enabled; },
-              "publish the downward rangefinder (the controller knows from it what the vehicle stands on)")
-        .number("range.rate", [](C& c) -> double& { return c.simulation.range.rate_hz; }, {0.1, 1000.0}, "Hz",
-                "rangefinder rate (it also reads once at the first step)")
-        .number("range.max", [](C& c) -> double& { return c.simulation.range.max_range; }, {0.1, 1000.0}, "m",
-                "the farthest surface it measures")
-        .number("range.noise", [](C& c) -> double& { return c.simulation.range.noise_std; }, {0.0, 10.0}, "m",
-                "white noise std dev")
-        .number("depth.width", [](C& c) -> int& { return c.simulation.depth.width; }, {1, 1024}, "px",
+                "white noise std dev per axis");
+    declareRangefinder(t, "range", &SimulationConfig::range,
+                       "downward rangefinder (the controller knows from it what the vehicle stands on)");
+    declareRangefinder(t, "range_up", &SimulationConfig::range_up,
+                       "upward rangefinder (the controller knows from it how high the ceiling over it is)");
+    t.number("depth.width", [](C& c) -> int& { return c.simulation.depth.width; }, {1, 1024}, "px",
                 "depth image width")
         .number("depth.height", [](C& c) -> int& { return c.simulation.depth.height; }, {1, 1024}, "px",
                 "depth image height")

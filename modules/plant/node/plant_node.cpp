@@ -77,6 +77,7 @@ PlantNode::PlantNode(PlantNodeConfig config, dds::Participant handle)
       baro_(participant(), dds::topics::kSimBaro, fleet_->ids()),
       mag_(participant(), dds::topics::kSimMag, fleet_->ids()),
       range_(participant(), dds::topics::kSimRange, fleet_->ids()),
+      range_up_(participant(), dds::topics::kSimRangeUp, fleet_->ids()),
       battery_(participant(), dds::topics::kSimBattery, fleet_->ids()),
       depth_(participant(), dds::topics::kSimDepth, fleet_->ids()),
       events_(participant(), dds::topics::kSimEvents, fleet_->ids()),
@@ -284,6 +285,10 @@ void PlantNode::publish(std::size_t vehicle, const StepOutputs& out)
   }
   if (out.range) {
     range_.writeFor(io.id, toMessage(*out.range));
+    counters().samples_out++;
+  }
+  if (out.range_up) {
+    range_up_.writeFor(io.id, toMessage(*out.range_up));
     counters().samples_out++;
   }
   const std::string who = io_.size() > 1 ? fmt::format("vehicle {} ", io.id) : std::string();

@@ -71,6 +71,7 @@ private:
   dds::FleetPublisher<msg::BaroAltitude> baro_;
   dds::FleetPublisher<msg::MagneticField> mag_;
   dds::FleetPublisher<msg::Range> range_;
+  dds::FleetPublisher<msg::Range> range_up_;
   dds::FleetPublisher<msg::BatteryState> battery_;
   dds::FleetPublisher<msg::PointCloud> depth_;
   dds::FleetPublisher<msg::SimEvent> events_;

@@ -34,13 +34,15 @@ std::string_view toString(Sensor s)
       return "mag";
     case Sensor::kRange:
       return "range";
+    case Sensor::kRangeUp:
+      return "range_up";
   }
   return "?";
 }
 
 namespace {
 constexpr std::array kSensors{Sensor::kDepth, Sensor::kImu, Sensor::kState, Sensor::kPosition, Sensor::kBaro, Sensor::kMag,
-                              Sensor::kRange};
+                              Sensor::kRange, Sensor::kRangeUp};
 }  // namespace
 
 std::string sensorNames()

@@ -50,15 +50,20 @@ Vector3 measureMagnetometer(const MagnetometerConfig& config, const geometry::Qu
 }
 
 std::optional<double> measureRange(const RangefinderConfig& config, const world::World& world, const Vector3& p_W,
-                                   const geometry::Quaternion& q_WB, std::mt19937_64& rng, double extra_noise_std)
+                                   const geometry::Quaternion& q_WB, const Vector3& axis_B, std::mt19937_64& rng,
+                                   double extra_noise_std)
 {
-  const Vector3 down_W = geometry::toMatrix(q_WB) * Vector3(0.0, 0.0, -1.0);
-  const auto hit = world.raycast(p_W - kRangefinderLift * down_W, down_W, config.max_range + kRangefinderLift);
+  // Each looks from kRangefinderLift over the origin (the body's top): the downward one sees a
+  // surface the origin touches, the upward one does not see the surface the body stands on.
+  const geometry::Matrix3 R_WB = geometry::toMatrix(q_WB);
+  const Vector3 axis_W = R_WB * axis_B;
+  const double ahead = kRangefinderLift * axis_B.dot(kUpward);  // [m] where it looks from, along its axis
+  const auto hit = world.raycast(p_W + kRangefinderLift * (R_WB * kUpward), axis_W, config.max_range - ahead);
   const double noise = (config.noise_std + extra_noise_std) * std::normal_distribution<double>(0.0, 1.0)(rng);
-  if (!hit || hit->distance - kRangefinderLift > config.max_range) {
+  if (!hit || hit->distance + ahead > config.max_range) {
     return std::nullopt;
   }
-  return std::max(0.0, hit->distance - kRangefinderLift + noise);
+  return std::max(0.0, hit->distance + ahead + noise);
 }
 
 }  // namespace quad::plant

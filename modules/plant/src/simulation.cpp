@@ -22,10 +22,13 @@ Simulation::Simulation(vehicle::VehicleParams vehicle, world::World world, Simul
       rng_(config_.seed),
       wind_(config_.wind, config_.seed ^ 0x9e3779b97f4a7c15ULL),
       nav_rng_(config_.seed ^ 0x6a09e667f3bcc909ULL),
-      range_rng_(config_.seed ^ 0x3c6ef372fe94f82bULL),
       imu_bias_(turnOnBias(config_.imu, nav_rng_)),
       position_(config_.position),
-      baro_(config_.baro, nav_rng_)
+      baro_(config_.baro, nav_rng_),
+      range_down_{&SimulationConfig::range, Sensor::kRange, kDownward,
+                  std::mt19937_64(config_.seed ^ 0x3c6ef372fe94f82bULL)},
+      range_up_{&SimulationConfig::range_up, Sensor::kRangeUp, kUpward,
+                std::mt19937_64(config_.seed ^ 0xa54ff53a5f1d36f1ULL)}
 {
   // RK4 is stable on the motor lag only while step/τ stays inside its region (2.78): keep a
   // margin, and refuse a vehicle whose motors are too fast for the step.
@@ -229,20 +232,27 @@ void Simulation::measureNavigation(StepOutputs& out)
     last_mag_->t_ns = t_ns_;
     out.mag = last_mag_;
   }
-  // The rangefinder reads at turn-on (the first step), then on its grid: a controller knows
-  // what the vehicle stands on from its first state on.
-  if (config_.range.enabled && due(t_ns_, next_range_ns_, config_.range.rate_hz) && live(Sensor::kRange)) {
-    if (fresh(Sensor::kRange, last_range_)) {
-      const Vector3 offset = sensorOffset(Sensor::kRange);
-      auto range = measureRange(config_.range, world_, state_.p_W, state_.q_WB, range_rng_, sensorNoise(Sensor::kRange));
-      if (range) {
-        *range = std::max(0.0, *range + offset.z());
-      }
-      last_range_ = RangeReading{t_ns_, range, config_.range.max_range, config_.range.noise_std};
-    }
-    last_range_->t_ns = t_ns_;
-    out.range = last_range_;
+  // The rangefinders read at turn-on (the first step), then on their grid: a controller knows
+  // what the vehicle stands on, and what is over it, from its first state on.
+  out.range = measureRangefinder(range_down_);
+  out.range_up = measureRangefinder(range_up_);
+}
+
+std::optional<RangeReading> Simulation::measureRangefinder(Rangefinder& r)
+{
+  const RangefinderConfig& config = config_.*r.config;
+  if (!config.enabled || !due(t_ns_, r.next_ns, config.rate_hz) || sensorFault(r.sensor, Fault::Kind::kSensorDropout)) {
+    return std::nullopt;
   }
+  if (!sensorFault(r.sensor, Fault::Kind::kSensorStuck) || !r.last) {
+    auto range = measureRange(config, world_, state_.p_W, state_.q_WB, r.axis_B, r.rng, sensorNoise(r.sensor));
+    if (range) {
+      *range = std::max(0.0, *range + sensorOffset(r.sensor).z());
+    }
+    r.last = RangeReading{t_ns_, range, config.max_range, config.noise_std};
+  }
+  r.last->t_ns = t_ns_;
+  return r.last;
 }
 
 StepOutputs Simulation::step()

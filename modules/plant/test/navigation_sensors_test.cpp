@@ -117,19 +117,43 @@ TEST(Rangefinder, ReadsHowFarBelowTheBodyTheSurfaceBeneathLiesAlongTheBodysDownA
   std::mt19937_64 rng(3);
   const geometry::Quaternion level;
   // Over the ground plane, over the box's top, and standing on each.
-  EXPECT_NEAR(*measureRange(config, w, {0, 0, 2}, level, rng), 2.0, 1e-9);
-  EXPECT_NEAR(*measureRange(config, w, {5, 0, 4.5}, level, rng), 1.5, 1e-9);
-  EXPECT_NEAR(*measureRange(config, w, {0, 0, 0}, level, rng), 0.0, 1e-9);
-  EXPECT_NEAR(*measureRange(config, w, {5, 0, 3}, level, rng), 0.0, 1e-9);
+  EXPECT_NEAR(*measureRange(config, w, {0, 0, 2}, level, kDownward, rng), 2.0, 1e-9);
+  EXPECT_NEAR(*measureRange(config, w, {5, 0, 4.5}, level, kDownward, rng), 1.5, 1e-9);
+  EXPECT_NEAR(*measureRange(config, w, {0, 0, 0}, level, kDownward, rng), 0.0, 1e-9);
+  EXPECT_NEAR(*measureRange(config, w, {5, 0, 3}, level, kDownward, rng), 0.0, 1e-9);
   // Tilted by θ, the slant range to a level floor is h / cos θ.
   for (const double tilt : {0.1, 0.3, 0.6}) {
     const auto q = geometry::fromAxisAngle(Vector3::UnitX(), tilt);
-    EXPECT_NEAR(*measureRange(config, w, {-5, -5, 2}, q, rng), 2.0 / std::cos(tilt), 1e-9) << tilt;
+    EXPECT_NEAR(*measureRange(config, w, {-5, -5, 2}, q, kDownward, rng), 2.0 / std::cos(tilt), 1e-9) << tilt;
   }
   // Beyond its reach: nothing.
   config.max_range = 1.0;
-  EXPECT_FALSE(measureRange(config, w, {0, 0, 2}, level, rng).has_value());
-  EXPECT_NEAR(*measureRange(config, w, {0, 0, 0.5}, level, rng), 0.5, 1e-9);
+  EXPECT_FALSE(measureRange(config, w, {0, 0, 2}, level, kDownward, rng).has_value());
+  EXPECT_NEAR(*measureRange(config, w, {0, 0, 0.5}, level, kDownward, rng), 0.5, 1e-9);
+}
+
+TEST(Rangefinder, LookingUpReadsHowFarAboveTheBodyTheCeilingOverItLies)
+{
+  RangefinderConfig config;
+  config.noise_std = 0.0;
+  // A slab from 2.5 to 2.7 m over x in [0, 4]; nothing over the rest (the bounds' top is no
+  // surface).
+  const world::World w({{-20, -20, 0}, {20, 20, 30}}, {0, 0, 0}, {10, 0, 2},
+                       {world::Obstacle::makeBox({{2, 0, 2.6}, {4, 4, 0.2}, 0.0})});
+  std::mt19937_64 rng(5);
+  const geometry::Quaternion level;
+  EXPECT_NEAR(*measureRange(config, w, {2, 0, 0}, level, kUpward, rng), 2.5, 1e-9);
+  EXPECT_NEAR(*measureRange(config, w, {2, 0, 1.5}, level, kUpward, rng), 1.0, 1e-9);
+  EXPECT_NEAR(*measureRange(config, w, {2, 0, 2.4}, level, kUpward, rng), 0.1, 1e-9);
+  EXPECT_FALSE(measureRange(config, w, {-5, 0, 1}, level, kUpward, rng).has_value());
+  // Standing on the slab, the ceiling is gone and the floor is the slab.
+  EXPECT_FALSE(measureRange(config, w, {2, 0, 2.7}, level, kUpward, rng).has_value());
+  EXPECT_NEAR(*measureRange(config, w, {2, 0, 2.7}, level, kDownward, rng), 0.0, 1e-9);
+  // Tilted by θ, the slant range to a level ceiling is h / cos θ.
+  for (const double tilt : {0.1, 0.3, 0.6}) {
+    const auto q = geometry::fromAxisAngle(Vector3::UnitY(), tilt);
+    EXPECT_NEAR(*measureRange(config, w, {2, 0, 1}, q, kUpward, rng), 1.5 / std::cos(tilt), 1e-9) << tilt;
+  }
 }
 
 TEST(Rangefinder, ItsNoiseHasTheStatedSpreadAndNeverReadsBelowZero)
@@ -142,10 +166,10 @@ TEST(Rangefinder, ItsNoiseHasTheStatedSpreadAndNeverReadsBelowZero)
   double sum2 = 0.0;
   const int n = 20000;
   for (int i = 0; i < n; ++i) {
-    const double r = *measureRange(config, w, {0, 0, 3}, {}, rng);
+    const double r = *measureRange(config, w, {0, 0, 3}, {}, kDownward, rng);
     sum += r - 3.0;
     sum2 += (r - 3.0) * (r - 3.0);
-    ASSERT_GE(*measureRange(config, w, {0, 0, 0}, {}, rng), 0.0);
+    ASSERT_GE(*measureRange(config, w, {0, 0, 0}, {}, kDownward, rng), 0.0);
   }
   EXPECT_NEAR(sum / n, 0.0, 0.002);
   EXPECT_NEAR(std::sqrt(sum2 / n), 0.05, 0.002);

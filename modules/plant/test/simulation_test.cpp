@@ -529,7 +529,8 @@ TEST(FaultSchedule, FileIsValidatedAndParsed)
     EXPECT_EQ(e.problems()[3], "faults.yaml:[3].kind: (missing): expected motor, sensor_dropout, "
                                "sensor_stuck, sensor_noise, sensor_offset, wind_gust, push or cell_loss");
     EXPECT_EQ(e.problems()[0], "faults.yaml:[0].rotor: 5: out of range [0, 3]");
-    EXPECT_EQ(e.problems()[1], "faults.yaml:[1].sensor: lidar: expected depth, imu, state, position, baro, mag or range");
+    EXPECT_EQ(e.problems()[1],
+              "faults.yaml:[1].sensor: lidar: expected depth, imu, state, position, baro, mag, range or range_up");
     EXPECT_EQ(e.problems()[2], "faults.yaml:[2].kind: meteor: expected motor, sensor_dropout, "
                                "sensor_stuck, sensor_noise, sensor_offset, wind_gust, push or cell_loss");
   }

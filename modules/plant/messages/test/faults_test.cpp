@@ -56,7 +56,7 @@ TEST(PlantFaultCommands, AnOffsetThatIsNotFiniteOrOnNoSensorIsRefusedSayingWhy)
   auto c = toCommand(f);
   c.target("lidar");
   EXPECT_FALSE(faultFrom(c, 0, why));
-  EXPECT_EQ(why, "target 'lidar' is not a plant sensor (depth, imu, state, position, baro, mag or range)");
+  EXPECT_EQ(why, "target 'lidar' is not a plant sensor (depth, imu, state, position, baro, mag, range or range_up)");
 }
 
 }  // namespace

@@ -158,6 +158,10 @@ public:
   /// standing or flying by it (LandDetector). Rejected (false, counted) when the range is
   /// negative or NaN, `max_range` not positive and finite, or t not finite.
   bool onRange(double range, double max_range, double t);
+  /// An upward rangefinder's reading, as onRange's: how far above the body's origin the ceiling
+  /// over it lies. A take-off at the configured altitude stops `takeoff_ceiling_margin` under
+  /// the last one measured.
+  bool onRangeUp(double range, double max_range, double t);
   /// [s] how long the charge left above the reserve lasts at the average current; infinite
   /// before any reading.
   double batteryTimeLeft() const;
@@ -179,8 +183,9 @@ public:
   /// An operator command, applied (or refused) at the next update, which answers it. A
   /// take-off climbs `takeoff_altitude` [m] above the take-off point, or the configured
   /// altitude when it is 0, lowered to stay `takeoff_ceiling_margin` under the geofence's
-  /// ceiling; a negative or non-finite one, one whose top lies outside the geofence, or one
-  /// under a ceiling too low to leave the ground (land_detector.ground_clearance), is refused.
+  /// ceiling and the one measured above (onRangeUp); a negative or non-finite one, one whose
+  /// top lies outside the geofence, or one under a ceiling too low to leave the ground
+  /// (land_detector.ground_clearance), is refused.
   void onCommand(Command command, double takeoff_altitude = 0.0)
   {
     pending_ = command;
@@ -202,7 +207,6 @@ public:
 
 private:
   void enter(Mode from, Mode mode, double t, const std::optional<VehicleState>& state);
-  /// Why a take-off `altitude` [m] up (0: the configured one) is refused; empty when it is not.
   /// How far a take-off asked to climb `altitude` (0: the configured one) climbs from `from`,
   /// or why it is refused (then `refused` says so and `up` is 0).
   struct TakeoffClimb {
@@ -225,6 +229,7 @@ private:
   std::optional<VehicleState> state_;
   bool landed_ = true;
   LandDetector land_detector_;
+  double overhead_ = std::numeric_limits<double>::infinity();  // [m] the ceiling over the body, measured
   bool judge_landing_ = false;  ///< the states do not say; the land detector judges
   double thrust_ratio_ = 0.0;   ///< the thrust last commanded, a fraction of the weight
   double state_t_ = -1.0;

@@ -46,6 +46,9 @@ inline constexpr auto kSimMag = makeTopic<MagneticField>(
 inline constexpr auto kSimRange = makeTopic<Range>(
     "quad/sim/range", "sensor", 20.0, Owner::kPlant,
     "Downward rangefinder: how far below the body the surface beneath lies");
+inline constexpr auto kSimRangeUp = makeTopic<Range>(
+    "quad/sim/range_up", "sensor", 20.0, Owner::kPlant,
+    "Upward rangefinder: how far above the body the ceiling over it lies");
 inline constexpr auto kEstimatedState = makeTopic<EstimatedState>(
     "quad/estimation/state", "state", 250.0, Owner::kEstimation,
     "The estimator's vehicle state: pose, velocity, biases, 1-sigma, health", 0.1);
@@ -181,8 +184,8 @@ inline constexpr std::int64_t kPathBudgetNs = 100'000'000;
 /// Every contract, for tools that iterate over topics.
 inline constexpr std::array kAll{
     kSimClock.info, kSimState.info, kSimImu.info, kSimPosition.info, kSimBaro.info, kSimMag.info, kSimRange.info,
-    kEstimatedState.info, kSimBattery.info, kSimDepth.info, kSimEvents.info, kLockstep.info, kMapUpdate.info,
-    kMapSnapshot.info, kMapStats.info, kGoal.info, kGoalAck.info, kPath.info, kActuators.info,
+    kSimRangeUp.info, kEstimatedState.info, kSimBattery.info, kSimDepth.info, kSimEvents.info, kLockstep.info,
+    kMapUpdate.info, kMapSnapshot.info, kMapStats.info, kGoal.info, kGoalAck.info, kPath.info, kActuators.info,
     kControlStatus.info, kCommandAck.info, kControlReference.info, kTrajectory.info, kHeartbeat.info,
     kOperatorHeartbeat.info, kVehicleCommand.info, kFault.info, kFaultEvents.info, kDisplayTransforms.info, kDisplayTrajectory.info,
     kDisplayTrueTrajectory.info, kDisplayPath.info, kDisplayPlan.info, kDisplayMap.info, kDisplayScene.info,

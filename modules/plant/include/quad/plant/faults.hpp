@@ -20,7 +20,7 @@
 
 namespace quad::plant {
 
-enum class Sensor { kDepth, kImu, kState, kPosition, kBaro, kMag, kRange };
+enum class Sensor { kDepth, kImu, kState, kPosition, kBaro, kMag, kRange, kRangeUp };
 
 std::string_view toString(Sensor s);
 std::optional<Sensor> parseSensor(std::string_view text);

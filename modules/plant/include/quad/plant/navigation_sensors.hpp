@@ -4,8 +4,9 @@
 /// The navigation aids an estimator fuses with the IMU: an absolute position sensor (a GNSS
 /// receiver or a motion-capture system: white noise, a latency, outages), a barometric
 /// altimeter (an offset that starts at the pressure of the day and drifts, and noise) and a
-/// magnetometer (Earth's field in the body frame, and noise). And a downward rangefinder, by
-/// which the controller knows the vehicle stands on something. Randomness comes from a
+/// magnetometer (Earth's field in the body frame, and noise). And rangefinders: a downward one,
+/// by which the controller knows the vehicle stands on something, and an upward one, by which
+/// it knows how high a room's ceiling is. Randomness comes from a
 /// generator the caller owns, so a run is reproducible for a seed.
 
 #include <optional>
@@ -91,12 +92,17 @@ struct RangefinderConfig {
   double noise_std = 0.01;  ///< [m] white
 };
 
-/// [m] A downward rangefinder at the body's origin: how far along the body's -z axis the first
-/// surface lies (the ground, an obstacle, a scan), with white noise, never below 0; none when
-/// nothing is within `max_range`. A vehicle standing on a surface reads about 0. The ray
-/// starts kRangefinderLift above the origin, so a surface the origin touches is seen.
+/// [m] A rangefinder at the body's origin looking along the body's unit axis `axis_B`
+/// (kDownward, kUpward): how far along it the first surface lies (the ground, a ceiling, an
+/// obstacle, a scan), with white noise, never below 0; none when nothing is within
+/// `max_range`. A vehicle standing on a surface reads about 0 downward. Both look from
+/// kRangefinderLift over the origin (the body's top), so the downward one sees a surface the
+/// origin touches and the upward one does not see the surface the body stands on.
 std::optional<double> measureRange(const RangefinderConfig& config, const world::World& world, const Vector3& p_W,
-                                   const geometry::Quaternion& q_WB, std::mt19937_64& rng, double extra_noise_std = 0.0);
+                                   const geometry::Quaternion& q_WB, const Vector3& axis_B, std::mt19937_64& rng,
+                                   double extra_noise_std = 0.0);
+inline const Vector3 kDownward{0.0, 0.0, -1.0};  ///< the body's -z axis
+inline const Vector3 kUpward{0.0, 0.0, 1.0};     ///< the body's +z axis
 inline constexpr double kRangefinderLift = 0.05;  ///< [m]
 
 }  // namespace quad::plant

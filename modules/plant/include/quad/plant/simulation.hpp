@@ -41,7 +41,8 @@ struct SimulationConfig {
   PositionSensorConfig position;
   BarometerConfig baro;
   MagnetometerConfig mag;
-  RangefinderConfig range;
+  RangefinderConfig range;     ///< looks down: what the vehicle stands on, how high it flies
+  RangefinderConfig range_up;  ///< looks up: how high the ceiling over it is
   WindConfig wind;  ///< steady wind and turbulence (gusts come as faults, on top)
   BatteryConfig battery;
   double battery_rate_hz = 10.0;  ///< battery readings (the pack's monitor)
@@ -90,10 +91,10 @@ struct MagReading {
   double std_dev = 0.0;   ///< [µT] per axis, as the sensor declares it
 };
 
-/// A downward rangefinder's reading (measureRange).
+/// A rangefinder's reading (measureRange).
 struct RangeReading {
   std::int64_t t_ns = 0;
-  std::optional<double> range;  ///< [m] below the body's origin; none: nothing within max_range
+  std::optional<double> range;  ///< [m] from the body's origin along its axis; none: nothing within max_range
   double max_range = 0.0;       ///< [m]
   double std_dev = 0.0;         ///< [m] the white noise's, as the sensor declares it
 };
@@ -123,7 +124,8 @@ struct StepOutputs {
   std::optional<PositionReading> position;  ///< delivered now, measured at its stamp
   std::optional<BaroReading> baro;
   std::optional<MagReading> mag;
-  std::optional<RangeReading> range;
+  std::optional<RangeReading> range;     ///< downward
+  std::optional<RangeReading> range_up;  ///< upward
   std::optional<DepthReading> depth;
   std::optional<BatteryReading> battery;
   std::vector<SimEventRecord> events;
@@ -192,6 +194,17 @@ private:
     Fault fault;
     bool applied = false;
   };
+  /// A rangefinder's state: it reads at turn-on (the first step), then on its grid.
+  struct Rangefinder {
+    RangefinderConfig SimulationConfig::*config;  ///< which of config_'s
+    Sensor sensor;                                ///< what its faults name
+    Vector3 axis_B;                               ///< kDownward or kUpward
+    std::mt19937_64 rng;                          ///< its own: it left every other draw as it was
+    std::int64_t next_ns = 0;                     ///< 0: it reads at the first step
+    std::optional<RangeReading> last;
+  };
+  /// The rangefinder's sample if one is due this step.
+  std::optional<RangeReading> measureRangefinder(Rangefinder& r);
   void applyFaults(StepOutputs& out);
   /// The navigation aids' samples due this step.
   void measureNavigation(StepOutputs& out);
@@ -218,7 +231,6 @@ private:
   // The IMU's bias walks and the navigation aids draw from their own too: they left the depth
   // camera's and the IMU noise's draws as they were when they came.
   std::mt19937_64 nav_rng_;
-  std::mt19937_64 range_rng_;  // the rangefinder's own: it left every other draw as it was
   ImuBias imu_bias_;
   PositionSensor position_;
   Barometer baro_;
@@ -238,12 +250,12 @@ private:
   std::int64_t next_position_ns_ = 0;
   std::int64_t next_baro_ns_ = 0;
   std::int64_t next_mag_ns_ = 0;
-  std::int64_t next_range_ns_ = 0;  // 0: it reads at the first step, then on its grid
   std::deque<PositionReading> positions_in_flight_;  // measured, not yet delivered
   std::optional<PositionReading> last_position_;
   std::optional<BaroReading> last_baro_;
   std::optional<MagReading> last_mag_;
-  std::optional<RangeReading> last_range_;
+  Rangefinder range_down_;
+  Rangefinder range_up_;
   std::optional<StateSample> last_state_;
   std::optional<ImuReading> last_imu_;
   std::optional<DepthReading> last_depth_;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "control_node.hpp"
 
+#include <limits>
+
 #include <spdlog/spdlog.h>
 
 #include "conversions.hpp"
@@ -80,8 +82,8 @@ void ControlNode::takeInputs()
                   c->header().stamp_ns());
       continue;
     }
-    commands_.push_back({c->command_id(), c->kind(), command, c->altitude(),
-                         dds::topics::operatorInputDueNs(c->header().stamp_ns(), simClock().ns())});
+    commands_.hold(dds::topics::operatorInputDueNs(c->header().stamp_ns(), simClock().ns()),
+                   {c->command_id(), c->kind(), command, c->altitude()});
   }
   // In lockstep a path, goal or command takes effect at a sim time fixed by its stamp, not
   // when it happens to arrive, so that runs repeat: a path with the first state after its
@@ -214,9 +216,9 @@ void ControlNode::control(double t, std::int64_t stamp_ns)
 {
   const bool autostart_asked = autostart();
   applyDueInputs(stamp_ns);
-  if (!commands_.empty() && (!lockstep() || commands_.front().due_ns <= stamp_ns)) {
-    applying_ = commands_.front();
-    commands_.pop_front();
+  // One command a tick, each answered by it; out of lockstep as soon as it is taken.
+  applying_ = commands_.releaseOne(lockstep() ? stamp_ns : std::numeric_limits<std::int64_t>::max());
+  if (applying_) {
     fc_.onCommand(applying_->command, applying_->takeoff_altitude);
   }
   const bool autostart_only = autostart_asked && !applying_;  // no operator's command this tick

@@ -5,7 +5,6 @@
 /// state's time (so the plant's lockstep pairs them), publishes its status and reference, and
 /// takes paths, goals and operator commands.
 
-#include <deque>
 #include <map>
 #include <optional>
 #include <string>
@@ -67,15 +66,15 @@ private:
   dds::Publisher<msg::Trajectory> trajectory_;
   dds::Publisher<msg::CommandAck> acks_;
 
-  /// Operator commands taken and not yet applied: one a tick, each answered.
+  /// Operator commands taken and not yet applied: one a tick, each answered; in lockstep due
+  /// the contract's delay after its stamp.
   struct QueuedCommand {
     std::uint32_t id;
     msg::CommandKind kind;
     Command command;
     double takeoff_altitude;
-    std::int64_t due_ns = 0;  // in lockstep, the sim time it takes effect at
   };
-  std::deque<QueuedCommand> commands_;
+  runtime::DueQueue<QueuedCommand> commands_;
   std::optional<QueuedCommand> applying_;  // fed to the controller, answered by its next update
   /// Answers `command` on quad/control/command_ack.
   void acknowledge(const QueuedCommand& command, const CommandAnswer& answer, Mode mode, std::int64_t stamp_ns);

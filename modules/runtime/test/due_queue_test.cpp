@@ -42,6 +42,22 @@ TEST(DueQueue, AnItemWaitsBehindOneHeldBeforeItEvenOneDueLater)
   EXPECT_EQ(releaseAll(queue, 50), (std::vector<int>{1, 2}));
 }
 
+TEST(DueQueue, OneAtATimeReleasesTheOldestOnlyWhenItIsDue)
+{
+  DueQueue<int> queue;
+  queue.hold(10, 1);
+  queue.hold(10, 2);
+  queue.hold(30, 3);
+  EXPECT_EQ(queue.releaseOne(9), std::nullopt);
+  EXPECT_EQ(queue.releaseOne(10), 1);
+  EXPECT_EQ(queue.releaseOne(10), 2);
+  EXPECT_EQ(queue.releaseOne(20), std::nullopt);
+  EXPECT_EQ(queue.size(), 1u);
+  EXPECT_EQ(queue.releaseOne(30), 3);
+  EXPECT_EQ(queue.releaseOne(1'000), std::nullopt);
+  EXPECT_TRUE(queue.empty());
+}
+
 TEST(DueQueue, AnInputStampedBeforeAStateIsDueWithItAndOneStampedWithItIsNot)
 {
   DueQueue<std::string> queue;

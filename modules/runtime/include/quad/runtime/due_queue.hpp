@@ -43,6 +43,18 @@ public:
     return released;
   }
 
+  /// The oldest item if it is due at or before `now_ns`, for inputs applied one a time handled
+  /// (an operator's commands, each answered by the tick that applies it); none otherwise.
+  std::optional<T> releaseOne(std::int64_t now_ns)
+  {
+    if (items_.empty() || items_.front().first > now_ns) {
+      return std::nullopt;
+    }
+    std::optional<T> item(std::move(items_.front().second));
+    items_.pop_front();
+    return item;
+  }
+
   bool empty() const { return items_.empty(); }
   std::size_t size() const { return items_.size(); }
   /// [ns] When the oldest item is due; none when nothing is held.

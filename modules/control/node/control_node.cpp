@@ -34,6 +34,7 @@ ControlNode::ControlNode(ControlNodeConfig config, dds::Participant handle)
     : Node("control", std::move(handle)),
       config_(std::move(config)),
       fc_(vehicle::loadVehicle(config_.vehicle_file), config_.flight),
+      autostart_(config_.autostart),
       state_(participant(), config_.state_source, waker()),
       path_(participant(), dds::topics::kPath, waker()),
       goal_(participant(), dds::topics::kGoal, waker()),
@@ -189,39 +190,19 @@ void ControlNode::applyDueInputs(std::int64_t stamp_ns)
   paths_due_.release(stamp_ns, [&](const msg::Path& p) { applyPath(p, common::toSeconds(stamp_ns)); });
 }
 
-bool ControlNode::autostart()
-{
-  if (!config_.autostart || autostart_stage_ >= 2) {
-    return false;
-  }
-  // Asks again until it takes (a command refused for a not-yet-fresh state is not lost);
-  // done once the vehicle is in the air (taking off, or taken over in flight), so a later
-  // landing is final.
-  if (airborne(fc_.mode())) {
-    autostart_stage_ = 2;
-    return false;
-  }
-  if (fc_.mode() == Mode::kDisarmed) {
-    fc_.onCommand(Command::kArm);
-  } else if (fc_.mode() == Mode::kIdle) {
-    fc_.onCommand(Command::kTakeoff);
-  } else {
-    return false;
-  }
-  autostart_stage_ = 1;
-  return true;
-}
-
 void ControlNode::control(double t, std::int64_t stamp_ns)
 {
-  const bool autostart_asked = autostart();
+  const std::optional<Command> autostart = autostart_.next(fc_.mode());
+  if (autostart) {
+    fc_.onCommand(*autostart);
+  }
   applyDueInputs(stamp_ns);
   // One command a tick, each answered by it; out of lockstep as soon as it is taken.
   applying_ = commands_.releaseOne(lockstep() ? stamp_ns : std::numeric_limits<std::int64_t>::max());
   if (applying_) {
     fc_.onCommand(applying_->command, applying_->takeoff_altitude);
   }
-  const bool autostart_only = autostart_asked && !applying_;  // no operator's command this tick
+  const bool autostart_only = autostart && !applying_;  // no operator's command this tick
   const FlightOutput out = fc_.update(t);
   if (applying_ && out.answer) {
     acknowledge(*applying_, *out.answer, out.mode, stamp_ns);
@@ -270,11 +251,7 @@ void ControlNode::control(double t, std::int64_t stamp_ns)
   if (!out.refused.empty()) {
     // The autostart asks again every tick until its command takes (while the first state is
     // not yet fresh, say): each reason it is refused for is worth a line once, not per tick.
-    const bool repeat = autostart_only && out.refused == autostart_refused_;
-    if (autostart_only) {
-      autostart_refused_ = out.refused;
-    }
-    if (repeat) {
+    if (autostart_only && !autostart_.newRefusal(out.refused)) {
       spdlog::debug("control: {} (the autostart asks again)", out.refused);
     } else {
       spdlog::warn("control: {}", out.refused);

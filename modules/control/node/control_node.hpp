@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "control_config.hpp"
+#include "quad/control/autostart.hpp"
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
@@ -45,12 +46,9 @@ private:
   void controlSilentPlant(double after_s);
   void publishStatus(const FlightOutput& out, std::int64_t stamp_ns);
 
-  /// Arms, then takes off, until the vehicle is in the air (config autostart); true when it
-  /// gave the flight controller a command this tick.
-  bool autostart();
-
   ControlNodeConfig config_;
   FlightController fc_;
+  Autostart autostart_;  // config autostart: arms, then takes off, until the vehicle is in the air
   runtime::StateInput state_;
   dds::Subscriber<msg::Path> path_;
   dds::Subscriber<msg::Goal> goal_;
@@ -112,8 +110,6 @@ private:
   FlightOutput last_;
   std::uint64_t refused_ = 0;                        // paths the follower refused so far
   std::optional<std::uint32_t> refused_version_;     // the last path version a refusal was said of
-  int autostart_stage_ = 0;
-  std::string autostart_refused_;     // why it was refused the last time, as logged
 };
 
 /// The control module as a process hosts it: its name, parameters and node.

@@ -12,6 +12,17 @@
 
 namespace quad::estimation {
 
+namespace {
+/// [ns] Wall time a lockstep estimator waits for an aid its IMU sample says was written before
+/// it; one that has not come by then was lost (a best-effort datagram), and is not waited for.
+constexpr std::int64_t kAidGraceNs = 200'000'000;
+
+std::uint64_t seqOf(const EstimationNode::Sample& s)
+{
+  return std::visit([](const auto& m) { return m.header().seq(); }, s);
+}
+}  // namespace
+
 EstimationNode::EstimationNode(EstimatorParams params, dds::Participant handle)
     : Node("estimation", std::move(handle)),
       filter_(params),
@@ -19,7 +30,8 @@ EstimationNode::EstimationNode(EstimatorParams params, dds::Participant handle)
       position_(participant(), dds::topics::kSimPosition, waker()),
       baro_(participant(), dds::topics::kSimBaro, waker()),
       mag_(participant(), dds::topics::kSimMag, waker()),
-      state_(participant(), dds::topics::kEstimatedState)
+      state_(participant(), dds::topics::kEstimatedState),
+      held_(kAidGraceNs)
 {
   // The clock says whether the run is a lockstep one, where the wall clock's deadlines say
   // nothing. A run known to be one from the start (QUAD_LOCKSTEP) stays one: its clock sample
@@ -40,17 +52,6 @@ void EstimationNode::judge(Update u, const dds::TopicInfo& topic, std::uint64_t 
     spdlog::debug("{}: sample seq {} refused: {}", topic.name, seq, toString(u));
   }
 }
-
-namespace {
-/// [ns] Wall time a lockstep estimator waits for an aid its IMU sample says was written before
-/// it; one that has not come by then was lost (a best-effort datagram), and is not waited for.
-constexpr std::int64_t kAidGraceNs = 200'000'000;
-
-std::uint64_t seqOf(const EstimationNode::Sample& s)
-{
-  return std::visit([](const auto& m) { return m.header().seq(); }, s);
-}
-}  // namespace
 
 void EstimationNode::onWake()
 {
@@ -74,24 +75,24 @@ void EstimationNode::onWake()
   // In lockstep each IMU sample is answered with exactly the aids the plant wrote before it
   // (its *_seq), whenever they arrive, so that runs repeat.
   for (auto& a : samples) {
-    held_aids_.push_back(std::move(a));
-    const auto& aid = held_aids_.back().second;
-    newest_aid_seq_[aid.index() - 1] = std::max(newest_aid_seq_[aid.index() - 1], seqOf(aid));
+    const std::size_t kind = a.second.index() - 1;
+    const std::uint64_t seq = seqOf(a.second);
+    held_.holdAid(kind, seq, std::move(a));
   }
   for (auto& m : imu_.takeAll()) {
-    held_imu_.push_back(std::move(m));
+    const Pairing::Numbers wanted{m.position_seq(), m.baro_seq(), m.mag_seq()};
+    held_.holdTrigger(std::move(m), wanted);
   }
   answerHeldImu();
 }
 
 void EstimationNode::answerHeldImu()
 {
-  while (!held_imu_.empty()) {
-    const msg::Imu m = held_imu_.front();
-    const std::int64_t stamp = m.header().stamp_ns();
-    if (answered_any_ && stamp <= filter_.timeNs()) {
+  while (const msg::Imu* front = held_.front()) {
+    const std::int64_t stamp = front->header().stamp_ns();
+    if (held_.answeredAny() && stamp <= filter_.timeNs()) {
       // Sent again by a plant still waiting for the round: the answer it had.
-      held_imu_.pop_front();
+      held_.dropFront();
       if (stamp == filter_.timeNs()) {
         answerAgain(stamp);
       } else {
@@ -99,50 +100,26 @@ void EstimationNode::answerHeldImu()
       }
       continue;
     }
-    const std::array<std::uint64_t, 3> wanted{m.position_seq(), m.baro_seq(), m.mag_seq()};
-    if (!answered_any_) {
-      // The first answer waits until every aid's writer matched: the aids written before it
-      // (lost or not, depending on when this participant matched) are left out; every one
-      // after it reaches a matched reader.
-      if (position_.matchedWriters() == 0 || baro_.matchedWriters() == 0 || mag_.matchedWriters() == 0) {
-        return;  // the plant resends the sample meanwhile
-      }
-      first_aid_seq_ = wanted;
+    // The first answer waits until every aid's writer matched: the aids written before it
+    // (lost or not, depending on when this participant matched) are left out; every one
+    // after it reaches a matched reader.
+    const bool matched = held_.answeredAny() || (position_.matchedWriters() > 0 && baro_.matchedWriters() > 0 &&
+                                                 mag_.matchedWriters() > 0);
+    auto paired = held_.next(common::steadyTimeNs(), matched);
+    if (!paired) {
+      return;  // woken by the aid, or by the plant resending the IMU sample
     }
-    bool complete = true;
-    for (std::size_t i = 0; i < wanted.size(); ++i) {
-      complete = complete && (wanted[i] <= first_aid_seq_[i] || newest_aid_seq_[i] >= wanted[i]);
-    }
-    const std::int64_t now = common::steadyTimeNs();
-    if (!complete) {
-      if (aid_wait_since_ns_ == 0) {
-        aid_wait_since_ns_ = now;
-      }
-      if (now - aid_wait_since_ns_ < kAidGraceNs) {
-        return;  // woken by the aid, or by the plant resending the IMU sample
-      }
+    counters().samples_in += paired->left_out;
+    if (paired->lost) {
+      const auto& w = paired->wanted;
+      const auto& n = paired->newest;
       counters().errors++;
       spdlog::warn("estimation: the IMU sample at {:.3f} s follows aids that have not come within {} ms "
                    "(position {} barometer {} magnetometer {}, the newest taken {} {} {}): lost; answered without them",
-                   common::toSeconds(stamp), kAidGraceNs / 1'000'000, wanted[0], wanted[1], wanted[2],
-                   newest_aid_seq_[0], newest_aid_seq_[1], newest_aid_seq_[2]);
+                   common::toSeconds(stamp), kAidGraceNs / 1'000'000, w[0], w[1], w[2], n[0], n[1], n[2]);
     }
-    aid_wait_since_ns_ = 0;
-    held_imu_.pop_front();
-    std::vector<Timed> due;
-    std::vector<Timed> later;
-    for (auto& a : held_aids_) {
-      const std::size_t kind = a.second.index() - 1;
-      const std::uint64_t seq = seqOf(a.second);
-      if (seq <= first_aid_seq_[kind]) {
-        counters().samples_in++;  // before the first answer: left out
-      } else {
-        (seq <= wanted[kind] ? due : later).push_back(std::move(a));
-      }
-    }
-    held_aids_ = std::move(later);
-    due.emplace_back(stamp, m);
-    answered_any_ = true;
+    std::vector<Timed> due = std::move(paired->aids);
+    due.emplace_back(stamp, std::move(paired->trigger));
     process(std::move(due));
   }
 }

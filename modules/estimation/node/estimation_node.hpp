@@ -5,8 +5,6 @@
 /// magnetometer to the error-state filter in time order and publishes its state after every
 /// IMU sample.
 
-#include <array>
-#include <deque>
 #include <optional>
 #include <utility>
 #include <variant>
@@ -16,6 +14,7 @@
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
 #include "quad/estimation/error_state_filter.hpp"
+#include "quad/runtime/aid_pairing.hpp"
 #include "quad/runtime/module_main.hpp"
 #include "quad/runtime/node.hpp"
 
@@ -52,14 +51,10 @@ private:
   dds::Publisher<msg::EstimatedState> state_;
   bool announced_alignment_ = false;
   std::optional<msg::EstimatedState> last_;  // the newest estimate published
-  // In lockstep: IMU samples not yet answered and aids not yet fed, the newest aid number
-  // taken per kind (position, barometer, magnetometer), those the first answer left out.
-  std::deque<msg::Imu> held_imu_;
-  std::vector<Timed> held_aids_;
-  std::array<std::uint64_t, 3> newest_aid_seq_{};
-  std::array<std::uint64_t, 3> first_aid_seq_{};
-  bool answered_any_ = false;
-  std::int64_t aid_wait_since_ns_ = 0;  // steady time the front IMU sample began waiting (0: not)
+  // In lockstep: IMU samples not yet answered and the aids (position, barometer,
+  // magnetometer) not yet fed, each answered with the aids written before it.
+  using Pairing = runtime::AidPairing<msg::Imu, Timed, 3>;
+  Pairing held_;
 };
 
 /// The estimation module as a process hosts it: its name, parameters and node.

@@ -103,7 +103,8 @@ MappingNode::MappingNode(MappingNodeConfig config, dds::Participant handle)
       updates_(participant(), dds::topics::kMapUpdate),
       snapshots_(participant(), dds::topics::kMapSnapshot),
       stats_(participant(), dds::topics::kMapStats),
-      lockstep_(participant(), "mapping")
+      lockstep_(participant(), "mapping"),
+      intake_(config_.frames)
 {
   followSimClock(runtime::kHeldStates);  // a sample at the state's rate, each saying whether a state went out
   spdlog::info("mapping: resolution {} m, max range {} m, clouds placed on the {} ({})", config_.map.resolution,
@@ -238,38 +239,17 @@ void MappingNode::integrate(const msg::PointCloud& cloud, const std::optional<ge
 {
   counters().samples_in++;
   frames_taken_ = cloud.frame() != 0 ? std::max(frames_taken_, cloud.frame()) : frames_taken_ + 1;
-  const std::string frame = cloud.frame_id().to_string();
-  const geometry::Quaternion q_BS = dds::toQuaternion(cloud.sensor_q_BS());
-  std::string problem;
-  if (!config_.frames.contains(frame)) {
-    problem = "unknown frame '" + frame + "'";
-  } else if (!std::isfinite(q_BS.norm()) || std::abs(q_BS.norm() - 1.0) > 1e-3) {
-    problem = "sensor attitude is not a unit quaternion";
-  } else if (!dds::toVector(cloud.sensor_p_B()).allFinite()) {
-    problem = "sensor position is not finite";
-  } else if (!body_W) {
-    problem = why;
-  }
-  std::vector<std::array<float, 3>> points_S;
-  points_S.reserve(cloud.points().size());
+  DepthFrame frame{cloud.frame_id().to_string(), {}, dds::toVector(cloud.sensor_p_B()),
+                   dds::toQuaternion(cloud.sensor_q_BS()), cloud.max_range()};
+  frame.points_S.reserve(cloud.points().size());
   for (const msg::Point3f& p : cloud.points()) {
-    points_S.push_back({p.x(), p.y(), p.z()});
+    frame.points_S.push_back({p.x(), p.y(), p.z()});
   }
-  if (stuck_.repeats(points_S, static_cast<float>(cloud.max_range())) && problem.empty()) {
-    problem = "its points repeat the cloud before it's, bit for bit (a stuck camera)";
-  }
-  Scan scan;
-  if (problem.empty()) {
-    const geometry::Pose3 sensor = *body_W * geometry::Pose3{dds::toVector(cloud.sensor_p_B()), q_BS.normalized()};
-    scan.origin_W = sensor.p;
-    scan.max_range = cloud.max_range();
-    scan.points_W.reserve(cloud.points().size());
-    for (const auto& p : points_S) {
-      scan.points_W.push_back(sensor.transform(Vector3(p[0], p[1], p[2])));
-    }
-  }
+  const auto scan = intake_.take(frame, body_W, why);
   const std::int64_t start = common::steadyTimeNs();
-  const IntegrationResult result = problem.empty() ? mapper_.integrate(scan) : IntegrationResult{false, problem, {}, 0};
+  const IntegrationResult result = std::holds_alternative<Scan>(scan)
+                                       ? mapper_.integrate(std::get<Scan>(scan))
+                                       : IntegrationResult{false, std::get<std::string>(scan), {}, 0};
   const double insert_s = common::toSeconds(common::steadyTimeNs() - start);
   if (!result.accepted) {
     ++rejected_;

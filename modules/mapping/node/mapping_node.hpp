@@ -15,7 +15,7 @@
 #include "quad/dds/topics.hpp"
 #include "quad/mapping/mapper.hpp"
 #include "quad/mapping/pose_history.hpp"
-#include "quad/mapping/stuck_sensor.hpp"
+#include "quad/mapping/depth_intake.hpp"
 #include "quad/runtime/lockstep.hpp"
 #include "quad/runtime/module_main.hpp"
 #include "quad/runtime/node.hpp"
@@ -108,7 +108,7 @@ private:
   std::int64_t match_until_ns_ = -1;
   std::uint64_t rejected_ = 0;
   std::uint64_t skipped_ = 0;
-  StuckSensorCheck stuck_;             // a cloud that repeats the one before is refused
+  DepthIntake intake_;                 // what of a cloud is mapped, or why it is refused
   // The tree's memory as of the last snapshot: OctoMap counts it by walking the whole tree,
   // which per cloud took a fifth of the mapper's time in the demo.
   std::size_t map_bytes_ = 0;

@@ -209,7 +209,7 @@ TEST(Launch, TheDemoFliesComposedUnderDdsSecurityEachContainerWithAnIdentityOfIt
   // and the demo's manifest naming them
   const fs::path dir = quad::test::scratchDir("quad_launch_secure");
   const fs::path security = dir / "security";
-  ChildProcess init({QUAD_TOOL, "security", "init", security.string(), "--container", "mapping,planning",
+  ChildProcess init({QUAD_TOOL, "security", "init", security.string(), "--container", "mapping,planning,display",
                      "--container", "estimation,control,plant"});
   const auto made = init.wait(60s);
   ASSERT_TRUE(made.has_value() && *made == 0) << init.output();

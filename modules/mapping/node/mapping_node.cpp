@@ -227,6 +227,7 @@ void MappingNode::integratePending()
     if (wait && !never) {
       return;
     }
+    takeOwedSnapshot();  // the map as the cloud before this one left it
     integrate(cloud, body,
               body ? std::string() : fmt::format("no {} at its time ({:.3f} s)", state_.topic().name,
                                                  common::toSeconds(stamp)));
@@ -316,16 +317,28 @@ void MappingNode::integrate(const msg::PointCloud& cloud, const std::optional<ge
   // ones for a reader that joined depend on when it did).
   const bool periodic = cloud.header().stamp_ns() >= next_snapshot_ns_;
   if (cloud.header().stamp_ns() <= match_until_ns_ || periodic) {
-    // One walk of the tree for the snapshot, the checkpoint and the memory use: a walk costs
-    // the cache misses of reaching every node.
-    TreeImage image = mapper_.image(!config_.checkpoint_file.empty());
     if (periodic) {
-      map_bytes_ = image.memory_bytes;  // with the period's snapshots only
       next_snapshot_ns_ = cloud.header().stamp_ns() + common::toNanoseconds(config_.snapshot_period_s);
     }
-    publishSnapshot(due_ns, std::move(image.binary));
-    checkpoint(last_stamp_ns_, reserved_seq_, &image.data);
+    owed_snapshot_ = OwedSnapshot{due_ns, last_stamp_ns_, periodic};
   }
+}
+
+void MappingNode::takeOwedSnapshot()
+{
+  if (!owed_snapshot_) {
+    return;
+  }
+  const OwedSnapshot owed = *owed_snapshot_;
+  owed_snapshot_.reset();
+  // One walk of the tree for the snapshot, the checkpoint and the memory use: a walk costs
+  // the cache misses of reaching every node.
+  TreeImage image = mapper_.image(!config_.checkpoint_file.empty());
+  if (owed.periodic) {
+    map_bytes_ = image.memory_bytes;  // with the period's snapshots only
+  }
+  publishSnapshot(owed.due_ns, std::move(image.binary));
+  checkpoint(owed.stamp_ns, reserved_seq_, &image.data);
 }
 
 void MappingNode::onEvent(const dds::EndpointEvent& event)
@@ -403,10 +416,12 @@ void MappingNode::onWake()
   }
   integratePending();
   reportLockstep();
+  takeOwedSnapshot();
 }
 
 void MappingNode::onStop()
 {
+  takeOwedSnapshot();
   save();
   checkpoint(last_stamp_ns_, std::max(reserved_seq_, update_seq_ + 1));
   spdlog::info("mapping: {} updates, {} clouds rejected, {} skipped, map {} nodes, {} voxel updates skipped at a "

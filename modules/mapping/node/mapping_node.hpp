@@ -7,6 +7,7 @@
 #include <deque>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -72,6 +73,10 @@ private:
   /// Integrates one cloud, the body at `body_W` (none: refused, `why`).
   void integrate(const msg::PointCloud& cloud, const std::optional<geometry::Pose3>& body_W, const std::string& why);
   void reportLockstep();
+  /// The snapshot (and checkpoint) owed by the last cloud integrated, if one is: taken before
+  /// the next cloud changes the map, and otherwise once the lockstep report is out, so that
+  /// the clock never waits for its walk of the tree.
+  void takeOwedSnapshot();
   void save();
   /// The map as it is (its .bt bytes), on the latched snapshot topic, stamped `stamp_ns`.
   void publishSnapshot(std::int64_t stamp_ns, std::vector<std::uint8_t> bytes);
@@ -106,6 +111,12 @@ private:
   // A newly matched update reader: snapshots go with every cloud up to match_until_ns_.
   bool match_pending_ = false;
   std::int64_t match_until_ns_ = -1;
+  struct OwedSnapshot {
+    std::int64_t due_ns;    // its cloud's update's due time: the snapshot's stamp
+    std::int64_t stamp_ns;  // its cloud's: the checkpoint's
+    bool periodic;          // one of the period's: the map's memory is counted with it
+  };
+  std::optional<OwedSnapshot> owed_snapshot_;
   std::uint64_t rejected_ = 0;
   std::uint64_t skipped_ = 0;
   DepthIntake intake_;                 // what of a cloud is mapped, or why it is refused

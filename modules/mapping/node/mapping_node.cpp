@@ -210,29 +210,19 @@ void MappingNode::takeStates()
 
 void MappingNode::integratePending()
 {
-  // A real-time cloud waits this long of sim time for the state of its time.
-  constexpr std::int64_t kPoseWaitNs = 500'000'000;
-  while (!pending_.empty()) {
-    const msg::PointCloud& cloud = pending_.front();
-    const std::int64_t stamp = cloud.header().stamp_ns();
-    const auto body = poses_.at(stamp);
-    // No state will come for it: states of its time or later came (it fell in a gap, or the
-    // estimator was still aligning), the lockstep clock of its time said none was sent, or in
-    // real time it has waited long enough.
-    const bool never = (!body && states_heard_ns_ >= stamp) ||
-                       (lockstep() && simClock().ns() >= stamp && !simClock().stateSentAt(stamp)) ||
-                       (!lockstep() && simClock().ns() - stamp > kPoseWaitNs);
-    // In lockstep the state of its own time, not one carried on to it: runs repeat.
-    const bool wait = lockstep() ? states_heard_ns_ < stamp : !body;
-    if (wait && !never) {
-      return;
-    }
-    takeOwedSnapshot();  // the map as the cloud before this one left it
-    integrate(cloud, body,
-              body ? std::string() : fmt::format("no {} at its time ({:.3f} s)", state_.topic().name,
-                                                 common::toSeconds(stamp)));
-    pending_.pop_front();
-  }
+  // A cloud with no pose at its time when it goes fell in a gap of the states (or came while
+  // the estimator was still aligning): refused, naming the state missing.
+  pending_.release(
+      {lockstep(), states_heard_ns_, simClock().ns()}, [this](std::int64_t stamp) { return poses_.at(stamp).has_value(); },
+      [this](std::int64_t stamp) { return simClock().stateSentAt(stamp); },
+      [this](const msg::PointCloud& cloud) {
+        const std::int64_t stamp = cloud.header().stamp_ns();
+        const auto body = poses_.at(stamp);
+        takeOwedSnapshot();  // the map as the cloud before this one left it
+        integrate(cloud, body,
+                  body ? std::string() : fmt::format("no {} at its time ({:.3f} s)", state_.topic().name,
+                                                     common::toSeconds(stamp)));
+      });
 }
 
 void MappingNode::integrate(const msg::PointCloud& cloud, const std::optional<geometry::Pose3>& body_W,
@@ -364,7 +354,7 @@ void MappingNode::reportLockstep()
   // Done up to just before the due time of the oldest depth frame not yet dealt with: one
   // waiting here, else one published and not yet here (stamped after the last taken), else
   // the next to come (stamped after the clock's time, whose frames are all taken).
-  const std::int64_t oldest = !pending_.empty()                           ? pending_.front().header().stamp_ns()
+  const std::int64_t oldest = !pending_.empty()                           ? pending_.oldestStampNs()
                               : frames_taken_ < simClock().depthFrames() ? taken_stamp_ns_ + 1
                                                                           : simClock().ns() + 1;
   const std::int64_t done = oldest + participant().options().mapBudgetNs() - 1;
@@ -398,21 +388,23 @@ void MappingNode::onWake()
   takeStates();
   // A cloud resent by a lockstep plant waiting for us is one we have, one waiting for its
   // state, or one taken just before it (its copies queue while we work): known by its frame.
-  std::uint64_t have = pending_.empty() ? frames_taken_ : std::max(frames_taken_, pending_.back().frame());
+  std::uint64_t have = pending_.empty() ? frames_taken_ : std::max(frames_taken_, pending_.newest().frame());
   for (auto& cloud : depth_.takeAll()) {
     if (cloud.frame() != 0 && cloud.frame() <= have) {
       continue;
     }
     have = std::max(have, cloud.frame());
-    pending_.push_back(std::move(cloud));
+    const std::int64_t stamp = cloud.header().stamp_ns();
+    pending_.hold(stamp, std::move(cloud));
   }
-  if (!lockstep() && pending_.size() > 1) {
+  if (!lockstep()) {
     // Behind in real time: the newest cloud carries the freshest view; count the others
     // (integrate() then accounts for every frame up to the newest's number, those the
     // reader's history dropped while we were behind included).
-    skipped_ += pending_.size() - 1;
-    spdlog::debug("mapping: skipped {} older clouds", pending_.size() - 1);
-    pending_.erase(pending_.begin(), pending_.end() - 1);
+    if (const std::size_t dropped = pending_.keepNewest(); dropped > 0) {
+      skipped_ += dropped;
+      spdlog::debug("mapping: skipped {} older clouds", dropped);
+    }
   }
   integratePending();
   reportLockstep();

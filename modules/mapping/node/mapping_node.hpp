@@ -4,7 +4,6 @@
 /// The mapping participant: integrates depth clouds into the map, publishes each scan's
 /// change set, a snapshot for late joiners and per-scan stats, and takes part in lockstep.
 
-#include <deque>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -19,6 +18,7 @@
 #include "quad/mapping/depth_intake.hpp"
 #include "quad/runtime/lockstep.hpp"
 #include "quad/runtime/module_main.hpp"
+#include "quad/runtime/state_timed.hpp"
 #include "quad/runtime/node.hpp"
 #include "quad/runtime/state_input.hpp"
 
@@ -100,7 +100,8 @@ private:
 
   PoseHistory poses_;
   std::int64_t states_heard_ns_ = -1;    // the newest state's stamp, an estimate still aligning included
-  std::deque<msg::PointCloud> pending_;  // clouds waiting for the state of their time
+  // Clouds waiting for the state of their time; in real time for up to 0.5 s of sim time.
+  runtime::StateTimed<msg::PointCloud> pending_{500'000'000};
   std::uint64_t frames_taken_ = 0;         // depth frames dealt with (integrated, refused or skipped)
   std::uint64_t update_seq_ = 0;
   std::uint64_t reserved_seq_ = 0;  // numbers below this are in the checkpoint's reservation

@@ -74,6 +74,12 @@ fdds::TypeSupport rawTypeFor(const TopicInfo& info)
                                            : 64U * 1024U * 1024U));
 }
 
+fdds::TypeSupport payloadTypeFor(Participant& participant, const TopicInfo& info)
+{
+  fdds::TypeSupport registered = participant.raw()->find_type(std::string(info.type_name));
+  return registered.empty() ? rawTypeFor(info) : registered;
+}
+
 namespace {
 // Raw samples vary in size: allocate per sample instead of preallocating the maximum.
 template <class Qos>
@@ -82,20 +88,64 @@ Qos dynamicMemory(Qos qos)
   qos.endpoint().history_memory_policy = frtps::DYNAMIC_REUSABLE_MEMORY_MODE;
   return qos;
 }
+
+/// A TypedPayload when `type` is not a RawType.
+std::unique_ptr<TypedPayload> typedPayload(const fdds::TypeSupport& type)
+{
+  return dynamic_cast<const RawType*>(type.get()) != nullptr ? nullptr : std::make_unique<TypedPayload>(type);
+}
 }  // namespace
+
+TypedPayload::TypedPayload(fdds::TypeSupport type) : type_(std::move(type)), data_(type_->createData()) {}
+
+TypedPayload::~TypedPayload() { type_->deleteData(data_); }
+
+bool TypedPayload::fromPayload(const RawSample& sample)
+{
+  frtps::SerializedPayload_t payload(static_cast<std::uint32_t>(sample.payload.size()));
+  std::memcpy(payload.data, sample.payload.data(), sample.payload.size());
+  payload.length = static_cast<std::uint32_t>(sample.payload.size());
+  return type_->deserialize(&payload, data_);
+}
+
+bool TypedPayload::toPayload(RawSample& sample)
+{
+  frtps::SerializedPayload_t payload(type_->getSerializedSizeProvider(data_)());
+  if (!type_->serialize(data_, &payload)) {
+    return false;
+  }
+  sample.payload.assign(payload.data, payload.data + payload.length);
+  return true;
+}
 
 RawPublisher::RawPublisher(Participant& participant, const TopicInfo& info,
                            std::optional<fdds::DataWriterQos> qos)
-    : WriterEndpoint(participant, info, rawTypeFor(info),
-                     dynamicMemory(qos ? *qos : participant.writerQos(info)))
+    : WriterEndpoint(participant, info, payloadTypeFor(participant, info),
+                     dynamicMemory(qos ? *qos : participant.writerQos(info))),
+      typed_(typedPayload(payloadTypeFor(participant, info)))
 {
 }
 
 RawSubscriber::RawSubscriber(Participant& participant, const TopicInfo& info, Waker* waker,
                              std::optional<fdds::DataReaderQos> qos)
-    : ReaderEndpoint(participant, info, rawTypeFor(info), waker,
-                     dynamicMemory(qos ? *qos : participant.readerQos(info)))
+    : ReaderEndpoint(participant, info, payloadTypeFor(participant, info), waker,
+                     dynamicMemory(qos ? *qos : participant.readerQos(info))),
+      typed_(typedPayload(payloadTypeFor(participant, info)))
 {
+}
+
+bool RawSubscriber::take(RawSample& sample, std::uint64_t* writer, std::int64_t* received_ns)
+{
+  if (!typed_) {
+    return takeSample(&sample, writer, received_ns);
+  }
+  // A sample the typed support cannot serialise again is taken and left out.
+  while (takeSample(typed_->data(), writer, received_ns)) {
+    if (typed_->toPayload(sample)) {
+      return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace quad::dds

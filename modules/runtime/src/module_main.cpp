@@ -26,10 +26,10 @@ constexpr auto kNodeStopWait = std::chrono::seconds(3);
 
 /// Runs the nodes `make` builds, the first on this thread and each other on one of its own,
 /// until all have stopped: a node that stops on its own, or fails, stops the others; a
-/// signal stops them all. They stop in the reverse of the order they were built in, each
-/// done before the next is told, as a launcher stops a process per module (the plant's
-/// clock ends before the controller that answers it). 1 when building or running any
-/// failed, else 0.
+/// signal stops them all. They stop in the reverse of the order `make` gives them (the order
+/// they were built in, but a container's recorders first, so stopped last), each done
+/// before the next is told, as a launcher stops a process per module (the plant's clock ends
+/// before the controller that answers it). 1 when building or running any failed, else 0.
 int runHosted(std::string_view process_name, const std::function<std::vector<std::unique_ptr<Node>>()>& make)
 {
   SignalWatcher signals;
@@ -84,7 +84,7 @@ int runHosted(std::string_view process_name, const std::function<std::vector<std
   }
   signals.onSignal({});  // before the nodes go away
   while (!nodes.empty()) {
-    nodes.pop_back();  // the last built first: the participant goes with the node that made it
+    nodes.pop_back();  // in the reverse order: the participant goes with the last handle on it
   }
   return status;
 }
@@ -275,7 +275,16 @@ int runContainer(int argc, char** argv, const std::vector<ModuleEntry>& known)
   if (hosted.empty()) {
     return usageError(program, "no module to host", usage);
   }
-  const std::string name = common::containerName(names);
+  std::vector<std::string> named;  // a recorder's name is not the container's
+  for (std::size_t i = 0; i < hosted.size(); ++i) {
+    if (!hosted[i]->records) {
+      named.push_back(names[i]);
+    }
+  }
+  if (named.empty()) {
+    return usageError(program, "no module to host but a recorder: it records the modules beside it", usage);
+  }
+  const std::string name = common::containerName(named);
   std::vector<common::Params> params(hosted.size());
   std::vector<std::string> problems;
   for (std::size_t i = 0; i < hosted.size(); ++i) {
@@ -313,8 +322,17 @@ int runContainer(int argc, char** argv, const std::vector<ModuleEntry>& known)
     std::vector<std::unique_ptr<Node>> nodes;
     dds::Participant first(dds::optionsFromEnvironment(name));
     const std::shared_ptr<dds::SharedParticipant> shared = first.shared();
-    for (std::size_t i = 0; i < hosted.size(); ++i) {
-      nodes.push_back(hosted[i]->make(params[i], i == 0 ? std::move(first) : dds::Participant(shared)));
+    // The modules in the order named, then the recorders, each put first: runHosted stops
+    // the nodes from the last to the first.
+    std::size_t built = 0;
+    for (const bool recorders : {false, true}) {
+      for (std::size_t i = 0; i < hosted.size(); ++i) {
+        if (hosted[i]->records != recorders) {
+          continue;
+        }
+        auto node = hosted[i]->make(params[i], built++ == 0 ? std::move(first) : dds::Participant(shared));
+        nodes.insert(recorders ? nodes.begin() : nodes.end(), std::move(node));
+      }
     }
     return nodes;
   });

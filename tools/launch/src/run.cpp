@@ -23,6 +23,7 @@
 #include "quad/launch/shm.hpp"
 #include "quad/plan/known_map.hpp"
 #include "quad/report/report.hpp"
+#include "quad/runtime/lockstep.hpp"
 #include "quad/runtime/node.hpp"
 #include "quad/runtime/state_input.hpp"
 #include "quad/vehicle/vehicle.hpp"
@@ -137,6 +138,25 @@ const Module& LaunchRun::module(const std::string& name) const
   return *found;
 }
 
+namespace {
+
+/// Composed, the run's recorder is hosted in the container of the plant, the writer of the
+/// 250 Hz topics, whose samples then reach it with no socket between: when that container
+/// runs on the launcher's machine (the recording is the launcher's file). Otherwise, and in
+/// the distributed layout, quad record runs as a process of its own.
+std::optional<std::string> recorderHost(const Manifest& m)
+{
+  for (const Module& mod : m.modules) {
+    const bool plant = std::any_of(mod.hosted.begin(), mod.hosted.end(), [](const Module& h) { return h.kind == "plant"; });
+    if (mod.kind == kContainerKind && plant && m.host(mod.host).kind == HostKind::kLocal) {
+      return mod.name;
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 void LaunchRun::startModule(const Module& mod)
 {
   std::map<std::string, std::string> env = env_;
@@ -150,7 +170,17 @@ void LaunchRun::startModule(const Module& mod)
     env[dds::environment::kVehicleId] = std::to_string(*mod.vehicle);
   }
   const auto& host = m_.host(mod.host);
-  supervisor_.start(mod.name, net_->command(host, processCommand(mod, state_dir_), env), env);
+  Module started = mod;
+  if (recorder_host_ == mod.name && !states_[mod.name].started) {
+    // Its first start only: a container started again within the run (a fault's restart, a
+    // respawn) would begin the recording anew; it comes back without the recorder, whose
+    // file ends where the container's first life did.
+    Module recorder;
+    recorder.name = recorder.kind = runtime::kRecorderParticipant;
+    recorder.sets.emplace_back("output", fs::absolute(*options_.record).string());
+    started.hosted.push_back(recorder);
+  }
+  supervisor_.start(mod.name, net_->command(host, processCommand(started, state_dir_), env), env);
   State& st = states_[mod.name];
   if (!st.started) {
     started_order_.push_back(mod.name);
@@ -609,12 +639,17 @@ int LaunchRun::execute(RunExtension* extension)
   }
 
   if (options_.record) {
-    // Started first, so stopped last: it sees every module's last samples.
-    const std::vector<std::string> argv{common::programPath(common::layout(), "tools/quad/quad").string(), "record", "-q", "-o",
-                                        fs::absolute(*options_.record).string()};
-    supervisor_.start("record", argv, env_);
-    started_order_.push_back("record");
-    say("recording every topic to " + *options_.record);
+    recorder_host_ = recorderHost(m_);
+    if (recorder_host_) {
+      say(fmt::format("recording every topic to {} (from container {})", *options_.record, *recorder_host_));
+    } else {
+      // Started first, so stopped last: it sees every module's last samples.
+      const std::vector<std::string> argv{common::programPath(common::layout(), "tools/quad/quad").string(), "record",
+                                          "-q", "-o", fs::absolute(*options_.record).string()};
+      supervisor_.start("record", argv, env_);
+      started_order_.push_back("record");
+      say("recording every topic to " + *options_.record);
+    }
   }
   bool all_started = true;
   for (const auto& mod : m_.modules) {

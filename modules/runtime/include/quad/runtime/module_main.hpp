@@ -23,6 +23,11 @@ struct ModuleEntry {
   std::string name;
   common::ParamSchema schema;
   std::function<std::unique_ptr<Node>(const common::Params&, dds::Participant)> make;
+  /// A recorder of the others (the run's recording, hosted): a container builds it after
+  /// its modules, so that it reads their topics with the types they registered, stops it
+  /// after them, so that it has their last samples, and leaves it out of its name (and so of
+  /// its participant's and its DDS Security identity's).
+  bool records = false;
 };
 
 /// The entry of the usual module: a `NodeType(Config, Participant)` built of the config that
@@ -52,7 +57,8 @@ int runNodeMain(int argc, char** argv, std::string_view module_name, common::Par
 int runModule(int argc, char** argv, const ModuleEntry& module);
 
 /// The container's main: hosts the modules the command line names, each of `known`,
-/// on one participant of the environment's options (named common::containerName()):
+/// on one participant of the environment's options (named common::containerName() of the
+/// modules that do not record):
 ///   --module NAME [--config FILE] [--set KEY=VALUE]... [--module NAME ...]
 /// Every module's config is checked before any DDS entity exists (as runNodeMain's). Each
 /// node runs on a thread of its own; the container lives and dies as one process: a node that

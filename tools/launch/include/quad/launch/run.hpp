@@ -133,6 +133,8 @@ private:
   };
 
   void startModule(const launch::Module& mod);
+  /// The container that hosts the run's recorder (composed; recorderHost()), if one does.
+  std::optional<std::string> recorder_host_;
   /// A module's heartbeat: a started module whose process it came from is running.
   void onHeartbeat(const launch::ModuleBeat& beat);
   /// Rewrites <run folder>/run.json from record_ (and the failure, if any).

@@ -9,9 +9,13 @@
 
 #include <atomic>
 #include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "quad/dds/participant.hpp"
+#include "quad/dds/waker.hpp"
 #include "quad/topic/connection.hpp"
 
 namespace quad::record {
@@ -27,6 +31,33 @@ struct RecordOptions {
   std::string compression = "zstd";   ///< of chunks: "zstd" or "" (none)
   double split_size_mb = 0.0;         ///< start a new file past this size; 0: never
   double split_duration_s = 0.0;      ///< start a new file after this long; 0: never
+};
+
+/// The recorder on a participant it is given: a participant of its own (quad record), or the
+/// one a container's modules share (the recorder hosted beside them, whose readers then take
+/// their samples on the writer's thread, with no socket between; docs/recording.md).
+class Recorder {
+public:
+  /// Subscribes to every topic `options` selects and opens the first file; throws
+  /// bag::BagError when it cannot. `waker` is notified as samples arrive (nullptr: never).
+  Recorder(dds::Participant& participant, const RecordOptions& options, dds::Waker* waker);
+  ~Recorder();
+  Recorder(const Recorder&) = delete;
+  Recorder& operator=(const Recorder&) = delete;
+
+  /// Takes and writes every sample the readers hold; every 200 ms names the writers the
+  /// recording leaves out; releases a lockstep run's start once the plant's writers matched;
+  /// draws the progress line once a second. Throws bag::BagError when a file cannot be written.
+  void poll();
+  /// [ns, steady clock] When poll() next has something to do if no sample comes.
+  std::int64_t nextDueNs() const;
+  /// Writes what the readers still hold and closes the recording with its loss figures, once;
+  /// false when it could not (said on stderr).
+  bool finish();
+
+private:
+  struct State;
+  std::unique_ptr<State> s_;
 };
 
 /// Records until `stop` is set (by a signal handler), or the duration; the exit status.

@@ -102,19 +102,23 @@ TypedPayload::~TypedPayload() { type_->deleteData(data_); }
 
 bool TypedPayload::fromPayload(const RawSample& sample)
 {
-  frtps::SerializedPayload_t payload(static_cast<std::uint32_t>(sample.payload.size()));
-  std::memcpy(payload.data, sample.payload.data(), sample.payload.size());
-  payload.length = static_cast<std::uint32_t>(sample.payload.size());
-  return type_->deserialize(&payload, data_);
+  const auto size = static_cast<std::uint32_t>(sample.payload.size());
+  payload_.reserve(size);  // grows only
+  std::memcpy(payload_.data, sample.payload.data(), size);
+  payload_.length = size;
+  payload_.pos = 0;
+  return type_->deserialize(&payload_, data_);
 }
 
 bool TypedPayload::toPayload(RawSample& sample)
 {
-  frtps::SerializedPayload_t payload(type_->getSerializedSizeProvider(data_)());
-  if (!type_->serialize(data_, &payload)) {
+  payload_.reserve(type_->getSerializedSizeProvider(data_)());  // grows only
+  payload_.length = 0;
+  payload_.pos = 0;
+  if (!type_->serialize(data_, &payload_)) {
     return false;
   }
-  sample.payload.assign(payload.data, payload.data + payload.length);
+  sample.payload.assign(payload_.data, payload_.data + payload_.length);
   return true;
 }
 

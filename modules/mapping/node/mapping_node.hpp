@@ -13,14 +13,14 @@
 #include "quad/dds/publisher.hpp"
 #include "quad/dds/subscriber.hpp"
 #include "quad/dds/topics.hpp"
+#include "quad/mapping/depth_intake.hpp"
 #include "quad/mapping/mapper.hpp"
 #include "quad/mapping/pose_history.hpp"
-#include "quad/mapping/depth_intake.hpp"
 #include "quad/runtime/lockstep.hpp"
 #include "quad/runtime/module_main.hpp"
-#include "quad/runtime/state_timed.hpp"
 #include "quad/runtime/node.hpp"
 #include "quad/runtime/state_input.hpp"
+#include "quad/runtime/state_timed.hpp"
 
 namespace quad::mapping {
 

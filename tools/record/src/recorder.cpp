@@ -205,6 +205,9 @@ Recorder::~Recorder() = default;
 
 void Recorder::poll()
 {
+  if (s_->write_failed) {
+    return;
+  }
   const std::int64_t now = common::steadyTimeNs();
   if (now >= s_->next_discovery_ns) {
     s_->reportRefusedWriters();

@@ -55,14 +55,10 @@ public:
 protected:
   void onTick(std::int64_t /*steady_ns*/) override
   {
-    if (failed_) {
-      return;
-    }
     try {
       recorder_.poll();
     } catch (const bag::BagError& e) {
       // The modules beside it fly on; the recording stops here, as quad record's would.
-      failed_ = true;
       counters().errors++;
       spdlog::error("record: {}: the recording stops", e.what());
     }
@@ -76,7 +72,6 @@ protected:
 
 private:
   Recorder recorder_;
-  bool failed_ = false;
 };
 
 }  // namespace

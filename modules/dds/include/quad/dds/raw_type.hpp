@@ -53,7 +53,7 @@ eprosima::fastdds::dds::TypeSupport payloadTypeFor(Participant& participant, con
 
 /// A typed support's samples as payloads: a sample deserialised from a payload, and one
 /// serialised to a payload (the bytes the writer sent, but for CDR's alignment padding, which
-/// no reader reads). One buffer, reused.
+/// no reader reads). One typed sample and one payload buffer, reused.
 class TypedPayload {
 public:
   explicit TypedPayload(eprosima::fastdds::dds::TypeSupport type);
@@ -68,6 +68,7 @@ public:
 private:
   eprosima::fastdds::dds::TypeSupport type_;
   void* data_;
+  eprosima::fastrtps::rtps::SerializedPayload_t payload_;  // grown to the largest sample, never shrunk
 };
 
 /// Writes raw payloads on a topic.

@@ -133,8 +133,6 @@ private:
   };
 
   void startModule(const launch::Module& mod);
-  /// The container that hosts the run's recorder (composed; recorderHost()), if one does.
-  std::optional<std::string> recorder_host_;
   /// A module's heartbeat: a started module whose process it came from is running.
   void onHeartbeat(const launch::ModuleBeat& beat);
   /// Rewrites <run folder>/run.json from record_ (and the failure, if any).
@@ -173,6 +171,7 @@ private:
   std::map<std::string, std::string> env_;
   std::map<std::string, State> states_;
   std::vector<std::string> started_order_;
+  std::optional<std::string> recorder_host_;  // the container hosting the run's recorder (composed), if one does
   bool failed_ = false;
   std::optional<EndedBy> ended_by_;  // set: a module that ends the run exited (normally, or by a fault)
   std::string failure_;

@@ -47,7 +47,8 @@ public:
 
   /// Takes and writes every sample the readers hold; every 200 ms names the writers the
   /// recording leaves out; releases a lockstep run's start once the plant's writers matched;
-  /// draws the progress line once a second. Throws bag::BagError when a file cannot be written.
+  /// draws the progress line once a second. Throws bag::BagError when a file cannot be
+  /// written, once: after it, nothing is taken.
   void poll();
   /// [ns, steady clock] When poll() next has something to do if no sample comes.
   std::int64_t nextDueNs() const;

@@ -18,13 +18,6 @@ namespace quad::plant {
 namespace {
 constexpr std::int64_t kRealTimeTickNs = 1'000'000;      // pace in 1 ms slices
 constexpr std::int64_t kBehindReportNs = 100'000'000;    // a lag worth a line in the log
-// Lockstep: a round's inputs are sent again 20 ms into a wait, and then (past the first round,
-// the start-up) after twice the last interval each time, up to 0.64 s. A sample lost in
-// transport is made good within 20 ms; a wait that lasts because the machine is overloaded
-// (sixteen vehicles on two cores) is not made longer by ever more repeats of every vehicle's
-// depth frame, state and IMU sample.
-constexpr std::int64_t kRepublishNs = 20'000'000;
-constexpr std::int64_t kRepublishMaxNs = 640'000'000;
 std::string verdictText(CommandGuard::Verdict v)
 {
   switch (v) {
@@ -82,7 +75,8 @@ PlantNode::PlantNode(PlantNodeConfig config, dds::Participant handle)
       depth_(participant(), dds::topics::kSimDepth, fleet_->ids()),
       events_(participant(), dds::topics::kSimEvents, fleet_->ids()),
       actuators_(participant(), dds::topics::kActuators, waker()),
-      faults_(participant(), dds::topics::kFault, waker())
+      faults_(participant(), dds::topics::kFault, waker()),
+      round_(config_.lockstep_period_ns, common::toNanoseconds(config_.lockstep_timeout_s))
 {
   for (const std::uint32_t id : fleet_->ids()) {
     io_.push_back({.id = id});
@@ -145,7 +139,7 @@ void PlantNode::onStart()
     io_[i].last_state = StateSample{0, fleet_->vehicle(i).state(), Vector3::Zero()};
     state_.writeFor(io_[i].id, toMessage(*io_[i].last_state));
   }
-  last_state_publish_ns_ = common::steadyTimeNs();
+  round_.published(common::steadyTimeNs());
 }
 
 void PlantNode::takeInputs()
@@ -254,7 +248,7 @@ void PlantNode::publish(std::size_t vehicle, const StepOutputs& out)
   }
   if (out.state) {
     io.last_state = out.state;
-    last_state_publish_ns_ = common::steadyTimeNs();
+    round_.published(common::steadyTimeNs());
     state_.writeFor(io.id, toMessage(*out.state));
     counters().samples_out++;
   }
@@ -347,16 +341,9 @@ void PlantNode::runRealTime(std::int64_t steady_ns)
 void PlantNode::runLockstep()
 {
   while (!stopping()) {
-    if (!round_open_) {
-      round_end_ns_ = fleet_->timeNs() + config_.lockstep_period_ns;
-      round_open_ = true;
-      round_wait_since_ns_ = common::steadyTimeNs();
-      republish_after_ns_ = kRepublishNs;
-      next_wait_report_ns_ = round_wait_since_ns_ + common::toNanoseconds(config_.lockstep_timeout_s);
-    }
     // A round may run once every vehicle's controller answered the state of its start and
     // every participant finished its work up to then.
-    const std::int64_t round_start = round_end_ns_ - config_.lockstep_period_ns;
+    const std::int64_t round_start = round_.open(fleet_->timeNs(), common::steadyTimeNs());
     // The controller answers states (true ones, or the estimates of IMU samples), and, once it
     // has answered one, a state's time whose input a fault dropped: the clock's sample of it
     // (on its dead reckoning).
@@ -372,10 +359,9 @@ void PlantNode::runLockstep()
     const bool others_ready = !barrier_ || barrier_->poll(round_start);
     if (!command_ready || !others_ready) {
       const std::int64_t now = common::steadyTimeNs();
-      if (now - last_state_publish_ns_ >= republish_after_ns_) {
-        // A state, clock or depth sample lost, or sent before a participant matched, would
-        // stall the round for good. Resend them; an answer to a repeat is the same answer
-        // (the mapper knows a cloud it has by its stamp).
+      if (round_.resendDue(now)) {
+        // Every vehicle's depth frame, state, IMU sample and clock of the round (an answer to
+        // a repeat is the same answer: the mapper knows a cloud it has by its stamp).
         for (std::size_t i = 0; i < io_.size(); ++i) {
           VehicleIo& io = io_[i];
           if (io.last_depth) {
@@ -389,14 +375,9 @@ void PlantNode::runLockstep()
           }
           publishClock(i);
         }
-        last_state_publish_ns_ = now;
-        // Not in the first round: its inputs went out before the modules had matched, and
-        // the controller's autostart retries its arm until a state comes, in wall time.
-        if (round_start > 0) {
-          republish_after_ns_ = std::min(2 * republish_after_ns_, kRepublishMaxNs);
-        }
+        round_.resent(now);
       }
-      if (now >= next_wait_report_ns_) {
+      if (round_.reportDue(now)) {
         std::string late;
         if (!command_ready) {
           late = io_.size() == 1 ? "control (no command for t = " + std::to_string(round_start) + " ns)"
@@ -409,15 +390,14 @@ void PlantNode::runLockstep()
           }
         }
         spdlog::warn("lockstep: at sim time {:.3f} s, still waiting after {:.1f} s for: {}",
-                     common::toSeconds(round_start), common::toSeconds(now - round_wait_since_ns_), late);
-        next_wait_report_ns_ = now + common::toNanoseconds(config_.lockstep_timeout_s);
+                     common::toSeconds(round_start), common::toSeconds(round_.waitedNs(now)), late);
       }
       return;  // woken again by commands or reports
     }
-    while (!stopping() && fleet_->timeNs() < round_end_ns_) {
+    while (!stopping() && fleet_->timeNs() < round_.end()) {
       stepOnce();
     }
-    round_open_ = false;
+    round_.close();
   }
 }
 

@@ -16,6 +16,7 @@
 #include "quad/dds/topics.hpp"
 #include "quad/plant/fleet.hpp"
 #include "quad/runtime/lockstep.hpp"
+#include "quad/runtime/lockstep_round.hpp"
 #include "quad/runtime/module_main.hpp"
 #include "quad/runtime/node.hpp"
 
@@ -80,13 +81,8 @@ private:
   std::unique_ptr<runtime::LockstepBarrier> barrier_;
 
   std::int64_t wall_start_ns_ = 0;
-  std::int64_t round_end_ns_ = 0;          // lockstep: sim time the current round runs to
-  bool round_open_ = false;                // lockstep: waiting for the round's inputs
-  std::int64_t round_wait_since_ns_ = 0;   // steady time the wait began
-  std::int64_t next_wait_report_ns_ = 0;
+  runtime::LockstepRound round_;          // lockstep: the round open, and the wait for it
   std::uint64_t dropped_steps_ = 0;        // real time: steps skipped when far behind
-  std::int64_t last_state_publish_ns_ = 0; // steady time the states were last published
-  std::int64_t republish_after_ns_ = 0;    // lockstep: the wait before the round's next resend
 };
 
 /// The plant module as a process hosts it: its name, parameters and node.

@@ -189,16 +189,18 @@ void PlanningNode::takeMapSamples()
     // one after it was damaged on the way. Held until the clock got there, it would hold the
     // updates after it back, and in lockstep the clock with them, for good (one bit flipped
     // low in the count, within the clock's lead). Refused, it is a lost update.
-    while (!held_updates_.empty() && held_updates_.back().depth_frames() > u.depth_frames()) {
+    while (!held_updates_.empty() && held_updates_.newest().depth_frames() > u.depth_frames()) {
       counters().errors++;
       update_lost_ = true;
       spdlog::warn("{}: update {} counts {} depth frames, more than update {} after it ({}): refused; a gap until "
                    "the next snapshot",
-                   dds::topics::kMapUpdate.info.name, held_updates_.back().update_seq(),
-                   held_updates_.back().depth_frames(), u.update_seq(), u.depth_frames());
-      held_updates_.pop_back();
+                   dds::topics::kMapUpdate.info.name, held_updates_.newest().update_seq(),
+                   held_updates_.newest().depth_frames(), u.update_seq(), u.depth_frames());
+      held_updates_.dropNewest();
     }
-    held_updates_.push_back(std::move(u));
+    // Due once the depth frames due reach the ones it accounts for (framesDueAt).
+    const auto frames = static_cast<std::int64_t>(std::min<std::uint64_t>(u.depth_frames(), kMaxFramesDue));
+    held_updates_.hold(frames, std::move(u));
   }
 }
 
@@ -215,11 +217,10 @@ void PlanningNode::applyMapDue(std::int64_t at_ns)
     }
     return due;
   });
-  const std::uint64_t frames_due = framesDueAt(at_ns);
-  while (!held_updates_.empty() && (!lockstep() || held_updates_.front().depth_frames() <= frames_due)) {
-    applyUpdate(held_updates_.front());
-    held_updates_.pop_front();
-  }
+  // In real time every update as it comes.
+  const std::uint64_t frames_due = lockstep() ? framesDueAt(at_ns) : kMaxFramesDue;
+  held_updates_.release(static_cast<std::int64_t>(std::min(frames_due, kMaxFramesDue)),
+                        [this](const msg::MapUpdate& u) { applyUpdate(u); });
 }
 
 void PlanningNode::applySnapshot(const msg::MapSnapshot& snapshot)

@@ -98,7 +98,12 @@ private:
 
   std::deque<runtime::StateSample> held_states_;     // arrived, not yet handled
   std::deque<msg::MapSnapshot> held_snapshots_;  // arrived, not yet due
-  std::deque<msg::MapUpdate> held_updates_;      // arrived, not yet due
+  // Arrived, not yet due: held by the depth frames each accounts for (MapUpdate.depth_frames),
+  // due once the clock's count of the frames due by the time handled reaches them.
+  runtime::DueQueue<msg::MapUpdate> held_updates_;
+  // Counts held and compared as due times: a count past this (no clock publishes so many) is
+  // held as this, and due only in real time.
+  static constexpr std::uint64_t kMaxFramesDue = std::uint64_t{1} << 62;
   std::vector<std::pair<VoxelIndex, Occupancy>> pending_;  // voxel changes not yet in the graph
   std::uint64_t frames_applied_ = 0;    // depth clouds the applied updates account for
   std::int64_t depth_stamp_ns_ = -1;     // the newest depth cloud the applied updates hold (-1: none)

@@ -58,6 +58,20 @@ TEST(DueQueue, OneAtATimeReleasesTheOldestOnlyWhenItIsDue)
   EXPECT_TRUE(queue.empty());
 }
 
+TEST(DueQueue, TheItemHeldLastCanBeReadAndDroppedAndTheRestKeepTheirOrder)
+{
+  DueQueue<int> queue;
+  queue.hold(10, 1);
+  queue.hold(30, 2);
+  EXPECT_EQ(queue.newest(), 2);
+  queue.dropNewest();
+  EXPECT_EQ(queue.newest(), 1);
+  queue.hold(20, 3);
+  EXPECT_EQ(queue.nextDueNs(), 10);
+  EXPECT_EQ(releaseAll(queue, 25), (std::vector<int>{1, 3}));
+  EXPECT_TRUE(queue.empty());
+}
+
 TEST(DueQueue, AnInputStampedBeforeAStateIsDueWithItAndOneStampedWithItIsNot)
 {
   DueQueue<std::string> queue;

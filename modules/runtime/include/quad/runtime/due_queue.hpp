@@ -5,7 +5,10 @@
 /// time fixed by its stamp, not when it happens to arrive, so that runs repeat: a path with the
 /// first state after its stamp, an operator's goal the contract's delay after its stamp, an IMU
 /// sample with the first state stamped after it. A node holds each input it takes with the sim
-/// time it is due at, and releases what is due as it handles each time. No DDS.
+/// time it is due at, and releases what is due as it handles each time. Or with another
+/// measure that only grows as the node handles its times: the planner holds a map update
+/// until the clock's count of depth frames due reaches the frames the update accounts for.
+/// No DDS.
 
 #include <cstddef>
 #include <cstdint>
@@ -54,6 +57,11 @@ public:
     items_.pop_front();
     return item;
   }
+
+  /// The item held last (not empty()): an input found damaged by the next one of its topic.
+  const T& newest() const { return items_.back().second; }
+  /// Drops the item held last (not empty()).
+  void dropNewest() { items_.pop_back(); }
 
   bool empty() const { return items_.empty(); }
   std::size_t size() const { return items_.size(); }

@@ -226,37 +226,50 @@ TEST(PlanningNode, InLockstepAPathIsDueTheBudgetAfterItsStateAndTheClockStandsFo
   stack.stop();
 }
 
-// A map update that counts depth frames the clock never reached (one bit flipped on a link
-// did so) is refused as a bad input: held until the clock got there, it would hold every
-// later update back, and the planner would never plan again.
-TEST(PlanningNode, InLockstepAnUpdateCountingFramesPastTheClockIsRefusedAndPlanningGoesOn)
+/// GIVEN a lockstep run of 30 s on `domain`, its planner past its third path, WHEN `sample`
+/// comes on `topic` (a map output damaged on the way), THEN the planner counts it as an error
+/// AND plans on to the run's end.
+void expectRefusedAndPlannedOn(int domain, const std::string& name, const std::string& topic, const std::string& sample)
 {
-  auto run_env = env(88);
+  auto run_env = env(domain);
   run_env["QUAD_LOCKSTEP"] = "1";
-  LockstepStack stack(run_env, "quad_planning_node_bad_update_test");
-  stack.ready(88);
+  LockstepStack stack(run_env, name);
+  stack.ready(domain);
   if (::testing::Test::HasFatalFailure()) {
     return;
   }
   ChildProcess paths({QUAD_TOOL, "topic", "echo", "quad/planning/path", "--json"}, run_env);  // until stopped
-  ASSERT_TRUE(quad::test::waitForReader(88, "quad/planning/path", 15s));
+  ASSERT_TRUE(quad::test::waitForReader(domain, "quad/planning/path", 15s));
   stack.start();
-  // GIVEN a lockstep run of 30 s, its planner past its third path
   ASSERT_TRUE(quad::test::waitFor([&] { return quad::test::newestReached(paths.output(), "version", 3); }, 60s))
       << paths.output() << stack.plant->output();
-  // WHEN an update counting 2^31 depth frames comes
-  ChildProcess bad({QUAD_TOOL, "topic", "pub", "quad/mapping/update",
-                    "{update_seq: 1000000, resolution: 0.2, depth_frames: 2147483648}", "--wait-match", "5"},
-                   run_env);
+  ChildProcess bad({QUAD_TOOL, "topic", "pub", topic, sample, "--wait-match", "5"}, run_env);
   ASSERT_EQ(bad.wait(15s), 0) << bad.output();
-  // THEN the planner counts it as an error
-  EXPECT_TRUE(quad::test::waitForModuleErrors(88, "planning", 1, 20s)) << stack.planning.output();
+  EXPECT_TRUE(quad::test::waitForModuleErrors(domain, "planning", 1, 20s)) << stack.planning.output();
   ASSERT_EQ(stack.plant->wait(90s), 0) << stack.plant->output();
   paths.signal(SIGINT);
   ASSERT_EQ(paths.wait(10s), 0);
-  // AND plans on to the run's end
   expectPlannedToTheEnd(paths.output());
   stack.stop();
+}
+
+// A map update that counts depth frames the clock never reached (one bit flipped on a link
+// did so, 2^31 frames) is refused as a bad input: held until the clock got there, it would
+// hold every later update back, and the planner would never plan again.
+TEST(PlanningNode, InLockstepAnUpdateCountingFramesPastTheClockIsRefusedAndPlanningGoesOn)
+{
+  expectRefusedAndPlannedOn(88, "quad_planning_node_bad_update_test", "quad/mapping/update",
+                            "{update_seq: 1000000, resolution: 0.2, depth_frames: 2147483648}");
+}
+
+// A map snapshot stamped far past the clock (2^62 ns: a bit flipped in its stamp) is refused
+// as a bad input once the mapper's next one comes (within a second of sim time) stamped before
+// it: held until the clock got there, it would hold every later snapshot back, and a planner
+// with a gap in its updates would never fill it.
+TEST(PlanningNode, InLockstepASnapshotStampedPastTheNextIsRefusedAndPlanningGoesOn)
+{
+  expectRefusedAndPlannedOn(215, "quad_planning_node_bad_snapshot_test", "quad/mapping/octomap",
+                            "{header: {stamp_ns: 4611686018427387904}, update_seq: 1000000, resolution: 0.2}");
 }
 
 // A map update whose count of depth frames was damaged upwards by less than the clock's lead

@@ -4,6 +4,7 @@
 #include "quad/common/layout.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
@@ -170,7 +171,23 @@ std::uint64_t PlanningNode::framesDueAt(std::int64_t at_ns)
 void PlanningNode::takeMapSamples()
 {
   while (auto s = snapshots_.take()) {
-    held_snapshots_.push_back(std::move(*s));
+    const std::int64_t stamp_ns = s->header().stamp_ns();
+    // Due at its stamp. The mapper stamps its snapshots in order: a held one stamped after
+    // the one that follows it is covered by that one, and let go. Stamped more than the
+    // mapper's budget after it, it was damaged on the way (one bit flipped in its stamp, say);
+    // within the budget it is the last one of a mapper that restarted since, whose resumed map
+    // is stamped with the scan that snapshot was due the budget after.
+    const std::uint64_t seq = s->update_seq();
+    held_snapshots_.holdRising(stamp_ns, std::move(*s), [&](const msg::MapSnapshot& held) {
+      const std::int64_t held_ns = held.header().stamp_ns();
+      if (held_ns - stamp_ns <= participant().options().mapBudgetNs()) {
+        return;
+      }
+      counters().errors++;
+      spdlog::warn("{}: snapshot {} stamped {} s, after snapshot {} that follows it ({} s): refused",
+                   dds::topics::kMapSnapshot.info.name, held.update_seq(), common::toSeconds(held_ns), seq,
+                   common::toSeconds(stamp_ns));
+    });
   }
   for (auto& u : updates_.takeAll()) {
     counters().samples_in++;
@@ -185,22 +202,20 @@ void PlanningNode::takeMapSamples()
                    dds::topics::kMapUpdate.info.name, u.update_seq(), u.depth_frames(), simClock().depthFrames());
       continue;
     }
-    // The mapper's counts never fall: a held update that counts more depth frames than the
-    // one after it was damaged on the way. Held until the clock got there, it would hold the
+    // Due once the depth frames due reach the ones it accounts for (framesDueAt). The
+    // mapper's counts never fall: a held update that counts more depth frames than the one
+    // after it was damaged on the way. Held until the clock got there, it would hold the
     // updates after it back, and in lockstep the clock with them, for good (one bit flipped
     // low in the count, within the clock's lead). Refused, it is a lost update.
-    while (!held_updates_.empty() && held_updates_.newest().depth_frames() > u.depth_frames()) {
+    const auto frames = static_cast<std::int64_t>(std::min<std::uint64_t>(u.depth_frames(), kMaxFramesDue));
+    const std::uint64_t seq = u.update_seq();
+    held_updates_.holdRising(frames, std::move(u), [&](const msg::MapUpdate& damaged) {
       counters().errors++;
       update_lost_ = true;
       spdlog::warn("{}: update {} counts {} depth frames, more than update {} after it ({}): refused; a gap until "
                    "the next snapshot",
-                   dds::topics::kMapUpdate.info.name, held_updates_.newest().update_seq(),
-                   held_updates_.newest().depth_frames(), u.update_seq(), u.depth_frames());
-      held_updates_.dropNewest();
-    }
-    // Due once the depth frames due reach the ones it accounts for (framesDueAt).
-    const auto frames = static_cast<std::int64_t>(std::min<std::uint64_t>(u.depth_frames(), kMaxFramesDue));
-    held_updates_.hold(frames, std::move(u));
+                   dds::topics::kMapUpdate.info.name, damaged.update_seq(), damaged.depth_frames(), seq, frames);
+    });
   }
 }
 
@@ -210,13 +225,8 @@ void PlanningNode::applyMapDue(std::int64_t at_ns)
   // each when it is due by the time of the state handled, not when it came, makes the map a
   // replan sees the same in every run (the mapper works ahead of the clock up to its budget,
   // and the clock runs ahead of this planner up to the path's).
-  std::erase_if(held_snapshots_, [&](const msg::MapSnapshot& snapshot) {
-    const bool due = !lockstep() || snapshot.header().stamp_ns() <= at_ns;
-    if (due) {
-      applySnapshot(snapshot);
-    }
-    return due;
-  });
+  held_snapshots_.release(lockstep() ? at_ns : std::numeric_limits<std::int64_t>::max(),
+                          [this](const msg::MapSnapshot& snapshot) { applySnapshot(snapshot); });
   // In real time every update as it comes.
   const std::uint64_t frames_due = lockstep() ? framesDueAt(at_ns) : kMaxFramesDue;
   held_updates_.release(static_cast<std::int64_t>(std::min(frames_due, kMaxFramesDue)),

@@ -97,7 +97,7 @@ private:
   runtime::LockstepReporter lockstep_;
 
   std::deque<runtime::StateSample> held_states_;     // arrived, not yet handled
-  std::deque<msg::MapSnapshot> held_snapshots_;  // arrived, not yet due
+  runtime::DueQueue<msg::MapSnapshot> held_snapshots_;  // arrived, not yet due: due at its stamp
   // Arrived, not yet due: held by the depth frames each accounts for (MapUpdate.depth_frames),
   // due once the clock's count of the frames due by the time handled reaches them.
   runtime::DueQueue<msg::MapUpdate> held_updates_;

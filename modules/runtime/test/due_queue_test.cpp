@@ -58,17 +58,20 @@ TEST(DueQueue, OneAtATimeReleasesTheOldestOnlyWhenItIsDue)
   EXPECT_TRUE(queue.empty());
 }
 
-TEST(DueQueue, TheItemHeldLastCanBeReadAndDroppedAndTheRestKeepTheirOrder)
+TEST(DueQueue, HeldRisingAnItemDueBeforeThoseHeldLastDropsThemAndTheRestKeepTheirOrder)
 {
   DueQueue<int> queue;
-  queue.hold(10, 1);
-  queue.hold(30, 2);
-  EXPECT_EQ(queue.newest(), 2);
-  queue.dropNewest();
-  EXPECT_EQ(queue.newest(), 1);
-  queue.hold(20, 3);
-  EXPECT_EQ(queue.nextDueNs(), 10);
-  EXPECT_EQ(releaseAll(queue, 25), (std::vector<int>{1, 3}));
+  std::vector<int> dropped;
+  const auto drop = [&](const int& item) { dropped.push_back(item); };
+  queue.holdRising(10, 1, drop);
+  queue.holdRising(40, 2, drop);
+  queue.holdRising(50, 3, drop);
+  queue.holdRising(30, 4, drop);  // 2 and 3 were damaged: due after the one sent after them
+  queue.holdRising(30, 5, drop);  // due with the one before it: kept
+  EXPECT_EQ(dropped, (std::vector<int>{3, 2}));
+  EXPECT_EQ(queue.size(), 3u);
+  EXPECT_EQ(releaseAll(queue, 25), (std::vector<int>{1}));
+  EXPECT_EQ(releaseAll(queue, 30), (std::vector<int>{4, 5}));
   EXPECT_TRUE(queue.empty());
 }
 

@@ -58,10 +58,19 @@ public:
     return item;
   }
 
-  /// The item held last (not empty()): an input found damaged by the next one of its topic.
-  const T& newest() const { return items_.back().second; }
-  /// Drops the item held last (not empty()).
-  void dropNewest() { items_.pop_back(); }
+  /// Holds `item` due at `due_ns`, for a topic whose due times never fall as sent (the
+  /// mapper's counts of depth frames, its snapshots' stamps): an item held last that is due
+  /// later than this one was damaged on the way, and held it would hold this one, and every
+  /// later one, back until its own time. Each such is handed to `dropped` and let go first.
+  template <typename Dropped>
+  void holdRising(std::int64_t due_ns, T item, Dropped&& dropped)
+  {
+    while (!items_.empty() && items_.back().first > due_ns) {
+      dropped(std::as_const(items_.back().second));
+      items_.pop_back();
+    }
+    hold(due_ns, std::move(item));
+  }
 
   bool empty() const { return items_.empty(); }
   std::size_t size() const { return items_.size(); }

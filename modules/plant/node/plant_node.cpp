@@ -359,6 +359,16 @@ void PlantNode::runLockstep()
     const bool others_ready = !barrier_ || barrier_->poll(round_start);
     if (!command_ready || !others_ready) {
       const std::int64_t now = common::steadyTimeNs();
+      std::vector<std::string> waiting_for;
+      if (!command_ready) {
+        waiting_for.emplace_back("control");
+      }
+      if (barrier_ && !others_ready) {
+        for (std::string& name : barrier_->ledger().lateNames(round_start)) {
+          waiting_for.push_back(std::move(name));
+        }
+      }
+      round_.waitingFor(now, std::move(waiting_for));
       if (round_.resendDue(now)) {
         // Every vehicle's depth frame, state, IMU sample and clock of the round (an answer to
         // a repeat is the same answer: the mapper knows a cloud it has by its stamp).
@@ -394,6 +404,9 @@ void PlantNode::runLockstep()
       }
       return;  // woken again by commands or reports
     }
+    if (round_.waiting()) {
+      round_.inputsIn(common::steadyTimeNs());
+    }
     while (!stopping() && fleet_->timeNs() < round_.end()) {
       stepOnce();
     }
@@ -423,6 +436,20 @@ namespace {
 constexpr std::chrono::milliseconds kFinalEventWait{2000};
 }  // namespace
 
+void PlantNode::logLockstepWaits() const
+{
+  // Whom the clock waited for, the longest waits first: what holds a lockstep run back.
+  std::vector<std::pair<std::string, runtime::LockstepRound::Wait>> waits(round_.waits().begin(), round_.waits().end());
+  std::sort(waits.begin(), waits.end(), [](const auto& a, const auto& b) { return a.second.wall_ns > b.second.wall_ns; });
+  std::string each;
+  for (const auto& [name, wait] : waits) {
+    each += fmt::format("{}{} {:.3f} s in {} rounds", each.empty() ? "" : ", ", name, common::toSeconds(wait.wall_ns),
+                        wait.rounds);
+  }
+  spdlog::info("lockstep: the clock waited in {} rounds, {:.3f} s of wall time in all{}{}", round_.roundsWaited(),
+               common::toSeconds(round_.waitedWallNs()), each.empty() ? "" : ": for ", each);
+}
+
 void PlantNode::onStop()
 {
   for (std::size_t i = 0; i < io_.size(); ++i) {
@@ -451,6 +478,9 @@ void PlantNode::onStop()
   }
   if (io_.size() > 1) {
     spdlog::info("plant: the least separation between two vehicles was {:.3f} m", fleet_->minimumSeparation());
+  }
+  if (config_.mode == PlantNodeConfig::Mode::kLockstep) {
+    logLockstepWaits();
   }
   // The run's last word (its final position and collisions) must reach the readers before
   // the participant goes: a reliable sample still unacknowledged at exit is lost.

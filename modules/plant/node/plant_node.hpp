@@ -60,6 +60,8 @@ private:
   void stepOnce();
   void runRealTime(std::int64_t steady_ns);
   void runLockstep();
+  /// Whom the lockstep clock waited for over the run, and how long, into the log.
+  void logLockstepWaits() const;
   void event(std::size_t vehicle, msg::SimEventKind kind, std::int64_t subject, const std::string& detail);
 
   PlantNodeConfig config_;

@@ -42,17 +42,29 @@ bool LockstepLedger::caughtUp(std::int64_t sim_ns) const
   return true;
 }
 
-std::vector<std::string> LockstepLedger::late(std::int64_t sim_ns) const
+std::vector<std::string> LockstepLedger::lateNames(std::int64_t sim_ns) const
 {
   std::vector<std::string> out;
   for (const auto& name : order_) {
     const auto& done = done_.find(name)->second;
+    if (!done || *done < sim_ns) {
+      out.push_back(name);
+    }
+  }
+  return out;
+}
+
+std::vector<std::string> LockstepLedger::late(std::int64_t sim_ns) const
+{
+  std::vector<std::string> out = lateNames(sim_ns);
+  for (std::string& name : out) {
+    const auto& done = done_.find(name)->second;
     if (!done) {
-      out.push_back(name + " (no report yet)");
-    } else if (*done < sim_ns) {
+      name += " (no report yet)";
+    } else {
       char text[64];
       std::snprintf(text, sizeof(text), " (done up to %.3f s)", common::toSeconds(*done));
-      out.push_back(name + text);
+      name += text;
     }
   }
   return out;

@@ -36,6 +36,48 @@ void LockstepRound::resent(std::int64_t now_ns)
   }
 }
 
+void LockstepRound::waitingFor(std::int64_t now_ns, std::vector<std::string> late)
+{
+  if (!waiting_) {
+    // The first check: those late now were late since the round opened.
+    waiting_ = true;
+    checked_ns_ = wait_since_ns_;
+    late_ = late;
+  }
+  countWait(now_ns);
+  for (const std::string& name : late) {
+    if (std::find(late_in_round_.begin(), late_in_round_.end(), name) == late_in_round_.end()) {
+      late_in_round_.push_back(name);
+    }
+  }
+  late_ = std::move(late);
+}
+
+void LockstepRound::inputsIn(std::int64_t now_ns)
+{
+  if (!waiting_) {
+    return;
+  }
+  countWait(now_ns);
+  for (const std::string& name : late_in_round_) {
+    ++waits_[name].rounds;
+  }
+  ++rounds_waited_;
+  waiting_ = false;
+  late_.clear();
+  late_in_round_.clear();
+}
+
+void LockstepRound::countWait(std::int64_t now_ns)
+{
+  const std::int64_t interval = std::max<std::int64_t>(0, now_ns - checked_ns_);
+  for (const std::string& name : late_) {
+    waits_[name].wall_ns += interval;
+  }
+  waited_wall_ns_ += interval;
+  checked_ns_ = std::max(checked_ns_, now_ns);
+}
+
 bool LockstepRound::reportDue(std::int64_t now_ns)
 {
   if (now_ns < next_report_ns_) {

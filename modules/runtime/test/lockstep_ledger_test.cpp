@@ -27,6 +27,8 @@ TEST(LockstepLedger, LateListNamesWhoAndHowFar)
   ledger.report("planning", 2'000'000'000);
   EXPECT_EQ(ledger.late(1'204'000'000),
             (std::vector<std::string>{"control (no report yet)", "mapping (done up to 1.200 s)"}));
+  EXPECT_EQ(ledger.lateNames(1'204'000'000), (std::vector<std::string>{"control", "mapping"}));
+  EXPECT_TRUE(ledger.lateNames(1'200'000'000) == std::vector<std::string>{"control"});
 }
 
 TEST(LockstepLedger, UnknownAndBackwardReportsAreIgnored)

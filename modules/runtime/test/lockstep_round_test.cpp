@@ -5,7 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <map>
+#include <random>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace quad::runtime {
@@ -87,6 +91,100 @@ TEST(LockstepRound, AWaitIsReportedOnceAPeriodFromItsStartAndNotBefore)
   EXPECT_TRUE(round.reportDue(5'000 * kMs));
   EXPECT_THROW(LockstepRound(0, kReportEvery), std::invalid_argument);
   EXPECT_THROW(LockstepRound(kPeriod, 0), std::invalid_argument);
+}
+
+TEST(LockstepRound, AWaitCountsToEachParticipantLateWhileItLastedAndTheRoundOnceToEach)
+{
+  LockstepRound round(kPeriod, kReportEvery);
+  round.open(0, 0);
+  round.waitingFor(1 * kMs, {"control", "mapping"});  // both late since the round opened
+  round.waitingFor(3 * kMs, {"mapping"});             // the command came at 3 ms
+  round.waitingFor(10 * kMs, {"mapping"});
+  EXPECT_TRUE(round.waiting());
+  round.inputsIn(12 * kMs);
+  EXPECT_FALSE(round.waiting());
+  round.close();
+  round.open(kPeriod, 20 * kMs);
+  round.inputsIn(21 * kMs);  // no wait: nothing counts
+  round.close();
+  round.open(2 * kPeriod, 30 * kMs);
+  round.waitingFor(30 * kMs, {"planning"});
+  round.inputsIn(35 * kMs);
+
+  EXPECT_EQ(round.roundsWaited(), 2u);
+  EXPECT_EQ(round.waitedWallNs(), 17 * kMs);
+  ASSERT_EQ(round.waits().size(), 3u);
+  EXPECT_EQ(round.waits().at("control").wall_ns, 3 * kMs);
+  EXPECT_EQ(round.waits().at("control").rounds, 1u);
+  EXPECT_EQ(round.waits().at("mapping").wall_ns, 12 * kMs);
+  EXPECT_EQ(round.waits().at("mapping").rounds, 1u);
+  EXPECT_EQ(round.waits().at("planning").wall_ns, 5 * kMs);
+}
+
+TEST(LockstepRound, AWaitCheckedWheneverAnInputComesCountsEachParticipantExactlyTheTimeItWasLate)
+{
+  // 300 rounds of three participants, each done at a random wall time into its round (or
+  // before it opened); the clock owner checks when the round opens and whenever one is done,
+  // as the plant does. Each is counted exactly the time from the round's opening to its being
+  // done, in the rounds where that is after the opening.
+  const std::vector<std::string> names{"control", "mapping", "planning"};
+  std::mt19937_64 rng(7);
+  std::uniform_int_distribution<std::int64_t> done_at(-2 * kMs, 6 * kMs);
+  LockstepRound round(kPeriod, kReportEvery);
+  std::map<std::string, LockstepRound::Wait> expected;
+  std::uint64_t rounds_waited = 0;
+  std::int64_t waited = 0;
+  std::int64_t now = 0;
+  for (int r = 0; r < 300; ++r) {
+    round.open(r * kPeriod, now);
+    std::map<std::string, std::int64_t> done;
+    for (const auto& n : names) {
+      done[n] = now + done_at(rng);
+    }
+    const auto lateAt = [&](std::int64_t t) {
+      std::vector<std::string> late;
+      for (const auto& n : names) {
+        if (done[n] > t) {
+          late.push_back(n);
+        }
+      }
+      return late;
+    };
+    std::vector<std::int64_t> checks{now};
+    for (const auto& [n, t] : done) {
+      if (t > now) {
+        checks.push_back(t);
+      }
+    }
+    std::sort(checks.begin(), checks.end());
+    for (const std::int64_t t : checks) {
+      if (const auto late = lateAt(t); !late.empty()) {
+        round.waitingFor(t, late);
+      } else {
+        round.inputsIn(t);
+      }
+    }
+    const std::int64_t end = checks.back();
+    if (end > now) {
+      ++rounds_waited;
+      waited += end - now;
+      for (const auto& [n, t] : done) {
+        if (t > now) {
+          expected[n].wall_ns += t - now;
+          ++expected[n].rounds;
+        }
+      }
+    }
+    round.close();
+    now = end + kMs;
+  }
+  EXPECT_EQ(round.roundsWaited(), rounds_waited);
+  EXPECT_EQ(round.waitedWallNs(), waited);
+  for (const auto& n : names) {
+    ASSERT_EQ(round.waits().count(n), 1u) << n;
+    EXPECT_EQ(round.waits().at(n).wall_ns, expected[n].wall_ns) << n;
+    EXPECT_EQ(round.waits().at(n).rounds, expected[n].rounds) << n;
+  }
 }
 
 }  // namespace

@@ -32,8 +32,10 @@ public:
   /// True when every participant is done up to at least `sim_ns`.
   bool caughtUp(std::int64_t sim_ns) const;
 
-  /// Participants not yet done up to `sim_ns`, each with how far it is ("mapping (done up to
-  /// 1.200 s)" or "control (no report yet)"), in declaration order.
+  /// Participants not yet done up to `sim_ns`, in declaration order.
+  std::vector<std::string> lateNames(std::int64_t sim_ns) const;
+  /// The same, each with how far it is ("mapping (done up to 1.200 s)" or "control (no report
+  /// yet)").
   std::vector<std::string> late(std::int64_t sim_ns) const;
 
   /// Last reported time of a participant, if any.

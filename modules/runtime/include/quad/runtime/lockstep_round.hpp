@@ -7,6 +7,10 @@
 /// when to say whom it waits for. Wall times are CLOCK_MONOTONIC [ns], given by the caller.
 
 #include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
 
 namespace quad::runtime {
 
@@ -45,7 +49,30 @@ public:
   /// [ns of wall time] How long the round has waited at `now_ns`.
   std::int64_t waitedNs(std::int64_t now_ns) const { return now_ns - wait_since_ns_; }
 
+  /// Whom the clock waited for, and how long. While the round waits, at `now_ns`: the
+  /// participants it waits for then (names: "control" for the command, a barrier's
+  /// participants). The wall time since the last call counts to each one it waited for then
+  /// (the caller checks again whenever an input comes, so one done meanwhile was done at its
+  /// end), and at the first call the time since the round opened to each one late now.
+  void waitingFor(std::int64_t now_ns, std::vector<std::string> late);
+  /// The round's inputs are all in at `now_ns`: the wait since the last waitingFor() counts too,
+  /// and the round to each participant it waited for.
+  void inputsIn(std::int64_t now_ns);
+  /// Since waitingFor() and before inputsIn(): the round is waiting.
+  bool waiting() const { return waiting_; }
+  struct Wait {
+    std::uint64_t rounds = 0;   ///< rounds that waited for it
+    std::int64_t wall_ns = 0;   ///< [ns] wall time they waited for it
+  };
+  /// Every participant the clock waited for so far.
+  const std::map<std::string, Wait, std::less<>>& waits() const { return waits_; }
+  std::uint64_t roundsWaited() const { return rounds_waited_; }
+  std::int64_t waitedWallNs() const { return waited_wall_ns_; }  ///< [ns] in all
+
 private:
+  /// The wall time from the last check to `now_ns` to each participant late at that check.
+  void countWait(std::int64_t now_ns);
+
   std::int64_t period_ns_;
   std::int64_t report_every_ns_;
   bool open_ = false;
@@ -54,6 +81,13 @@ private:
   std::int64_t next_report_ns_ = 0;
   std::int64_t published_ns_ = 0;
   std::int64_t resend_after_ns_ = kFirstResendNs;
+  bool waiting_ = false;
+  std::int64_t checked_ns_ = 0;        // the last waitingFor()
+  std::vector<std::string> late_;      // then
+  std::vector<std::string> late_in_round_;  // at any check of the round
+  std::map<std::string, Wait, std::less<>> waits_;
+  std::uint64_t rounds_waited_ = 0;
+  std::int64_t waited_wall_ns_ = 0;
 };
 
 }  // namespace quad::runtime

@@ -38,6 +38,9 @@ void LockstepRound::resent(std::int64_t now_ns)
 
 void LockstepRound::waitingFor(std::int64_t now_ns, std::vector<std::string> late)
 {
+  // A name given twice (the command's "control" and a participant of that name) is one wait.
+  std::sort(late.begin(), late.end());
+  late.erase(std::unique(late.begin(), late.end()), late.end());
   if (!waiting_) {
     // The first check: those late now were late since the round opened.
     waiting_ = true;

@@ -97,7 +97,7 @@ TEST(LockstepRound, AWaitCountsToEachParticipantLateWhileItLastedAndTheRoundOnce
 {
   LockstepRound round(kPeriod, kReportEvery);
   round.open(0, 0);
-  round.waitingFor(1 * kMs, {"control", "mapping"});  // both late since the round opened
+  round.waitingFor(1 * kMs, {"control", "mapping", "control"});  // both late since the round opened
   round.waitingFor(3 * kMs, {"mapping"});             // the command came at 3 ms
   round.waitingFor(10 * kMs, {"mapping"});
   EXPECT_TRUE(round.waiting());

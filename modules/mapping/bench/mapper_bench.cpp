@@ -3,6 +3,7 @@
 // resolution and range, and how far their classifications agree.
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <map>
 #include <random>
 #include <sstream>
@@ -20,6 +21,8 @@ using namespace quad;
 
 /// The benchmark world: configs/worlds/forest.yaml.
 const std::string kForest = quad::common::readTextFile(QUAD_CONFIG_DIR "/worlds/forest.yaml");
+/// The demo mission's world: configs/worlds/demo.yaml.
+const std::string kDemo = quad::common::readTextFile(QUAD_CONFIG_DIR "/worlds/demo.yaml");
 
 struct Scans {
   std::vector<mapping::Scan> scans;
@@ -53,6 +56,32 @@ const Scans& scans()
   return s;
 }
 
+/// The demo mission's clouds: its camera (64x48, 20 m) at 10 Hz along the straight line to
+/// its goal at 2 m/s, 2 m up, turning a little from side to side.
+const Scans& demoScans()
+{
+  static const Scans s = [] {
+    const world::World world = world::parseWorld(kDemo, "demo");
+    const plant::DepthCamera camera(plant::DepthCameraConfig{});
+    std::mt19937_64 rng(1);
+    Scans out;
+    for (int k = 0; k < 250; ++k) {
+      const geometry::Pose3 body{geometry::Vector3(0.2 * k, 0.0, 2.0),
+                                 geometry::fromAxisAngle(geometry::Vector3::UnitZ(), 0.3 * std::sin(0.1 * k))};
+      const plant::DepthScan d = camera.capture(world, body, rng);
+      mapping::Scan scan;
+      scan.origin_W = d.sensor_W.p;
+      scan.max_range = camera.config().max_range;
+      for (const auto& p : d.points_S) {
+        scan.points_W.push_back(d.sensor_W.transform(p.cast<double>()));
+      }
+      out.scans.push_back(std::move(scan));
+    }
+    return out;
+  }();
+  return s;
+}
+
 octomap::Pointcloud cloudOf(const mapping::Scan& s)
 {
   octomap::Pointcloud cloud;
@@ -76,22 +105,28 @@ void BM_Mapper_Integrate(benchmark::State& state)
   state.counters["points_per_scan"] = static_cast<double>(scans().scans.front().points_W.size());
 }
 
-// The same flight in a map limited to the forest's box (one voxel beyond), as the mapping
-// node limits its map to the flown world's: updates of voxels at their clamping bound are
-// dropped without a descent, and rays stop where they leave the box.
-void BM_Mapper_IntegrateBoxed(benchmark::State& state)
+/// Maps a flight's scans into a map limited to its world's box (one voxel beyond), as the
+/// mapping node limits its map to the flown world's: updates of voxels at their clamping
+/// bound are dropped without a descent, and rays stop where they leave the box. Items are scans.
+void mapBoxed(benchmark::State& state, const std::string& world_text, const Scans& flight)
 {
-  const world::Bounds b = world::parseWorld(kForest, "forest").bounds();
+  const world::Bounds b = world::parseWorld(world_text, "world").bounds();
   mapping::MapperConfig config;
   config.coverWorld(b.min, b.max);
   for (auto _ : state) {
     mapping::Mapper mapper(config);
-    for (const auto& s : scans().scans) {
+    for (const auto& s : flight.scans) {
       benchmark::DoNotOptimize(mapper.integrate(s));
     }
   }
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(scans().scans.size()));
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(flight.scans.size()));
 }
+
+// The forest flight in the forest's box.
+void BM_Mapper_IntegrateBoxed(benchmark::State& state) { mapBoxed(state, kForest, scans()); }
+
+// The demo's flight in the demo world's box.
+void BM_Mapper_DemoFlight(benchmark::State& state) { mapBoxed(state, kDemo, demoScans()); }
 
 void BM_OcTree_InsertPointCloud(benchmark::State& state)
 {
@@ -256,6 +291,7 @@ void BM_MapFollower_FillGap(benchmark::State& state)
 
 BENCHMARK(BM_Mapper_Integrate)->Unit(benchmark::kMillisecond)->MinTime(5.0);
 BENCHMARK(BM_Mapper_IntegrateBoxed)->Unit(benchmark::kMillisecond)->MinTime(5.0);
+BENCHMARK(BM_Mapper_DemoFlight)->Unit(benchmark::kMillisecond)->MinTime(5.0);
 BENCHMARK(BM_OcTree_InsertPointCloud)->Unit(benchmark::kMillisecond)->MinTime(5.0);
 BENCHMARK(BM_ClassificationAgreement)->Iterations(1);
 BENCHMARK(BM_MapFollower_Join)->Unit(benchmark::kMillisecond);

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # The demo mission (bringup/demo.yaml, lockstep, recorded as `quad launch` records it) with a
-# process per module against its containers composed (--layout composed: plant, estimation
-# and control in one process, mapping and planning in another), side by side: each pair flies
+# process per module against its containers composed (--layout composed: every module in one
+# process, the manifest's one container), side by side: each pair flies
 # the demo once each way, the two taking turns, with one seed. For each run, from its
 # summary.json:
 #   end        the mission's end (success, failed, ...)

@@ -287,6 +287,10 @@ void MappingNode::integrate(const msg::PointCloud& cloud, const std::optional<ge
     }
     counters().samples_out++;
   }
+  // The update is out: in lockstep the clock may go on while the octree catches up with the
+  // scan (Mapper::settle) and the stats and snapshots follow.
+  reportLockstep();
+  mapper_.settle();
   msg::MapStats stats;
   stats.header().stamp_ns(due_ns);
   stats.update_seq(first_seq);

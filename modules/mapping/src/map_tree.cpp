@@ -5,7 +5,9 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
+#include <new>
 #include <optional>
 
 namespace quad::mapping {
@@ -102,13 +104,55 @@ void MapTree::limitTo(const octomap::OcTreeKey& lo, const octomap::OcTreeKey& hi
   }
   box_side_ = {side[0], side[1]};
   const std::size_t voxels = side[0] * side[1] * side[2];
+  settle();
   bounds_.clear();
   if (voxels > 0 && voxels <= kMaxBoundVoxels) {
     bounds_.assign((2 * voxels + 63) / 64, 0);
   }
+  leaf_count_ = voxels > 0 && voxels <= kMaxLeafVoxels ? voxels : 0;
+  resync();
 }
 
-void MapTree::forgetBounds() { std::fill(bounds_.begin(), bounds_.end(), 0); }
+void MapTree::resync()
+{
+  pending_.clear();  // updates of the tree before
+  std::fill(bounds_.begin(), bounds_.end(), 0);
+  leaves_.reset();
+  if (leaf_count_ == 0) {
+    return;
+  }
+  // Zeroed pages from the system, touched only where a voxel becomes known.
+  leaves_.reset(static_cast<std::uint32_t*>(std::calloc(leaf_count_, sizeof(std::uint32_t))));
+  if (!leaves_) {
+    throw std::bad_alloc();
+  }
+  // Every leaf's value on each of its voxels in the box (a pruned leaf stands for a cube).
+  for (auto it = begin_leafs(), end = end_leafs(); it != end; ++it) {
+    const octomap::OcTreeKey key = it.getKey();
+    const unsigned span = 1U << (tree_depth - it.getDepth());
+    std::array<unsigned, 3> from{};
+    std::array<unsigned, 3> to{};
+    bool inside = true;
+    for (unsigned a = 0; a < 3; ++a) {
+      const unsigned first = key[a] & ~(span - 1U);
+      from[a] = std::max<unsigned>(first, box_lo_[a]);
+      to[a] = std::min<unsigned>(first + span - 1U, box_hi_[a]);
+      inside = inside && from[a] <= to[a];
+    }
+    if (!inside) {
+      continue;
+    }
+    const std::uint32_t word = std::bit_cast<std::uint32_t>(it->getLogOdds()) ^ kUnknownLeaf;
+    for (unsigned z = from[2]; z <= to[2]; ++z) {
+      for (unsigned y = from[1]; y <= to[1]; ++y) {
+        for (unsigned x = from[0]; x <= to[0]; ++x) {
+          leaves_[boundIndex(octomap::OcTreeKey(static_cast<octomap::key_type>(x), static_cast<octomap::key_type>(y),
+                                                static_cast<octomap::key_type>(z)))] = word;
+        }
+      }
+    }
+  }
+}
 
 void MapTree::noteBounds(const octomap::OcTreeKey& key, float value)
 {
@@ -225,11 +269,79 @@ void MapTree::freeAlongRay(const octomap::point3d& origin, const octomap::point3
 void MapTree::insertPointCloudTracked(const octomap::Pointcloud& cloud, const octomap::point3d& origin,
                                       double max_range, std::vector<KeyChange>& changes)
 {
+  reportPointCloud(cloud, origin, max_range, changes);
+  settle();
+}
+
+void MapTree::reportPointCloud(const octomap::Pointcloud& cloud, const octomap::point3d& origin, double max_range,
+                               std::vector<KeyChange>& changes)
+{
   if (clamping_thres_min != bounds_min_ || clamping_thres_max != bounds_max_) {
-    forgetBounds();  // bounds set since the bits were
+    std::fill(bounds_.begin(), bounds_.end(), 0);  // bounds set since the bits were
     bounds_min_ = clamping_thres_min;
     bounds_max_ = clamping_thres_max;
   }
+  collectKeys(cloud, origin, max_range);
+  // Each voxel is updated once per scan and only its own update changes its value, so the
+  // order of the updates changes neither the leaves nor the pruning the tree ends with.
+  const bool bounded = !bounds_.empty();  // every key of the set lies in the box then
+  const bool kept = leaves_ != nullptr;
+  if (!kept) {
+    settle();  // none pending: the updates go to the tree at once, from a path of none
+  }
+  keys_.forEach([&](const octomap::OcTreeKey& key, bool occupied) {
+    if (bounded && atBound(boundIndex(key), occupied)) {
+      ++skipped_at_bounds_;
+      return;
+    }
+    if (kept) {
+      reportUpdate(key, occupied, changes);
+    } else if (const std::optional<bool> after = updateTracked(key, occupied)) {
+      changes.push_back({key, *after});
+    }
+  });
+}
+
+void MapTree::reportUpdate(const octomap::OcTreeKey& key, bool occupied, std::vector<KeyChange>& changes)
+{
+  // What updateTracked does to the voxel's leaf, on a copy of its value: OctoMap's early
+  // abort at the clamping bound, its addition and clamping, and the change it makes.
+  std::uint32_t& word = leaves_[boundIndex(key)];
+  const bool known = word != 0;
+  const float delta = occupied ? prob_hit_log : prob_miss_log;
+  octomap::OcTreeNode& leaf = scratch_leaf_;
+  leaf.setLogOdds(known ? std::bit_cast<float>(word ^ kUnknownLeaf) : 0.0F);  // a created voxel starts at 0
+  if (known) {
+    const float value = leaf.getLogOdds();
+    if ((delta >= 0 && value >= clamping_thres_max) || (delta <= 0 && value <= clamping_thres_min)) {
+      noteBounds(key, value);
+      return;
+    }
+  }
+  const bool occupied_before = known && isNodeOccupied(leaf);
+  OccupancyOcTreeBase::updateNodeLogOdds(&leaf, delta);  // OctoMap's, called directly
+  word = std::bit_cast<std::uint32_t>(leaf.getLogOdds()) ^ kUnknownLeaf;
+  noteBounds(key, leaf.getLogOdds());
+  pending_.push_back({key, occupied});
+  const bool occupied_after = isNodeOccupied(leaf);
+  if (!known || occupied_before != occupied_after) {
+    changes.push_back({key, occupied_after});
+  }
+}
+
+void MapTree::settle()
+{
+  // The updates in the order reported, each as it would have been made then: a voxel's
+  // update depends only on its own value, which only its own updates change.
+  path_valid_ = -1;
+  for (const PendingUpdate& u : pending_) {
+    updateTracked(u.key, u.occupied);
+  }
+  pending_.clear();
+}
+
+void MapTree::collectKeys(const octomap::Pointcloud& cloud, const octomap::point3d& origin, double max_range)
+{
   // OccupancyOcTreeBase::computeUpdate without a bounding box, expression for expression,
   // so that every ray ends in the same voxel.
   // Every key of the scan lies within the range (and a voxel of rounding) of the origin's.
@@ -240,7 +352,6 @@ void MapTree::insertPointCloudTracked(const octomap::Pointcloud& cloud, const oc
   } else {
     keys_.clear();
   }
-  path_valid_ = -1;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const octomap::point3d& p = cloud[i];
     // A point beyond range clears space up to the range only; its end is not a hit.
@@ -252,18 +363,6 @@ void MapTree::insertPointCloudTracked(const octomap::Pointcloud& cloud, const oc
       keys_.insertOccupied(key);
     }
   }
-  // Each voxel is updated once per scan and only its own update changes its value, so the
-  // order of the updates changes neither the leaves nor the pruning the tree ends with.
-  const bool bounded = !bounds_.empty();  // every key of the set lies in the box then
-  keys_.forEach([&](const octomap::OcTreeKey& key, bool occupied) {
-    if (bounded && atBound(boundIndex(key), occupied)) {
-      ++skipped_at_bounds_;
-      return;
-    }
-    if (const std::optional<bool> after = updateTracked(key, occupied)) {
-      changes.push_back({key, *after});
-    }
-  });
 }
 
 std::optional<bool> MapTree::updateTracked(const octomap::OcTreeKey& key, bool occupied)

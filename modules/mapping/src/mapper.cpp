@@ -154,7 +154,7 @@ IntegrationResult Mapper::integrate(const Scan& scan)
   // The tree OctoMap's own insertPointCloud builds (not discretized: a voxel crossed by many
   // rays gets their evidence), with the voxels it reclassified reported on the way.
   std::vector<KeyChange> changed;
-  tree_.insertPointCloudTracked(cloud, origin, max_range, changed);
+  tree_.reportPointCloud(cloud, origin, max_range, changed);
   out.changes.reserve(changed.size());
   for (const KeyChange& c : changed) {
     out.changes.push_back({indexOf(c.key), c.occupied ? VoxelState::kOccupied : VoxelState::kFree});
@@ -170,7 +170,7 @@ VoxelState Mapper::classify(const VoxelIndex& index) const
   if (!key) {
     return VoxelState::kUnknown;
   }
-  const octomap::OcTreeNode* node = tree_.search(octomap::OcTreeKey((*key)[0], (*key)[1], (*key)[2]));
+  const octomap::OcTreeNode* node = settled().search(octomap::OcTreeKey((*key)[0], (*key)[1], (*key)[2]));
   if (node == nullptr) {
     return VoxelState::kUnknown;
   }
@@ -202,27 +202,26 @@ std::vector<VoxelChange> classificationOf(const octomap::OcTree& tree)
   return out;
 }
 
-std::vector<VoxelChange> Mapper::classification() const { return classificationOf(tree_); }
+std::vector<VoxelChange> Mapper::classification() const { return classificationOf(settled()); }
 
-std::vector<std::uint8_t> Mapper::snapshot() const { return binaryTreeBytes(tree_); }
+std::vector<std::uint8_t> Mapper::snapshot() const { return binaryTreeBytes(settled()); }
 
 bool Mapper::save(const std::filesystem::path& file) const
 {
-  return tree_.writeBinaryConst(file.string());
+  return settled().writeBinaryConst(file.string());
 }
 
 bool Mapper::readTree(std::istream& in)
 {
-  if (tree_.size() != 0) {
+  if (settled().size() != 0) {
     return false;
   }
   tree_.readData(in);
-  tree_.forgetBounds();
   if (!in) {
     tree_.clear();
-    return false;
   }
-  return true;
+  tree_.resync();
+  return static_cast<bool>(in);
 }
 
 std::optional<std::vector<VoxelChange>> classificationOf(const std::vector<std::uint8_t>& snapshot, double resolution)

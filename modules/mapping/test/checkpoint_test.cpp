@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
 
 #include "scans.hpp"
 #include "scratch.hpp"
@@ -44,27 +45,39 @@ TEST_F(Checkpoint, AResumedMapperGoesOnExactlyAsTheOneThatWroteIt)
   for (int k = 0; k < 6; ++k) {
     scans.push_back(test::scanFrom(world, Vector3(-1.0 + 0.5 * k, 0.3 * k - 1.0, 1.5), 0.2 * k, rng));
   }
-  Mapper original(MapperConfig{});
-  for (std::size_t k = 0; k < 3; ++k) {
-    original.integrate(scans[k]);
-  }
-  const fs::path file = dir_ / "map.checkpoint";
-  writeCheckpoint(file, original, {1'000'042, 3'500'000'000});
-  EXPECT_FALSE(fs::exists(dir_ / "map.checkpoint.tmp"));
+  // Unbounded, and boxed: a boxed mapper works its changes out from each voxel's log-odds,
+  // which a resumed one reads back from the tree.
+  MapperConfig boxed;
+  boxed.box = std::make_pair(Vector3(-2.0, -6.0, 0.0), Vector3(8.0, 6.0, 4.0));
+  for (const MapperConfig& config : {MapperConfig{}, boxed}) {
+    SCOPED_TRACE(config.box ? "boxed" : "unbounded");
+    Mapper original(config);
+    for (std::size_t k = 0; k < 3; ++k) {
+      original.integrate(scans[k]);
+    }
+    const fs::path file = dir_ / "map.checkpoint";
+    writeCheckpoint(file, original, {1'000'042, 3'500'000'000});
+    EXPECT_FALSE(fs::exists(dir_ / "map.checkpoint.tmp"));
 
-  Mapper resumed(MapperConfig{});
-  const auto meta = readCheckpoint(file, resumed);
-  ASSERT_TRUE(meta.has_value());
-  EXPECT_EQ(meta->next_update_seq, 1'000'042U);
-  EXPECT_EQ(meta->stamp_ns, 3'500'000'000);
-  test::expectSameClassification(original.classification(), resumed.classification());
-  // The log-odds came along: the same scans change the same voxels in both.
-  for (std::size_t k = 3; k < 6; ++k) {
-    const auto a = original.integrate(scans[k]);
-    const auto b = resumed.integrate(scans[k]);
-    test::expectSameClassification(a.changes, b.changes);
+    Mapper resumed(config);
+    const auto meta = readCheckpoint(file, resumed);
+    ASSERT_TRUE(meta.has_value());
+    EXPECT_EQ(meta->next_update_seq, 1'000'042U);
+    EXPECT_EQ(meta->stamp_ns, 3'500'000'000);
+    test::expectSameClassification(original.classification(), resumed.classification());
+    // The log-odds came along: the same scans change the same voxels in both, and leave the
+    // same tree.
+    for (std::size_t k = 3; k < 6; ++k) {
+      const auto a = original.integrate(scans[k]);
+      const auto b = resumed.integrate(scans[k]);
+      EXPECT_FALSE(a.changes.empty());
+      test::expectSameClassification(a.changes, b.changes);
+    }
+    std::ostringstream ours, theirs;
+    original.tree().write(ours);
+    resumed.tree().write(theirs);
+    EXPECT_EQ(ours.str(), theirs.str());
   }
-  test::expectSameClassification(original.classification(), resumed.classification());
 }
 
 TEST_F(Checkpoint, NoFileIsNoCheckpointAndBadOnesAreRefusedNamingTheFile)

@@ -267,10 +267,9 @@ TEST(Mapper, ABoxedMapsVoxelsHoldTheUnboundedMapsLogOddsWhateverUpdatesItsBounds
   std::mt19937_64 rng(17);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::normal_distribution<double> noise(0.0, 0.08);
-  const auto& tree = boxed.tree();
   octomap::OcTreeKey lo, hi;
-  ASSERT_TRUE(tree.coordToKeyChecked(octomap::point3d(-0.99F, -2.99F, 0.01F), lo));
-  ASSERT_TRUE(tree.coordToKeyChecked(octomap::point3d(7.99F, 2.99F, 2.99F), hi));
+  ASSERT_TRUE(boxed.tree().coordToKeyChecked(octomap::point3d(-0.99F, -2.99F, 0.01F), lo));
+  ASSERT_TRUE(boxed.tree().coordToKeyChecked(octomap::point3d(7.99F, 2.99F, 2.99F), hi));
   for (int k = 0; k < 40; ++k) {
     Scan scan = scanFrom(world, Vector3(-0.5 + 0.05 * k, 0.5 * u(rng), 1.5 + 0.3 * u(rng)), 0.2 * u(rng), rng);
     for (Vector3& p : scan.points_W) {
@@ -294,6 +293,7 @@ TEST(Mapper, ABoxedMapsVoxelsHoldTheUnboundedMapsLogOddsWhateverUpdatesItsBounds
       continue;
     }
     // AND each voxel of the box holds the unbounded map's log-odds, or is unknown in both
+    const MapTree& tree = boxed.tree();  // brought up to date with the scans
     for (auto x = lo[0]; x <= hi[0]; ++x) {
       for (auto y = lo[1]; y <= hi[1]; ++y) {
         for (auto z = lo[2]; z <= hi[2]; ++z) {
@@ -309,7 +309,7 @@ TEST(Mapper, ABoxedMapsVoxelsHoldTheUnboundedMapsLogOddsWhateverUpdatesItsBounds
     }
   }
   // AND most updates within the box found their voxel at its bound and skipped the descent
-  EXPECT_GT(tree.updatesSkippedAtBounds(), 100'000U);
+  EXPECT_GT(boxed.tree().updatesSkippedAtBounds(), 100'000U);
   EXPECT_EQ(free_mapper.tree().updatesSkippedAtBounds(), 0U);
 }
 

@@ -14,6 +14,8 @@
 
 #include <array>
 #include <cstdint>
+#include <cstdlib>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -132,15 +134,30 @@ public:
   void insertPointCloudTracked(const octomap::Pointcloud& cloud, const octomap::point3d& origin, double max_range,
                                std::vector<KeyChange>& changes);
 
+  /// The same changes, the tree's own update left to settle(): in a box of at most
+  /// kMaxLeafVoxels voxels, each voxel's log-odds are kept beside the tree (its leaves'
+  /// values, voxel by voxel), so a scan's changes follow from them and the scan's keys, a
+  /// look-up a key, without descending the tree. Until settle() the tree is the one before
+  /// the scans so reported; read it only after. Without such a box the tree is updated at once.
+  /// The tree's probabilities and clamping bounds must not change while updates are pending.
+  void reportPointCloud(const octomap::Pointcloud& cloud, const octomap::point3d& origin, double max_range,
+                        std::vector<KeyChange>& changes);
+  /// Applies to the tree every update reported and not yet applied, in the order reported:
+  /// the tree OctoMap's insertPointCloud would have built from those scans.
+  void settle();
+  bool settled() const { return pending_.empty(); }
+
   /// Only voxels whose keys lie in [lo, hi] (inclusive, per axis) are updated from now on, as
   /// OctoMap's bounding-box limit does: rays still run their whole length, what they cross
   /// outside the box is left alone. A box of at most kMaxBoundVoxels voxels also keeps, for
-  /// each of its voxels, whether it sits at a clamping bound (below).
+  /// each of its voxels, whether it sits at a clamping bound (below), and one of at most
+  /// kMaxLeafVoxels its voxels' log-odds (reportPointCloud).
   void limitTo(const octomap::OcTreeKey& lo, const octomap::OcTreeKey& hi);
 
-  /// The tree was changed other than by insertPointCloudTracked (read from a stream,
-  /// cleared): what was known of its voxels' clamping bounds is dropped.
-  void forgetBounds();
+  /// The tree was changed other than by this class's insertions (read from a stream,
+  /// cleared): updates still pending (of the tree before) are dropped, what was known of its
+  /// voxels' clamping bounds too, and their log-odds are read again from the tree.
+  void resync();
 
   /// Updates that OctoMap's early abort would have dropped (the voxel already at the
   /// clamping bound the update pushes towards) and that were dropped without a descent,
@@ -149,8 +166,16 @@ public:
 
   /// The largest box whose voxels' clamping bounds are kept: two bits a voxel, 32 MiB.
   static constexpr std::size_t kMaxBoundVoxels = std::size_t{1} << 27;
+  /// The largest box whose voxels' log-odds are kept beside the tree: four bytes a voxel,
+  /// 128 MiB of address space, of which only the pages of voxels ever known are touched.
+  static constexpr std::size_t kMaxLeafVoxels = std::size_t{1} << 25;
 
 private:
+  /// The scan's keys into keys_ (the free along the rays, the occupied at the hits).
+  void collectKeys(const octomap::Pointcloud& cloud, const octomap::point3d& origin, double max_range);
+  /// One update of the scan reported from the voxel's log-odds kept beside the tree.
+  void reportUpdate(const octomap::OcTreeKey& key, bool occupied, std::vector<KeyChange>& changes);
+
   bool inBox(const octomap::OcTreeKey& k) const
   {
     return !limited_ || (k[0] >= box_lo_[0] && k[0] <= box_hi_[0] && k[1] >= box_lo_[1] && k[1] <= box_hi_[1] &&
@@ -197,6 +222,24 @@ private:
   /// Records a voxel's value after its update: at the lower bound, the upper, or neither.
   void noteBounds(const octomap::OcTreeKey& key, float value);
   std::vector<std::uint64_t> bounds_;
+
+  // Within the box: each voxel's log-odds as the tree holds them once settled, as a word
+  // (its float's bits XOR kUnknownLeaf: 0, as the zeroed pages give, for a voxel not in the
+  // tree). Empty: no box, or one too large.
+  struct FreeDeleter {
+    void operator()(std::uint32_t* p) const { std::free(p); }
+  };
+  static constexpr std::uint32_t kUnknownLeaf = 0x7FBADBADU;  // a NaN no update makes
+  std::unique_ptr<std::uint32_t[], FreeDeleter> leaves_;
+  std::size_t leaf_count_ = 0;
+  // Updates reported and not yet applied to the tree, in order: a key and whether it is a hit.
+  struct PendingUpdate {
+    octomap::OcTreeKey key;
+    bool occupied;
+  };
+  std::vector<PendingUpdate> pending_;
+  octomap::OcTreeNode scratch_leaf_;  // a voxel's leaf as reportUpdate works it out
+
   std::array<std::size_t, 2> box_side_{};  // voxels along x and y
   float bounds_min_ = 0.0F;                 // the clamping bounds the bits were set under
   float bounds_max_ = 0.0F;

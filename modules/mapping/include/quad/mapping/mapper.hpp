@@ -91,8 +91,13 @@ public:
 
   /// Integrates a scan: free space along each ray from the origin, the endpoint occupied
   /// when within range; points beyond range only clear up to it. A scan with a non-finite
-  /// origin or point, or more than max_points, is refused whole: nothing changes.
+  /// origin or point, or more than max_points, is refused whole: nothing changes. In a
+  /// bounded map (config.box) the changes come first and the octree's own update is left to
+  /// settle(), which every reader below calls first (MapTree::reportPointCloud).
   IntegrationResult integrate(const Scan& scan);
+  /// Brings the octree up to date with the scans integrated: the work integrate() left, for a
+  /// caller to do once it has sent the changes on.
+  void settle() const { tree_.settle(); }
 
   VoxelState classify(const VoxelIndex& index) const;
   /// Every known voxel with its state (pruned octree nodes expanded to the resolution).
@@ -101,7 +106,7 @@ public:
   /// The map as OctoMap's binary (.bt) bytes: maximum-likelihood free/occupied per voxel.
   std::vector<std::uint8_t> snapshot() const;
   /// The snapshot, with the tree's node data (`with_data`) and its memory use, from one walk.
-  TreeImage image(bool with_data) const { return treeImage(tree_, with_data); }
+  TreeImage image(bool with_data) const { return treeImage(settled(), with_data); }
   /// Writes a .bt file that OctoMap's own tools (octovis, binvox2bt ...) read; false on I/O failure.
   bool save(const std::filesystem::path& file) const;
   /// Replaces an empty tree with its node data (OctoMap's, as in its .ot files: every node's
@@ -109,14 +114,23 @@ public:
   /// short or the mapper already holds voxels.
   bool readTree(std::istream& in);
 
-  std::size_t nodes() const { return tree_.size(); }
-  std::size_t bytes() const { return tree_.memoryUsage(); }
+  std::size_t nodes() const { return settled().size(); }
+  std::size_t bytes() const { return settled().memoryUsage(); }
   double resolution() const { return config_.resolution; }
-  const MapTree& tree() const { return tree_; }
+  /// The octree, up to date with the scans integrated before this call (not those after).
+  const MapTree& tree() const { return settled(); }
 
 private:
+  const MapTree& settled() const
+  {
+    tree_.settle();
+    return tree_;
+  }
+
   MapperConfig config_;
-  MapTree tree_;
+  // Mutable for settle(): the tree catching up with scans already integrated changes no
+  // answer a reader gets.
+  mutable MapTree tree_;
   geometry::VoxelGrid grid_;
 };
 

@@ -424,7 +424,9 @@ std::optional<bool> MapTree::updateTracked(const octomap::OcTreeKey& key, bool o
   octomap::OcTreeNode* leaf = path[tree_depth];
   const bool occupied_before = !created && isNodeOccupied(leaf);
   updateNodeLogOdds(leaf, delta);
-  noteBounds(key, leaf->getLogOdds());
+  if (leaves_ == nullptr) {
+    noteBounds(key, leaf->getLogOdds());  // else reportUpdate noted it, from the same value
+  }
   const bool occupied_after = isNodeOccupied(leaf);
   const bool changed = created || occupied_before != occupied_after;
   // Back up: prune where the eight children agree, else refresh the inner node's value.

@@ -14,8 +14,8 @@
 # then each process's (or container's) CPU seconds per sim second, the median of each column
 # per layout, and the median wall time's ratio. Then, per run, whom the lockstep clock waited
 # for and how long (the plant's last word in its log: docs/runtime.md#lockstep) and the
-# mapper's wall time per cloud (MapStats.insert_time_s in the recording, median and 90th
-# percentile), with their medians per layout.
+# mapper's wall time from a cloud to its changes (MapStats.insert_time_s in the recording,
+# median and 90th percentile), with their medians per layout.
 #   tools/launch/bench/layout_bench.sh BUILD_DIR [-n PAIRS] [-s SEED] [-d DOMAIN]
 #   (default: 5 pairs, seed 1, domain 85)
 set -euo pipefail

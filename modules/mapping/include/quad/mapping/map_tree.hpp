@@ -145,7 +145,6 @@ public:
   /// Applies to the tree every update reported and not yet applied, in the order reported:
   /// the tree OctoMap's insertPointCloud would have built from those scans.
   void settle();
-  bool settled() const { return pending_.empty(); }
 
   /// Only voxels whose keys lie in [lo, hi] (inclusive, per axis) are updated from now on, as
   /// OctoMap's bounding-box limit does: rays still run their whole length, what they cross

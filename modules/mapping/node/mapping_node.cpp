@@ -103,7 +103,7 @@ MappingNode::MappingNode(MappingNodeConfig config, dds::Participant handle)
       updates_(participant(), dds::topics::kMapUpdate),
       snapshots_(participant(), dds::topics::kMapSnapshot),
       stats_(participant(), dds::topics::kMapStats),
-      lockstep_(participant(), "mapping"),
+      lockstep_(participant(), runtime::kMapperParticipant),
       intake_(config_.frames)
 {
   followSimClock(runtime::kHeldStates);  // a sample at the state's rate, each saying whether a state went out
@@ -366,6 +366,16 @@ void MappingNode::reportLockstep()
     lockstep_.holding(simClock().ns(), [this] {
       return fmt::format("{} of {} depth frames integrated", frames_taken_, simClock().depthFrames());
     });
+  }
+  // A frame dealt with is reported at once: a plant that counts the frames it wrote
+  // (LockstepBarrier::inputGiven) then needs no report from us until the next one's due time.
+  // Between frames the report is renewed as the clock nears it, for a clock owner that does not
+  // count them (a replay).
+  if (frames_taken_ > frames_reported_ && done > lockstep_.reportedNs()) {
+    if (lockstep_.reportDone(done)) {
+      frames_reported_ = frames_taken_;
+    }
+    return;
   }
   lockstep_.reportAhead(done, simClock().ns(), participant().options().mapBudgetNs());
 }

@@ -103,6 +103,7 @@ private:
   // Clouds waiting for the state of their time; in real time for up to 0.5 s of sim time.
   runtime::StateTimed<msg::PointCloud> pending_{500'000'000};
   std::uint64_t frames_taken_ = 0;         // depth frames dealt with (integrated, refused or skipped)
+  std::uint64_t frames_reported_ = 0;      // lockstep: frames_taken_ when it was last reported
   std::uint64_t update_seq_ = 0;
   std::uint64_t reserved_seq_ = 0;  // numbers below this are in the checkpoint's reservation
   std::int64_t last_stamp_ns_ = 0;  // the newest cloud integrated

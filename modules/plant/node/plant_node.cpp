@@ -96,6 +96,8 @@ PlantNode::PlantNode(PlantNodeConfig config, dds::Participant handle)
     barrier_ = std::make_unique<runtime::LockstepBarrier>(
         participant(), participants, waker(),
         config_.fleet_file.empty() ? std::vector<std::uint32_t>{} : fleet_->ids());
+    // The mapper's work is the depth frames written here: between them it has none to hold the clock for.
+    barrier_->worksOnInputsOnly(runtime::kMapperParticipant);
   }
   setTickPeriod(kRealTimeTickNs);
   setLockstep(config_.mode == PlantNodeConfig::Mode::kLockstep);
@@ -242,6 +244,10 @@ void PlantNode::publish(std::size_t vehicle, const StepOutputs& out)
     io.last_depth->frame(++io.depth_frames);
     depth_.writeFor(io.id, *io.last_depth);
     counters().samples_out++;
+    if (barrier_) {
+      barrier_->inputGiven(runtime::kMapperParticipant, io.id,
+                           io.last_depth->header().stamp_ns() + participant().options().mapBudgetNs());
+    }
   }
   if (out.imu) {
     io.last_imu = toMessage(*out.imu);  // before the clock, which says whether it was sent

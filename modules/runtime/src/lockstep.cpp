@@ -93,6 +93,20 @@ bool LockstepBarrier::poll(std::int64_t sim_ns)
   return ledger_.caughtUp(sim_ns);
 }
 
+bool LockstepBarrier::worksOnInputsOnly(std::string_view participant)
+{
+  bool known = true;
+  for (const std::string& name : ledgerNames({std::string(participant)}, vehicles_)) {
+    known = ledger_.worksOnInputsOnly(name) && known;
+  }
+  return known;
+}
+
+void LockstepBarrier::inputGiven(std::string_view participant, std::uint32_t vehicle, std::int64_t due_ns)
+{
+  ledger_.inputGiven(vehicles_.empty() ? std::string(participant) : fleetName(participant, vehicle), due_ns);
+}
+
 void LockstepBarrier::collect()
 {
   for (;;) {

@@ -9,6 +9,7 @@
 #include <functional>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <quad/msg/LockstepReport.h>
@@ -26,6 +27,9 @@ inline constexpr const char* kRecorderParticipant = "record";
 /// run's start: once it reads the states and clock samples it scores, it reports itself done
 /// up to kDoneForGoodNs.
 inline constexpr const char* kObserverParticipant = "launch";
+/// The lockstep name of a vehicle's mapper. Its work comes from the depth frames the clock
+/// owner writes, each due the map's budget after its stamp (LockstepBarrier::inputGiven).
+inline constexpr const char* kMapperParticipant = "mapping";
 /// A report's done_ns from a participant that will never hold the clock again.
 inline constexpr std::int64_t kDoneForGoodNs = std::numeric_limits<std::int64_t>::max();
 
@@ -52,6 +56,8 @@ public:
   /// it and on what.
   void holding(std::int64_t clock_ns, const std::function<std::string()>& why);
 
+  /// The newest done time reported (-1: none yet).
+  std::int64_t reportedNs() const { return reported_ns_; }
   int matchedBarriers() const { return publisher_.matchedReaders(); }
 
 private:
@@ -88,6 +94,13 @@ public:
   /// Non-blocking: takes the reports that arrived and says whether everyone is done up to
   /// `sim_ns`.
   bool poll(std::int64_t sim_ns);
+
+  /// `participant` (each vehicle's, in a fleet's barrier) works only on the inputs this clock
+  /// owner gives it (LockstepLedger::worksOnInputsOnly). False when it is not one expected.
+  bool worksOnInputsOnly(std::string_view participant);
+  /// An input given to `participant` of `vehicle` (its id; ignored outside a fleet's barrier),
+  /// its work due at `due_ns` (LockstepLedger::inputGiven).
+  void inputGiven(std::string_view participant, std::uint32_t vehicle, std::int64_t due_ns);
 
   /// Reports ignored so far (unknown participant or time going backwards).
   std::uint64_t ignoredReports() const { return ignored_; }

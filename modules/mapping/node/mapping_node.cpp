@@ -110,6 +110,7 @@ MappingNode::MappingNode(MappingNodeConfig config, dds::Participant handle)
   spdlog::info("mapping: resolution {} m, max range {} m, clouds placed on the {} ({})", config_.map.resolution,
                config_.map.max_range, runtime::toString(config_.state_source), state_.topic().name);
   map_bytes_ = mapper_.bytes();  // the empty map's; resume() counts a resumed one
+  map_nodes_ = mapper_.nodes();
   resume();
 }
 
@@ -148,6 +149,7 @@ void MappingNode::resume()
   // the new numbering opens with it.
   TreeImage image = mapper_.image(false);
   map_bytes_ = image.memory_bytes;
+  map_nodes_ = mapper_.nodes();
   publishSnapshot(meta->stamp_ns, std::move(image.binary));
 }
 
@@ -287,17 +289,16 @@ void MappingNode::integrate(const msg::PointCloud& cloud, const std::optional<ge
     }
     counters().samples_out++;
   }
-  // The update is out: in lockstep the clock may go on while the octree catches up with the
-  // scan (Mapper::settle) and the stats and snapshots follow.
+  // The update is out: in lockstep the clock may go on. The octree catches up with the scans
+  // when it is next read, for a snapshot (Mapper::settle): once for all the scans since.
   reportLockstep();
-  mapper_.settle();
   msg::MapStats stats;
   stats.header().stamp_ns(due_ns);
   stats.update_seq(first_seq);
   stats.points(static_cast<std::uint32_t>(result.points));
   stats.changed_voxels(static_cast<std::uint32_t>(result.changes.size()));
   stats.insert_time_s(insert_s);
-  stats.map_nodes(mapper_.nodes());
+  stats.map_nodes(map_nodes_);
   stats.map_bytes(map_bytes_);
   stats.rejected_clouds(rejected_);
   stats.skipped_clouds(skipped_);
@@ -330,6 +331,7 @@ void MappingNode::takeOwedSnapshot()
   TreeImage image = mapper_.image(!config_.checkpoint_file.empty());
   if (owed.periodic) {
     map_bytes_ = image.memory_bytes;  // with the period's snapshots only
+    map_nodes_ = mapper_.nodes();
   }
   publishSnapshot(owed.due_ns, std::move(image.binary));
   checkpoint(owed.stamp_ns, reserved_seq_, &image.data);

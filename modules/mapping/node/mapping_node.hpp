@@ -124,7 +124,8 @@ private:
   DepthIntake intake_;                 // what of a cloud is mapped, or why it is refused
   // The tree's memory as of the last snapshot: OctoMap counts it by walking the whole tree,
   // which per cloud took a fifth of the mapper's time in the demo.
-  std::size_t map_bytes_ = 0;
+  std::size_t map_bytes_ = 0;  // MapStats': as of the last periodic snapshot
+  std::size_t map_nodes_ = 0;
 };
 
 /// The mapping module as a process hosts it: its name, parameters and node.

@@ -115,15 +115,17 @@ void MapTree::limitTo(const octomap::OcTreeKey& lo, const octomap::OcTreeKey& hi
 
 void MapTree::resync()
 {
-  pending_.clear();  // updates of the tree before
+  touched_.clear();  // updates of the tree before
   std::fill(bounds_.begin(), bounds_.end(), 0);
   leaves_.reset();
+  unsettled_.reset();
   if (leaf_count_ == 0) {
     return;
   }
   // Zeroed pages from the system, touched only where a voxel becomes known.
   leaves_.reset(static_cast<std::uint32_t*>(std::calloc(leaf_count_, sizeof(std::uint32_t))));
-  if (!leaves_) {
+  unsettled_.reset(static_cast<std::uint64_t*>(std::calloc((leaf_count_ + 63) / 64, sizeof(std::uint64_t))));
+  if (!leaves_ || !unsettled_) {
     throw std::bad_alloc();
   }
   // Every leaf's value on each of its voxels in the box (a pruned leaf stands for a cube).
@@ -322,22 +324,15 @@ void MapTree::reportUpdate(const octomap::OcTreeKey& key, bool occupied, std::ve
   OccupancyOcTreeBase::updateNodeLogOdds(&leaf, delta);  // OctoMap's, called directly
   word = std::bit_cast<std::uint32_t>(leaf.getLogOdds()) ^ kUnknownLeaf;
   noteBounds(key, leaf.getLogOdds());
-  pending_.push_back({key, occupied});
+  const std::size_t voxel = boundIndex(key);
+  if (std::uint64_t& bits = unsettled_[voxel >> 6]; (bits & (std::uint64_t{1} << (voxel & 63))) == 0) {
+    bits |= std::uint64_t{1} << (voxel & 63);
+    touched_.push_back(key);
+  }
   const bool occupied_after = isNodeOccupied(leaf);
   if (!known || occupied_before != occupied_after) {
     changes.push_back({key, occupied_after});
   }
-}
-
-void MapTree::settle()
-{
-  // The updates in the order reported, each as it would have been made then: a voxel's
-  // update depends only on its own value, which only its own updates change.
-  path_valid_ = -1;
-  for (const PendingUpdate& u : pending_) {
-    updateTracked(u.key, u.occupied);
-  }
-  pending_.clear();
 }
 
 void MapTree::collectKeys(const octomap::Pointcloud& cloud, const octomap::point3d& origin, double max_range)
@@ -368,6 +363,26 @@ void MapTree::collectKeys(const octomap::Pointcloud& cloud, const octomap::point
 std::optional<bool> MapTree::updateTracked(const octomap::OcTreeKey& key, bool occupied)
 {
   const float delta = occupied ? prob_hit_log : prob_miss_log;
+  // OcTree::updateNode's early abort: the voxel (or the pruned node holding it) is already
+  // at the clamping bound the update pushes towards; nothing changes.
+  const auto at_bound = [&](float value) {
+    if ((delta >= 0 && value >= clamping_thres_max) || (delta <= 0 && value <= clamping_thres_min)) {
+      noteBounds(key, value);
+      return true;
+    }
+    return false;
+  };
+  return descendAndUpdate(key, at_bound, [&](octomap::OcTreeNode* leaf) {
+    updateNodeLogOdds(leaf, delta);
+    if (leaves_ == nullptr) {
+      noteBounds(key, leaf->getLogOdds());  // else reportUpdate noted it, from the same value
+    }
+  });
+}
+
+template <class Unchanged, class Update>
+std::optional<bool> MapTree::descendAndUpdate(const octomap::OcTreeKey& key, Unchanged unchanged, Update update)
+{
   auto& path = path_;   // root at 0, the voxel at tree_depth (16)
   bool created = false;  // path[depth] was created by this update
   unsigned depth = 0;
@@ -394,15 +409,10 @@ std::optional<bool> MapTree::updateTracked(const octomap::OcTreeKey& key, bool o
   }
   // path[0 ... existed] were in the tree before this update, with their values then.
   const unsigned existed = created ? 0 : depth;
-  // OcTree::updateNode's early abort: the voxel (or the pruned node holding it) is already
-  // at the clamping bound the update pushes towards; nothing changes.
-  if (!created && (depth == tree_depth || !nodeHasChildren(path[depth]))) {
-    const float value = path[depth]->getLogOdds();
-    if ((delta >= 0 && value >= clamping_thres_max) || (delta <= 0 && value <= clamping_thres_min)) {
-      path_valid_ = static_cast<int>(depth);
-      noteBounds(key, value);
-      return std::nullopt;
-    }
+  // A voxel in the tree (alone, or in a pruned node) the update leaves as it is.
+  if (!created && (depth == tree_depth || !nodeHasChildren(path[depth])) && unchanged(path[depth]->getLogOdds())) {
+    path_valid_ = static_cast<int>(depth);
+    return std::nullopt;
   }
   // The rest of the way down, as updateNodeRecurs goes: a pruned node is expanded (its
   // children inherit its value), a missing child of an inner node is created unknown.
@@ -423,10 +433,7 @@ std::optional<bool> MapTree::updateTracked(const octomap::OcTreeKey& key, bool o
   }
   octomap::OcTreeNode* leaf = path[tree_depth];
   const bool occupied_before = !created && isNodeOccupied(leaf);
-  updateNodeLogOdds(leaf, delta);
-  if (leaves_ == nullptr) {
-    noteBounds(key, leaf->getLogOdds());  // else reportUpdate noted it, from the same value
-  }
+  update(leaf);
   const bool occupied_after = isNodeOccupied(leaf);
   const bool changed = created || occupied_before != occupied_after;
   // Back up: prune where the eight children agree, else refresh the inner node's value.
@@ -447,6 +454,22 @@ std::optional<bool> MapTree::updateTracked(const octomap::OcTreeKey& key, bool o
     }
   }
   return changed ? std::optional<bool>(occupied_after) : std::nullopt;
+}
+
+void MapTree::settle()
+{
+  // Each voxel touched set to its value now, once however many scans updated it: OctoMap's
+  // tree is pruned wherever eight sibling leaves agree after every update, so the tree its
+  // updates build depends only on the voxels' values, not on the order or the steps they came in.
+  path_valid_ = -1;
+  for (const octomap::OcTreeKey& key : touched_) {
+    const std::size_t voxel = boundIndex(key);
+    unsettled_[voxel >> 6] &= ~(std::uint64_t{1} << (voxel & 63));
+    const float value = std::bit_cast<float>(leaves_[voxel] ^ kUnknownLeaf);
+    descendAndUpdate(
+        key, [&](float before) { return before == value; }, [&](octomap::OcTreeNode* leaf) { leaf->setLogOdds(value); });
+  }
+  touched_.clear();
 }
 
 }  // namespace quad::mapping

@@ -313,5 +313,42 @@ TEST(Mapper, ABoxedMapsVoxelsHoldTheUnboundedMapsLogOddsWhateverUpdatesItsBounds
   EXPECT_EQ(free_mapper.tree().updatesSkippedAtBounds(), 0U);
 }
 
+TEST(Mapper, ABoxedTreeSettledOnceForManyScansIsTheTreeSettledAfterEach)
+{
+  // GIVEN two boxed mappers fed the same noisy scans (voxels going up and down, siblings
+  // pruned and expanded again), one whose tree is read after every scan, one whose tree is
+  // read only now and then, settling all the scans since at once
+  const world::World world = boxWorld();
+  MapperConfig config;
+  config.max_range = 8.0;
+  config.box = std::make_pair(Vector3(-1.0, -3.0, 0.0), Vector3(8.0, 3.0, 3.0));
+  Mapper each(config);
+  Mapper batched(config);
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::normal_distribution<double> noise(0.0, 0.1);
+  std::size_t compared = 0;
+  for (int k = 0; k < 48; ++k) {
+    Scan scan = scanFrom(world, Vector3(-0.5 + 0.1 * k, 0.8 * u(rng), 1.5 + 0.4 * u(rng)), 0.3 * u(rng), rng);
+    for (Vector3& p : scan.points_W) {
+      p += Vector3(noise(rng), noise(rng), noise(rng));
+    }
+    ASSERT_TRUE(each.integrate(scan).accepted);
+    ASSERT_TRUE(batched.integrate(scan).accepted);
+    std::ostringstream after_each;
+    each.tree().write(after_each);  // settled scan by scan
+    if (k % 11 != 10 && k != 47) {
+      continue;
+    }
+    // THEN the tree settled at once is the same, node for node and log-odds for log-odds
+    std::ostringstream at_once;
+    batched.tree().write(at_once);
+    ASSERT_EQ(at_once.str(), after_each.str()) << "after scan " << k;
+    ++compared;
+  }
+  EXPECT_EQ(compared, 5U);
+  EXPECT_LT(batched.nodes(), 8 * batched.classification().size()) << "the tree was pruned";
+}
+
 }  // namespace
 }  // namespace quad::mapping

@@ -142,8 +142,11 @@ public:
   /// The tree's probabilities and clamping bounds must not change while updates are pending.
   void reportPointCloud(const octomap::Pointcloud& cloud, const octomap::point3d& origin, double max_range,
                         std::vector<KeyChange>& changes);
-  /// Applies to the tree every update reported and not yet applied, in the order reported:
-  /// the tree OctoMap's insertPointCloud would have built from those scans.
+  /// Brings the tree up to date with every scan reported since it last was: each voxel those
+  /// scans changed is set once to its value now, in one descent, however many of them
+  /// updated it. The tree OctoMap's insertPointCloud would have built from those scans, whose
+  /// pruning leaves a tree that depends only on its voxels' values. Settling once for many
+  /// scans costs a descent per voxel instead of one per update.
   void settle();
 
   /// Only voxels whose keys lie in [lo, hi] (inclusive, per axis) are updated from now on, as
@@ -189,6 +192,12 @@ private:
   /// (true: occupied) when that changed, nothing when it did not. The descent starts where
   /// the previous update's path and this key's part (a ray's voxels come one after another).
   std::optional<bool> updateTracked(const octomap::OcTreeKey& key, bool occupied);
+  /// The descent and the way back up of updateTracked, and of settle() setting a voxel's
+  /// value: `unchanged(value)` of a voxel in the tree (its leaf's value, or the pruned node's
+  /// holding it) says the update leaves it as it is; else `update(leaf)` sets the voxel's leaf,
+  /// created (unknown) or expanded out of a pruned node as OcTree::updateNodeRecurs does.
+  template <class Unchanged, class Update>
+  std::optional<bool> descendAndUpdate(const octomap::OcTreeKey& key, Unchanged unchanged, Update update);
 
   ScanKeySet keys_;
   // The last update's path from the root: path_[0 ... path_valid_] still exist as they were
@@ -226,17 +235,15 @@ private:
   // (its float's bits XOR kUnknownLeaf: 0, as the zeroed pages give, for a voxel not in the
   // tree). Empty: no box, or one too large.
   struct FreeDeleter {
-    void operator()(std::uint32_t* p) const { std::free(p); }
+    void operator()(void* p) const { std::free(p); }
   };
   static constexpr std::uint32_t kUnknownLeaf = 0x7FBADBADU;  // a NaN no update makes
   std::unique_ptr<std::uint32_t[], FreeDeleter> leaves_;
   std::size_t leaf_count_ = 0;
-  // Updates reported and not yet applied to the tree, in order: a key and whether it is a hit.
-  struct PendingUpdate {
-    octomap::OcTreeKey key;
-    bool occupied;
-  };
-  std::vector<PendingUpdate> pending_;
+  // The voxels whose value changed since the tree was last settled, each once (its bit set
+  // in unsettled_ while it is listed). Empty with no leaves kept.
+  std::vector<octomap::OcTreeKey> touched_;
+  std::unique_ptr<std::uint64_t[], FreeDeleter> unsettled_;
   octomap::OcTreeNode scratch_leaf_;  // a voxel's leaf as reportUpdate works it out
 
   std::array<std::size_t, 2> box_side_{};  // voxels along x and y

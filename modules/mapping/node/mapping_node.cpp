@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 
 #include "quad/common/time.hpp"
@@ -147,13 +148,13 @@ void MappingNode::resume()
                meta->next_update_seq);
   // The resumed map at once, latched: a consumer holding the map from before fills the gap
   // the new numbering opens with it.
-  TreeImage image = mapper_.image(false);
+  const TreeImage image = mapper_.image(false);
   map_bytes_ = image.memory_bytes;
-  map_nodes_ = mapper_.nodes();
-  publishSnapshot(meta->stamp_ns, std::move(image.binary));
+  map_nodes_ = image.nodes;
+  publishSnapshot(meta->stamp_ns, update_seq_, image.binary);
 }
 
-void MappingNode::publishSnapshot(std::int64_t stamp_ns, std::vector<std::uint8_t> bytes)
+void MappingNode::publishSnapshot(std::int64_t stamp_ns, std::uint64_t update_seq, const std::vector<std::uint8_t>& bytes)
 {
   if (bytes.size() > 4194304) {
     spdlog::warn("mapping: snapshot of {} bytes exceeds the 4 MiB a MapSnapshot carries; not sent", bytes.size());
@@ -161,9 +162,9 @@ void MappingNode::publishSnapshot(std::int64_t stamp_ns, std::vector<std::uint8_
   }
   msg::MapSnapshot snapshot;
   snapshot.header().stamp_ns(stamp_ns);
-  snapshot.update_seq(update_seq_);
+  snapshot.update_seq(update_seq);
   snapshot.resolution(mapper_.resolution());
-  snapshot.octree(std::move(bytes));
+  snapshot.octree(bytes);
   snapshots_.write(snapshot);
 }
 
@@ -264,7 +265,9 @@ void MappingNode::integrate(const msg::PointCloud& cloud, const std::optional<ge
   const std::uint64_t messages = std::max<std::size_t>(1, (result.changes.size() + kMaxChangesPerMessage - 1) /
                                                               kMaxChangesPerMessage);
   if (!config_.checkpoint_file.empty() && update_seq_ + messages >= reserved_seq_) {
-    // A mapper started after us resumes numbering at the reservation: renew it first.
+    // A mapper started after us resumes numbering at the reservation: renew it first (after
+    // the checkpoint of a snapshot still being worked out, which keeps the reservation before).
+    finishSnapshot(true);
     checkpoint(last_stamp_ns_, update_seq_ + messages + kSeqReserve);
   }
   for (std::size_t begin = 0; begin == 0 || begin < result.changes.size(); begin += kMaxChangesPerMessage) {
@@ -292,6 +295,17 @@ void MappingNode::integrate(const msg::PointCloud& cloud, const std::optional<ge
   // The update is out: in lockstep the clock may go on. The octree catches up with the scans
   // when it is next read, for a snapshot (Mapper::settle): once for all the scans since.
   reportLockstep();
+  // The stats count the map's nodes and bytes as the period's snapshot found them, from the
+  // kFiguresLagScans-th scan after it on: its walk, on a thread of its own, need not end
+  // before the next scans' stats, and the figures are the same whatever that thread took.
+  if (snapshot_job_ && frames_taken_ >= snapshot_job_->frames + kFiguresLagScans) {
+    finishSnapshot(true);
+  }
+  if (figures_ && frames_taken_ >= figures_->from_frames) {
+    map_nodes_ = figures_->nodes;
+    map_bytes_ = figures_->bytes;
+    figures_.reset();
+  }
   msg::MapStats stats;
   stats.header().stamp_ns(due_ns);
   stats.update_seq(first_seq);
@@ -324,17 +338,30 @@ void MappingNode::takeOwedSnapshot()
   if (!owed_snapshot_) {
     return;
   }
+  finishSnapshot(true);  // one at a time, in order
   const OwedSnapshot owed = *owed_snapshot_;
   owed_snapshot_.reset();
   // One walk of the tree for the snapshot, the checkpoint and the memory use: a walk costs
   // the cache misses of reaching every node.
-  TreeImage image = mapper_.image(!config_.checkpoint_file.empty());
-  if (owed.periodic) {
-    map_bytes_ = image.memory_bytes;  // with the period's snapshots only
-    map_nodes_ = mapper_.nodes();
+  dds::Waker* waker = this->waker();
+  snapshot_job_ = SnapshotJob{mapper_.imageLater(!config_.checkpoint_file.empty(), [waker] { waker->notify(); }), owed,
+                              update_seq_, reserved_seq_, frames_taken_};
+}
+
+void MappingNode::finishSnapshot(bool wait)
+{
+  if (!snapshot_job_ ||
+      (!wait && snapshot_job_->image.wait_for(std::chrono::seconds(0)) != std::future_status::ready)) {
+    return;
   }
-  publishSnapshot(owed.due_ns, std::move(image.binary));
-  checkpoint(owed.stamp_ns, reserved_seq_, &image.data);
+  const SnapshotJob job = std::move(*snapshot_job_);
+  snapshot_job_.reset();
+  const TreeImage& image = job.image.get();
+  if (job.owed.periodic) {
+    figures_ = Figures{job.frames + kFiguresLagScans, image.nodes, image.memory_bytes};  // the period's snapshots only
+  }
+  publishSnapshot(job.owed.due_ns, job.update_seq, image.binary);
+  checkpoint(job.owed.stamp_ns, job.reserved_seq, &image.data);
 }
 
 void MappingNode::onEvent(const dds::EndpointEvent& event)
@@ -425,11 +452,13 @@ void MappingNode::onWake()
   integratePending();
   reportLockstep();
   takeOwedSnapshot();
+  finishSnapshot(false);
 }
 
 void MappingNode::onStop()
 {
   takeOwedSnapshot();
+  finishSnapshot(true);
   save();
   checkpoint(last_stamp_ns_, std::max(reserved_seq_, update_seq_ + 1));
   spdlog::info("mapping: {} updates, {} clouds rejected, {} skipped, map {} nodes, {} voxel updates skipped at a "

@@ -5,6 +5,7 @@
 /// change set, a snapshot for late joiners and per-scan stats, and takes part in lockstep.
 
 #include <filesystem>
+#include <future>
 #include <memory>
 #include <optional>
 #include <set>
@@ -75,11 +76,15 @@ private:
   void reportLockstep();
   /// The snapshot (and checkpoint) owed by the last cloud integrated, if one is: taken before
   /// the next cloud changes the map, and otherwise once the lockstep report is out, so that
-  /// the clock never waits for its walk of the tree.
+  /// the clock never waits for its walk of the tree. The tree is settled and walked on a
+  /// thread of its own (Mapper::imageLater) while the next clouds are integrated.
   void takeOwedSnapshot();
+  /// The snapshot whose image is being worked out, published with its checkpoint: once the
+  /// image is ready, or with `wait` when it is.
+  void finishSnapshot(bool wait);
   void save();
-  /// The map as it is (its .bt bytes), on the latched snapshot topic, stamped `stamp_ns`.
-  void publishSnapshot(std::int64_t stamp_ns, std::vector<std::uint8_t> bytes);
+  /// The map's .bt bytes on the latched snapshot topic, stamped `stamp_ns`, as of update `update_seq`.
+  void publishSnapshot(std::int64_t stamp_ns, std::uint64_t update_seq, const std::vector<std::uint8_t>& bytes);
   /// The period the states are read at: the config's, or 0 (every one) when the budget is shorter.
   std::int64_t statePeriodNs();
   /// Resumes from the checkpoint file, if there is one (throws naming it when it is bad).
@@ -119,12 +124,29 @@ private:
     bool periodic;          // one of the period's: the map's memory is counted with it
   };
   std::optional<OwedSnapshot> owed_snapshot_;
+  struct SnapshotJob {
+    std::shared_future<TreeImage> image;
+    OwedSnapshot owed;
+    std::uint64_t update_seq;    // the last update out when it was taken
+    std::uint64_t reserved_seq;  // the reservation then, which its checkpoint keeps
+    std::uint64_t frames;        // frames_taken_ then
+  };
+  std::optional<SnapshotJob> snapshot_job_;  // taken, not yet published
+  // A period's snapshot's count of the map's nodes and bytes, for the stats from the scan
+  // that makes frames_taken_ reach from_frames on.
+  struct Figures {
+    std::uint64_t from_frames;
+    std::size_t nodes;
+    std::size_t bytes;
+  };
+  static constexpr std::uint64_t kFiguresLagScans = 3;
+  std::optional<Figures> figures_;
   std::uint64_t rejected_ = 0;
   std::uint64_t skipped_ = 0;
   DepthIntake intake_;                 // what of a cloud is mapped, or why it is refused
   // The tree's memory as of the last snapshot: OctoMap counts it by walking the whole tree,
   // which per cloud took a fifth of the mapper's time in the demo.
-  std::size_t map_bytes_ = 0;  // MapStats': as of the last periodic snapshot
+  std::size_t map_bytes_ = 0;  // MapStats': as of a periodic snapshot (figures_)
   std::size_t map_nodes_ = 0;
 };
 

@@ -456,20 +456,32 @@ std::optional<bool> MapTree::descendAndUpdate(const octomap::OcTreeKey& key, Unc
   return changed ? std::optional<bool>(occupied_after) : std::nullopt;
 }
 
-void MapTree::settle()
+void MapTree::settle() { settle(detachUnsettled()); }
+
+std::vector<MapTree::VoxelValue> MapTree::detachUnsettled()
 {
-  // Each voxel touched set to its value now, once however many scans updated it: OctoMap's
-  // tree is pruned wherever eight sibling leaves agree after every update, so the tree its
-  // updates build depends only on the voxels' values, not on the order or the steps they came in.
-  path_valid_ = -1;
+  std::vector<VoxelValue> voxels;
+  voxels.reserve(touched_.size());
   for (const octomap::OcTreeKey& key : touched_) {
     const std::size_t voxel = boundIndex(key);
     unsettled_[voxel >> 6] &= ~(std::uint64_t{1} << (voxel & 63));
-    const float value = std::bit_cast<float>(leaves_[voxel] ^ kUnknownLeaf);
-    descendAndUpdate(
-        key, [&](float before) { return before == value; }, [&](octomap::OcTreeNode* leaf) { leaf->setLogOdds(value); });
+    voxels.push_back({key, std::bit_cast<float>(leaves_[voxel] ^ kUnknownLeaf)});
   }
   touched_.clear();
+  return voxels;
+}
+
+void MapTree::settle(const std::vector<VoxelValue>& voxels)
+{
+  // Each voxel set once to its value: OctoMap's tree is pruned wherever eight sibling leaves
+  // agree after every update, so the tree its updates build depends only on the voxels'
+  // values, not on the order or the steps they came in.
+  path_valid_ = -1;
+  for (const VoxelValue& v : voxels) {
+    descendAndUpdate(
+        v.key, [&](float before) { return before == v.log_odds; },
+        [&](octomap::OcTreeNode* leaf) { leaf->setLogOdds(v.log_odds); });
+  }
 }
 
 }  // namespace quad::mapping

@@ -202,6 +202,30 @@ std::vector<VoxelChange> classificationOf(const octomap::OcTree& tree)
   return out;
 }
 
+std::shared_future<TreeImage> Mapper::imageLater(bool with_data, std::function<void()> done)
+{
+  if (image_job_.valid()) {
+    image_job_.wait();  // the image before: the tree is its thread's until then
+  }
+  if (!tree_.keepsLeaves()) {
+    std::promise<TreeImage> ready;
+    ready.set_value(treeImage(settled(), with_data));
+    if (done) {
+      done();
+    }
+    return ready.get_future().share();
+  }
+  image_job_ = std::async(std::launch::async, [this, with_data, voxels = tree_.detachUnsettled(), done = std::move(done)] {
+                 tree_.settle(voxels);
+                 TreeImage image = treeImage(tree_, with_data);
+                 if (done) {
+                   done();
+                 }
+                 return image;
+               }).share();
+  return image_job_;
+}
+
 std::vector<VoxelChange> Mapper::classification() const { return classificationOf(settled()); }
 
 std::vector<std::uint8_t> Mapper::snapshot() const { return binaryTreeBytes(settled()); }

@@ -119,6 +119,7 @@ TreeImage treeImage(const octomap::OcTree& tree, bool with_data)
   using Base = octomap::OcTreeBaseImpl<octomap::OcTreeNode, octomap::AbstractOccupancyOcTree>;
   image.memory_bytes = sizeof(Base) + tree.memoryUsageNode() * tree.size() +
                        (tree.size() - leaves) * sizeof(octomap::OcTreeNode* [8]);
+  image.nodes = tree.size();
   return image;
 }
 

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <filesystem>
 #include <random>
 #include <sstream>
@@ -313,31 +314,48 @@ TEST(Mapper, ABoxedMapsVoxelsHoldTheUnboundedMapsLogOddsWhateverUpdatesItsBounds
   EXPECT_EQ(free_mapper.tree().updatesSkippedAtBounds(), 0U);
 }
 
-TEST(Mapper, ABoxedTreeSettledOnceForManyScansIsTheTreeSettledAfterEach)
+/// A mapper's config limited to a box around boxWorld()'s box, 8 m of range.
+MapperConfig boxedConfig()
 {
-  // GIVEN two boxed mappers fed the same noisy scans (voxels going up and down, siblings
-  // pruned and expanded again), one whose tree is read after every scan, one whose tree is
-  // read only now and then, settling all the scans since at once
-  const world::World world = boxWorld();
   MapperConfig config;
   config.max_range = 8.0;
   config.box = std::make_pair(Vector3(-1.0, -3.0, 0.0), Vector3(8.0, 3.0, 3.0));
-  Mapper each(config);
-  Mapper batched(config);
-  std::mt19937_64 rng(29);
+  return config;
+}
+
+/// `count` scans of boxWorld() from a camera moving towards the box, jittered, each point
+/// moved by 0.1 m noise: voxels go up and down, siblings are pruned and expanded again.
+std::vector<Scan> noisyScans(int count, std::uint64_t seed)
+{
+  const world::World world = boxWorld();
+  std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::normal_distribution<double> noise(0.0, 0.1);
-  std::size_t compared = 0;
-  for (int k = 0; k < 48; ++k) {
+  std::vector<Scan> scans;
+  for (int k = 0; k < count; ++k) {
     Scan scan = scanFrom(world, Vector3(-0.5 + 0.1 * k, 0.8 * u(rng), 1.5 + 0.4 * u(rng)), 0.3 * u(rng), rng);
     for (Vector3& p : scan.points_W) {
       p += Vector3(noise(rng), noise(rng), noise(rng));
     }
-    ASSERT_TRUE(each.integrate(scan).accepted);
-    ASSERT_TRUE(batched.integrate(scan).accepted);
+    scans.push_back(std::move(scan));
+  }
+  return scans;
+}
+
+TEST(Mapper, ABoxedTreeSettledOnceForManyScansIsTheTreeSettledAfterEach)
+{
+  // GIVEN two boxed mappers fed the same noisy scans, one whose tree is read after every
+  // scan, one whose tree is read only now and then, settling all the scans since at once
+  Mapper each(boxedConfig());
+  Mapper batched(boxedConfig());
+  const std::vector<Scan> scans = noisyScans(48, 29);
+  std::size_t compared = 0;
+  for (std::size_t k = 0; k < scans.size(); ++k) {
+    ASSERT_TRUE(each.integrate(scans[k]).accepted);
+    ASSERT_TRUE(batched.integrate(scans[k]).accepted);
     std::ostringstream after_each;
     each.tree().write(after_each);  // settled scan by scan
-    if (k % 11 != 10 && k != 47) {
+    if (k % 11 != 10 && k + 1 != scans.size()) {
       continue;
     }
     // THEN the tree settled at once is the same, node for node and log-odds for log-odds
@@ -348,6 +366,45 @@ TEST(Mapper, ABoxedTreeSettledOnceForManyScansIsTheTreeSettledAfterEach)
   }
   EXPECT_EQ(compared, 5U);
   EXPECT_LT(batched.nodes(), 8 * batched.classification().size()) << "the tree was pruned";
+}
+
+TEST(Mapper, AnImageWorkedOutWhileScansGoOnIsTheMapAsItWasWhenAsked)
+{
+  // GIVEN two boxed mappers fed the same noisy scans; every seventh scan one takes its image
+  // at once, the other asks for it on a thread of its own and integrates three more scans
+  // before it looks at it
+  Mapper now(boxedConfig());
+  Mapper later(boxedConfig());
+  const std::vector<Scan> scans = noisyScans(40, 31);
+  std::atomic<int> done{0};
+  std::size_t compared = 0;
+  for (std::size_t k = 0; k < scans.size(); ++k) {
+    ASSERT_TRUE(now.integrate(scans[k]).accepted);
+    ASSERT_TRUE(later.integrate(scans[k]).accepted);
+    if (k % 7 != 6 || k + 3 >= scans.size()) {
+      continue;
+    }
+    const TreeImage expected = now.image(true);
+    const std::shared_future<TreeImage> image = later.imageLater(true, [&done] { ++done; });
+    for (std::size_t more = k + 1; more <= k + 3; ++more) {
+      ASSERT_TRUE(now.integrate(scans[more]).accepted);
+      ASSERT_TRUE(later.integrate(scans[more]).accepted);
+    }
+    k += 3;
+    // THEN its image is the map as the scans before it left it, byte for byte
+    EXPECT_EQ(image.get().binary, expected.binary) << "after scan " << k;
+    EXPECT_EQ(image.get().data, expected.data);
+    EXPECT_EQ(image.get().nodes, expected.nodes);
+    EXPECT_EQ(image.get().memory_bytes, expected.memory_bytes);
+    ++compared;
+  }
+  EXPECT_EQ(compared, 5U);
+  EXPECT_EQ(done.load(), 5);
+  // AND the tree, read after the last scan, holds them all
+  std::ostringstream a, b;
+  now.tree().write(a);
+  later.tree().write(b);
+  EXPECT_EQ(a.str(), b.str());
 }
 
 }  // namespace

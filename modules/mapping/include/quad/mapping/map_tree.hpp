@@ -146,8 +146,24 @@ public:
   /// scans changed is set once to its value now, in one descent, however many of them
   /// updated it. The tree OctoMap's insertPointCloud would have built from those scans, whose
   /// pruning leaves a tree that depends only on its voxels' values. Settling once for many
-  /// scans costs a descent per voxel instead of one per update.
+  /// scans costs a descent per voxel instead of one per update. settle(detachUnsettled()).
   void settle();
+
+  /// A voxel and the log-odds the tree is to hold for it.
+  struct VoxelValue {
+    octomap::OcTreeKey key;
+    float log_odds;
+  };
+  /// The voxels the scans reported since the tree was last settled (or since the last detach)
+  /// changed, each with its value now: the tree forgets them, for settle(voxels) to set later.
+  std::vector<VoxelValue> detachUnsettled();
+  /// Sets each voxel of `voxels` (detachUnsettled's) to its value. It touches only the tree,
+  /// not what reportPointCloud works with: one thread may settle while another reports scans
+  /// (and reads no node of the tree meanwhile).
+  void settle(const std::vector<VoxelValue>& voxels);
+  /// Whether each voxel's log-odds are kept beside the tree (reportPointCloud leaves the tree
+  /// to settle()); else every scan updates the tree at once.
+  bool keepsLeaves() const { return leaves_ != nullptr; }
 
   /// Only voxels whose keys lie in [lo, hi] (inclusive, per axis) are updated from now on, as
   /// OctoMap's bounding-box limit does: rays still run their whole length, what they cross

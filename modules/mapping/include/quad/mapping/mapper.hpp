@@ -11,6 +11,8 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <future>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -107,6 +109,13 @@ public:
   std::vector<std::uint8_t> snapshot() const;
   /// The snapshot, with the tree's node data (`with_data`) and its memory use, from one walk.
   TreeImage image(bool with_data) const { return treeImage(settled(), with_data); }
+  /// The same image of the map as the scans integrated so far left it, worked out on a thread
+  /// of its own while more scans are integrated: a bounded map's scans leave the tree alone,
+  /// and each voxel they changed goes to that thread with its value now
+  /// (MapTree::detachUnsettled). `done` (optional) is called on that thread when the image is
+  /// ready. One image at a time: a second waits for the first; every reader of the tree
+  /// below waits for it too. An unbounded map's image is worked out here, ready at once.
+  std::shared_future<TreeImage> imageLater(bool with_data, std::function<void()> done = {});
   /// Writes a .bt file that OctoMap's own tools (octovis, binvox2bt ...) read; false on I/O failure.
   bool save(const std::filesystem::path& file) const;
   /// Replaces an empty tree with its node data (OctoMap's, as in its .ot files: every node's
@@ -123,6 +132,9 @@ public:
 private:
   const MapTree& settled() const
   {
+    if (image_job_.valid()) {
+      image_job_.wait();  // the tree is that thread's until the image is out
+    }
     tree_.settle();
     return tree_;
   }
@@ -132,6 +144,7 @@ private:
   // answer a reader gets.
   mutable MapTree tree_;
   geometry::VoxelGrid grid_;
+  std::shared_future<TreeImage> image_job_;  // imageLater's, the last (after tree_: it goes first)
 };
 
 /// Every known voxel of an octree, expanded to its resolution, sorted.

@@ -24,6 +24,7 @@ struct TreeImage {
   std::vector<std::uint8_t> binary;  ///< the .bt file (binaryTreeBytes)
   std::vector<std::uint8_t> data;    ///< the node data (treeDataBytes); empty unless asked for
   std::size_t memory_bytes = 0;      ///< what `OcTree::memoryUsage()` says, without its own walk
+  std::size_t nodes = 0;             ///< the tree's nodes (`OcTree::size()`)
 };
 
 /// Both formats (the node data only `with_data`) and the memory use of `tree`, in one walk.

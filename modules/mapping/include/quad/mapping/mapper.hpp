@@ -112,9 +112,11 @@ public:
   /// The same image of the map as the scans integrated so far left it, worked out on a thread
   /// of its own while more scans are integrated: a bounded map's scans leave the tree alone,
   /// and each voxel they changed goes to that thread with its value now
-  /// (MapTree::detachUnsettled). `done` (optional) is called on that thread when the image is
-  /// ready. One image at a time: a second waits for the first; every reader of the tree
-  /// below waits for it too. An unbounded map's image is worked out here, ready at once.
+  /// (MapTree::detachUnsettled). `done` (optional) is called once the image is worked out, on
+  /// that thread, just before the future holds it (a caller it wakes that finds the future not
+  /// yet ready looks again later). One image at a time: a second waits for the first; every
+  /// reader of the tree below waits for it too. An unbounded map's image is worked out here,
+  /// ready at once (`done` called here).
   std::shared_future<TreeImage> imageLater(bool with_data, std::function<void()> done = {});
   /// Writes a .bt file that OctoMap's own tools (octovis, binvox2bt ...) read; false on I/O failure.
   bool save(const std::filesystem::path& file) const;

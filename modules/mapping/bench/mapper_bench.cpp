@@ -108,8 +108,9 @@ void BM_Mapper_Integrate(benchmark::State& state)
 /// Maps a flight's scans into a map limited to its world's box (one voxel beyond), as the
 /// mapping node limits its map to the flown world's: updates of voxels at their clamping
 /// bound are dropped without a descent, and rays stop where they leave the box. Each scan's
-/// changes, then the octree brought up to date (Mapper::settle), as the node does; with
-/// `changes_only`, the time to the changes alone (the settling untimed). Items are scans.
+/// changes, then the octree brought up to date (Mapper::settle) after every scan: the most
+/// the node's work can be, which settles once a snapshot period instead; with `changes_only`,
+/// the time to the changes alone (the settling untimed). Items are scans.
 void mapBoxed(benchmark::State& state, const std::string& world_text, const Scans& flight, bool changes_only = false)
 {
   const world::World world = world::parseWorld(world_text, "world");

@@ -144,9 +144,10 @@ private:
   std::uint64_t rejected_ = 0;
   std::uint64_t skipped_ = 0;
   DepthIntake intake_;                 // what of a cloud is mapped, or why it is refused
-  // The tree's memory as of the last snapshot: OctoMap counts it by walking the whole tree,
-  // which per cloud took a fifth of the mapper's time in the demo.
-  std::size_t map_bytes_ = 0;  // MapStats': as of a periodic snapshot (figures_)
+  // MapStats' tree memory and nodes, as of a periodic snapshot (figures_): OctoMap counts the
+  // memory by walking the whole tree, which per cloud took a fifth of the mapper's time in the
+  // demo, and the tree is only settled for the snapshots.
+  std::size_t map_bytes_ = 0;
   std::size_t map_nodes_ = 0;
 };
 

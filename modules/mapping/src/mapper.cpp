@@ -204,9 +204,7 @@ std::vector<VoxelChange> classificationOf(const octomap::OcTree& tree)
 
 std::shared_future<TreeImage> Mapper::imageLater(bool with_data, std::function<void()> done)
 {
-  if (image_job_.valid()) {
-    image_job_.wait();  // the image before: the tree is its thread's until then
-  }
+  awaitImage();  // the image before
   if (!tree_.keepsLeaves()) {
     std::promise<TreeImage> ready;
     ready.set_value(treeImage(settled(), with_data));

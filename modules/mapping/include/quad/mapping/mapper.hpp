@@ -98,8 +98,8 @@ public:
   /// settle(), which every reader below calls first (MapTree::reportPointCloud).
   IntegrationResult integrate(const Scan& scan);
   /// Brings the octree up to date with the scans integrated: the work integrate() left, for a
-  /// caller to do once it has sent the changes on.
-  void settle() const { tree_.settle(); }
+  /// caller to do once it has sent the changes on (every reader below does it first).
+  void settle() const { settled(); }
 
   VoxelState classify(const VoxelIndex& index) const;
   /// Every known voxel with its state (pruned octree nodes expanded to the resolution).
@@ -132,11 +132,16 @@ public:
   const MapTree& tree() const { return settled(); }
 
 private:
-  const MapTree& settled() const
+  /// Waits for imageLater's image, if one is being worked out: the tree is that thread's until then.
+  void awaitImage() const
   {
     if (image_job_.valid()) {
-      image_job_.wait();  // the tree is that thread's until the image is out
+      image_job_.wait();
     }
+  }
+  const MapTree& settled() const
+  {
+    awaitImage();
     tree_.settle();
     return tree_;
   }

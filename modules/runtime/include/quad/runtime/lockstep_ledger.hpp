@@ -39,8 +39,8 @@ public:
   bool worksOnInputsOnly(std::string_view participant);
 
   /// An input given to a participant declared worksOnInputsOnly, its work due at `due_ns`
-  /// (no earlier than the one given before it). Ignored for other participants and for an input
-  /// the participant already reported done up to. False for an unknown name.
+  /// (inputs may come in any order of due times). Ignored for other participants and for an
+  /// input the participant already reported done up to. False for an unknown name.
   bool inputGiven(std::string_view participant, std::int64_t due_ns);
 
   /// True when every participant is done up to at least `sim_ns`.

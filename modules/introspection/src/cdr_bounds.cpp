@@ -99,7 +99,11 @@ private:
   void walkElements(const TypeRef& element, std::size_t count)
   {
     // A run of fixed layout is skipped whole, its enums' values read in place; a fault in one
-    // is found again element by element by the walk that names the field.
+    // is found again element by element by the walk that names the field. No elements: no
+    // padding either (Fast CDR aligns an element as it writes it).
+    if (count == 0) {
+      return;
+    }
     if (const Resolved& r = resolved(element); r.uniform_size != 0 && (!kNamesFields || r.enum_fields.empty())) {
       skip(count * r.uniform_size * r.fields, r.uniform_size);
       const std::size_t start = pos_ - count * r.uniform_size * r.fields;

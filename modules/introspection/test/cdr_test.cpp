@@ -8,6 +8,7 @@
 #include <fastcdr/Cdr.h>
 #include <fastcdr/FastBuffer.h>
 
+#include <foxglove/SceneUpdatePubSubTypes.h>
 #include <quad/msg/HeartbeatPubSubTypes.h>
 #include <quad/msg/PointCloudPubSubTypes.h>
 #include <quad/msg/VehicleStatePubSubTypes.h>
@@ -22,7 +23,8 @@ namespace {
 template <class Message>
 std::vector<std::uint8_t> serialize(Message& m, bool big_endian = false)
 {
-  std::vector<char> buffer(Message::getMaxCdrSerializedSize() + 4);
+  // The sample's own size: a scene's largest would be hundreds of megabytes.
+  std::vector<char> buffer(Message::getCdrSerializedSize(m) + 4);
   eprosima::fastcdr::FastBuffer fb(buffer.data(), buffer.size());
   eprosima::fastcdr::Cdr cdr(fb,
                              big_endian ? eprosima::fastcdr::Cdr::BIG_ENDIANNESS
@@ -336,6 +338,32 @@ TEST(CdrBounds, RunsOfOneFieldSizeAreSkippedTheirEnumsReadAndAFaultNamedWhereItI
   EXPECT_EQ(checkBounds(quadSchema(), "quad::msg::PointCloud", bytes), "");
   bytes.resize(bytes.size() - 12);  // one point short of what the length announces
   EXPECT_NE(checkBounds(quadSchema(), "quad::msg::PointCloud", bytes).find("truncated"), std::string::npos);
+}
+
+TEST(CdrBounds, AnEmptyRunOfFixedLayoutAddsNoPadding)
+{
+  // Fast CDR aligns a sequence's element as it writes it, so an empty sequence of doubles'
+  // structs is its length alone. Scenes as the display draws them (entities of boxes,
+  // cylinders and spheres, any list of them empty) pass, as decodeCdr reads them.
+  std::mt19937 rng(11);
+  const auto upTo = [&rng](int n) { return std::uniform_int_distribution<int>(0, n)(rng); };
+  for (int trial = 0; trial < 60; ++trial) {
+    foxglove::SceneUpdate scene;
+    for (int e = upTo(3); e >= 0; --e) {
+      foxglove::SceneEntity entity;
+      entity.frame_id(std::string(static_cast<std::size_t>(upTo(9)), 'w'));
+      entity.id(std::string(static_cast<std::size_t>(upTo(9)), 'e'));
+      entity.frame_locked(upTo(1) == 1);
+      entity.cubes().resize(static_cast<std::size_t>(upTo(2)));
+      entity.spheres().resize(static_cast<std::size_t>(upTo(2)));
+      entity.cylinders().resize(static_cast<std::size_t>(upTo(2)));
+      entity.arrows().resize(static_cast<std::size_t>(upTo(1)));
+      scene.entities().push_back(entity);
+    }
+    const auto bytes = serialize(scene);
+    ASSERT_NO_THROW(decodeCdr(quadSchema(), "foxglove::SceneUpdate", bytes)) << "trial " << trial;
+    ASSERT_EQ(checkBounds(quadSchema(), "foxglove::SceneUpdate", bytes), "") << "trial " << trial;
+  }
 }
 
 }  // namespace

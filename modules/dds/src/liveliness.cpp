@@ -20,7 +20,9 @@ LivelinessKeeper::LivelinessKeeper(WriterEndpoint& writer)
   });
 }
 
-LivelinessKeeper::~LivelinessKeeper()
+LivelinessKeeper::~LivelinessKeeper() { stop(); }
+
+void LivelinessKeeper::stop()
 {
   {
     std::lock_guard<std::mutex> lock(mutex_);

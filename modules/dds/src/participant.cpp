@@ -336,12 +336,19 @@ fdds::Subscriber* SharedParticipant::subscriber(std::optional<std::uint32_t> veh
   return made;
 }
 
-SharedParticipant::~SharedParticipant()
+SharedParticipant::~SharedParticipant() { close(); }
+
+void SharedParticipant::close()
 {
-  // Readers and writers are deleted by their owners first; this removes the rest.
+  if (participant_ == nullptr) {
+    return;
+  }
+  // Readers and writers are deleted by their owners first, unless the process ends without
+  // destroying them; this removes the rest.
   participant_->set_listener(nullptr);
   participant_->delete_contained_entities();
   fdds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
+  participant_ = nullptr;
 }
 
 fdds::Topic* SharedParticipant::topic(const TopicInfo& info, const fdds::TypeSupport& type)

@@ -20,6 +20,8 @@ public:
   explicit LivelinessKeeper(WriterEndpoint& writer);
   ~LivelinessKeeper();
   LivelinessKeeper(const LivelinessKeeper&) = delete;
+  /// Stops asserting, at once (the destructor does); the writer may go after it.
+  void stop();
   LivelinessKeeper& operator=(const LivelinessKeeper&) = delete;
 
 private:

@@ -158,6 +158,11 @@ public:
   SharedParticipant(const SharedParticipant&) = delete;
   SharedParticipant& operator=(const SharedParticipant&) = delete;
 
+  /// Deletes every entity and the participant now, as the destructor does unless this did:
+  /// a process that ends without destroying its nodes removes its participant first, so that
+  /// its peers see it leave at once. Nothing made through it may be used after.
+  void close();
+
   const ParticipantOptions& options() const { return options_; }
   /// The faults on received datagrams; null without ParticipantOptions::fault_layer.
   wire::DatagramFaults* datagramFaults() { return datagram_faults_.get(); }

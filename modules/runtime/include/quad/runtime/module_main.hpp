@@ -41,7 +41,9 @@ ModuleEntry moduleEntry(std::string name, common::ParamSchema schema, ConfigFrom
 }
 
 /// The body of every node's main(): installs signal handling, builds the node with `make`,
-/// runs it, and turns an exception into one logged line and exit status 1.
+/// runs it, and turns an exception into one logged line and exit status 1. Once the node
+/// stopped, it ends the process itself, without destroying the node: its participant is
+/// removed first, and what it must leave behind it wrote when it stopped (Node::onStop).
 int runNode(std::string_view module_name, const std::function<std::unique_ptr<Node>()>& make);
 
 /// runNode() for a node with parameters: reads `--config FILE` and `--set KEY=VALUE` from the
@@ -63,7 +65,7 @@ int runModule(int argc, char** argv, const ModuleEntry& module);
 /// Every module's config is checked before any DDS entity exists (as runNodeMain's). Each
 /// node runs on a thread of its own; the container lives and dies as one process: a node that
 /// stops on its own (its run ended, or it failed) stops the others, a signal stops them all,
-/// and the exit status is 1 when any failed.
+/// and the exit status is 1 when any failed. The process ends as runNode's does.
 int runContainer(int argc, char** argv, const std::vector<ModuleEntry>& known);
 
 }  // namespace quad::runtime

@@ -82,6 +82,10 @@ public:
   /// Thread-safe; run() returns soon after.
   void stop();
   bool stopping() const { return stop_.load(); }
+  /// After run() returned: stops what the node keeps running besides (its heartbeat's
+  /// liveliness), so that its process may remove the participant under it and end without
+  /// destroying it.
+  void quiesce() { heartbeat_alive_.stop(); }
 
   dds::Participant& participant() { return participant_; }
   const std::string& moduleName() const { return module_name_; }

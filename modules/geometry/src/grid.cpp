@@ -70,21 +70,6 @@ std::int64_t Lattice::size() const
   return static_cast<std::int64_t>(dims_.x()) * dims_.y() * dims_.z();
 }
 
-bool Lattice::contains(const VoxelIndex& i) const
-{
-  const VoxelIndex d = i - origin_;
-  return (d.array() >= 0).all() && (d.array() < dims_.array()).all();
-}
-
-std::optional<std::int64_t> Lattice::cell(const VoxelIndex& i) const
-{
-  if (!contains(i)) {
-    return std::nullopt;
-  }
-  const VoxelIndex d = i - origin_;
-  return d.x() + static_cast<std::int64_t>(dims_.x()) * (d.y() + static_cast<std::int64_t>(dims_.y()) * d.z());
-}
-
 VoxelIndex Lattice::voxel(std::int64_t c) const
 {
   if (c < 0 || c >= size()) {

@@ -8,6 +8,7 @@
 #include <queue>
 #include <stdexcept>
 #include <type_traits>
+#include <unordered_map>
 
 #include "quad/geometry/inflation.hpp"
 
@@ -174,8 +175,7 @@ Occupancy DStarLite::voxelState(const VoxelIndex& voxel) const
   if (const auto c = lattice_.cell(voxel)) {
     return cell_state_[static_cast<std::size_t>(*c)];
   }
-  const auto it = voxels_.find(voxel);
-  return it == voxels_.end() ? Occupancy::kUnknown : it->second;
+  return static_cast<Occupancy>(voxels_.get(voxel));
 }
 
 std::optional<Cell> DStarLite::nearestTraversable(Cell c, double max_distance) const
@@ -432,10 +432,8 @@ void DStarLite::updateVoxel(const VoxelIndex& voxel, Occupancy state)
     if (was != traversable(*own)) {
       changed.push_back(*own);
     }
-  } else if (state == Occupancy::kUnknown) {
-    voxels_.erase(voxel);
   } else {
-    voxels_[voxel] = state;
+    voxels_.set(voxel, static_cast<std::uint8_t>(state));  // unknown: let go
   }
   if ((before == Occupancy::kOccupied) != (state == Occupancy::kOccupied)) {
     const int delta = state == Occupancy::kOccupied ? 1 : -1;

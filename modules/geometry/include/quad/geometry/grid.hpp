@@ -63,9 +63,21 @@ public:
   const Eigen::Vector3i& dims() const { return dims_; }
   std::int64_t size() const;
 
-  bool contains(const VoxelIndex& i) const;
-  /// The cell of a voxel, if the voxel is in the lattice.
-  std::optional<std::int64_t> cell(const VoxelIndex& i) const;
+  bool contains(const VoxelIndex& i) const
+  {
+    const VoxelIndex d = i - origin_;
+    return (d.array() >= 0).all() && (d.array() < dims_.array()).all();
+  }
+  /// The cell of a voxel, if the voxel is in the lattice. Inline: a planner asks it for every
+  /// voxel of an obstacle's inflation as the map changes.
+  std::optional<std::int64_t> cell(const VoxelIndex& i) const
+  {
+    if (!contains(i)) {
+      return std::nullopt;
+    }
+    const VoxelIndex d = i - origin_;
+    return d.x() + static_cast<std::int64_t>(dims_.x()) * (d.y() + static_cast<std::int64_t>(dims_.y()) * d.z());
+  }
   /// The voxel of a cell; throws std::out_of_range for a cell outside [0, size).
   VoxelIndex voxel(std::int64_t cell) const;
   /// World point → cell, if the point's voxel is in the lattice.

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "quad/geometry/grid.hpp"
+#include "quad/geometry/voxel_table.hpp"
 
 namespace quad::mapping {
 
@@ -34,9 +35,9 @@ void sortByIndex(std::vector<VoxelChange>& voxels);
 
 /// A consumer's copy of the classification (the planner's): a snapshot, then change sets
 /// applied in order, reproduce the mapper's classification exactly. Held in one flat table
-/// (a word per voxel, linear probing): a planner catching up copies a million voxels while
-/// its vehicle hovers. Voxels farther than 2^19 from the origin on an axis (OctoMap's reach
-/// is 2^15) cannot be in a map and are not held.
+/// (geometry::VoxelTable): a planner catching up copies a million voxels while its vehicle
+/// hovers. Voxels farther than 2^19 from the origin on an axis (OctoMap's reach is 2^15)
+/// cannot be in a map and are not held.
 class VoxelMap {
 public:
   explicit VoxelMap(double resolution) : resolution_(resolution) {}
@@ -46,21 +47,14 @@ public:
   bool applySnapshot(const std::vector<std::uint8_t>& bytes);
   void apply(const std::vector<VoxelChange>& changes);
   VoxelState classify(const VoxelIndex& index) const;
-  std::size_t known() const { return size_; }
+  std::size_t known() const { return voxels_.size(); }
 
   /// Every known voxel, sorted by index.
   std::vector<VoxelChange> contents() const;
 
 private:
-  void set(std::uint64_t key, VoxelState state);
-  void erase(std::uint64_t key);
-  /// The slot holding `key`, or the empty one where it would go.
-  std::size_t find(std::uint64_t key) const;
-  void grow();
-
   double resolution_;
-  std::vector<std::uint64_t> slots_;  // a packed voxel (index and state), or empty
-  std::size_t size_ = 0;
+  geometry::VoxelTable voxels_;  // each voxel's VoxelState
 };
 
 }  // namespace quad::mapping

@@ -19,11 +19,11 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
 #include "quad/geometry/grid.hpp"
+#include "quad/geometry/voxel_table.hpp"
 #include "quad/planning/bucket_queue.hpp"
 
 namespace quad::planning {
@@ -251,7 +251,9 @@ private:
   // lone vehicle's planner spends nothing on it.
   std::vector<std::uint8_t> kept_out_;
   std::vector<Cell> keep_out_;  // its cells, sorted
-  std::unordered_map<VoxelIndex, Occupancy, geometry::VoxelIndexHash> voxels_;
+  // The classification of voxels outside the lattice (its own cells' are cell_state_), for
+  // the inflation and known-space checks that reach past its sides.
+  geometry::VoxelTable voxels_;
   std::vector<std::unique_ptr<Vertex[]>> pages_;
   std::size_t allocated_pages_ = 0;
   BucketQueue<Key, VertexPlace, KeyLevel> open_;

@@ -4,15 +4,30 @@
 #include <algorithm>
 #include <iterator>
 
+#include "quad/dds/sim_period_filter.hpp"
 #include "quad/dds/topics.hpp"
 
 namespace quad::runtime {
 
 SimClockFollower::SimClockFollower(dds::Participant& participant, dds::Waker* waker, std::vector<std::uint32_t> served,
                                    std::int32_t depth)
-    : clock_(participant, dds::topics::kSimClock, waker, readerQosWith(participant, dds::topics::kSimClock.info, depth)),
-      served_(std::move(served))
+    : SimClockFollower(participant, waker, std::move(served),
+                       readerQosWith(participant, dds::topics::kSimClock.info, depth))
 {
+}
+
+SimClockFollower::SimClockFollower(dds::Participant& participant, dds::Waker* waker, std::vector<std::uint32_t> served,
+                                   std::optional<eprosima::fastdds::dds::DataReaderQos> qos)
+    : clock_(participant, dds::topics::kSimClock, waker, std::move(qos)), served_(std::move(served))
+{
+}
+
+SimClockFollower SimClockFollower::onlooker(dds::Participant& participant, std::vector<std::uint32_t> served,
+                                            std::int64_t period_ns)
+{
+  auto qos = dds::withMinimumSeparation(participant.readerQos(dds::topics::kSimClock.info), period_ns);
+  qos.reliability().kind = eprosima::fastdds::dds::BEST_EFFORT_RELIABILITY_QOS;
+  return SimClockFollower(participant, nullptr, std::move(served), qos);
 }
 
 bool SimClockFollower::update()

@@ -28,7 +28,7 @@ struct Observer::Sim {
   Sim(dds::Participant& p, const std::vector<std::uint32_t>& vehicles, std::int64_t state_period_ns)
       : state(p, topics::kSimState, nullptr, deep(p, topics::kSimState.info, state_period_ns)),
         estimate(p, topics::kEstimatedState, nullptr, deep(p, topics::kEstimatedState.info, state_period_ns)),
-        clock(p, nullptr, vehicles),
+        clock(runtime::SimClockFollower::onlooker(p, vehicles, state_period_ns)),
         heartbeats(p, topics::kHeartbeat)
   {
   }

@@ -9,9 +9,11 @@
 
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <utility>
 #include <vector>
 
+#include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 #include <quad/msg/SimClock.h>
 
 #include "quad/dds/subscriber.hpp"
@@ -26,6 +28,14 @@ public:
   /// follower that works while the clock runs on still takes every sample.
   SimClockFollower(dds::Participant& participant, dds::Waker* waker = nullptr, std::vector<std::uint32_t> served = {},
                    std::int32_t depth = 0);
+
+  /// An onlooker's follower (the launcher's observer): the newest sample only, one per
+  /// `period_ns` of sim time, best effort. A sample lost or left out is replaced by the next,
+  /// and a reader in another process costs the plant one datagram a period instead of two a
+  /// step (a reliable writer follows each sample of a keep-last-one history with a heartbeat).
+  /// Not for a node the lockstep clock waits for, which must see every step it answers.
+  static SimClockFollower onlooker(dds::Participant& participant, std::vector<std::uint32_t> served,
+                                   std::int64_t period_ns);
 
   /// Takes every clock sample that arrived; true when one did.
   bool update();
@@ -53,6 +63,9 @@ public:
   bool vouchesFor(std::int64_t stamp_ns) const;
 
 private:
+  SimClockFollower(dds::Participant& participant, dds::Waker* waker, std::vector<std::uint32_t> served,
+                   std::optional<eprosima::fastdds::dds::DataReaderQos> qos);
+
   dds::Subscriber<msg::SimClock> clock_;
   std::vector<std::uint32_t> served_;
   bool seen_ = false;

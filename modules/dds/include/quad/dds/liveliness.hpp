@@ -20,9 +20,10 @@ public:
   explicit LivelinessKeeper(WriterEndpoint& writer);
   ~LivelinessKeeper();
   LivelinessKeeper(const LivelinessKeeper&) = delete;
+  LivelinessKeeper& operator=(const LivelinessKeeper&) = delete;
+
   /// Stops asserting, at once (the destructor does); the writer may go after it.
   void stop();
-  LivelinessKeeper& operator=(const LivelinessKeeper&) = delete;
 
 private:
   std::mutex mutex_;

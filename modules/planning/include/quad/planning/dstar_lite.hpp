@@ -252,7 +252,8 @@ private:
   std::vector<std::uint8_t> kept_out_;
   std::vector<Cell> keep_out_;  // its cells, sorted
   // The classification of voxels outside the lattice (its own cells' are cell_state_), for
-  // the inflation and known-space checks that reach past its sides.
+  // the inflation and known-space checks that reach past its sides; within 2^19 voxels of
+  // the origin, as every map's (an OctoMap's reach is 2^15).
   geometry::VoxelTable voxels_;
   std::vector<std::unique_ptr<Vertex[]>> pages_;
   std::size_t allocated_pages_ = 0;

@@ -2,8 +2,6 @@
 #include "quad/mapping/voxel_map.hpp"
 
 #include <algorithm>
-#include <iterator>
-#include <optional>
 #include <utility>
 
 #include "quad/mapping/mapper.hpp"
@@ -13,6 +11,9 @@ namespace quad::mapping {
 namespace {
 
 using geometry::VoxelTable;
+
+// A voxel's state is its table state: none is unknown.
+static_assert(static_cast<int>(VoxelState::kUnknown) == 0);
 
 std::uint64_t pack(const VoxelChange& c) { return VoxelTable::wordOf(c.index, static_cast<std::uint8_t>(c.state)); }
 

@@ -170,6 +170,9 @@ void DStarLite::setKeepOut(std::vector<Cell> cells)
   }
 }
 
+// An outside voxel's Occupancy is its table state: none is unknown.
+static_assert(static_cast<int>(Occupancy::kUnknown) == 0);
+
 Occupancy DStarLite::voxelState(const VoxelIndex& voxel) const
 {
   if (const auto c = lattice_.cell(voxel)) {

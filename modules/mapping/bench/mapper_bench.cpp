@@ -108,9 +108,9 @@ void BM_Mapper_Integrate(benchmark::State& state)
 /// Maps a flight's scans into a map limited to its world's box (one voxel beyond), as the
 /// mapping node limits its map to the flown world's: updates of voxels at their clamping
 /// bound are dropped without a descent, and rays stop where they leave the box. Each scan's
-/// changes, then the octree brought up to date (Mapper::settle) after every scan: the most
-/// the node's work can be, which settles once a snapshot period instead; with `changes_only`,
-/// the time to the changes alone (the settling untimed). Items are scans.
+/// changes, then the octree brought up to date (Mapper::settle) after every scan, as a
+/// reader of the tree after every scan would have it; with `changes_only`, the time to the
+/// changes alone (the settling untimed), the node's work for a scan. Items are scans.
 void mapBoxed(benchmark::State& state, const std::string& world_text, const Scans& flight, bool changes_only = false)
 {
   const world::World world = world::parseWorld(world_text, "world");
@@ -138,6 +138,43 @@ void BM_Mapper_IntegrateBoxed(benchmark::State& state) { mapBoxed(state, kForest
 // The demo's flight in the demo world's box: the whole work, and the time to the changes.
 void BM_Mapper_DemoFlight(benchmark::State& state) { mapBoxed(state, kDemo, demoScans()); }
 void BM_Mapper_DemoFlightChanges(benchmark::State& state) { mapBoxed(state, kDemo, demoScans(), true); }
+
+/// The demo's flight in the demo world's box, with an image of the map (snapshot and
+/// checkpoint) every 10 scans, as the mapping node takes one a second: made from the box's
+/// voxels (`from_voxels`, on a copy of them, as Mapper::imageLater does), or the octree
+/// brought up to date with the scans since the last and walked, as the node did before.
+/// Only the images are timed; items are images.
+void demoImages(benchmark::State& state, bool from_voxels)
+{
+  const world::World world = world::parseWorld(kDemo, "world");
+  mapping::MapperConfig config;
+  config.coverWorld(world.bounds().min, world.bounds().max);
+  std::int64_t images = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    mapping::Mapper mapper(config);
+    for (std::size_t k = 0; k < demoScans().scans.size(); ++k) {
+      benchmark::DoNotOptimize(mapper.integrate(demoScans().scans[k]));
+      if (k % 10 != 9) {
+        continue;
+      }
+      state.ResumeTiming();
+      if (from_voxels) {
+        benchmark::DoNotOptimize(mapper.imageLater(true).get().nodes);
+      } else {
+        mapper.settle();
+        benchmark::DoNotOptimize(mapping::treeImage(mapper.tree(), true).nodes);
+      }
+      state.PauseTiming();
+      ++images;
+    }
+    state.ResumeTiming();
+  }
+  state.SetItemsProcessed(images);
+}
+
+void BM_DemoImages_FromVoxels(benchmark::State& state) { demoImages(state, true); }
+void BM_DemoImages_SettledTree(benchmark::State& state) { demoImages(state, false); }
 
 void BM_OcTree_InsertPointCloud(benchmark::State& state)
 {
@@ -304,6 +341,8 @@ BENCHMARK(BM_Mapper_Integrate)->Unit(benchmark::kMillisecond)->MinTime(5.0);
 BENCHMARK(BM_Mapper_IntegrateBoxed)->Unit(benchmark::kMillisecond)->MinTime(5.0);
 BENCHMARK(BM_Mapper_DemoFlight)->Unit(benchmark::kMillisecond)->MinTime(5.0);
 BENCHMARK(BM_Mapper_DemoFlightChanges)->Unit(benchmark::kMillisecond)->MinTime(5.0);
+BENCHMARK(BM_DemoImages_FromVoxels)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DemoImages_SettledTree)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_OcTree_InsertPointCloud)->Unit(benchmark::kMillisecond)->MinTime(5.0);
 BENCHMARK(BM_ClassificationAgreement)->Iterations(1);
 BENCHMARK(BM_MapFollower_Join)->Unit(benchmark::kMillisecond);

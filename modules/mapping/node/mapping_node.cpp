@@ -460,10 +460,11 @@ void MappingNode::onStop()
   takeOwedSnapshot();
   finishSnapshot(true);
   save();
-  checkpoint(last_stamp_ns_, std::max(reserved_seq_, update_seq_ + 1));
+  const TreeImage image = mapper_.image(!config_.checkpoint_file.empty());  // the node data for the checkpoint
+  checkpoint(last_stamp_ns_, std::max(reserved_seq_, update_seq_ + 1), &image.data);
   spdlog::info("mapping: {} updates, {} clouds rejected, {} skipped, map {} nodes, {} voxel updates skipped at a "
                "clamping bound",
-               update_seq_, rejected_, skipped_, mapper_.nodes(), mapper_.tree().updatesSkippedAtBounds());
+               update_seq_, rejected_, skipped_, image.nodes, mapper_.updatesSkippedAtBounds());
 }
 
 runtime::ModuleEntry mappingModule() { return runtime::moduleEntry<MappingNode>("mapping", mappingSchema(), mappingConfigFrom); }

@@ -36,7 +36,7 @@ bool get(std::istream& in, T& value)
 
 void writeCheckpoint(const std::filesystem::path& file, const Mapper& mapper, const MapCheckpoint& meta)
 {
-  writeCheckpoint(file, mapper.resolution(), treeDataBytes(mapper.tree()), meta);
+  writeCheckpoint(file, mapper.resolution(), mapper.image(true).data, meta);
 }
 
 void writeCheckpoint(const std::filesystem::path& file, double resolution, const std::vector<std::uint8_t>& tree_data,

@@ -119,9 +119,12 @@ void MapTree::resync()
   std::fill(bounds_.begin(), bounds_.end(), 0);
   leaves_.reset();
   unsettled_.reset();
+  tree_in_box_ = true;
+  changed_blocks_.clear();
   if (leaf_count_ == 0) {
     return;
   }
+  changed_blocks_.assign(blockCount(box_lo_, box_hi_), 1);
   // Zeroed pages from the system, touched only where a voxel becomes known.
   leaves_.reset(static_cast<std::uint32_t*>(std::calloc(leaf_count_, sizeof(std::uint32_t))));
   unsettled_.reset(static_cast<std::uint64_t*>(std::calloc((leaf_count_ + 63) / 64, sizeof(std::uint64_t))));
@@ -140,6 +143,7 @@ void MapTree::resync()
       from[a] = std::max<unsigned>(first, box_lo_[a]);
       to[a] = std::min<unsigned>(first + span - 1U, box_hi_[a]);
       inside = inside && from[a] <= to[a];
+      tree_in_box_ = tree_in_box_ && from[a] == first && to[a] == first + span - 1U;
     }
     if (!inside) {
       continue;
@@ -154,6 +158,20 @@ void MapTree::resync()
       }
     }
   }
+}
+
+void MapTree::takeChangedBlocks(std::vector<std::uint8_t>& changed)
+{
+  changed.assign(changed_blocks_.begin(), changed_blocks_.end());
+  std::fill(changed_blocks_.begin(), changed_blocks_.end(), 0);
+}
+
+std::optional<VoxelBox> MapTree::voxelBox() const
+{
+  if (!leaves_ || !tree_in_box_) {
+    return std::nullopt;
+  }
+  return VoxelBox{box_lo_, box_hi_, leaves_.get(), kUnknownLeaf, resolution, occ_prob_thres_log};
 }
 
 void MapTree::noteBounds(const octomap::OcTreeKey& key, float value)
@@ -323,6 +341,7 @@ void MapTree::reportUpdate(const octomap::OcTreeKey& key, bool occupied, std::ve
   const bool occupied_before = known && isNodeOccupied(leaf);
   OccupancyOcTreeBase::updateNodeLogOdds(&leaf, delta);  // OctoMap's, called directly
   word = std::bit_cast<std::uint32_t>(leaf.getLogOdds()) ^ kUnknownLeaf;
+  changed_blocks_[blockOf(box_lo_, box_hi_, key)] = 1;
   noteBounds(key, leaf.getLogOdds());
   const std::size_t voxel = boundIndex(key);
   if (std::uint64_t& bits = unsettled_[voxel >> 6]; (bits & (std::uint64_t{1} << (voxel & 63))) == 0) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -202,10 +203,19 @@ std::vector<VoxelChange> classificationOf(const octomap::OcTree& tree)
   return out;
 }
 
+TreeImage Mapper::image(bool with_data) const
+{
+  if (const auto box = tree_.voxelBox()) {
+    return boxImage(*box, with_data);
+  }
+  return treeImage(settled(), with_data);
+}
+
 std::shared_future<TreeImage> Mapper::imageLater(bool with_data, std::function<void()> done)
 {
-  awaitImage();  // the image before
-  if (!tree_.keepsLeaves()) {
+  awaitImage();  // the image before: its thread may still read the words
+  auto box = tree_.voxelBox();
+  if (!box) {
     std::promise<TreeImage> ready;
     ready.set_value(treeImage(settled(), with_data));
     if (done) {
@@ -213,9 +223,11 @@ std::shared_future<TreeImage> Mapper::imageLater(bool with_data, std::function<v
     }
     return ready.get_future().share();
   }
-  image_job_ = std::async(std::launch::async, [this, with_data, voxels = tree_.detachUnsettled(), done = std::move(done)] {
-                 tree_.settle(voxels);
-                 TreeImage image = treeImage(tree_, with_data);
+  image_words_.assign(box->words, box->words + tree_.voxelCount());
+  box->words = image_words_.data();
+  tree_.takeChangedBlocks(image_changed_);
+  image_job_ = std::async(std::launch::async, [this, box = *box, with_data, done = std::move(done)] {
+                 TreeImage image = boxImage(box, with_data, &image_cache_, &image_changed_);
                  if (done) {
                    done();
                  }
@@ -226,11 +238,12 @@ std::shared_future<TreeImage> Mapper::imageLater(bool with_data, std::function<v
 
 std::vector<VoxelChange> Mapper::classification() const { return classificationOf(settled()); }
 
-std::vector<std::uint8_t> Mapper::snapshot() const { return binaryTreeBytes(settled()); }
-
 bool Mapper::save(const std::filesystem::path& file) const
 {
-  return settled().writeBinaryConst(file.string());
+  const std::vector<std::uint8_t> bytes = snapshot();
+  std::ofstream out(file, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  return static_cast<bool>(out);
 }
 
 bool Mapper::readTree(std::istream& in)

@@ -15,6 +15,8 @@ namespace quad::mapping {
 namespace {
 
 using test::boxWorld;
+using test::boxedConfig;
+using test::noisyScans;
 using test::scanFrom;
 
 VoxelIndex voxelAt(const Mapper& m, const Vector3& p) { return geometry::VoxelGrid(m.resolution()).toIndex(p); }
@@ -314,34 +316,6 @@ TEST(Mapper, ABoxedMapsVoxelsHoldTheUnboundedMapsLogOddsWhateverUpdatesItsBounds
   EXPECT_EQ(free_mapper.tree().updatesSkippedAtBounds(), 0U);
 }
 
-/// A mapper's config limited to a box around boxWorld()'s box, 8 m of range.
-MapperConfig boxedConfig()
-{
-  MapperConfig config;
-  config.max_range = 8.0;
-  config.box = std::make_pair(Vector3(-1.0, -3.0, 0.0), Vector3(8.0, 3.0, 3.0));
-  return config;
-}
-
-/// `count` scans of boxWorld() from a camera moving towards the box, jittered, each point
-/// moved by 0.1 m noise: voxels go up and down, siblings are pruned and expanded again.
-std::vector<Scan> noisyScans(int count, std::uint64_t seed)
-{
-  const world::World world = boxWorld();
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::normal_distribution<double> noise(0.0, 0.1);
-  std::vector<Scan> scans;
-  for (int k = 0; k < count; ++k) {
-    Scan scan = scanFrom(world, Vector3(-0.5 + 0.1 * k, 0.8 * u(rng), 1.5 + 0.4 * u(rng)), 0.3 * u(rng), rng);
-    for (Vector3& p : scan.points_W) {
-      p += Vector3(noise(rng), noise(rng), noise(rng));
-    }
-    scans.push_back(std::move(scan));
-  }
-  return scans;
-}
-
 TEST(Mapper, ABoxedTreeSettledOnceForManyScansIsTheTreeSettledAfterEach)
 {
   // GIVEN two boxed mappers fed the same noisy scans, one whose tree is read after every
@@ -371,8 +345,8 @@ TEST(Mapper, ABoxedTreeSettledOnceForManyScansIsTheTreeSettledAfterEach)
 TEST(Mapper, AnImageWorkedOutWhileScansGoOnIsTheMapAsItWasWhenAsked)
 {
   // GIVEN two boxed mappers fed the same noisy scans; every seventh scan one takes its image
-  // at once, the other asks for it on a thread of its own and integrates three more scans
-  // before it looks at it
+  // at once, the other asks for it on a thread of its own (which takes the blocks unchanged
+  // since its last image from it) and integrates three more scans before it looks at it
   Mapper now(boxedConfig());
   Mapper later(boxedConfig());
   const std::vector<Scan> scans = noisyScans(40, 31);

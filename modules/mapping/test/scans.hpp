@@ -2,7 +2,7 @@
 #pragma once
 /// @file
 /// Scans of a known world for the mapping tests: one box in an open field, seen by the
-/// plant's depth camera without noise.
+/// plant's depth camera without noise, or with noise added to each point.
 
 #include <gtest/gtest.h>
 
@@ -40,6 +40,34 @@ inline Scan scanFrom(const world::World& world, const Vector3& p, double yaw, st
     scan.points_W.push_back(depth.sensor_W.transform(point.cast<double>()));
   }
   return scan;
+}
+
+/// A mapper's config limited to a box around boxWorld()'s box, 8 m of range.
+inline MapperConfig boxedConfig()
+{
+  MapperConfig config;
+  config.max_range = 8.0;
+  config.box = std::make_pair(Vector3(-1.0, -3.0, 0.0), Vector3(8.0, 3.0, 3.0));
+  return config;
+}
+
+/// `count` scans of boxWorld() from a camera moving towards the box, jittered, each point
+/// moved by 0.1 m noise: voxels go up and down, siblings are pruned and expanded again.
+inline std::vector<Scan> noisyScans(int count, std::uint64_t seed)
+{
+  const world::World world = boxWorld();
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::normal_distribution<double> noise(0.0, 0.1);
+  std::vector<Scan> scans;
+  for (int k = 0; k < count; ++k) {
+    Scan scan = scanFrom(world, Vector3(-0.5 + 0.1 * k, 0.8 * u(rng), 1.5 + 0.4 * u(rng)), 0.3 * u(rng), rng);
+    for (Vector3& p : scan.points_W) {
+      p += Vector3(noise(rng), noise(rng), noise(rng));
+    }
+    scans.push_back(std::move(scan));
+  }
+  return scans;
 }
 
 /// `actual` holds exactly `expected` (both sorted by index, as contents() and

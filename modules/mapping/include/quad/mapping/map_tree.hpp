@@ -21,6 +21,8 @@
 
 #include <octomap/OcTree.h>
 
+#include "quad/mapping/tree_bytes.hpp"
+
 namespace quad::mapping {
 
 /// A voxel whose classification a scan changed, by its OctoMap key.
@@ -146,24 +148,20 @@ public:
   /// scans changed is set once to its value now, in one descent, however many of them
   /// updated it. The tree OctoMap's insertPointCloud would have built from those scans, whose
   /// pruning leaves a tree that depends only on its voxels' values. Settling once for many
-  /// scans costs a descent per voxel instead of one per update. settle(detachUnsettled()).
+  /// scans costs a descent per voxel instead of one per update.
   void settle();
-
-  /// A voxel and the log-odds the tree is to hold for it.
-  struct VoxelValue {
-    octomap::OcTreeKey key;
-    float log_odds;
-  };
-  /// The voxels the scans reported since the tree was last settled (or since the last detach)
-  /// changed, each with its value now: the tree forgets them, for settle(voxels) to set later.
-  std::vector<VoxelValue> detachUnsettled();
-  /// Sets each voxel of `voxels` (detachUnsettled's) to its value. It touches only the tree,
-  /// not what reportPointCloud works with: one thread may settle while another reports scans
-  /// (and reads no node of the tree meanwhile).
-  void settle(const std::vector<VoxelValue>& voxels);
   /// Whether each voxel's log-odds are kept beside the tree (reportPointCloud leaves the tree
   /// to settle()); else every scan updates the tree at once.
   bool keepsLeaves() const { return leaves_ != nullptr; }
+  /// The voxels' log-odds kept beside the tree, as the settled tree's leaves, when the tree
+  /// holds nothing outside the box (one read from a stream may): its image then comes from
+  /// them (boxImage), settled or not. The words are this tree's, changed by the next scan.
+  std::optional<VoxelBox> voxelBox() const;
+  /// The words of voxelBox().
+  std::size_t voxelCount() const { return leaf_count_; }
+  /// A flag a block of the box (blockOf): set when a voxel of it changed since the last call
+  /// (all set after a resync), into `changed`; the flags start again clear.
+  void takeChangedBlocks(std::vector<std::uint8_t>& changed);
 
   /// Only voxels whose keys lie in [lo, hi] (inclusive, per axis) are updated from now on, as
   /// OctoMap's bounding-box limit does: rays still run their whole length, what they cross
@@ -215,6 +213,17 @@ private:
   template <class Unchanged, class Update>
   std::optional<bool> descendAndUpdate(const octomap::OcTreeKey& key, Unchanged unchanged, Update update);
 
+  /// A voxel and the log-odds the tree is to hold for it.
+  struct VoxelValue {
+    octomap::OcTreeKey key;
+    float log_odds;
+  };
+  /// The voxels the scans reported since the tree was last settled changed, each with its
+  /// value now: the tree forgets them, for settle(voxels) to set.
+  std::vector<VoxelValue> detachUnsettled();
+  /// Sets each voxel of `voxels` (detachUnsettled's) to its value.
+  void settle(const std::vector<VoxelValue>& voxels);
+
   ScanKeySet keys_;
   // The last update's path from the root: path_[0 ... path_valid_] still exist as they were
   // (-1: none, as at the start of a scan; the tree may have changed since the last one).
@@ -256,6 +265,8 @@ private:
   static constexpr std::uint32_t kUnknownLeaf = 0x7FBADBADU;  // a NaN no update makes
   std::unique_ptr<std::uint32_t[], FreeDeleter> leaves_;
   std::size_t leaf_count_ = 0;
+  bool tree_in_box_ = true;  // the tree holds no voxel outside the box (resync)
+  std::vector<std::uint8_t> changed_blocks_;  // takeChangedBlocks'
   // The voxels whose value changed since the tree was last settled, each once (its bit set
   // in unsettled_ while it is listed). Empty with no leaves kept.
   std::vector<octomap::OcTreeKey> touched_;

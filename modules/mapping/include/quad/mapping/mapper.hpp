@@ -95,10 +95,10 @@ public:
   /// when within range; points beyond range only clear up to it. A scan with a non-finite
   /// origin or point, or more than max_points, is refused whole: nothing changes. In a
   /// bounded map (config.box) the changes come first and the octree's own update is left to
-  /// settle(), which every reader below calls first (MapTree::reportPointCloud).
+  /// settle(), which the readers of the tree below call first (MapTree::reportPointCloud);
+  /// its images come from the box's voxels, without the tree (MapTree::voxelBox).
   IntegrationResult integrate(const Scan& scan);
-  /// Brings the octree up to date with the scans integrated: the work integrate() left, for a
-  /// caller to do once it has sent the changes on (every reader below does it first).
+  /// Brings the octree up to date with the scans integrated.
   void settle() const { settled(); }
 
   VoxelState classify(const VoxelIndex& index) const;
@@ -106,17 +106,17 @@ public:
   std::vector<VoxelChange> classification() const;
 
   /// The map as OctoMap's binary (.bt) bytes: maximum-likelihood free/occupied per voxel.
-  std::vector<std::uint8_t> snapshot() const;
+  std::vector<std::uint8_t> snapshot() const { return image(false).binary; }
   /// The snapshot, with the tree's node data (`with_data`) and its memory use, from one walk.
-  TreeImage image(bool with_data) const { return treeImage(settled(), with_data); }
+  TreeImage image(bool with_data) const;
   /// The same image of the map as the scans integrated so far left it, worked out on a thread
-  /// of its own while more scans are integrated: a bounded map's scans leave the tree alone,
-  /// and each voxel they changed goes to that thread with its value now
-  /// (MapTree::detachUnsettled). `done` (optional) is called once the image is worked out, on
-  /// that thread, just before the future holds it (a caller it wakes that finds the future not
-  /// yet ready looks again later). One image at a time: a second waits for the first; every
-  /// reader of the tree below waits for it too. An unbounded map's image is worked out here,
-  /// ready at once (`done` called here).
+  /// of its own while more scans are integrated: a bounded map's voxels are copied for that
+  /// thread (a few MB, in about a millisecond), and their image is the work there, each
+  /// block of them unchanged since the last such image taken from it again. `done`
+  /// (optional) is called once the image is worked out, on that thread, just before the
+  /// future holds it (a caller it wakes that finds the future not yet ready looks again
+  /// later). One image at a time: a second waits for the first. An unbounded map's image is
+  /// worked out here, ready at once (`done` called here).
   std::shared_future<TreeImage> imageLater(bool with_data, std::function<void()> done = {});
   /// Writes a .bt file that OctoMap's own tools (octovis, binvox2bt ...) read; false on I/O failure.
   bool save(const std::filesystem::path& file) const;
@@ -125,14 +125,17 @@ public:
   /// short or the mapper already holds voxels.
   bool readTree(std::istream& in);
 
-  std::size_t nodes() const { return settled().size(); }
-  std::size_t bytes() const { return settled().memoryUsage(); }
+  std::size_t nodes() const { return image(false).nodes; }
+  std::size_t bytes() const { return image(false).memory_bytes; }
   double resolution() const { return config_.resolution; }
+  /// Updates dropped at a voxel's clamping bound without a descent (MapTree's figure).
+  std::uint64_t updatesSkippedAtBounds() const { return tree_.updatesSkippedAtBounds(); }
   /// The octree, up to date with the scans integrated before this call (not those after).
   const MapTree& tree() const { return settled(); }
 
 private:
-  /// Waits for imageLater's image, if one is being worked out: the tree is that thread's until then.
+  /// Waits for imageLater's image, if one is being worked out: the copy of the voxels is that
+  /// thread's until then.
   void awaitImage() const
   {
     if (image_job_.valid()) {
@@ -141,7 +144,6 @@ private:
   }
   const MapTree& settled() const
   {
-    awaitImage();
     tree_.settle();
     return tree_;
   }
@@ -151,7 +153,10 @@ private:
   // answer a reader gets.
   mutable MapTree tree_;
   geometry::VoxelGrid grid_;
-  std::shared_future<TreeImage> image_job_;  // imageLater's, the last (after tree_: it goes first)
+  std::vector<std::uint32_t> image_words_;   // the voxels imageLater's thread works on
+  std::vector<std::uint8_t> image_changed_;  // the blocks of them changed since its last image
+  BoxImageCache image_cache_;                // that image's blocks
+  std::shared_future<TreeImage> image_job_;  // imageLater's, the last (after image_words_: it goes first)
 };
 
 /// Every known voxel of an octree, expanded to its resolution, sorted.

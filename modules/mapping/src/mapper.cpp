@@ -205,7 +205,7 @@ std::vector<VoxelChange> classificationOf(const octomap::OcTree& tree)
 
 TreeImage Mapper::image(bool with_data) const
 {
-  if (const auto box = tree_.voxelBox()) {
+  if (const auto box = tree_.voxelBox(); box && !tree_.holdsNoVoxel()) {  // an empty map's is the empty tree's
     return boxImage(*box, with_data);
   }
   return treeImage(settled(), with_data);

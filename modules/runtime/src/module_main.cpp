@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <mutex>
 #include <optional>
@@ -46,8 +47,8 @@ constexpr auto kNodeStopWait = std::chrono::seconds(3);
 
 /// Runs the nodes `make` builds, the first on this thread and each other on one of its own,
 /// until all have stopped: a node that stops on its own, or fails, stops the others; a
-/// signal stops them all. They stop in the reverse of the order `make` gives them (the order
-/// they were built in, but a container's recorders first, so stopped last), each done
+/// signal stops them all. They stop in the reverse of the order `make` gives them (a
+/// container's modules in the order named, but its recorders first, so stopped last), each done
 /// before the next is told, as a launcher stops a process per module (the plant's clock ends
 /// before the controller that answers it). Then ends the process (endProcess): 1 when
 /// building or running any failed, else 0.
@@ -338,17 +339,43 @@ int runContainer(int argc, char** argv, const std::vector<ModuleEntry>& known)
   }
   runHosted(name, [&] {
     std::vector<std::unique_ptr<Node>> nodes;
-    dds::Participant first(dds::optionsFromEnvironment(name));
-    const std::shared_ptr<dds::SharedParticipant> shared = first.shared();
-    // The modules in the order named, then the recorders, each put first: runHosted stops
-    // the nodes from the last to the first.
-    std::size_t built = 0;
+    std::optional<dds::Participant> first(dds::optionsFromEnvironment(name));
+    const std::shared_ptr<dds::SharedParticipant> shared = first->shared();
+    // The modules, then the recorders (which record what the modules write), each put first:
+    // runHosted stops the nodes from the last to the first.
     for (const bool recorders : {false, true}) {
+      std::vector<std::size_t> group;
       for (std::size_t i = 0; i < hosted.size(); ++i) {
-        if (hosted[i]->records != recorders) {
-          continue;
+        if (hosted[i]->records == recorders) {
+          group.push_back(i);
         }
-        auto node = hosted[i]->make(params[i], built++ == 0 ? std::move(first) : dds::Participant(shared));
+      }
+      // Built side by side, a thread each: a node's construction is mostly its own work (its
+      // core's tables, its endpoints' payload pools, its types' sizes); the participant
+      // serialises what they share, and no node handles a sample before it runs.
+      std::vector<std::unique_ptr<Node>> built(group.size());
+      std::vector<std::exception_ptr> failures(group.size());
+      std::vector<std::thread> builders;
+      for (std::size_t k = 0; k < group.size(); ++k) {
+        dds::Participant participant = first ? std::move(*first) : dds::Participant(shared);
+        first.reset();
+        builders.emplace_back([&, k, participant = std::move(participant)]() mutable {
+          try {
+            built[k] = hosted[group[k]]->make(params[group[k]], std::move(participant));
+          } catch (...) {
+            failures[k] = std::current_exception();
+          }
+        });
+      }
+      for (auto& builder : builders) {
+        builder.join();
+      }
+      for (const auto& failure : failures) {
+        if (failure) {
+          std::rethrow_exception(failure);  // the first module named that failed
+        }
+      }
+      for (auto& node : built) {
         nodes.insert(recorders ? nodes.begin() : nodes.end(), std::move(node));
       }
     }

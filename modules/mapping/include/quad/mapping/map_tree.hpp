@@ -159,6 +159,8 @@ public:
   std::optional<VoxelBox> voxelBox() const;
   /// The words of voxelBox().
   std::size_t voxelCount() const { return leaf_count_; }
+  /// No voxel is known, settled or not: the tree is empty and stays so when settled.
+  bool holdsNoVoxel() const { return root == nullptr && touched_.empty(); }
   /// A flag a block of the box (blockOf): set when a voxel of it changed since the last call
   /// (all set after a resync), into `changed`; the flags start again clear.
   void takeChangedBlocks(std::vector<std::uint8_t>& changed);

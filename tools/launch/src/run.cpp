@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <fstream>
 #include <set>
@@ -58,6 +59,11 @@ std::string commaList(const Strings& items)
 std::map<std::string, std::string> runEnvironment(const Manifest& m, int domain, const launch::HostNetwork& net)
 {
   std::map<std::string, std::string> env = m.environment;
+  const char* own_tunables = std::getenv(kGlibcTunables);
+  const auto manifest_tunables = m.environment.find(kGlibcTunables);
+  env[kGlibcTunables] = moduleTunables(manifest_tunables != m.environment.end() ? manifest_tunables->second
+                                       : own_tunables != nullptr                 ? own_tunables
+                                                                                 : "");
   env[dds::environment::kDomainId] = std::to_string(domain);
   env[dds::environment::kTransport] = m.transport;
   env[dds::environment::kLockstep] = m.mode == "lockstep" ? "1" : "0";

@@ -221,4 +221,12 @@ std::optional<int> Supervisor::stop(const std::string& name, double grace_s)
   }
 }
 
+std::string moduleTunables(const std::string& given)
+{
+  if (given.find("glibc.malloc.hugetlb") != std::string::npos) {
+    return given;
+  }
+  return given.empty() ? "glibc.malloc.hugetlb=1" : given + ":glibc.malloc.hugetlb=1";
+}
+
 }  // namespace quad::launch

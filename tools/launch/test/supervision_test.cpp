@@ -47,6 +47,14 @@ TEST(Supervisor, OutputIsKeptPerProcessAndExitsAreReported)
   fs::remove_all(dir);
 }
 
+TEST(ModuleTunables, HugePagesAreAskedUnlessTheGivenTunablesSayOtherwise)
+{
+  EXPECT_EQ(moduleTunables(""), "glibc.malloc.hugetlb=1");
+  EXPECT_EQ(moduleTunables("glibc.malloc.arena_max=2"), "glibc.malloc.arena_max=2:glibc.malloc.hugetlb=1");
+  EXPECT_EQ(moduleTunables("glibc.malloc.hugetlb=0"), "glibc.malloc.hugetlb=0");
+  EXPECT_EQ(moduleTunables(moduleTunables("")), moduleTunables(""));  // a launch within a launch adds nothing
+}
+
 TEST(Supervisor, EnvironmentIsPassed)
 {
   const fs::path dir = quad::test::scratchDir("quad_supervisor_env");

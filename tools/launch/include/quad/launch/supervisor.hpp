@@ -85,4 +85,13 @@ private:
   std::size_t width_ = 8;
 };
 
+/// glibc's allocator tunables (glibc's own variable, read when a process starts).
+inline constexpr const char* kGlibcTunables = "GLIBC_TUNABLES";
+/// The tunables a module starts with: those `given` (the manifest's environment's, else the
+/// launcher's), with glibc's allocator asking for transparent huge pages for its heap and
+/// large blocks (granted where the system grants them on request, as in the common "madvise"
+/// mode) unless they say otherwise. The modules' large tables (a map's voxels, a planner's
+/// tables, big samples' payloads) are then faulted in 2 MB at a time instead of 4 KB.
+std::string moduleTunables(const std::string& given);
+
 }  // namespace quad::launch

@@ -460,7 +460,8 @@ void MappingNode::onStop()
   takeOwedSnapshot();
   finishSnapshot(true);
   save();
-  const TreeImage image = mapper_.image(!config_.checkpoint_file.empty());  // the node data for the checkpoint
+  // The node data for the checkpoint, from the blocks the last snapshot's image left as they were.
+  const TreeImage image = mapper_.imageLater(!config_.checkpoint_file.empty()).get();
   checkpoint(last_stamp_ns_, std::max(reserved_seq_, update_seq_ + 1), &image.data);
   spdlog::info("mapping: {} updates, {} clouds rejected, {} skipped, map {} nodes, {} voxel updates skipped at a "
                "clamping bound",

@@ -111,6 +111,8 @@ void Observer::holdStart(std::size_t estimators)
   start_hold_ = std::make_unique<StartHold>(participant_, estimators);
 }
 
+bool Observer::holdingStart() const { return start_hold_ && start_hold_->released.size() < ids_.size(); }
+
 void Observer::releaseStart()
 {
   if (!start_hold_ || start_hold_->released.size() == ids_.size()) {

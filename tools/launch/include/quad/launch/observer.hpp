@@ -67,6 +67,9 @@ public:
   /// matched yet are lost to it: without the hold a machine slow to discover left the
   /// summary without the first half second of a flight.
   void holdStart(std::size_t estimators);
+  /// The first round is held (holdStart) and not yet released for every vehicle: the whole
+  /// run waits on this observer, which should look again soon.
+  bool holdingStart() const;
   /// Takes what arrived, feeds the trackers, sends the land command when it asks.
   void update();
   /// The modules' heartbeats that arrived since the last call.

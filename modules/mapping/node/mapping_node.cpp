@@ -110,8 +110,9 @@ MappingNode::MappingNode(MappingNodeConfig config, dds::Participant handle)
   followSimClock(runtime::kHeldStates);  // a sample at the state's rate, each saying whether a state went out
   spdlog::info("mapping: resolution {} m, max range {} m, clouds placed on the {} ({})", config_.map.resolution,
                config_.map.max_range, runtime::toString(config_.state_source), state_.topic().name);
-  map_bytes_ = mapper_.bytes();  // the empty map's; resume() counts a resumed one
-  map_nodes_ = mapper_.nodes();
+  const TreeImage empty = mapper_.image(false);  // the empty map's; resume() counts a resumed one
+  map_bytes_ = empty.memory_bytes;
+  map_nodes_ = empty.nodes;
   resume();
 }
 
@@ -143,12 +144,12 @@ void MappingNode::resume()
   update_seq_ = meta->next_update_seq - 1;
   reserved_seq_ = meta->next_update_seq;
   last_stamp_ns_ = meta->stamp_ns;
-  spdlog::info("mapping: resumed from {}: {} nodes, scans up to t = {:.3f} s, updates numbered from {}",
-               config_.checkpoint_file.string(), mapper_.nodes(), common::toSeconds(meta->stamp_ns),
-               meta->next_update_seq);
   // The resumed map at once, latched: a consumer holding the map from before fills the gap
   // the new numbering opens with it.
   const TreeImage image = mapper_.image(false);
+  spdlog::info("mapping: resumed from {}: {} nodes, scans up to t = {:.3f} s, updates numbered from {}",
+               config_.checkpoint_file.string(), image.nodes, common::toSeconds(meta->stamp_ns),
+               meta->next_update_seq);
   map_bytes_ = image.memory_bytes;
   map_nodes_ = image.nodes;
   publishSnapshot(meta->stamp_ns, update_seq_, image.binary);

@@ -126,7 +126,6 @@ public:
   bool readTree(std::istream& in);
 
   std::size_t nodes() const { return image(false).nodes; }
-  std::size_t bytes() const { return image(false).memory_bytes; }
   double resolution() const { return config_.resolution; }
   /// Updates dropped at a voxel's clamping bound without a descent (MapTree's figure).
   std::uint64_t updatesSkippedAtBounds() const { return tree_.updatesSkippedAtBounds(); }

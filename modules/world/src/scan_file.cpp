@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <mutex>
 #include <sstream>
 
 #include "quad/world/point_cloud_file.hpp"
@@ -71,10 +72,12 @@ private:
 };
 
 /// OctoMap reports what it reads, and why it fails, on std::cerr: kept here while it reads, so
-/// that a good file says nothing and a bad one's reason joins the error.
+/// that a good file says nothing and a bad one's reason joins the error. std::cerr is the
+/// process's: one capture at a time (the modules of a container are built on threads of their
+/// own, and each may read a scan), or one would restore another's buffer, gone by then.
 class CerrCapture {
 public:
-  CerrCapture() : previous_(std::cerr.rdbuf(text_.rdbuf())) {}
+  CerrCapture() : hold_(capturing()), previous_(std::cerr.rdbuf(text_.rdbuf())) {}
   ~CerrCapture() { std::cerr.rdbuf(previous_); }
   CerrCapture(const CerrCapture&) = delete;
   CerrCapture& operator=(const CerrCapture&) = delete;
@@ -93,6 +96,13 @@ public:
   }
 
 private:
+  static std::mutex& capturing()
+  {
+    static std::mutex mutex;
+    return mutex;
+  }
+
+  std::lock_guard<std::mutex> hold_;
   std::ostringstream text_;
   std::streambuf* previous_;
 };
